@@ -1,0 +1,36 @@
+# Quick start:  make run   (creates .venv, installs, runs the default design)
+#               make test  (creates .venv with the test extras, runs the suite)
+PYTHON ?= python3
+VENV   ?= .venv
+BIN    := $(VENV)/bin
+
+.PHONY: run test bench clean
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+
+# One stamp per set of extras; reinstalls when pyproject.toml changes.
+$(VENV)/.stamp-base: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -e .
+	touch $@
+
+$(VENV)/.stamp-test: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -e ".[test]"
+	touch $@
+
+$(VENV)/.stamp-bench: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -e ".[test,bench,plot]"
+	touch $@
+
+run: $(VENV)/.stamp-base
+	$(BIN)/pumplink force --speed 360
+
+test: $(VENV)/.stamp-test
+	$(BIN)/python -m pytest -q
+
+bench: $(VENV)/.stamp-bench
+	$(BIN)/python benchmarks/bench.py
+
+clean:
+	rm -rf $(VENV) build *.egg-info .pytest_cache .hypothesis

@@ -1,0 +1,3 @@
+from pumplink.cli import main
+
+main()

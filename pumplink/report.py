@@ -1,0 +1,268 @@
+"""Rows and rendering: results -> table (Rich) / JSON / CSV.  The only module that formats.
+
+Degrees appear here, at the edge; the library works in radians.  NaN becomes ``null`` in JSON,
+an empty cell in CSV and "∞ (dead centre)" or "—" in tables.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import sys
+from typing import Any, Iterable
+
+import numpy as np
+
+from pumplink.analysis import Design, ForceResult
+
+FORMATS = ("table", "json", "csv")
+
+
+def num(x) -> float | None:
+    """A JSON-safe float: None for NaN/inf."""
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def deg(x) -> float | None:
+    return num(np.degrees(x))
+
+
+# ----------------------------------------------------------------------------- rows
+def design_row(d: Design) -> dict[str, Any]:
+    """The JSON contract of one synthesised design (issue #2)."""
+    s, lk = d.synthesis, d.spec.linkage
+    return {
+        "name": d.spec.name,
+        "feasible": d.feasible,
+        "error": d.error,
+        "L1": lk.L1, "D1": lk.D1, "b": lk.b, "swing_deg": lk.swing,
+        "frame_length": num(s.frame_length),
+        "beta_deg": deg(s.beta),
+        "psi1_deg": deg(s.psi1),
+        "psi2_deg": deg(s.psi2),
+        "crank_length": num(s.crank_length),
+        "coupler_length": num(s.coupler_length),
+        "rocker_length": num(s.rocker_length),
+        "handle_length": num(s.handle_length),
+        "handle_stroke": num(2 * lk.handle * math.sin(math.radians(lk.swing) / 2)),
+        "rocker_pivot": [num(s.pivot_x), num(s.pivot_y)],
+        "dead_centres_deg": {"extended": deg(s.dead_centre_extended), "folded": deg(s.dead_centre_folded)},
+        "time_ratio": num(s.time_ratio),
+        "stroke_plus_x_crank_deg": deg(s.stroke_plus_x),
+        "transmission_angle_deg": {"min": deg(s.transmission_min), "max": deg(s.transmission_max)},
+    }
+
+
+def force_summary(r: ForceResult) -> dict[str, Any]:
+    """The JSON contract of a force analysis without samples (issue #2)."""
+    out = design_row(r.design)
+    out.update({
+        "speed_deg_s": deg(r.speed),
+        "wheel_torque_Nm": num(r.wheel_torque),
+        "power_W": num(r.power),
+        "force_limit_N": num(r.force_limit),
+        "dead_band_deg": deg(r.dead_band),
+        "model": "quasi-static + dead band",
+        "mean_force_N": num(r.mean_force),
+        "peak_force_N": num(r.peak_force),
+        "peak_crank_deg": deg(r.peak_angle),
+        "sampled_peak_force_N": num(r.sampled_peak),
+        "samples_n": r.samples_n,
+        "pass": r.passed,
+        "checks": [{"name": c.name, "value": num(c.value), "limit": c.limit, "relation": c.relation,
+                    "unit": c.unit, "severity": c.severity, "pass": c.passed} for c in r.checks],
+    })
+    return out
+
+
+def sample_rows(r: ForceResult) -> list[dict[str, Any]]:
+    """One dict per sampled crank angle (JSON/CSV)."""
+    if r.samples is None:
+        return []
+    s = r.samples
+    cols = {
+        "crank_deg": np.degrees(s.crank_angle),
+        "force_N": s.force,
+        "handle_speed_m_s": r.handle_speed,
+        "phi_deg": np.degrees(s.rocker_angle) - 90.0,
+        "rocker_deg": np.degrees(s.rocker_angle),
+        "transmission_deg": np.degrees(s.transmission_angle),
+    }
+    lists = {k: v.tolist() for k, v in cols.items()}
+    sing, band = s.singular.tolist(), r.in_dead_band.tolist()
+    rows = []
+    for i in range(len(sing)):
+        row = {k: (v[i] if math.isfinite(v[i]) else None) for k, v in lists.items()}
+        row["singular"] = sing[i]
+        row["in_dead_band"] = band[i]
+        rows.append(row)
+    return rows
+
+
+# ----------------------------------------------------------------------------- text output
+def _json(obj, out) -> None:
+    out.write(json.dumps(obj, indent=2, allow_nan=False, ensure_ascii=False) + "\n")
+
+
+def _flatten(row: dict[str, Any], prefix: str = "") -> dict[str, Any]:
+    flat: dict[str, Any] = {}
+    for k, v in row.items():
+        if isinstance(v, dict):
+            flat.update(_flatten(v, f"{prefix}{k}_"))
+        elif isinstance(v, list) and k == "rocker_pivot":
+            flat[f"{prefix}rocker_pivot_x"], flat[f"{prefix}rocker_pivot_y"] = v
+        elif isinstance(v, list):
+            continue  # checks: in JSON and the table only
+        else:
+            flat[prefix + k] = "" if v is None else v
+    return flat
+
+
+def write_csv(rows: Iterable[dict[str, Any]], out) -> None:
+    """CSV with a header from the first row; nested keys flattened with '_'."""
+    rows = [_flatten(r) for r in rows]
+    if not rows:
+        return
+    w = csv.DictWriter(out, fieldnames=list(rows[0]), lineterminator="\n")
+    w.writeheader()
+    w.writerows(rows)
+
+
+def console(file=None):
+    """A Rich console: colour only on a terminal (and never with NO_COLOR), wide when piped."""
+    from rich.console import Console
+
+    file = file or sys.stdout
+    tty = hasattr(file, "isatty") and file.isatty()
+    return Console(file=file, highlight=False, width=None if tty else 160, soft_wrap=False)
+
+
+def _f(x, fmt="{:.3f}", none="—") -> str:
+    return none if x is None or not math.isfinite(float(x)) else fmt.format(float(x))
+
+
+def render_designs(designs: list[Design], fmt: str, out=None) -> None:
+    """`pumplink synth`: one row per design (Table-1 style)."""
+    out = out or sys.stdout
+    rows = [design_row(d) for d in designs]
+    if fmt == "json":
+        return _json({"designs": rows}, out)
+    if fmt == "csv":
+        return write_csv(rows, out)
+    from rich.table import Table
+
+    t = Table(title="Dead-centre synthesis (Eq. 1–2; lengths in m, angles in deg)", title_justify="left")
+    for h in ("design", "L1", "D1", "b", "rocker l4", "handle H", "swing Δθ", "frame l1", "β",
+              "crank l2", "coupler l3", "K", "γ min–max", "dead centres ext / fold", "feasible"):
+        t.add_column(h, justify="left" if h in ("design", "feasible") else "right")
+    notes = []
+    for i, (d, r) in enumerate(zip(designs, rows)):
+        ok = "[green]yes[/]" if r["feasible"] else f"[red]no ({len(notes) + 1})[/]"
+        if not r["feasible"]:
+            notes.append(f"({len(notes) + 1}) {r['name']}: {r['error']}.")
+        lk = d.spec.linkage
+        tr, dc = r["transmission_angle_deg"], r["dead_centres_deg"]
+        t.add_row(r["name"], _f(lk.L1), _f(lk.D1), _f(lk.b), _f(lk.rocker), _f(lk.handle), _f(lk.swing, "{:.1f}"),
+                  _f(r["frame_length"], "{:.4f}"), _f(r["beta_deg"], "{:.2f}"),
+                  _f(r["crank_length"], "{:.4f}"), _f(r["coupler_length"], "{:.4f}"), _f(r["time_ratio"], "{:.4f}"),
+                  f"{_f(tr['min'], '{:.1f}')}–{_f(tr['max'], '{:.1f}')}",
+                  f"{_f(dc['extended'], '{:.2f}')} / {_f(dc['folded'], '{:.2f}')}", ok)
+    c = console(out)
+    c.print(t)
+    for n in notes:
+        c.print(n, markup=False)
+
+
+def _bar(value, limit, width=20) -> str:
+    if value is None or not math.isfinite(value):
+        return "[red]" + "▶" * width + "[/]"
+    n = min(width, int(round(abs(value) / limit * width / 1.5)))
+    mark = "█" * n
+    return f"[red]{mark}[/]" if abs(value) > limit else f"[green]{mark}[/]"
+
+
+def _condensed_indices(r: ForceResult, max_rows: int = 24) -> list[int]:
+    n = r.samples.crank_angle.size
+    if n <= max_rows + 4:
+        return list(range(n))
+    return sorted(set(np.linspace(0, n - 1, max_rows).round().astype(int).tolist()))
+
+
+def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None) -> None:
+    """`pumplink force`: sweep table (condensed), checks and the verdict."""
+    out = out or sys.stdout
+    if fmt == "json":
+        obj = force_summary(r)
+        if not summary:
+            obj["samples"] = sample_rows(r)
+        return _json(obj, out)
+    if fmt == "csv":
+        return write_csv([force_summary(r)] if summary or r.samples is None else sample_rows(r), out)
+
+    from rich.table import Table
+
+    c = console(out)
+    d = design_row(r.design)
+    name = d["name"]
+    if not r.design.feasible:
+        c.print(f"[bold]{name}[/]: [red]infeasible[/] — {r.design.error}.")
+        c.print("[bold red]VERDICT: FAIL[/] (no linkage to drive)")
+        return
+    dc = d["dead_centres_deg"]
+    c.print(f"[bold]{name}[/]  crank l2 = {d['crank_length']:.4f} m, coupler l3 = {d['coupler_length']:.4f} m, "
+            f"rocker l4 = {d['rocker_length']:.4f} m, frame l1 = {d['frame_length']:.4f} m, handle H = {d['handle_length']:.3f} m")
+    c.print(f"dead centres at crank {dc['extended']:.2f}° (extended) and {dc['folded']:.2f}° (folded); "
+            f"time ratio K = {d['time_ratio']:.4f}; wheel torque Mw = {r.wheel_torque:.3f} N·m at "
+            f"{np.degrees(r.speed):g} deg/s ({r.power:.1f} W)")
+
+    if not summary and r.samples is not None and r.samples.crank_angle.size:
+        s = r.samples
+        t = Table(title=f"Operator force Fh over the crank cycle (quasi-static, {r.samples_n} samples"
+                        f"{', condensed' if s.crank_angle.size > 28 else ''})", title_justify="left")
+        for h in ("crank θ2 [deg]", "Fh [N]", f"|Fh| vs {r.force_limit:g} N", "grip speed [m/s]", "φ [deg]",
+                  "rocker θ4 [deg]", "γ [deg]", "note"):
+            t.add_column(h, justify="left" if h.startswith(("|", "note")) else "right")
+        rows = []
+        hs = r.handle_speed
+
+        def add(st, i, speed, note):
+            f = st.force[i]
+            rows.append((float(st.crank_angle[i]) % (2 * math.pi), _f(np.degrees(st.crank_angle[i]) % 360, "{:.2f}"),
+                         "∞ (dead centre)" if st.singular[i] else _f(f, "{:+.1f}"),
+                         _bar(None if st.singular[i] else float(f), r.force_limit), _f(speed, "{:.3f}"),
+                         _f(np.degrees(st.rocker_angle[i]) - 90, "{:+.1f}"), _f(np.degrees(st.rocker_angle[i]), "{:.1f}"),
+                         _f(np.degrees(st.transmission_angle[i]), "{:.1f}"), note))
+
+        for i in _condensed_indices(r):
+            note = "[bold]dead centre[/]" if s.singular[i] else ("[dim]in dead band[/]" if r.in_dead_band[i] else "")
+            add(s, i, hs[i], note)
+        if s.crank_angle.size > 28 and r.marks is not None:  # mark the dead centres and the exact peak
+            m = r.marks
+            speeds = np.abs(m.rocker_rate) * r.speed * r.design.spec.linkage.handle
+            for i, label in enumerate(("dead centre (extended)", "dead centre (folded)", "exact peak outside dead band")):
+                add(m, i, 0.0 if m.singular[i] else speeds[i], f"[bold]{label}[/]")
+        for row in sorted(rows, key=lambda x: x[0] % (2 * math.pi)):
+            t.add_row(*row[1:])
+        c.print(t)
+
+    ct = Table(title="Checks", title_justify="left")
+    for h in ("check", "value", "limit", "result"):
+        ct.add_column(h, justify="right" if h in ("value", "limit") else "left")
+    ct.add_row("sampled peak outside dead band (for comparison)", f"{_f(r.sampled_peak, '{:.2f}')} N",
+               f"{r.samples_n} samples", "[dim]info[/]")
+    for ch in r.checks:
+        res = "[green]pass[/]" if ch.passed else ("[red]FAIL[/]" if ch.severity == "fail" else "[yellow]warning[/]")
+        ct.add_row(ch.name, f"{ch.value:.2f} {ch.unit}", f"{ch.relation} {ch.limit:g} {ch.unit}", res)
+    c.print(ct)
+    c.print("model: quasi-static + dead band (the wheel's inertia is assumed to carry the linkage "
+            f"through ±{np.degrees(r.dead_band):g}° of each dead centre)")
+    if r.passed:
+        c.print(f"[bold green]VERDICT: PASS[/] — mean {r.mean_force:.1f} N and peak {r.peak_force:.1f} N are within "
+                f"the {r.force_limit:g} N limit")
+    else:
+        bad = [ch.name for ch in r.checks if ch.severity == "fail" and not ch.passed]
+        c.print(f"[bold red]VERDICT: FAIL[/] — {', '.join(bad)} above the {r.force_limit:g} N limit "
+                f"(mean {r.mean_force:.1f} N, peak {r.peak_force:.1f} N)")

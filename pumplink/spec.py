@@ -1,0 +1,223 @@
+"""The pump spec: a TOML file validated by pydantic (SI units; angles in degrees).
+
+The keys and units are the contract other tools write against (issue #2).  Every bad value is
+reported as one sentence naming the key, the value and what is allowed.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from pathlib import Path
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from pumplink.errors import SpecError
+
+#: Density of water [kg/m^3] and gravity [m/s^2] for the head-based rope force (NOTES.md §4).
+WATER_DENSITY = 1000.0
+GRAVITY = 9.81
+
+
+class _Section(BaseModel):
+    # strict: "0.2" (a string) or true is not a number; ints are accepted as floats.
+    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+
+
+class Wheel(_Section):
+    radius: float = Field(gt=0, le=5, description="upper wheel radius rw [m]")
+    axle_height: float | None = Field(
+        default=None, gt=0, le=5,
+        description="height of the wheel axle above the ground [m] (optional; the paper uses 0.40-0.70 m)",
+    )
+
+
+class Linkage(_Section):
+    L1: float = Field(ge=0, le=10, description="horizontal placement of the rocker pivot beyond the stand [m]")
+    D1: float = Field(ge=-10, le=10, description="depth of the rocker pivot below the axle [m] (negative = above)")
+    b: float = Field(ge=0, le=10, description="width of the pump stand [m]")
+    rocker: float = Field(gt=0, le=10, description="rocker length l4 [m]")
+    handle: float = Field(gt=0, le=20, description="handle length H, rocker pivot to hand grip [m]")
+    swing: float = Field(gt=0, lt=180, description="total handle swing [deg], symmetric about vertical")
+
+
+class Load(_Section):
+    rope_force: float | None = Field(
+        default=None, gt=0, le=10_000,
+        description="rope force Fw at the wheel rim [N] (or give head and pipe_diameter)",
+    )
+    head: float | None = Field(default=None, gt=0, le=200, description="pumping head [m]")
+    pipe_diameter: float | None = Field(default=None, gt=0, le=0.5, description="rising-main bore [m]")
+    efficiency: float | None = Field(
+        default=None, gt=0, le=1, description="rope-pump efficiency with head/pipe_diameter [-] (default 0.75)"
+    )
+
+    @model_validator(mode="after")
+    def _one_load(self) -> "Load":
+        by_head = self.head is not None or self.pipe_diameter is not None
+        if self.rope_force is not None and by_head:
+            raise ValueError("give either load.rope_force or load.head with load.pipe_diameter, not both")
+        if self.rope_force is None and not (self.head is not None and self.pipe_diameter is not None):
+            raise ValueError("give load.rope_force [N], or load.head [m] together with load.pipe_diameter [m]")
+        if self.efficiency is not None and not by_head:
+            raise ValueError("load.efficiency only applies with load.head and load.pipe_diameter")
+        return self
+
+    @property
+    def rope_force_N(self) -> float:
+        """Rope force at the rim [N]; from head: rho*g*head*(pi d^2/4)/efficiency (NOTES.md §4)."""
+        if self.rope_force is not None:
+            return self.rope_force
+        eff = 0.75 if self.efficiency is None else self.efficiency
+        return WATER_DENSITY * GRAVITY * self.head * math.pi * self.pipe_diameter**2 / 4.0 / eff
+
+
+class Operator(_Section):
+    force_limit: float = Field(default=100.0, gt=0, le=10_000, description="largest acceptable operator force [N]")
+    speed: float = Field(default=360.0, gt=0, le=7200, description="wheel speed [deg/s]")
+    dead_band: float = Field(
+        default=20.0, ge=0, lt=90,
+        description="crank angle each side of a dead centre left to the wheel's inertia [deg]",
+    )
+
+
+class PumpSpec(_Section):
+    name: str = Field(default="pump", min_length=1, max_length=200, description="design name")
+    wheel: Wheel
+    linkage: Linkage
+    load: Load
+    operator: Operator = Operator()
+
+    @property
+    def wheel_torque(self) -> float:
+        """Load torque Mw = Fw * rw on the wheel axle [N m] (Eq. 3 of the pump paper)."""
+        return self.load.rope_force_N * self.wheel.radius
+
+
+#: The built-in default design (``pumplink force`` with no spec; ``pumplink init``).  It is the
+#: example of issue #2: a 0.5 m wheel (20" rim class, NOTES.md §4), a 1 m handle swung +-30 deg
+#: about vertical, 45 N at the rim (about 8 m head through a 23 mm bore at 75 % efficiency).
+DEFAULT_SPEC: dict[str, Any] = {
+    "name": "Prototype",
+    "wheel": {"radius": 0.25},
+    "linkage": {"L1": 0.40, "D1": 0.20, "b": 0.10, "rocker": 0.20, "handle": 1.00, "swing": 60.0},
+    "load": {"rope_force": 45.0},
+    "operator": {"force_limit": 100.0, "speed": 360.0, "dead_band": 20.0},
+}
+
+
+def default_spec() -> PumpSpec:
+    """The built-in default design as a validated spec."""
+    return PumpSpec.model_validate(DEFAULT_SPEC)
+
+
+def _field_info(loc: tuple) -> Any:
+    model: Any = PumpSpec
+    info = None
+    for part in loc:
+        fields = getattr(model, "model_fields", None)
+        if not fields or part not in fields:
+            return None
+        info = fields[part]
+        model = info.annotation
+    return info
+
+
+def _allowed(info: Any) -> str:
+    """'0 < value <= 10' from a field's constraints, plus its description."""
+    if info is None:
+        return ""
+    lo = hi = None
+    for m in info.metadata:
+        for attr, sym in (("gt", "<"), ("ge", "<=")):
+            if getattr(m, attr, None) is not None:
+                lo = f"{getattr(m, attr):g} {sym} "
+        for attr, sym in (("lt", "<"), ("le", "<=")):
+            if getattr(m, attr, None) is not None:
+                hi = f" {sym} {getattr(m, attr):g}"
+    rng = f"{lo or ''}value{hi or ''}" if (lo or hi) else "a finite number"
+    return f"{info.description}, allowed: a number with {rng}"
+
+
+def _sections(model: Any) -> str:
+    return ", ".join(model.model_fields)
+
+
+def _describe(err: dict) -> str:
+    loc = tuple(str(p) for p in err["loc"])
+    key = ".".join(loc)
+    kind = err["type"]
+    value = err.get("input")
+    info = _field_info(loc)
+    if kind == "missing":
+        what = f" ({info.description})" if info is not None else ""
+        return f"missing key '{key}'{what}"
+    if kind == "extra_forbidden":
+        parent = _field_info(loc[:-1]).annotation if len(loc) > 1 else PumpSpec
+        where = f"[{'.'.join(loc[:-1])}]" if len(loc) > 1 else "the top level"
+        return f"unknown key '{key}' = {value!r}; allowed keys in {where}: {_sections(parent)}"
+    if kind == "model_type":
+        return f"'{key}' = {value!r} must be a table ([{key}]) with keys {_sections(info.annotation)}"
+    if kind == "value_error":
+        return str(err["msg"]).removeprefix("Value error, ")
+    if kind == "finite_number":
+        return f"'{key}' = {value!r} is not a finite number; {_allowed(info)}"
+    if kind in ("float_type", "string_type", "float_parsing"):
+        want = "text" if kind == "string_type" else "a number"
+        return f"'{key}' = {value!r} ({type(value).__name__}) is not {want}; {_allowed(info) or 'expected text'}"
+    if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
+        return f"'{key}' = {value!r} is out of range; {_allowed(info)}"
+    return f"'{key}' = {value!r}: {err['msg']}"
+
+
+def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
+    """Validate a spec mapping (as read from TOML).
+
+    Raises
+    ------
+    SpecError
+        One sentence per problem (the first in the message, the count of the others after it).
+    """
+    if not isinstance(data, dict) or not data:
+        raise SpecError(f"{source}: empty spec; expected [wheel], [linkage], [load] (write an example with `pumplink init`)")
+    try:
+        return PumpSpec.model_validate(data)
+    except ValidationError as exc:
+        errs = exc.errors()
+        first = _describe(errs[0])
+        more = f" (and {len(errs) - 1} more: {', '.join('.'.join(map(str, e['loc'])) or 'load' for e in errs[1:])})" if len(errs) > 1 else ""
+        raise SpecError(f"{source}: {first}{more}.") from None
+
+
+def load_spec(path: str | Path) -> PumpSpec:
+    """Read and validate a TOML spec file; the name defaults to the file stem.
+
+    Raises
+    ------
+    SpecError
+        Unreadable file, invalid TOML, or an invalid spec.
+    """
+    path = Path(path)
+    try:
+        text = path.read_bytes().decode("utf-8")
+    except FileNotFoundError:
+        raise SpecError(f"{path}: no such file (write an example spec with `pumplink init {path}`)") from None
+    except IsADirectoryError:
+        raise SpecError(f"{path}: is a folder, expected a .toml spec file") from None
+    except UnicodeDecodeError:
+        raise SpecError(f"{path}: not a UTF-8 text file, expected a TOML spec") from None
+    except OSError as exc:
+        raise SpecError(f"{path}: cannot be read ({exc.strerror})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise SpecError(f"{path}: not valid TOML: {exc}") from None
+    if isinstance(data, dict) and data and "name" not in data:
+        data = {"name": path.stem, **data}
+    return parse_spec(data, source=str(path))
+
+
+def spec_to_dict(spec: PumpSpec) -> dict[str, Any]:
+    """The spec as a plain mapping for tomli-w (optional keys left out when unset)."""
+    return spec.model_dump(exclude_none=True)
