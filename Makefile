@@ -29,8 +29,9 @@ run: $(VENV)/.stamp-base
 test: $(VENV)/.stamp-test
 	$(BIN)/python -m pytest -q
 
+# Every benchmarks/bench_*.py, one after the other in this process's venv (medians of repeats).
 bench: $(VENV)/.stamp-bench
-	$(BIN)/python benchmarks/bench.py
+	@for b in benchmarks/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .hypothesis
