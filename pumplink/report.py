@@ -152,24 +152,28 @@ def render_designs(designs: list[Design], fmt: str, out=None) -> None:
         return _json({"designs": rows}, out)
     if fmt == "csv":
         return write_csv(rows, out)
+    from rich.markup import escape
     from rich.table import Table
 
-    t = Table(title="Dead-centre synthesis (Eq. 1–2; lengths in m, angles in deg)", title_justify="left")
-    for h in ("design", "L1", "D1", "b", "rocker l4", "handle H", "swing Δθ", "frame l1", "β",
-              "crank l2", "coupler l3", "K", "γ min–max", "dead centres ext / fold", "feasible"):
+    t = Table(title="Dead-centre synthesis, Eq. (1)–(2) of the pump paper", title_justify="left",
+              caption="lengths \\[m], angles \\[deg]; l1 frame, l2 crank, l3 coupler, l4 rocker, H handle, Δθ swing, "
+                      "K time ratio, γ transmission angle, DC crank angle of the extended / folded dead centre",
+              caption_justify="left")
+    for h in ("design", "L1", "D1", "b", "l4", "H", "Δθ", "l1", "β", "l2", "l3", "K", "γ min", "γ max",
+              "DC ext", "DC fold", "feasible"):
         t.add_column(h, justify="left" if h in ("design", "feasible") else "right")
     notes = []
-    for i, (d, r) in enumerate(zip(designs, rows)):
+    for d, r in zip(designs, rows):
         ok = "[green]yes[/]" if r["feasible"] else f"[red]no ({len(notes) + 1})[/]"
         if not r["feasible"]:
-            notes.append(f"({len(notes) + 1}) {r['name']}: {r['error']}.")
+            notes.append(f"({len(notes) + 1}) {r['name']}: {r['error']}.")  # printed with markup=False
         lk = d.spec.linkage
         tr, dc = r["transmission_angle_deg"], r["dead_centres_deg"]
-        t.add_row(r["name"], _f(lk.L1), _f(lk.D1), _f(lk.b), _f(lk.rocker), _f(lk.handle), _f(lk.swing, "{:.1f}"),
+        t.add_row(escape(r["name"]), _f(lk.L1), _f(lk.D1), _f(lk.b), _f(lk.rocker), _f(lk.handle), _f(lk.swing, "{:.1f}"),
                   _f(r["frame_length"], "{:.4f}"), _f(r["beta_deg"], "{:.2f}"),
                   _f(r["crank_length"], "{:.4f}"), _f(r["coupler_length"], "{:.4f}"), _f(r["time_ratio"], "{:.4f}"),
-                  f"{_f(tr['min'], '{:.1f}')}–{_f(tr['max'], '{:.1f}')}",
-                  f"{_f(dc['extended'], '{:.2f}')} / {_f(dc['folded'], '{:.2f}')}", ok)
+                  _f(tr["min"], "{:.1f}"), _f(tr["max"], "{:.1f}"), _f(dc["extended"], "{:.2f}"),
+                  _f(dc["folded"], "{:.2f}"), ok)
     c = console(out)
     c.print(t)
     for n in notes:
@@ -202,13 +206,14 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None) -> N
     if fmt == "csv":
         return write_csv([force_summary(r)] if summary or r.samples is None else sample_rows(r), out)
 
+    from rich.markup import escape
     from rich.table import Table
 
     c = console(out)
     d = design_row(r.design)
-    name = d["name"]
+    name = escape(d["name"])
     if not r.design.feasible:
-        c.print(f"[bold]{name}[/]: [red]infeasible[/] — {r.design.error}.")
+        c.print(f"[bold]{name}[/]: [red]infeasible[/] — {escape(r.design.error)}.")
         c.print("[bold red]VERDICT: FAIL[/] (no linkage to drive)")
         return
     dc = d["dead_centres_deg"]
@@ -224,7 +229,7 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None) -> N
                         f"{', condensed' if s.crank_angle.size > 28 else ''})", title_justify="left")
         for h in ("crank θ2 [deg]", "Fh [N]", f"|Fh| vs {r.force_limit:g} N", "grip speed [m/s]", "φ [deg]",
                   "rocker θ4 [deg]", "γ [deg]", "note"):
-            t.add_column(h, justify="left" if h.startswith(("|", "note")) else "right")
+            t.add_column(escape(h), justify="left" if h.startswith(("|", "note")) else "right")
         rows = []
         hs = r.handle_speed
 
@@ -255,7 +260,7 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None) -> N
                f"{r.samples_n} samples", "[dim]info[/]")
     for ch in r.checks:
         res = "[green]pass[/]" if ch.passed else ("[red]FAIL[/]" if ch.severity == "fail" else "[yellow]warning[/]")
-        ct.add_row(ch.name, f"{ch.value:.2f} {ch.unit}", f"{ch.relation} {ch.limit:g} {ch.unit}", res)
+        ct.add_row(escape(ch.name), f"{ch.value:.2f} {ch.unit}", f"{ch.relation} {ch.limit:g} {ch.unit}", res)
     c.print(ct)
     c.print("model: quasi-static + dead band (the wheel's inertia is assumed to carry the linkage "
             f"through ±{np.degrees(r.dead_band):g}° of each dead centre)")

@@ -6,6 +6,7 @@ reported as one sentence naming the key, the value and what is allowed.
 
 from __future__ import annotations
 
+import difflib
 import math
 import tomllib
 from pathlib import Path
@@ -156,7 +157,9 @@ def _describe(err: dict) -> str:
     if kind == "extra_forbidden":
         parent = _field_info(loc[:-1]).annotation if len(loc) > 1 else PumpSpec
         where = f"[{'.'.join(loc[:-1])}]" if len(loc) > 1 else "the top level"
-        return f"unknown key '{key}' = {value!r}; allowed keys in {where}: {_sections(parent)}"
+        close = difflib.get_close_matches(loc[-1], list(parent.model_fields), n=1)
+        hint = f" (did you mean '{close[0]}'?)" if close else ""
+        return f"unknown key '{key}' = {value!r}{hint}; allowed keys in {where}: {_sections(parent)}"
     if kind == "model_type":
         return f"'{key}' = {value!r} must be a table ([{key}]) with keys {_sections(info.annotation)}"
     if kind == "value_error":
@@ -184,7 +187,8 @@ def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
     try:
         return PumpSpec.model_validate(data)
     except ValidationError as exc:
-        errs = exc.errors()
+        # An unknown key is usually a typo that also causes a "missing" error: report it first.
+        errs = sorted(exc.errors(), key=lambda e: e["type"] != "extra_forbidden")
         first = _describe(errs[0])
         more = f" (and {len(errs) - 1} more: {', '.join('.'.join(map(str, e['loc'])) or 'load' for e in errs[1:])})" if len(errs) > 1 else ""
         raise SpecError(f"{source}: {first}{more}.") from None
