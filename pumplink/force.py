@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from pumplink.kinematics import force_kernel, grid_directions
+from pumplink.kinematics import force_kernel, kernel_work, offset_table, shifted_directions
 from pumplink.synthesis import Linkage
 
 TWO_PI = 2.0 * np.pi
@@ -122,29 +122,39 @@ def peak_force(lk: Linkage, dead_centre_extended, dead_centre_folded, dead_band,
 
 
 def sampled_peak(lk: Linkage, n: int, wheel_torque, dead_centre_extended, dead_centre_folded,
-                 dead_band, chunk: int = 1 << 16):
+                 dead_band, chunk: int = 8192):
     """Largest |force| over a uniform sweep of ``n`` crank angles outside the dead bands.
 
-    This is what a sampled sweep reports (it can step over the rise toward a dead centre);
-    streamed in chunks so memory stays bounded for any ``n``.  Single design (scalar linkage).
+    This is what a sampled sweep reports (it can step over the rise toward a dead centre).
+    Only the samples inside the two windows are evaluated, streamed in cache-sized chunks, so
+    memory stays bounded for any ``n``.  Single design (scalar linkage).
 
     Returns
     -------
-    peak : largest sampled |force| [N] outside the dead bands (NaN if no sample is outside).
+    peak : largest sampled |force| [N] strictly outside the dead bands (NaN if no sample is).
     angle : its crank angle [rad].
-    singular : number of samples exactly at a dead centre.
     """
-    best, best_th, singular = -np.inf, np.nan, 0
     step = TWO_PI / n
-    for i0 in range(0, n, chunk):
-        i1 = min(n, i0 + chunk)
-        cs, sn = grid_directions(n, i0, i1)
-        f = np.abs(force_kernel(lk, cs, sn, wheel_torque)[2])
-        th = np.arange(i0, i1) * step
-        nan = np.isnan(f)
-        singular += int(nan.sum())
-        f[nan | in_dead_band(th, dead_centre_extended, dead_centre_folded, dead_band)] = -np.inf
-        i = int(np.argmax(f))
-        if f[i] > best:
-            best, best_th = float(f[i]), float(th[i])
-    return (best if np.isfinite(best) else float("nan")), best_th, singular
+    start, length = _windows(float(dead_centre_extended), float(dead_centre_folded), float(dead_band))
+    table = offset_table(step, chunk)
+    dirs = np.empty((2, chunk))
+    work = kernel_work((chunk,))
+    best, best_j = -np.inf, -1
+    for s0, ln in zip(start, length):
+        if ln <= 0:
+            continue
+        j0 = int(np.floor(s0 / step)) + 1  # first sample strictly inside the window
+        j1 = int(np.ceil((s0 + ln) / step)) - 1  # last one
+        for a in range(j0, j1 + 1, chunk):
+            size = min(chunk, j1 + 1 - a)
+            cs, sn = shifted_directions(a * step, table, size, dirs)
+            w = work[:, :size]
+            f = np.abs(force_kernel(lk, cs, sn, wheel_torque, w)[2])
+            i = int(np.argmax(f))
+            if np.isnan(f[i]):
+                i = int(np.nanargmax(f)) if not np.isnan(f).all() else i
+            if f[i] > best:
+                best, best_j = float(f[i]), a + i
+    if best_j < 0:
+        return float("nan"), float("nan")
+    return best, float((best_j % n) * step)

@@ -45,20 +45,40 @@ def crank_grid(n: int, start: float = 0.0) -> np.ndarray:
 def grid_directions(n: int, i0: int = 0, i1: int | None = None, start: float = 0.0):
     """cos and sin of the uniform crank angles ``crank_grid(n, start)[i0:i1]``.
 
-    Uses the angle-addition formula over blocks (one sin/cos pair per block plus one table),
-    about 5x cheaper than calling ``np.cos``/``np.sin`` per angle, and within a few ulp of them.
+    Uses the angle-addition formula (one sin/cos pair per block of 1024 plus one table), several
+    times cheaper than ``np.cos``/``np.sin`` per angle and within a few ulp of them.
     """
     i1 = n if i1 is None else i1
     step = 2.0 * np.pi / n
     block = 1024
     j0 = i0 - i0 % block
     nblocks = -(-(i1 - j0) // block)
-    off = np.arange(block) * step
-    co, so = np.cos(off), np.sin(off)
+    co, so = offset_table(step, block)
     base = start + (j0 + np.arange(nblocks) * block) * step
     cb, sb = np.cos(base)[:, None], np.sin(base)[:, None]
     c = (cb * co - sb * so).ravel()[i0 - j0:i1 - j0]
     s = (sb * co + cb * so).ravel()[i0 - j0:i1 - j0]
+    return c, s
+
+
+def offset_table(step: float, size: int):
+    """cos and sin of ``j * step`` for j < size (the table of :func:`shifted_directions`)."""
+    off = np.arange(size) * step
+    return np.cos(off), np.sin(off)
+
+
+def shifted_directions(base: float, table, size: int, out):
+    """cos/sin of ``base + j * step`` for j < size, from ``offset_table(step, >= size)``.
+
+    Angle addition: cos(a + b) = cos a cos b - sin a sin b; written into ``out`` (2, >= size).
+    """
+    co, so = table[0][:size], table[1][:size]
+    cb, sb = np.cos(base), np.sin(base)
+    c, s = out[0, :size], out[1, :size]
+    np.multiply(co, cb, out=c)
+    c -= so * sb
+    np.multiply(co, sb, out=s)
+    s += so * cb
     return c, s
 
 
@@ -75,29 +95,75 @@ def _loop(lk: Linkage, cs, sn):
     return p1, p2, e2, t, q
 
 
-def force_kernel(lk: Linkage, cs, sn, wheel_torque):
+def kernel_work(shape) -> np.ndarray:
+    """Scratch memory for :func:`force_kernel` at a result shape (reuse it across chunks)."""
+    return np.empty((9,) + tuple(shape))
+
+
+def force_kernel(lk: Linkage, cs, sn, wheel_torque, work: np.ndarray | None = None):
     """Hot path: coupler point B and operator force for crank directions (cs, sn).
 
+    The same formulas as :func:`evaluate`, written in place to keep the arrays in cache.
     Broadcasts linkage parameters (e.g. shape (designs, 1)) against directions (angles,).
+
+    Parameters
+    ----------
+    lk : linkage (floats or arrays).
+    cs, sn : cos and sin of the crank angles.
+    wheel_torque : Mw [N m] (float or array broadcastable with the result).
+    work : optional scratch from :func:`kernel_work` of the result shape; the returned arrays
+        are views into it, valid until the next call that reuses it.
 
     Returns
     -------
     bx, by : coupler point B [m].
     force : horizontal operator force at the grip [N], +x positive; NaN at a dead centre.
     """
-    px, py, c = lk.pivot_x, lk.pivot_y, lk.crank
-    p1, p2, e2, t, q = _loop(lk, cs, sn)
-    dx = px - c * cs
-    dy = py - c * sn
-    bx = c * cs + t * dx - q * dy  # Eq. (6) as B = A + t d + q perp(d)
-    by = c * sn + t * dy + q * dx
-    w = t * p2 + q * (p1 - c)  # (A x u) / crank
-    qe2 = q * e2
-    ry = by - py
+    px, py, c, k, r = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker
+    shape = np.broadcast_shapes(np.shape(cs), np.shape(px), np.shape(c), np.shape(k), np.shape(r),
+                                np.shape(lk.branch), np.shape(lk.handle), np.shape(wheel_torque))
+    if work is None or work.shape[1:] != shape:
+        work = kernel_work(shape)
+    p1, p2, e2, t, q, dx, dy, bx, by = work
+    f = np.empty(shape)
+    np.multiply(cs, px, out=p1)
+    p1 += sn * py  # P1 = dir . O4
+    np.multiply(cs, py, out=p2)
+    p2 -= sn * px  # P2 = dir x O4
+    np.multiply(p1, -2.0 * c, out=e2)
+    e2 += px * px + py * py + c * c  # e^2 = |O4 - A|^2
+    np.divide(0.5 * (k * k - r * r), e2, out=t)
+    t += 0.5
+    np.divide(k * k, e2, out=q)
+    np.multiply(t, t, out=f)
+    q -= f
+    with np.errstate(invalid="ignore"):  # not assemblable -> NaN, by design
+        np.sqrt(q, out=q)
+    q *= lk.branch
+    np.multiply(cs, -c, out=dx)
+    dx += px  # d = O4 - A
+    np.multiply(sn, -c, out=dy)
+    dy += py
+    np.multiply(t, dx, out=bx)  # Eq. (6) as B = A + t d + q perp(d), with A = O4 - d
+    bx -= q * dy
+    bx -= dx
+    bx += px
+    np.multiply(t, dy, out=by)
+    by += q * dx
+    by -= dy  # by is now Ry = By - O4y
+    p1 -= c
+    p1 *= q
+    np.multiply(t, p2, out=p2)
+    p2 += p1  # w = (A x u) / crank
+    np.multiply(q, e2, out=f)
+    f *= wheel_torque * r / (lk.handle * c)
     with np.errstate(divide="ignore", invalid="ignore"):
-        force = (wheel_torque * lk.rocker / (lk.handle * c)) * qe2 / (ry * w)  # Eq. (3), virtual work
-    force = np.where(np.abs(w) <= SINGULAR_SIN * lk.coupler, np.nan, force)
-    return bx, by, force
+        f /= by
+        f /= p2  # Eq. (3) by virtual work: F = Mw / (dPx/dt2)
+    by += py
+    np.abs(p2, out=p2)
+    f[p2 <= SINGULAR_SIN * k] = np.nan
+    return bx, by, f
 
 
 @dataclass(frozen=True)
