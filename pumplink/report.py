@@ -137,7 +137,7 @@ def console(file=None):
 
     file = file or sys.stdout
     tty = hasattr(file, "isatty") and file.isatty()
-    return Console(file=file, highlight=False, width=None if tty else 160, soft_wrap=False)
+    return Console(file=file, highlight=False, width=None if tty else 200, soft_wrap=False)
 
 
 def _f(x, fmt="{:.3f}", none="—") -> str:
@@ -161,7 +161,7 @@ def render_designs(designs: list[Design], fmt: str, out=None) -> None:
               caption_justify="left")
     for h in ("design", "L1", "D1", "b", "l4", "H", "Δθ", "l1", "β", "l2", "l3", "K", "γ min", "γ max",
               "DC ext", "DC fold", "feasible"):
-        t.add_column(h, justify="left" if h in ("design", "feasible") else "right")
+        t.add_column(h, justify="left" if h in ("design", "feasible") else "right", no_wrap=h == "design")
     notes = []
     for d, r in zip(designs, rows):
         ok = "[green]yes[/]" if r["feasible"] else f"[red]no ({len(notes) + 1})[/]"
