@@ -55,6 +55,7 @@ class ForceResult:
     """Force analysis of one design at one wheel speed (SI units, radians)."""
 
     design: Design
+    speed_deg_s: float  # wheel speed as given [deg/s] (echoed exactly in reports)
     speed: float  # wheel speed [rad/s]
     wheel_torque: float  # Mw [N m]
     power: float  # Mw * omega [W]
@@ -104,13 +105,14 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
     """
     d = design(spec)
     op = spec.operator
-    speed = np.radians(op.speed if speed_deg_s is None else speed_deg_s)
+    speed_deg = float(op.speed if speed_deg_s is None else speed_deg_s)
+    speed = np.radians(speed_deg)
     mw = spec.wheel_torque
     band = np.radians(op.dead_band)
     syn = d.synthesis
     nan = float("nan")
     if not d.feasible:
-        return ForceResult(d, float(speed), mw, mw * float(speed), op.force_limit, float(band), nan, nan,
+        return ForceResult(d, speed_deg, float(speed), mw, mw * float(speed), op.force_limit, float(band), nan, nan,
                            nan, nan, 0, (), False, None, None)
     lk = syn.linkage
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
@@ -146,7 +148,7 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
         h = spec.wheel.axle_height
         checks.append(_check("axle height (paper: 0.40-0.70 m)", h, lo if h < lo else hi, ">=" if h < lo else "<=", "m", "warn"))
     passed = all(c.passed for c in checks if c.severity == "fail")
-    return ForceResult(d, float(speed), mw, mw * float(speed), op.force_limit, float(band), mean, peak,
+    return ForceResult(d, speed_deg, float(speed), mw, mw * float(speed), op.force_limit, float(band), mean, peak,
                        peak_angle, sampled, n, tuple(checks), passed,
                        state if keep_samples or at_deg is not None else None, band_mask,
                        evaluate(lk, np.array([dce, dcf, peak_angle]), mw))

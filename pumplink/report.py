@@ -60,11 +60,11 @@ def force_summary(r: ForceResult) -> dict[str, Any]:
     """The JSON contract of a force analysis without samples (issue #2)."""
     out = design_row(r.design)
     out.update({
-        "speed_deg_s": deg(r.speed),
+        "speed_deg_s": r.speed_deg_s,
         "wheel_torque_Nm": num(r.wheel_torque),
         "power_W": num(r.power),
         "force_limit_N": num(r.force_limit),
-        "dead_band_deg": deg(r.dead_band),
+        "dead_band_deg": r.design.spec.operator.dead_band,
         "model": "quasi-static + dead band",
         "mean_force_N": num(r.mean_force),
         "peak_force_N": num(r.peak_force),
@@ -221,7 +221,7 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None) -> N
             f"rocker l4 = {d['rocker_length']:.4f} m, frame l1 = {d['frame_length']:.4f} m, handle H = {d['handle_length']:.3f} m")
     c.print(f"dead centres at crank {dc['extended']:.2f}° (extended) and {dc['folded']:.2f}° (folded); "
             f"time ratio K = {d['time_ratio']:.4f}; wheel torque Mw = {r.wheel_torque:.3f} N·m at "
-            f"{np.degrees(r.speed):g} deg/s ({r.power:.1f} W)")
+            f"{r.speed_deg_s:g} deg/s ({r.power:.1f} W)")
 
     if not summary and r.samples is not None and r.samples.crank_angle.size:
         s = r.samples
@@ -263,7 +263,7 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None) -> N
         ct.add_row(escape(ch.name), f"{ch.value:.2f} {ch.unit}", f"{ch.relation} {ch.limit:g} {ch.unit}", res)
     c.print(ct)
     c.print("model: quasi-static + dead band (the wheel's inertia is assumed to carry the linkage "
-            f"through ±{np.degrees(r.dead_band):g}° of each dead centre)")
+            f"through ±{r.design.spec.operator.dead_band:g}° of each dead centre)")
     if r.passed:
         c.print(f"[bold green]VERDICT: PASS[/] — mean {r.mean_force:.1f} N and peak {r.peak_force:.1f} N are within "
                 f"the {r.force_limit:g} N limit")
