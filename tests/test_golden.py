@@ -1,0 +1,39 @@
+"""Golden files for the rendered tables (what a designer reads), through the real entry point.
+
+The numbers inside are checked independently elsewhere (tests/test_force.py, test_synthesis.py
+against the mpmath reference); these files guard the layout: units in headers, dead centres
+marked, the verdict in words without colour.  After a deliberate layout change, regenerate with
+`PUMPLINK_REGEN_GOLDEN=1 pytest tests/test_golden.py` and review the diff.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+GOLDEN = Path(__file__).with_name("golden")
+
+CASES = {
+    "force_prototype_summary.txt": ["force", "configs/prototype.toml", "--summary"],
+    "force_prototype_sweep.txt": ["force", "configs/prototype.toml"],
+    "synth_configs.txt": ["synth", "configs/prototype.toml", "configs/village-10m.toml",
+                          "configs/women-operators-6m.toml"],
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_rendered_table_matches_golden(name):
+    env = {**os.environ, "NO_COLOR": "1", "COLUMNS": "200"}
+    out = subprocess.run([sys.executable, "-m", "pumplink", *CASES[name]], cwd=ROOT, env=env,
+                         capture_output=True, text=True, check=False)
+    assert out.returncode == 0, out.stderr
+    assert "\x1b[" not in out.stdout  # no ANSI escapes when piped / NO_COLOR
+    path = GOLDEN / name
+    if os.environ.get("PUMPLINK_REGEN_GOLDEN"):
+        path.write_text(out.stdout, encoding="utf-8")
+    assert out.stdout == path.read_text(encoding="utf-8")
