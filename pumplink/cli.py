@@ -92,6 +92,9 @@ def force(
     at: Annotated[Optional[list[float]], typer.Option("--at", help="Evaluate exactly this crank angle [deg] (repeatable).",
                                                       show_default=False)] = None,
     summary: Annotated[bool, typer.Option("--summary", help="Only the checks and verdict (no per-sample rows).")] = False,
+    plot: Annotated[Optional[Path], typer.Option(help="Also write the force curve to this .png/.svg/.pdf "
+                                                      "(needs the plot extra: pip install 'pumplink[plot]').",
+                                                 show_default=False)] = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Operator force over the crank cycle, the checks and the 100 N verdict.
@@ -101,6 +104,8 @@ def force(
     --samples.  Exit 0 if the design passes, 1 if it fails or is infeasible.
 
     Example: [bold]pumplink force pump.toml --speed 360 --at 90 --at 270 --format json[/]
+
+    Example: [bold]pumplink force pump.toml --summary --plot force.png[/]
     """
     import math
 
@@ -112,9 +117,19 @@ def force(
         raise SpecError(f"--at {next(a for a in at if not math.isfinite(a))!r} is not a finite angle; give degrees such as --at 90")
     if not summary and not at and samples > SAMPLE_LIMIT_KEPT:
         raise SpecError(f"--samples {samples} keeps too many rows (at most {SAMPLE_LIMIT_KEPT:,}); add --summary to stream them")
+    if plot is not None:
+        from pumplink.plots import check_path, pyplot
+
+        check_path(plot)
+        pyplot()  # fail early (exit 2) when matplotlib is missing
     s = load_spec(spec) if spec is not None else default_spec()
     result = force_analysis(s, speed, samples, at_deg=at or None, keep_samples=not summary)
     render_force(result, fmt.value, summary=summary)
+    if plot is not None and result.design.feasible:
+        from pumplink.plots import force_curve
+
+        force_curve(result, plot)
+        sys.stderr.write(f"wrote {plot}\n")
     raise typer.Exit(0 if result.passed else 1)
 
 
