@@ -86,10 +86,10 @@ def synth(
 def force(
     spec: Annotated[Optional[Path], typer.Argument(help="TOML pump spec; omit for the built-in default design.",
                                                    show_default=False)] = None,
-    speed: Annotated[Optional[float], typer.Option(help="Wheel speed [deg/s] (default: the spec's operator.speed).",
+    speed: Annotated[Optional[float], typer.Option(help="Wheel speed \\[deg/s] (default: the spec's operator.speed).",
                                                    min=1e-9, max=7200)] = None,
     samples: Annotated[int, typer.Option(help="Uniform crank samples over one revolution.", min=1, max=1_000_000_000)] = 360,
-    at: Annotated[Optional[list[float]], typer.Option("--at", help="Evaluate exactly this crank angle [deg] (repeatable).",
+    at: Annotated[Optional[list[float]], typer.Option("--at", help="Evaluate exactly this crank angle \\[deg] (repeatable).",
                                                       show_default=False)] = None,
     summary: Annotated[bool, typer.Option("--summary", help="Only the checks and verdict (no per-sample rows).")] = False,
     plot: Annotated[Optional[Path], typer.Option(help="Also write the force curve to this .png/.svg/.pdf "

@@ -94,12 +94,14 @@ def peak_force(lk: Linkage, dead_centre_extended, dead_centre_folded, dead_band,
     theta = start[..., None] + np.maximum(length, 0.0)[..., None] * s  # (D, 2, M)
     g3 = [p[:, None, None] for p in geom]
     val = _abs_force(theta, *g3)
+    val = np.where(np.isnan(val), np.inf, val)  # a window reaching a dead centre (dead_band = 0): infinite
     val = np.where(length[..., None] >= 0, val, -np.inf)  # an empty window contributes nothing
     j = np.argmax(val, axis=-1)  # (D, 2)
     best = np.take_along_axis(val, j[..., None], -1)[..., 0]
     best_th = np.take_along_axis(theta, j[..., None], -1)[..., 0]
 
     inner = (j > 0) & (j < PEAK_GRID - 1) & np.isfinite(best)
+    feasible = np.isfinite(geom[2])  # NaN crank length: infeasible design
     if inner.any():
         d_idx, a_idx = np.nonzero(inner)
         jj = j[inner]
@@ -115,7 +117,7 @@ def peak_force(lk: Linkage, dead_centre_extended, dead_centre_folded, dead_band,
     arc = np.argmax(best, axis=-1)
     peak = np.take_along_axis(best, arc[:, None], -1)[:, 0]
     angle = np.mod(np.take_along_axis(best_th, arc[:, None], -1)[:, 0], TWO_PI)
-    peak = np.where(np.isfinite(peak), peak, np.nan)
+    peak = np.where(feasible, peak, np.nan)
     if scalar:
         return float(peak[0]), float(angle[0])
     return peak, angle

@@ -90,8 +90,7 @@ def _loop(lk: Linkage, cs, sn):
     p2 = cs * py - sn * px
     e2 = (px * px + py * py + c * c) - 2.0 * c * p1
     t = 0.5 + 0.5 * (k * k - r * r) / e2
-    with np.errstate(invalid="ignore"):  # not assemblable -> NaN, by design
-        q = lk.branch * np.sqrt(k * k / e2 - t * t)
+    q = lk.branch * np.sqrt(k * k / e2 - t * t)  # NaN where not assemblable
     return p1, p2, e2, t, q
 
 
@@ -124,6 +123,12 @@ def force_kernel(lk: Linkage, cs, sn, wheel_torque, work: np.ndarray | None = No
                                 np.shape(lk.branch), np.shape(lk.handle), np.shape(wheel_torque))
     if work is None or work.shape[1:] != shape:
         work = kernel_work(shape)
+    with np.errstate(all="ignore"):  # dead centres and non-assemblable inputs give NaN/inf, by design
+        return _force_into(lk, cs, sn, wheel_torque, work, shape)
+
+
+def _force_into(lk: Linkage, cs, sn, wheel_torque, work, shape):
+    px, py, c, k, r = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker
     p1, p2, e2, t, q, dx, dy, bx, by = work
     f = np.empty(shape)
     np.multiply(cs, px, out=p1)
@@ -137,8 +142,7 @@ def force_kernel(lk: Linkage, cs, sn, wheel_torque, work: np.ndarray | None = No
     np.divide(k * k, e2, out=q)
     np.multiply(t, t, out=f)
     q -= f
-    with np.errstate(invalid="ignore"):  # not assemblable -> NaN, by design
-        np.sqrt(q, out=q)
+    np.sqrt(q, out=q)
     q *= lk.branch
     np.multiply(cs, -c, out=dx)
     dx += px  # d = O4 - A
@@ -157,9 +161,8 @@ def force_kernel(lk: Linkage, cs, sn, wheel_torque, work: np.ndarray | None = No
     p2 += p1  # w = (A x u) / crank
     np.multiply(q, e2, out=f)
     f *= wheel_torque * r / (lk.handle * c)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        f /= by
-        f /= p2  # Eq. (3) by virtual work: F = Mw / (dPx/dt2)
+    f /= by
+    f /= p2  # Eq. (3) by virtual work: F = Mw / (dPx/dt2)
     by += py
     np.abs(p2, out=p2)
     f[p2 <= SINGULAR_SIN * k] = np.nan
@@ -202,7 +205,11 @@ def evaluate(lk: Linkage, crank_angle, wheel_torque=1.0) -> State:
     crank_angle : crank angles t2 [rad], any shape broadcastable with the linkage.
     wheel_torque : load torque Mw = Fw rw [N m] (Eq. 3 of the pump paper).
     """
-    th = np.asarray(crank_angle, float)
+    with np.errstate(all="ignore"):  # dead centres and non-assemblable inputs give NaN/inf, by design
+        return _evaluate(lk, np.asarray(crank_angle, float), wheel_torque)
+
+
+def _evaluate(lk: Linkage, th, wheel_torque) -> State:
     cs, sn = np.cos(th), np.sin(th)
     px, py, c, k, r = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker
     p1, p2, e2, t, q = _loop(lk, cs, sn)
@@ -214,8 +221,7 @@ def evaluate(lk: Linkage, crank_angle, wheel_torque=1.0) -> State:
     singular = np.abs(w) <= SINGULAR_SIN * k
     rate = -c * w / (q * e2)  # omega4/omega2 = (A x u)/(R x u)
     handle_rate = -(lk.handle / r) * ry * rate
-    with np.errstate(divide="ignore", invalid="ignore"):
-        force = np.where(singular, np.nan, wheel_torque / handle_rate)  # Eq. (3), virtual work
+    force = np.where(singular, np.nan, wheel_torque / handle_rate)  # Eq. (3), virtual work
     cos_g = (k * k + r * r - e2) / (2.0 * k * r)  # law of cosines in A-B-O4
     return State(th, bx, by, np.arctan2(ry, rx), rate, handle_rate,
                  np.arccos(np.clip(cos_g, -1.0, 1.0)), force, singular)

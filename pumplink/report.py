@@ -68,6 +68,7 @@ def force_summary(r: ForceResult) -> dict[str, Any]:
         "model": "quasi-static + dead band",
         "mean_force_N": num(r.mean_force),
         "peak_force_N": num(r.peak_force),
+        "peak_force_infinite": bool(r.peak_force == math.inf),  # dead_band = 0: the window reaches a dead centre
         "peak_crank_deg": deg(r.peak_angle),
         "sampled_peak_force_N": num(r.sampled_peak),
         "samples_n": r.samples_n,
@@ -260,7 +261,7 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None) -> N
                f"{r.samples_n} samples", "[dim]info[/]")
     for ch in r.checks:
         res = "[green]pass[/]" if ch.passed else ("[red]FAIL[/]" if ch.severity == "fail" else "[yellow]warning[/]")
-        ct.add_row(escape(ch.name), f"{ch.value:.2f} {ch.unit}", f"{ch.relation} {ch.limit:g} {ch.unit}", res)
+        ct.add_row(escape(ch.name), f"{_f(ch.value, '{:.2f}', '∞') if ch.value != np.inf else '∞'} {ch.unit}", f"{ch.relation} {ch.limit:g} {ch.unit}", res)
     c.print(ct)
     c.print("model: quasi-static + dead band (the wheel's inertia is assumed to carry the linkage "
             f"through ±{r.design.spec.operator.dead_band:g}° of each dead centre)")
@@ -270,4 +271,4 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None) -> N
     else:
         bad = [ch.name for ch in r.checks if ch.severity == "fail" and not ch.passed]
         c.print(f"[bold red]VERDICT: FAIL[/] — {', '.join(bad)} above the {r.force_limit:g} N limit "
-                f"(mean {r.mean_force:.1f} N, peak {r.peak_force:.1f} N)")
+                f"(mean {r.mean_force:.1f} N, peak {_f(r.peak_force, '{:.1f}', '∞')} N)")

@@ -27,7 +27,7 @@ class _Section(BaseModel):
 
 
 class Wheel(_Section):
-    radius: float = Field(gt=0, le=5, description="upper wheel radius rw [m]")
+    radius: float = Field(ge=0.001, le=5, description="upper wheel radius rw [m]")
     axle_height: float | None = Field(
         default=None, gt=0, le=5,
         description="height of the wheel axle above the ground [m] (optional; the paper uses 0.40-0.70 m)",
@@ -38,8 +38,8 @@ class Linkage(_Section):
     L1: float = Field(ge=0, le=10, description="horizontal placement of the rocker pivot beyond the stand [m]")
     D1: float = Field(ge=-10, le=10, description="depth of the rocker pivot below the axle [m] (negative = above)")
     b: float = Field(ge=0, le=10, description="width of the pump stand [m]")
-    rocker: float = Field(gt=0, le=10, description="rocker length l4 [m]")
-    handle: float = Field(gt=0, le=20, description="handle length H, rocker pivot to hand grip [m]")
+    rocker: float = Field(ge=0.001, le=10, description="rocker length l4 [m]")
+    handle: float = Field(ge=0.001, le=20, description="handle length H, rocker pivot to hand grip [m]")
     swing: float = Field(gt=0, lt=180, description="total handle swing [deg], symmetric about vertical")
 
 
@@ -49,7 +49,7 @@ class Load(_Section):
         description="rope force Fw at the wheel rim [N] (or give head and pipe_diameter)",
     )
     head: float | None = Field(default=None, gt=0, le=200, description="pumping head [m]")
-    pipe_diameter: float | None = Field(default=None, gt=0, le=0.5, description="rising-main bore [m]")
+    pipe_diameter: float | None = Field(default=None, ge=0.001, le=0.5, description="rising-main bore [m]")
     efficiency: float | None = Field(
         default=None, gt=0, le=1, description="rope-pump efficiency with head/pipe_diameter [-] (default 0.75)"
     )
