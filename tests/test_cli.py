@@ -1,0 +1,685 @@
+"""CLI tests through the real entry point (the installed ``pumplink`` console script in a subprocess).
+
+What is checked here is the contract of issue #2 as a user or another tool sees it: exit codes,
+the JSON keys and their values, CSV headers and row counts, one-line error messages on stderr
+(naming the key, the value and the allowed range) and readable tables when piped or with
+NO_COLOR.  Expected numbers come from hand derivations written out in this file (NOTES.md §1:
+frame Eq. (1), dead-centre geometry, law of cosines for the transmission angle, an independent
+circle-intersection position analysis differentiated numerically for the force), never from the
+code under test.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+import tomli_w
+
+_EXE = shutil.which("pumplink", path=str(Path(sys.executable).parent))
+CMD = [_EXE] if _EXE else [sys.executable, "-m", "pumplink"]
+
+# An SGR escape that sets a foreground/background colour (NO_COLOR forbids these; bold is allowed).
+COLOUR_SGR = re.compile(r"\x1b\[(?:[0-9;]*;)?(?:3[0-9]|4[0-9]|9[0-7]|10[0-7])(?:;[0-9;]*)?m")
+ANY_ESC = "\x1b"
+
+
+def _env(extra: dict | None = None) -> dict:
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("FORCE_COLOR", "NO_COLOR", "COLUMNS", "LINES", "TTY_COMPATIBLE", "TTY_INTERACTIVE")}
+    env["PYTHONIOENCODING"] = "utf-8"  # the encoding bug has its own test below
+    env.update(extra or {})
+    return env
+
+
+_CACHE: dict = {}
+
+
+def run(*args, env: dict | None = None, cwd=None, cmd=None, cache: bool = False) -> subprocess.CompletedProcess:
+    """Run the CLI; ``cache=True`` reuses the result of an identical earlier call (the CLI is
+    deterministic and each start-up costs ~0.5-1.5 s here; spec files must not change in between)."""
+    key = (tuple(map(str, args)), tuple(sorted((env or {}).items())), str(cwd), tuple(cmd or CMD))
+    if cache and key in _CACHE:
+        return _CACHE[key]
+    p = subprocess.run([*(cmd or CMD), *map(str, args)], capture_output=True, env=_env(env), cwd=cwd,
+                       timeout=120, encoding="utf-8", errors="replace")
+    if cache:
+        _CACHE[key] = p
+    return p
+
+
+def one_error_line(p: subprocess.CompletedProcess) -> str:
+    """Exit 2, nothing on stdout, exactly one line on stderr, no traceback; return that line."""
+    assert p.returncode == 2, (p.returncode, p.stdout, p.stderr)
+    assert p.stdout == "", p.stdout
+    assert "Traceback" not in p.stderr, p.stderr
+    lines = p.stderr.strip("\n").split("\n")
+    assert len(lines) == 1 and lines[0].strip(), p.stderr
+    return lines[0]
+
+
+# ----------------------------------------------------------------------------- specs
+SPEC = {  # deliberately not the default design, so defaults cannot make a wrong key pass
+    "name": "Test pump",
+    "wheel": {"radius": 0.22},
+    "linkage": {"L1": 0.35, "D1": 0.15, "b": 0.12, "rocker": 0.22, "handle": 1.10, "swing": 64.0},
+    "load": {"rope_force": 40.0},
+    "operator": {"force_limit": 110.0, "speed": 300.0, "dead_band": 15.0},
+}
+
+BASE_TOML = """\
+name = "t"
+[wheel]
+radius = 0.25
+[linkage]
+L1 = 0.40
+D1 = 0.20
+b = 0.10
+rocker = 0.20
+handle = 1.00
+swing = 60.0
+[load]
+rope_force = 45.0
+"""
+
+
+def write(tmp_path: Path, data: dict, name: str = "spec.toml") -> Path:
+    p = tmp_path / name
+    p.write_text(tomli_w.dumps(data), encoding="utf-8")
+    return p
+
+
+def variant(**sections) -> dict:
+    """SPEC with some values changed; a [load] given here replaces the whole section."""
+    d = json.loads(json.dumps(SPEC))
+    for sec, vals in sections.items():
+        if isinstance(vals, dict) and sec != "load":
+            d[sec].update(vals)
+        else:
+            d[sec] = vals
+    return d
+
+
+@pytest.fixture(scope="module")
+def spec_path(tmp_path_factory) -> Path:
+    """SPEC written once for the module (so identical CLI calls can share one subprocess)."""
+    return write(tmp_path_factory.mktemp("spec"), SPEC)
+
+
+def jrun(*args, expect: int | None = 0, **kw) -> dict:
+    """JSON output of the CLI, parsed strictly (NaN/Infinity tokens rejected); ``expect=None``: 0 or 1."""
+    p = run(*args, "--format", "json", **kw)
+    assert p.returncode == expect if expect is not None else p.returncode in (0, 1), (p.returncode, p.stderr)
+    assert "Traceback" not in p.stderr
+    return json.loads(p.stdout, parse_constant=_no_nan)
+
+
+def _no_nan(tok):
+    raise AssertionError(f"non-standard JSON token {tok!r}")
+
+
+# ----------------------------------------------------------------------------- hand computations
+def hand_design(lk: dict) -> dict:
+    """NOTES.md §1: frame Eq. (1), beta, psi1/2, Eq. (2) by the law of cosines, and the dead-centre
+    crank angles from the geometry (crank and coupler collinear with O2B at the rocker extremes)."""
+    L1, D1, b, l4, s = lk["L1"], lk["D1"], lk["b"], lk["rocker"], lk["swing"]
+    ox, oy = -(L1 + b / 2), -D1
+    l1 = math.hypot(L1 + b / 2, D1)
+    beta = 90 + math.degrees(math.atan2(D1, L1 + b / 2))
+    psi1, psi2 = 180 - beta + s / 2, 180 - beta - s / 2
+    d1 = math.sqrt(l1**2 + l4**2 - 2 * l1 * l4 * math.cos(math.radians(psi1)))
+    d2 = math.sqrt(l1**2 + l4**2 - 2 * l1 * l4 * math.cos(math.radians(psi2)))
+    l2, l3 = (d1 - d2) / 2, (d1 + d2) / 2
+    # rocker at 90 + s/2 (angle psi1 to the frame line): B on the ray O2->A at distance l2 + l3
+    bex = (ox + l4 * math.cos(math.radians(90 + s / 2)), oy + l4 * math.sin(math.radians(90 + s / 2)))
+    # rocker at 90 - s/2: B at distance l3 - l2, A on the opposite side of O2
+    bfo = (ox + l4 * math.cos(math.radians(90 - s / 2)), oy + l4 * math.sin(math.radians(90 - s / 2)))
+    assert math.isclose(math.hypot(*bex), l2 + l3, rel_tol=1e-12)
+    assert math.isclose(math.hypot(*bfo), l3 - l2, rel_tol=1e-12)
+    ext = math.degrees(math.atan2(bex[1], bex[0])) % 360
+    fold = math.degrees(math.atan2(-bfo[1], -bfo[0])) % 360
+    arc = (ext - fold) % 360
+    # transmission angle extremes: crank along the frame line, |AO4| = l1 -+ l2 (law of cosines)
+    gmin = math.degrees(math.acos((l3**2 + l4**2 - (l1 - l2) ** 2) / (2 * l3 * l4)))
+    gmax = math.degrees(math.acos((l3**2 + l4**2 - (l1 + l2) ** 2) / (2 * l3 * l4)))
+    return dict(frame_length=l1, beta_deg=beta, psi1_deg=psi1, psi2_deg=psi2, crank_length=l2,
+                coupler_length=l3, rocker_length=l4, handle_length=lk["handle"], rocker_pivot=[ox, oy],
+                ext=ext, fold=fold, time_ratio=max(arc, 360 - arc) / min(arc, 360 - arc), gmin=gmin, gmax=gmax)
+
+
+def rocker_angle(h: dict, theta_rad, branch: float) -> np.ndarray:
+    """Independent position analysis: B = intersection of circle(A, l3) and circle(O4, l4)."""
+    l2, l3, l4 = h["crank_length"], h["coupler_length"], h["rocker_length"]
+    ox, oy = h["rocker_pivot"]
+    ax, ay = l2 * np.cos(theta_rad), l2 * np.sin(theta_rad)
+    ux, uy = ax - ox, ay - oy
+    d = np.hypot(ux, uy)
+    a = (l4**2 - l3**2 + d**2) / (2 * d)
+    hh = np.sqrt(l4**2 - a**2)
+    bx = ox + (a * ux - branch * hh * uy) / d
+    by = oy + (a * uy + branch * hh * ux) / d
+    return np.arctan2(by - oy, bx - ox)
+
+
+def branch_of(h: dict, swing: float) -> float:
+    """The assembly branch whose rocker stays inside 90 +- swing/2 (checked on a grid)."""
+    grid = np.radians(np.arange(0.0, 360.0, 0.5))
+    lo, hi = math.radians(90 - swing / 2) - 1e-9, math.radians(90 + swing / 2) + 1e-9
+    ok = [br for br in (1.0, -1.0) if np.all((rocker_angle(h, grid, br) >= lo) & (rocker_angle(h, grid, br) <= hi))]
+    assert len(ok) == 1, ok
+    return ok[0]
+
+
+def hand_force(h: dict, branch: float, theta_deg, Mw: float, H: float, step: float = 1e-6):
+    """Fh = Mw / (dPx/dtheta2) (virtual work, NOTES.md §1), Px = O4x + H cos(theta4), by a central
+    difference of the independent position analysis; also |dtheta4/dtheta2|."""
+    t = np.radians(np.asarray(theta_deg, float))
+    r_p, r_m = rocker_angle(h, t + step, branch), rocker_angle(h, t - step, branch)
+    dpx = H * (np.cos(r_p) - np.cos(r_m)) / (2 * step)
+    rate = (r_p - r_m) / (2 * step)
+    return Mw / dpx, np.abs(rate)
+
+
+# ----------------------------------------------------------------------------- help / version
+def test_help_of_every_command_has_an_example():
+    for args in ([], ["synth"], ["force"], ["init"]):
+        p = run(*args, "--help")
+        assert p.returncode == 0, p.stderr
+        assert "Traceback" not in p.stderr
+        assert "Example" in p.stdout and "pumplink" in p.stdout, args
+        if args:
+            assert f"pumplink {args[0]}" in p.stdout
+
+
+def test_force_help_states_units():
+    """Units in the option help ("[deg/s]", "[deg]") must survive Rich markup."""
+    out = run("force", "--help").stdout
+    assert "deg/s" in out
+    at_help = out[out.index("Evaluate"):]  # the --at option's help text, up to the next option
+    assert "deg" in at_help.split("--summary")[0], at_help
+
+
+def test_version_console_script_and_module():
+    from importlib.metadata import version
+
+    want = version("pumplink")
+    for cmd in (CMD, [sys.executable, "-m", "pumplink"]):
+        p = run("--version", cmd=cmd)
+        assert p.returncode == 0 and want in p.stdout, (cmd, p.stdout, p.stderr)
+
+
+# ----------------------------------------------------------------------------- JSON contract
+DESIGN_KEYS = {"name", "feasible", "error", "frame_length", "beta_deg", "psi1_deg", "psi2_deg", "crank_length",
+               "coupler_length", "rocker_length", "handle_length", "rocker_pivot", "dead_centres_deg", "time_ratio",
+               "transmission_angle_deg"}
+FORCE_KEYS = DESIGN_KEYS | {"speed_deg_s", "wheel_torque_Nm", "power_W", "force_limit_N", "dead_band_deg",
+                            "mean_force_N", "peak_force_N", "pass", "checks"}
+SAMPLE_KEYS = {"crank_deg", "force_N", "handle_speed_m_s", "phi_deg", "rocker_deg", "transmission_deg"}
+
+
+def check_design_fields(row: dict, spec: dict) -> None:
+    h = hand_design(spec["linkage"])
+    assert DESIGN_KEYS <= row.keys(), DESIGN_KEYS - row.keys()
+    assert row["name"] == spec["name"] and row["feasible"] is True and row["error"] is None
+    for k in ("frame_length", "beta_deg", "psi1_deg", "psi2_deg", "crank_length", "coupler_length",
+              "rocker_length", "handle_length", "time_ratio"):
+        assert row[k] == pytest.approx(h[k], rel=1e-12, abs=1e-12), k
+    assert row["rocker_pivot"] == pytest.approx(h["rocker_pivot"], abs=1e-15)
+    dc = row["dead_centres_deg"]
+    assert set(dc) >= {"extended", "folded"}
+    for k, want in (("extended", h["ext"]), ("folded", h["fold"])):
+        assert 0 <= dc[k] < 360
+        assert dc[k] == pytest.approx(want, abs=1e-9), k
+    tr = row["transmission_angle_deg"]
+    assert tr["min"] == pytest.approx(h["gmin"], abs=1e-9)
+    assert tr["max"] == pytest.approx(h["gmax"], abs=1e-9)
+
+
+def test_synth_json_contract_against_hand_computation(tmp_path):
+    spec2 = variant(name="Second", linkage={"L1": 0.45, "D1": -0.05, "swing": 50.0})
+    out = jrun("synth", write(tmp_path, SPEC, "a.toml"), write(tmp_path, spec2, "b.toml"))
+    assert list(out) == ["designs"] and len(out["designs"]) == 2
+    check_design_fields(out["designs"][0], SPEC)
+    check_design_fields(out["designs"][1], spec2)
+
+
+N_SAMPLES = 36
+
+
+def test_force_json_contract_against_hand_computation(spec_path):
+    n = N_SAMPLES
+    out = jrun("force", spec_path, "--samples", n, cache=True)
+    assert FORCE_KEYS <= out.keys(), FORCE_KEYS - out.keys()
+    check_design_fields(out, SPEC)
+    lk, op = SPEC["linkage"], SPEC["operator"]
+    Mw = SPEC["load"]["rope_force"] * SPEC["wheel"]["radius"]  # Mw = Fw rw
+    omega = math.radians(op["speed"])
+    assert out["speed_deg_s"] == pytest.approx(op["speed"], rel=1e-12)
+    assert out["wheel_torque_Nm"] == pytest.approx(Mw, rel=1e-12)
+    assert out["power_W"] == pytest.approx(Mw * omega, rel=1e-12)
+    assert out["force_limit_N"] == pytest.approx(op["force_limit"], rel=1e-12)
+    assert out["dead_band_deg"] == pytest.approx(op["dead_band"], rel=1e-12)
+    mean = math.pi * Mw / (2 * lk["handle"] * math.sin(math.radians(lk["swing"]) / 2))
+    assert out["mean_force_N"] == pytest.approx(mean, rel=1e-12)
+
+    # peak outside the dead bands: dense grid of the independent force, band edges included
+    h = hand_design(lk)
+    br = branch_of(h, lk["swing"])
+    band = op["dead_band"]
+    grid = np.concatenate([np.linspace(0, 360, 200_001),
+                           [(h["ext"] + s * band) % 360 for s in (-1, 1)] + [(h["fold"] + s * band) % 360 for s in (-1, 1)]])
+
+    def dist(a, b):
+        return np.abs((a - b + 180) % 360 - 180)
+
+    grid = grid[(dist(grid, h["ext"]) >= band - 1e-12) & (dist(grid, h["fold"]) >= band - 1e-12)]
+    f_grid, _ = hand_force(h, br, grid, Mw, lk["handle"])
+    assert out["peak_force_N"] == pytest.approx(np.max(np.abs(f_grid)), rel=1e-3)  # issue #2: 0.1 %
+    assert out["pass"] is (out["mean_force_N"] <= op["force_limit"] and out["peak_force_N"] <= op["force_limit"])
+
+    checks = out["checks"]
+    assert checks and all({"name", "value", "limit", "pass"} <= c.keys() for c in checks)
+    by_value = {round(c["value"], 9): c for c in checks}
+    for v in (out["mean_force_N"], out["peak_force_N"]):
+        c = by_value[round(v, 9)]
+        assert c["limit"] == pytest.approx(op["force_limit"]) and c["pass"] is (v <= op["force_limit"])
+
+    samples = out["samples"]
+    assert len(samples) == n
+    assert all(SAMPLE_KEYS <= s.keys() for s in samples)
+    crank = np.array([s["crank_deg"] for s in samples])
+    assert crank == pytest.approx(np.arange(n) * 360 / n, abs=1e-9)
+    finite = [s for s in samples if s["force_N"] is not None]
+    assert len(finite) == n  # no sample falls on a dead centre here
+    th = np.array([s["crank_deg"] for s in finite])
+    f_hand, rate = hand_force(h, br, th, Mw, lk["handle"])
+    assert np.array([s["force_N"] for s in finite]) == pytest.approx(f_hand, rel=1e-6)
+    assert np.array([s["rocker_deg"] for s in finite]) == pytest.approx(
+        np.degrees(rocker_angle(h, np.radians(th), br)), abs=1e-9)
+    assert np.array([s["phi_deg"] for s in finite]) == pytest.approx(
+        np.array([s["rocker_deg"] for s in finite]) - 90, abs=1e-9)
+    assert np.array([s["handle_speed_m_s"] for s in finite]) == pytest.approx(rate * omega * lk["handle"], rel=1e-6)
+    tr = out["transmission_angle_deg"]
+    assert all(tr["min"] - 1e-9 <= s["transmission_deg"] <= tr["max"] + 1e-9 for s in finite)
+
+
+def test_head_based_load_in_force_json(tmp_path):
+    """Rope force from the head: rho g head (pi d^2/4) / efficiency (NOTES.md §4), 0.75 by default
+    (an explicit efficiency is covered in test_spec.py)."""
+    out = jrun("force", write(tmp_path, variant(load={"head": 10.0, "pipe_diameter": 0.023})), "--summary",
+               expect=None)
+    fw = 1000 * 9.81 * 10.0 * math.pi * 0.023**2 / 4 / 0.75
+    assert fw == pytest.approx(54.4, abs=0.1)  # NOTES.md §4: "about 54 N"
+    assert out["wheel_torque_Nm"] == pytest.approx(fw * SPEC["wheel"]["radius"], rel=1e-12)
+
+
+def test_summary_omits_samples(spec_path):
+    out = jrun("force", spec_path, "--summary", cache=True)
+    assert FORCE_KEYS <= out.keys() and "samples" not in out
+
+
+def test_at_evaluates_exactly_those_angles_and_flags_dead_centres(spec_path):
+    spec = spec_path
+    dc = jrun("synth", spec, cache=True)["designs"][0]["dead_centres_deg"]
+    angles = [10.0, dc["extended"], 90.0, dc["folded"], 275.5]
+    out = jrun("force", spec, *[a for x in angles for a in ("--at", repr(x))])
+    s = out["samples"]
+    assert [x["crank_deg"] for x in s] == pytest.approx(angles, abs=1e-9)
+    for i in (1, 3):
+        assert s[i]["force_N"] is None and s[i]["singular"] is True, s[i]
+        assert s[i]["handle_speed_m_s"] == pytest.approx(0.0, abs=1e-9)
+    for i in (0, 2, 4):
+        assert s[i]["force_N"] is not None and math.isfinite(s[i]["force_N"]) and s[i]["singular"] is False
+    # the rocker sits at its extremes at the dead centres (90 +- swing/2)
+    sw = SPEC["linkage"]["swing"]
+    assert s[1]["rocker_deg"] == pytest.approx(90 + sw / 2, abs=1e-9)
+    assert s[3]["rocker_deg"] == pytest.approx(90 - sw / 2, abs=1e-9)
+
+
+def test_speed_changes_power_and_handle_speed_not_forces(spec_path):
+    a = jrun("force", spec_path, "--samples", N_SAMPLES, cache=True)  # the spec's speed, 300 deg/s
+    b = jrun("force", spec_path, "--samples", N_SAMPLES, "--speed", "720")
+    ratio = 720 / SPEC["operator"]["speed"]
+    assert a["speed_deg_s"] == pytest.approx(SPEC["operator"]["speed"]) and b["speed_deg_s"] == pytest.approx(720)
+    assert b["power_W"] == pytest.approx(ratio * a["power_W"], rel=1e-12)
+    assert b["power_W"] == pytest.approx(b["wheel_torque_Nm"] * math.radians(720), rel=1e-12)
+    assert len(a["samples"]) == len(b["samples"]) == N_SAMPLES
+    for sa, sb in zip(a["samples"], b["samples"]):
+        assert sb["crank_deg"] == sa["crank_deg"]
+        assert sb["handle_speed_m_s"] == pytest.approx(ratio * sa["handle_speed_m_s"], rel=1e-12)
+        assert sb["force_N"] == pytest.approx(sa["force_N"], rel=1e-12)
+    for k in ("mean_force_N", "peak_force_N", "wheel_torque_Nm"):
+        assert a[k] == pytest.approx(b[k], rel=1e-12)
+
+
+# ----------------------------------------------------------------------------- CSV
+def test_csv_formats(tmp_path, spec_path):
+    a, b = spec_path, write(tmp_path, variant(name="B"), "b.toml")
+    p = run("synth", a, b, "--format", "csv")
+    assert p.returncode == 0, p.stderr
+    rows = list(csv.DictReader(io.StringIO(p.stdout)))
+    assert len(rows) == 2 and [r["name"] for r in rows] == ["Test pump", "B"]
+    for k in ("feasible", "frame_length", "crank_length", "rocker_pivot_x", "rocker_pivot_y",
+              "dead_centres_deg_extended", "dead_centres_deg_folded", "transmission_angle_deg_min", "time_ratio"):
+        assert k in rows[0], k
+    h = hand_design(SPEC["linkage"])
+    assert float(rows[0]["frame_length"]) == pytest.approx(h["frame_length"], rel=1e-12)
+    assert float(rows[0]["rocker_pivot_x"]) == pytest.approx(h["rocker_pivot"][0], rel=1e-12)
+
+    p = run("force", a, "--samples", "7", "--format", "csv")
+    assert p.returncode == 0, p.stderr
+    rows = list(csv.DictReader(io.StringIO(p.stdout)))
+    assert len(rows) == 7 and SAMPLE_KEYS <= rows[0].keys()
+    assert [float(r["crank_deg"]) for r in rows] == pytest.approx([i * 360 / 7 for i in range(7)], abs=1e-9)
+
+    p = run("force", a, "--summary", "--format", "csv")
+    assert p.returncode == 0, p.stderr
+    rows = list(csv.DictReader(io.StringIO(p.stdout)))
+    assert len(rows) == 1 and {"mean_force_N", "peak_force_N", "pass", "power_W"} <= rows[0].keys()
+
+    dc = jrun("synth", a, cache=True)["designs"][0]["dead_centres_deg"]["folded"]
+    p = run("force", a, "--at", repr(dc), "--at", "90", "--format", "csv")
+    rows = list(csv.DictReader(io.StringIO(p.stdout)))
+    assert len(rows) == 2 and rows[0]["force_N"] == "" and float(rows[1]["force_N"]) != 0
+    assert "nan" not in p.stdout.lower() and "inf" not in p.stdout.lower()
+
+
+# ----------------------------------------------------------------------------- exit codes / verdict
+def test_default_design_runs_and_states_its_verdict():
+    p = run("force", cache=True)
+    assert p.returncode in (0, 1), p.stderr
+    verdict = "PASS" if p.returncode == 0 else "FAIL"
+    assert f"VERDICT: {verdict}" in p.stdout or (verdict in p.stdout and "VERDICT" in p.stdout.upper())
+    out = jrun("force", "--summary", expect=p.returncode)
+    assert out["pass"] is (p.returncode == 0)
+    # the default is the issue #2 prototype: Mw = 45 N * 0.25 m, mean = pi Mw / (2 * 1 m * sin 30 deg)
+    assert out["wheel_torque_Nm"] == pytest.approx(45 * 0.25)
+    assert out["mean_force_N"] == pytest.approx(math.pi * 45 * 0.25 / (2 * 1.0 * 0.5), rel=1e-12)
+
+
+def test_heavy_load_fails_with_exit_1(tmp_path):
+    spec = write(tmp_path, variant(load={"rope_force": 400.0}))
+    out = jrun("force", spec, "--summary", expect=1)
+    assert out["pass"] is False and out["peak_force_N"] > out["force_limit_N"]
+    assert any(c["pass"] is False for c in out["checks"])
+    p = run("force", spec, "--summary")
+    assert p.returncode == 1 and "FAIL" in p.stdout and ANY_ESC not in p.stdout
+
+
+def test_force_limit_decides_the_verdict(tmp_path, spec_path):
+    """Same linkage, the limit just above and just below the reported peak (and above the mean)."""
+    base = jrun("force", spec_path, "--summary", cache=True)
+    peak = base["peak_force_N"]
+    assert base["mean_force_N"] < peak
+    hi = jrun("force", write(tmp_path, variant(operator={"force_limit": peak * 1.001})), "--summary", expect=0)
+    lo = jrun("force", write(tmp_path, variant(operator={"force_limit": peak * 0.999})), "--summary", expect=1)
+    assert hi["pass"] is True and lo["pass"] is False
+
+
+def test_infeasible_design_exit_1(tmp_path):
+    """D1 = 3 m: the frame line rises at atan2(3, 0.41) = 82 deg, steeper than the forward extreme of the
+    swing (90 - 32 = 58 deg), so psi2 < 0: no crank-rocker (NOTES.md §1)."""
+    bad = write(tmp_path, variant(name="Deep", linkage={"D1": 3.0}), "bad.toml")
+    good = write(tmp_path, SPEC, "good.toml")
+    assert hand_design(variant(linkage={"D1": 3.0})["linkage"])["psi2_deg"] < 0
+    out = jrun("synth", good, bad, expect=1)
+    g, d = out["designs"]
+    assert g["feasible"] is True and d["feasible"] is False
+    assert isinstance(d["error"], str) and len(d["error"]) > 20
+    assert d["crank_length"] is None and d["coupler_length"] is None
+    assert d["dead_centres_deg"]["extended"] is None
+    f = jrun("force", bad, expect=1)
+    assert f["pass"] is False and f["feasible"] is False and f["peak_force_N"] is None
+    p = run("force", bad)
+    assert p.returncode == 1 and "FAIL" in p.stdout and "Traceback" not in p.stderr
+    p = run("synth", bad)
+    assert p.returncode == 1 and d["error"][:40] in " ".join(p.stdout.split())
+
+
+# ----------------------------------------------------------------------------- tables
+def test_force_table_piped_and_no_color(tmp_path):
+    for env in ({}, {"NO_COLOR": "1"}):
+        p = run("force", env=env, cache=True)
+        assert p.returncode == 0, p.stderr
+        out = p.stdout
+        assert ANY_ESC not in out, env
+        assert "PASS" in out
+        assert out.count("∞ (dead centre)") >= 2
+        for unit in ("[N]", "[deg]", "[m/s]"):
+            assert unit in out, unit
+        assert not re.search(r"\bnan\b", out, re.I)
+
+
+def test_synth_table_piped(spec_path):
+    p = run("synth", spec_path, Path(__file__).parents[1] / "configs" / "prototype.toml")
+    assert p.returncode == 0, p.stderr
+    assert ANY_ESC not in p.stdout
+    assert "Test pump" in p.stdout and "Prototype" in p.stdout
+    assert "[m]" in p.stdout or " m" in p.stdout
+    assert not re.search(r"\bnan\b", p.stdout, re.I)
+    h = hand_design(SPEC["linkage"])
+    assert f"{h['crank_length']:.4f}" in p.stdout or f"{h['crank_length']:.3f}" in p.stdout
+
+
+def test_user_text_with_rich_markup_is_shown_literally(tmp_path):
+    spec = write(tmp_path, variant(name="Well [bold]3[/bold] [red"))
+    for cmd in ("synth", "force"):
+        p = run(cmd, spec)
+        assert p.returncode == 0 and "Traceback" not in p.stderr, p.stderr
+        assert "Well [bold]3[/bold] [red" in p.stdout, cmd
+
+
+def _run_on_tty(args, env):
+    m, s = os.openpty()  # POSIX; the suite runs on Linux
+    proc = subprocess.Popen([*CMD, *args], stdout=s, stderr=subprocess.PIPE, env=_env(env))
+    os.close(s)
+    chunks = []
+    while True:
+        try:
+            b = os.read(m, 65536)
+        except OSError:
+            break
+        if not b:
+            break
+        chunks.append(b)
+    proc.wait(timeout=60)
+    os.close(m)
+    return proc.returncode, b"".join(chunks).decode("utf-8", "replace")
+
+
+def test_no_color_on_a_terminal():
+    """On a terminal colours are on (so the check below can fail); NO_COLOR=1 removes every colour code."""
+    rc, out = _run_on_tty(["force", "--summary"], {"TERM": "xterm-256color", "COLUMNS": "200"})
+    assert rc == 0 and COLOUR_SGR.search(out), repr(out[:200])
+    rc, out = _run_on_tty(["force", "--summary"], {"TERM": "xterm-256color", "COLUMNS": "200", "NO_COLOR": "1"})
+    assert rc == 0
+    assert not COLOUR_SGR.search(out), set(COLOUR_SGR.findall(out))
+    assert "PASS" in re.sub(r"\x1b\[[0-9;]*m", "", out)
+
+
+def test_non_utf8_stdout_does_not_traceback():
+    """A legacy (non-UTF-8) console: the tables use ∞, Δ, ±, °; no traceback whatever the encoding."""
+    for fmt in ("table", "json"):
+        p = run("force", "--summary", "--format", fmt, env={"PYTHONIOENCODING": "ascii"})
+        assert "Traceback" not in p.stderr, (fmt, p.stderr[-300:])
+        assert p.returncode in (0, 2), p.returncode
+
+
+# ----------------------------------------------------------------------------- bad input
+def _sub(old: str, new: str) -> str:
+    assert old in BASE_TOML
+    return BASE_TOML.replace(old, new)
+
+
+def _bounds(section: str, key: str) -> list[str]:
+    """The allowed range declared on the model (so the message can be checked to state it)."""
+    from pumplink.spec import PumpSpec
+
+    info = PumpSpec.model_fields[section].annotation.model_fields[key]
+    out = []
+    for m in info.metadata:
+        for attr in ("gt", "ge", "lt", "le"):
+            v = getattr(m, attr, None)
+            if v is not None:
+                out.append(f"{v:g}")
+    return out
+
+
+# name, file content (str or bytes), substrings that must appear in the one stderr line, (section, key) for range
+BAD_FILES = [
+    ("toml-syntax", _sub("swing = 60.0", "swing = 60.0 ="), ["line"], None),
+    ("duplicate-key", _sub("b = 0.10", "b = 0.10\nb = 0.2"), ["b"], None),
+    ("missing-key", _sub("radius = 0.25\n", ""), ["radius"], None),
+    ("missing-section", BASE_TOML.split("[load]")[0], ["load"], None),
+    ("unknown-key", _sub("rocker = 0.20", "rockr = 0.20"), ["rockr"], None),
+    ("unknown-section", BASE_TOML + "[operater]\nspeed = 300.0\n", ["operater"], None),
+    ("negative-length", _sub("rocker = 0.20", "rocker = -0.2"), ["rocker", "-0.2"], ("linkage", "rocker")),
+    ("negative-radius", _sub("radius = 0.25", "radius = -0.25"), ["radius", "-0.25"], ("wheel", "radius")),
+    ("nan", _sub("L1 = 0.40", "L1 = nan"), ["L1", "nan"], ("linkage", "L1")),
+    ("inf", _sub("D1 = 0.20", "D1 = inf"), ["D1", "inf"], ("linkage", "D1")),
+    ("minus-inf", _sub("handle = 1.00", "handle = -inf"), ["handle", "inf"], ("linkage", "handle")),
+    ("overflow-to-inf", _sub("L1 = 0.40", "L1 = 1e400"), ["L1", "inf"], ("linkage", "L1")),
+    ("swing-180", _sub("swing = 60.0", "swing = 180.0"), ["swing", "180"], ("linkage", "swing")),
+    ("swing-250", _sub("swing = 60.0", "swing = 250"), ["swing", "250"], ("linkage", "swing")),
+    ("swing-zero", _sub("swing = 60.0", "swing = 0"), ["swing"], ("linkage", "swing")),
+    ("string-for-number", _sub("handle = 1.00", 'handle = "1.0"'), ["handle", "1.0"], ("linkage", "handle")),
+    ("boolean-for-number", _sub("handle = 1.00", "handle = true"), ["handle", "true"], ("linkage", "handle")),
+    ("array-for-number", _sub("handle = 1.00", "handle = [1.0]"), ["handle"], None),
+    ("section-not-table", 'linkage = 5\n' + BASE_TOML.replace("name", "nom", 0).split("[linkage]")[0]
+     + BASE_TOML.split("swing = 60.0")[1], ["linkage"], None),
+    ("name-not-text", _sub('name = "t"', "name = 3"), ["name"], None),
+    ("dead-band-90", BASE_TOML + "[operator]\ndead_band = 90.0\n", ["dead_band", "90"], ("operator", "dead_band")),
+    ("zero-speed", BASE_TOML + "[operator]\nspeed = 0\n", ["speed"], ("operator", "speed")),
+    ("both-loads", _sub("rope_force = 45.0", "rope_force = 45.0\nhead = 10.0\npipe_diameter = 0.023"),
+     ["rope_force", "head"], None),
+    ("head-without-pipe", _sub("rope_force = 45.0", "head = 10.0"), ["pipe_diameter"], None),
+    ("efficiency-without-head", _sub("rope_force = 45.0", "rope_force = 45.0\nefficiency = 0.7"), ["efficiency"], None),
+    ("efficiency-above-1", _sub("rope_force = 45.0", "head = 10.0\npipe_diameter = 0.023\nefficiency = 1.5"),
+     ["efficiency", "1.5"], ("load", "efficiency")),
+    ("empty-file", "", [], None),
+    ("comment-only", "# nothing here\n\n", [], None),
+    ("non-utf8", b"name = \"\xff\xfe\"\n[wheel]\nradius = 0.25\n", ["UTF-8"], None),
+]
+
+
+# `force` reads specs through the same load_spec as `synth`; it is run on a representative subset
+# (each subprocess costs ~0.5 s here) and `synth` on all of them.
+FORCE_TOO = {"toml-syntax", "unknown-key", "negative-length", "nan", "string-for-number", "empty-file", "non-utf8"}
+
+
+@pytest.fixture(scope="module")
+def bad_results(tmp_path_factory) -> dict:
+    """Run every bad file through the CLI, a few processes at a time."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    folder = tmp_path_factory.mktemp("bad")
+    jobs = []
+    for name, content, _, _ in BAD_FILES:
+        f = folder / f"{name}.toml"
+        if isinstance(content, bytes):
+            f.write_bytes(content)
+        else:
+            f.write_text(content, encoding="utf-8")
+        jobs += [(name, cmd, f) for cmd in ("synth", "force") if cmd == "synth" or name in FORCE_TOO]
+    with ThreadPoolExecutor(max_workers=4) as ex:
+        procs = list(ex.map(lambda j: run(j[1], j[2]), jobs))
+    return {(name, cmd): p for (name, cmd, _), p in zip(jobs, procs)}
+
+
+@pytest.mark.parametrize("name,content,words,rng", BAD_FILES, ids=[c[0] for c in BAD_FILES])
+def test_bad_spec_files_exit_2_with_one_line(bad_results, name, content, words, rng):
+    for cmd in ("synth", "force"):
+        if (name, cmd) not in bad_results:
+            continue
+        line = one_error_line(bad_results[name, cmd])
+        assert f"{name}.toml" in line, line  # says which file
+        for w in words:
+            assert w.lower() in line.lower(), (cmd, w, line)
+        if rng:
+            for bound in _bounds(*rng):
+                assert bound in line, (cmd, bound, line)
+        assert "None" not in line, line  # no Python internals in a user message
+
+
+def test_missing_file_and_folder_exit_2(tmp_path):
+    folder = tmp_path / "folder.toml"
+    folder.mkdir()
+    for target in (tmp_path / "nope.toml", folder):
+        for cmd in ("synth", "force"):
+            line = one_error_line(run(cmd, target))
+            assert target.name in line, line
+
+
+def test_first_bad_spec_in_a_batch_stops_synth(tmp_path):
+    good = write(tmp_path, SPEC, "good.toml")
+    bad = tmp_path / "bad.toml"
+    bad.write_text(_sub("rocker = 0.20", "rockr = 0.20"), encoding="utf-8")
+    line = one_error_line(run("synth", good, bad))
+    assert "bad.toml" in line and "rockr" in line
+
+
+@pytest.mark.parametrize("args,option", [
+    (["force", "--samples", "0"], "--samples"),
+    (["force", "--speed", "-1"], "--speed"),
+    (["force", "--speed", "0"], "--speed"),
+    (["force", "--format", "xml"], "--format"),
+    (["synth", "--format", "xml", "configs/prototype.toml"], "--format"),
+    (["force", "--at", "nan"], "--at"),
+    (["force", "--at", "inf"], "--at"),
+    (["force", "--at", "ninety"], "--at"),
+    (["force", "--samples", "2000000"], "--samples"),
+    (["force", "--bogus"], "--bogus"),
+    (["synth"], "spec"),
+])
+def test_bad_options_exit_2(args, option):
+    p = run(*args, cwd=Path(__file__).parents[1])
+    assert p.returncode == 2, (p.returncode, p.stdout, p.stderr)
+    assert p.stdout == "" and "Traceback" not in p.stderr
+    assert option.lower() in p.stderr.lower(), p.stderr
+
+
+def test_debug_shows_the_traceback(tmp_path):
+    p = run("--debug", "synth", tmp_path / "nope.toml")
+    assert p.returncode != 0 and "Traceback" in p.stderr and "nope.toml" in p.stderr
+
+
+# ----------------------------------------------------------------------------- init
+def test_init_writes_a_spec_that_loads_and_passes(tmp_path):
+    p = run("init", cwd=tmp_path)  # default path pump.toml
+    assert p.returncode == 0 and p.stdout == "", (p.stdout, p.stderr)
+    written = tmp_path / "pump.toml"
+    data = tomllib.loads(written.read_text(encoding="utf-8"))
+    assert {"wheel", "linkage", "load"} <= data.keys()
+    from pumplink.spec import load_spec
+
+    load_spec(written)  # validates
+    out = jrun("force", written, "--summary", expect=0)
+    assert out["pass"] is True
+
+    # refuses to overwrite; the file is untouched
+    written.write_text(written.read_text(encoding="utf-8") + "# edited\n", encoding="utf-8")
+    before = written.read_text(encoding="utf-8")
+    line = one_error_line(run("init", written))
+    assert "pump.toml" in line and "--force" in line
+    assert written.read_text(encoding="utf-8") == before
+    p = run("init", written, "--force")
+    assert p.returncode == 0 and "# edited" not in written.read_text(encoding="utf-8")
+
+    # '-' prints the same TOML to stdout, nothing else
+    p = run("init", "-")
+    assert p.returncode == 0 and p.stdout == written.read_text(encoding="utf-8")
+    assert tomllib.loads(p.stdout) == data
+
+    line = one_error_line(run("init", tmp_path / "no" / "such" / "dir" / "x.toml"))
+    assert "x.toml" in line

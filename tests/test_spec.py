@@ -1,0 +1,321 @@
+"""Unit tests of pumplink.spec: validation messages, the head-based rope force, defaults and the
+TOML round trip (spec_to_dict -> tomli_w -> load_spec).
+
+The allowed ranges are read from the model's declared constraints (the contract the messages must
+state); expected physical values come from the formula of NOTES.md §4 written out here.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import re
+from pathlib import Path
+
+import pytest
+import tomli_w
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from pumplink.errors import PumplinkError, SpecError
+from pumplink.spec import PumpSpec, default_spec, load_spec, parse_spec, spec_to_dict
+
+ROPE = {
+    "name": "t",
+    "wheel": {"radius": 0.25},
+    "linkage": {"L1": 0.40, "D1": 0.20, "b": 0.10, "rocker": 0.20, "handle": 1.00, "swing": 60.0},
+    "load": {"rope_force": 45.0},
+}
+HEAD = {**ROPE, "wheel": {"radius": 0.25, "axle_height": 0.55},
+        "load": {"head": 10.0, "pipe_diameter": 0.023, "efficiency": 0.75},
+        "operator": {"force_limit": 100.0, "speed": 360.0, "dead_band": 20.0}}
+
+# every numeric key of the contract, with a base spec in which it is present
+NUMERIC_KEYS = [(ROPE, "wheel", "radius"), (HEAD, "wheel", "axle_height")] + \
+    [(ROPE, "linkage", k) for k in ("L1", "D1", "b", "rocker", "handle", "swing")] + \
+    [(ROPE, "load", "rope_force")] + [(HEAD, "load", k) for k in ("head", "pipe_diameter", "efficiency")] + \
+    [(HEAD, "operator", k) for k in ("force_limit", "speed", "dead_band")]
+
+
+def constraints(section: str, key: str) -> dict[str, float]:
+    info = PumpSpec.model_fields[section].annotation.model_fields[key]
+    out = {}
+    for m in info.metadata:
+        for attr in ("gt", "ge", "lt", "le"):
+            if getattr(m, attr, None) is not None:
+                out[attr] = float(getattr(m, attr))
+    return out
+
+
+def with_value(base: dict, section: str, key: str, value) -> dict:
+    d = copy.deepcopy(base)
+    d[section][key] = value
+    return d
+
+
+def names_key(msg: str, section: str, key: str) -> bool:
+    return f"{section}.{key}" in msg or (f"[{section}]" in msg and re.search(rf"\b{re.escape(key)}\b", msg) is not None)
+
+
+def test_every_numeric_key_has_a_finite_range():
+    for _, section, key in NUMERIC_KEYS:
+        c = constraints(section, key)
+        assert ({"gt", "ge"} & c.keys()) and ({"lt", "le"} & c.keys()), (section, key, c)
+
+
+def test_base_specs_are_valid():
+    assert parse_spec(copy.deepcopy(ROPE)).load.rope_force == 45.0
+    assert parse_spec(copy.deepcopy(HEAD)).wheel.axle_height == 0.55
+
+
+@st.composite
+def out_of_range(draw):
+    base, section, key = draw(st.sampled_from(NUMERIC_KEYS))
+    c = constraints(section, key)
+    options = [st.sampled_from([math.nan, math.inf, -math.inf])]
+    if "gt" in c:
+        options.append(st.floats(max_value=c["gt"], allow_nan=False, allow_infinity=False))
+    if "ge" in c:
+        options.append(st.floats(max_value=c["ge"], allow_nan=False, allow_infinity=False).filter(lambda v: v < c["ge"]))
+    if "lt" in c:
+        options.append(st.floats(min_value=c["lt"], allow_nan=False, allow_infinity=False))
+    if "le" in c:
+        options.append(st.floats(min_value=c["le"], allow_nan=False, allow_infinity=False).filter(lambda v: v > c["le"]))
+    value = draw(st.one_of(options))
+    return base, section, key, value, c
+
+
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
+@given(out_of_range())
+def test_any_out_of_range_value_names_its_key_value_and_range(case):
+    base, section, key, value, c = case
+    with pytest.raises(SpecError) as exc:
+        parse_spec(with_value(base, section, key, value), source="x.toml")
+    msg = str(exc.value)
+    assert "\n" not in msg
+    assert msg.startswith("x.toml")
+    assert names_key(msg, section, key), msg
+    if math.isnan(value):
+        assert "nan" in msg.lower(), msg
+    elif math.isinf(value):
+        assert "inf" in msg.lower(), msg
+    else:
+        assert repr(value) in msg or f"{value:g}" in msg, msg
+    for bound in c.values():
+        assert f"{bound:g}" in msg, (bound, msg)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.sampled_from(NUMERIC_KEYS), st.sampled_from(["0.2", True, False, [1.0], {"x": 1.0}]))
+def test_wrong_type_names_the_key(entry, value):
+    base, section, key = entry
+    with pytest.raises(SpecError) as exc:
+        parse_spec(with_value(base, section, key, value))
+    assert names_key(str(exc.value), section, key), str(exc.value)
+
+
+def test_integers_are_accepted_as_numbers():
+    s = parse_spec(with_value(ROPE, "linkage", "swing", 60))
+    assert s.linkage.swing == 60.0
+
+
+def test_unknown_key_is_an_error_and_suggests_the_right_one():
+    d = copy.deepcopy(ROPE)
+    d["linkage"]["rockr"] = d["linkage"].pop("rocker")
+    with pytest.raises(SpecError) as exc:
+        parse_spec(d)
+    msg = str(exc.value)
+    assert "rockr" in msg and "rocker" in msg
+    # first thing said is the typo, not the missing key it causes
+    assert msg.index("rockr") < msg.index("rocker")
+
+
+def test_unknown_top_level_key_and_section():
+    for extra in ({"colour": "red"}, {"operater": {"speed": 300.0}}):
+        with pytest.raises(SpecError) as exc:
+            parse_spec({**copy.deepcopy(ROPE), **extra})
+        assert next(iter(extra)) in str(exc.value)
+
+
+def test_missing_key_and_section_messages():
+    d = copy.deepcopy(ROPE)
+    del d["linkage"]["handle"]
+    with pytest.raises(SpecError, match=r"linkage\.handle"):
+        parse_spec(d)
+    d = copy.deepcopy(ROPE)
+    del d["load"]
+    with pytest.raises(SpecError) as exc:
+        parse_spec(d)
+    assert "load" in str(exc.value)
+    assert "None" not in str(exc.value), str(exc.value)  # no Python internals in a user message
+
+
+def test_section_that_is_not_a_table():
+    d = {**copy.deepcopy(ROPE), "linkage": 5}
+    with pytest.raises(SpecError, match="linkage"):
+        parse_spec(d)
+
+
+def test_name_must_be_text_and_the_message_says_so():
+    with pytest.raises(SpecError) as exc:
+        parse_spec({**copy.deepcopy(ROPE), "name": 3})
+    msg = str(exc.value)
+    assert "name" in msg and "3" in msg
+    assert "number" not in msg, msg  # the name is text; it must not be described as "a number"
+    with pytest.raises(SpecError, match="name"):
+        parse_spec({**copy.deepcopy(ROPE), "name": ""})
+
+
+def test_load_alternatives():
+    both = with_value(ROPE, "load", "head", 10.0)
+    both["load"]["pipe_diameter"] = 0.023
+    with pytest.raises(SpecError) as exc:
+        parse_spec(both)
+    assert "rope_force" in str(exc.value) and "head" in str(exc.value)
+    with pytest.raises(SpecError, match="pipe_diameter"):
+        parse_spec({**copy.deepcopy(ROPE), "load": {"head": 10.0}})
+    with pytest.raises(SpecError, match="efficiency"):
+        parse_spec(with_value(ROPE, "load", "efficiency", 0.7))
+    with pytest.raises(SpecError, match="rope_force"):
+        parse_spec({**copy.deepcopy(ROPE), "load": {}})
+
+
+@pytest.mark.parametrize("data", [{}, [], "x", None, 3])
+def test_empty_or_non_mapping_spec(data):
+    with pytest.raises(SpecError) as exc:
+        parse_spec(data, source="s.toml")
+    assert str(exc.value).startswith("s.toml")
+
+
+def test_spec_error_maps_to_exit_2():
+    assert issubclass(SpecError, PumplinkError) and SpecError.exit_code == 2
+
+
+# ----------------------------------------------------------------------------- load physics
+@pytest.mark.parametrize("head,d,eff", [(10.0, 0.023, 0.75), (10.0, 0.023, None), (6.0, 0.019, 0.6), (35.0, 0.012, 1.0)])
+def test_head_based_rope_force(head, d, eff):
+    """Fw = rho g head (pi d^2 / 4) / efficiency, rho = 1000 kg/m^3, g = 9.81 m/s^2, efficiency 0.75
+    by default (NOTES.md §4: 10 m, 23 mm, 0.75 -> about 54 N)."""
+    load = {"head": head, "pipe_diameter": d} | ({} if eff is None else {"efficiency": eff})
+    s = parse_spec({**copy.deepcopy(ROPE), "load": load})
+    want = 1000.0 * 9.81 * head * math.pi * d**2 / 4.0 / (0.75 if eff is None else eff)
+    assert s.load.rope_force_N == pytest.approx(want, rel=1e-14)
+    assert s.wheel_torque == pytest.approx(want * 0.25, rel=1e-14)
+
+
+def test_notes_example_is_about_54_newtons():
+    s = parse_spec({**copy.deepcopy(ROPE), "load": {"head": 10.0, "pipe_diameter": 0.023}})
+    assert 53.5 < s.load.rope_force_N < 55.0
+    assert s.wheel_torque == pytest.approx(13.6, abs=0.05)  # NOTES.md §4: Mw ~ 13.6 N m at rw = 0.25 m
+
+
+def test_wheel_torque_from_rope_force():
+    s = parse_spec(with_value(ROPE, "wheel", "radius", 0.3))
+    assert s.wheel_torque == pytest.approx(45.0 * 0.3, rel=1e-15)
+
+
+# ----------------------------------------------------------------------------- defaults
+def test_operator_defaults_when_section_is_omitted():
+    s = parse_spec(copy.deepcopy(ROPE))
+    assert (s.operator.force_limit, s.operator.speed, s.operator.dead_band) == (100.0, 360.0, 20.0)
+    assert s.wheel.axle_height is None
+
+
+def test_partial_operator_section_keeps_other_defaults():
+    s = parse_spec({**copy.deepcopy(ROPE), "operator": {"speed": 200.0}})
+    assert (s.operator.force_limit, s.operator.speed, s.operator.dead_band) == (100.0, 200.0, 20.0)
+
+
+def test_load_spec_name_defaults_to_file_stem(tmp_path):
+    d = copy.deepcopy(ROPE)
+    del d["name"]
+    p = tmp_path / "my-well.toml"
+    p.write_text(tomli_w.dumps(d), encoding="utf-8")
+    assert load_spec(p).name == "my-well"
+
+
+def test_default_spec_is_valid_and_has_all_sections():
+    s = default_spec()
+    assert isinstance(s, PumpSpec) and s.wheel_torque > 0
+    assert parse_spec(spec_to_dict(s)) == s
+
+
+# ----------------------------------------------------------------------------- load_spec errors
+def test_load_spec_file_errors(tmp_path):
+    cases = {
+        "missing.toml": None,
+        "folder.toml": "dir",
+        "binary.toml": b"name = \"\xff\"\n",
+        "syntax.toml": b"[wheel\nradius = 1\n",
+        "empty.toml": b"",
+    }
+    for name, content in cases.items():
+        p = tmp_path / name
+        if content == "dir":
+            p.mkdir()
+        elif content is not None:
+            p.write_bytes(content)
+        with pytest.raises(SpecError) as exc:
+            load_spec(p)
+        msg = str(exc.value)
+        assert name in msg and "\n" not in msg, msg
+
+
+# ----------------------------------------------------------------------------- round trip
+finite = dict(allow_nan=False, allow_infinity=False)
+
+
+@st.composite
+def valid_specs(draw):
+    d = {
+        "name": draw(st.text(min_size=1, max_size=40)),
+        "wheel": {"radius": draw(st.floats(0.001, 5, **finite))},
+        "linkage": {
+            "L1": draw(st.floats(0, 10, **finite)), "D1": draw(st.floats(-10, 10, **finite)),
+            "b": draw(st.floats(0, 10, **finite)), "rocker": draw(st.floats(0.001, 10, **finite)),
+            "handle": draw(st.floats(0.001, 20, **finite)),
+            "swing": draw(st.floats(0, 180, exclude_min=True, exclude_max=True, **finite)),
+        },
+    }
+    if draw(st.booleans()):
+        d["wheel"]["axle_height"] = draw(st.floats(0.01, 5, **finite))
+    if draw(st.booleans()):
+        d["load"] = {"rope_force": draw(st.floats(0.01, 10_000, **finite))}
+    else:
+        d["load"] = {"head": draw(st.floats(0.01, 200, **finite)), "pipe_diameter": draw(st.floats(0.001, 0.5, **finite))}
+        if draw(st.booleans()):
+            d["load"]["efficiency"] = draw(st.floats(0.01, 1, **finite))
+    op = {}
+    if draw(st.booleans()):
+        op["force_limit"] = draw(st.floats(0.01, 10_000, **finite))
+    if draw(st.booleans()):
+        op["speed"] = draw(st.floats(0.01, 7200, **finite))
+    if draw(st.booleans()):
+        op["dead_band"] = draw(st.floats(0, 90, exclude_max=True, **finite))
+    if op or draw(st.booleans()):
+        d["operator"] = op
+    return d
+
+
+@settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(valid_specs())
+def test_spec_to_dict_round_trips_through_toml(tmp_path, data):
+    spec = parse_spec(copy.deepcopy(data))
+    d = spec_to_dict(spec)
+    assert "axle_height" in d["wheel"] or spec.wheel.axle_height is None
+    assert all(v is not None for sec in d.values() if isinstance(sec, dict) for v in sec.values())
+    p = tmp_path / "rt.toml"
+    p.write_text(tomli_w.dumps(d), encoding="utf-8")
+    again = load_spec(p)
+    assert again == spec
+    assert again.load.rope_force_N == spec.load.rope_force_N
+
+
+def test_example_configs_round_trip(tmp_path):
+    configs = sorted((Path(__file__).parents[1] / "configs").glob("*.toml"))
+    assert configs
+    for c in configs:
+        spec = load_spec(c)
+        p = tmp_path / c.name
+        p.write_text(tomli_w.dumps(spec_to_dict(spec)), encoding="utf-8")
+        assert load_spec(p) == spec
