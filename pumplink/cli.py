@@ -161,6 +161,9 @@ def init(
 
 def main() -> None:
     """Console-script entry point: PumplinkError -> one line on stderr and its exit code."""
+    for stream in (sys.stdout, sys.stderr):  # a non-UTF-8 terminal or pipe gets '?' for θ, ±, ∞, not a crash
+        if hasattr(stream, "reconfigure"):
+            stream.reconfigure(errors="replace")
     try:
         app()
     except PumplinkError as exc:

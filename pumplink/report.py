@@ -105,7 +105,8 @@ def sample_rows(r: ForceResult) -> list[dict[str, Any]]:
 
 # ----------------------------------------------------------------------------- text output
 def _json(obj, out) -> None:
-    out.write(json.dumps(obj, indent=2, allow_nan=False, ensure_ascii=False) + "\n")
+    # ASCII JSON (\u escapes): valid whatever the terminal's or pipe's encoding.
+    out.write(json.dumps(obj, indent=2, allow_nan=False) + "\n")
 
 
 def _flatten(row: dict[str, Any], prefix: str = "") -> dict[str, Any]:

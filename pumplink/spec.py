@@ -85,10 +85,10 @@ class Operator(_Section):
 
 class PumpSpec(_Section):
     name: str = Field(default="pump", min_length=1, max_length=200, description="design name")
-    wheel: Wheel
-    linkage: Linkage
-    load: Load
-    operator: Operator = Operator()
+    wheel: Wheel = Field(description="the [wheel] table: radius [m]")
+    linkage: Linkage = Field(description="the [linkage] table: L1, D1, b, rocker, handle, swing")
+    load: Load = Field(description="the [load] table: rope_force [N], or head [m] with pipe_diameter [m]")
+    operator: Operator = Field(default=Operator(), description="the [operator] table: force_limit, speed, dead_band")
 
     @property
     def wheel_torque(self) -> float:
@@ -129,6 +129,8 @@ def _allowed(info: Any) -> str:
     """'0 < value <= 10' from a field's constraints, plus its description."""
     if info is None:
         return ""
+    if info.annotation is str:
+        return f"{info.description}, allowed: text of 1 to 200 characters"
     lo = hi = None
     for m in info.metadata:
         for attr, sym in (("gt", "<"), ("ge", "<=")):
@@ -168,7 +170,9 @@ def _describe(err: dict) -> str:
         return f"'{key}' = {value!r} is not a finite number; {_allowed(info)}"
     if kind in ("float_type", "string_type", "float_parsing"):
         want = "text" if kind == "string_type" else "a number"
-        return f"'{key}' = {value!r} ({type(value).__name__}) is not {want}; {_allowed(info) or 'expected text'}"
+        return f"'{key}' = {value!r} ({type(value).__name__}) is not {want}; {_allowed(info)}"
+    if kind in ("string_too_short", "string_too_long"):
+        return f"'{key}' = {value!r} has the wrong length; {_allowed(info)}"
     if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
         return f"'{key}' = {value!r} is out of range; {_allowed(info)}"
     return f"'{key}' = {value!r}: {err['msg']}"

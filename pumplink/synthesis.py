@@ -182,7 +182,9 @@ def synthesize(L1, D1, b, rocker, swing, handle=1.0) -> Synthesis:
 
     d1 = _side(frame, rocker, psi1)  # Eq. (2): crank + coupler
     d2 = _side(frame, rocker, psi2)  # Eq. (2): coupler - crank
-    crank = 0.5 * (d1 - d2) * nan
+    # crank = (d1 - d2)/2 without cancellation for small cranks: d1^2 - d2^2 = 2 f r (cos psi2 - cos psi1)
+    # = 4 f r sin((psi1 + psi2)/2) sin(swing/2), and (psi1 + psi2)/2 = pi - beta.
+    crank = 2.0 * frame * rocker * np.sin(beta) * np.sin(0.5 * swing) / (d1 + d2) * nan  # Eq. (2)
     coupler = 0.5 * (d1 + d2) * nan
 
     # Rocker tips at the two extremes, and the crank angles that put A on the line O2-B.
@@ -197,8 +199,9 @@ def synthesize(L1, D1, b, rocker, swing, handle=1.0) -> Synthesis:
     plus = np.mod(dc_fold - dc_ext, two_pi)
     ratio = np.maximum(plus, two_pi - plus) / np.minimum(plus, two_pi - plus)
 
-    # Assembly branch: sign of (B - A) x (O4 - A), constant over the cycle of a crank-rocker,
-    # evaluated at the extended dead centre where it equals sign(B1 x O4) = sign(e1 x O4).
+    # Assembly branch (the sign of q in pumplink.kinematics): q e^2 = -(B - A) x (O4 - A), whose sign
+    # is constant over the cycle of a crank-rocker; at the extended dead centre it is
+    # -sign(B1 x O4) = -sign(e1 x O4), with e1 the rocker direction there.
     cross = np.cos(th_ext) * py - np.sin(th_ext) * px
     branch = np.where(cross > 0, -1.0, 1.0) * nan
 
@@ -234,16 +237,19 @@ def infeasibility_reason(code, L1, D1, b, swing) -> str | None:
     alpha = np.degrees(np.arctan2(D1, reach))
     if code == PIVOT_ON_AXLE:
         return "the rocker pivot is at the wheel axle (L1 + b/2 = 0 and D1 = 0); move it away from the axle"
+    vertical = reach <= 0.0  # pivot straight below/above the axle: no D1 or swing helps
     if code == SWING_CROSSES_FRAME_LINE:
         limit_d1 = reach * np.tan(np.radians(90.0 - half))
+        fix = ("place the pivot to the side of the axle (L1 + b/2 > 0)" if vertical else
+               f"make D1 < {limit_d1:.4f} m, L1 larger, or the swing < {2 * (90 - alpha):.2f} deg")
         return (f"the frame line from the rocker pivot to the axle rises at {alpha:.2f} deg, so the handle's "
                 f"forward extreme (rocker at {90 - half:.2f} deg) is not above it (psi2 = {90 - half - alpha:.2f} deg, "
-                f"must be > 0) and no crank-rocker gives this swing; make D1 < {limit_d1:.4f} m, "
-                f"L1 larger, or the swing < {2 * (90 - alpha):.2f} deg")
+                f"must be > 0) and no crank-rocker gives this swing; {fix}")
     if code == SWING_CROSSES_FRAME_EXTENSION:
         limit_d1 = -reach * np.tan(np.radians(90.0 - half))
+        fix = ("place the pivot to the side of the axle (L1 + b/2 > 0)" if vertical else
+               f"make D1 > {limit_d1:.4f} m (pivot less high), L1 larger, or the swing < {2 * (90 + alpha):.2f} deg")
         return (f"the frame line from the rocker pivot to the axle falls at {-alpha:.2f} deg, so the handle's "
                 f"backward extreme (rocker at {90 + half:.2f} deg) passes the line's extension "
-                f"(psi1 = {90 + half - alpha:.2f} deg, must be < 180) and no crank-rocker gives this swing; "
-                f"make D1 > {limit_d1:.4f} m (pivot less high), L1 larger, or the swing < {2 * (90 + alpha):.2f} deg")
+                f"(psi1 = {90 + half - alpha:.2f} deg, must be < 180) and no crank-rocker gives this swing; {fix}")
     raise ValueError(f"unknown reason code {code}")
