@@ -1,0 +1,132 @@
+"""Throughput of the force kernel vs pylinkage's step_fast and the `numeric` route (issue #3 item 6).
+
+All in one process, side by side, medians of repeated runs (the machine is shared and noisy).
+A "position" is one (design, crank angle) pair: for pumplink, coupler point B plus the operator
+force; for pylinkage's numba `step_fast`, the joint positions only (it computes no force).
+
+Run: .venv/bin/python benchmarks/bench_methods.py   (or `make bench`)
+"""
+
+from __future__ import annotations
+
+import statistics
+import time
+
+import numpy as np
+
+from pumplink.kinematics import force_kernel, grid_directions
+from pumplink.methods import numeric, vector
+from pumplink.spec import default_spec
+from pumplink.analysis import design
+from pumplink.synthesis import Linkage, synthesize
+
+REPEATS = 7
+
+
+def median_time(fn, repeats=REPEATS):
+    fn()  # warm-up (numba compilation, caches)
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def feasible_designs(n, seed=1):
+    rng = np.random.default_rng(seed)
+    m = 4 * n
+    syn = synthesize(rng.uniform(0.2, 0.8, m), rng.uniform(-0.1, 0.4, m), rng.uniform(0.0, 0.2, m),
+                     rng.uniform(0.15, 0.4, m), np.radians(rng.uniform(30, 80, m)), rng.uniform(0.6, 1.2, m))
+    ok = np.nonzero(syn.feasible)[0][:n]
+    assert ok.size == n
+    return Linkage(*(np.asarray(v)[ok][:, None] for v in (syn.pivot_x, syn.pivot_y, syn.crank_length,
+                                                           syn.coupler_length, syn.rocker_length,
+                                                           syn.handle_length, syn.branch)))
+
+
+def batched(lk: Linkage, cs, sn, block=8):
+    """Designs x angles through force_kernel, `block` designs at a time (keeps arrays in cache);
+    cos/sin of the angles computed once for all designs."""
+    d = lk.crank.shape[0]
+    for i in range(0, d, block):
+        sub = Linkage(*(v[i:i + block] for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker,
+                                                 lk.handle, lk.branch)))
+        force_kernel(sub, cs, sn, 13.5)
+
+
+def pylinkage_fourbar(lk: Linkage, n):
+    """The same four-bar in pylinkage 1.3.0 (crank at the wheel axle, RRR dyad to the rocker pivot)."""
+    from pylinkage.actuators import Crank
+    from pylinkage.components import Ground
+    from pylinkage.dyads import RRRDyad
+    from pylinkage.simulation import Linkage as PlLinkage
+
+    o2 = Ground(0.0, 0.0, name="O2")
+    o4 = Ground(float(lk.pivot_x), float(lk.pivot_y), name="O4")
+    crank = Crank(anchor=o2, radius=float(lk.crank), angular_velocity=2 * np.pi / n)
+    rocker = RRRDyad(crank.output, o4, distance1=float(lk.coupler), distance2=float(lk.rocker))
+    pl = PlLinkage([o2, o4, crank, rocker], name="pump four-bar")
+    pl.compile()
+    return pl, rocker
+
+
+def main():
+    import pylinkage
+
+    spec = default_spec()
+    syn = design(spec).synthesis
+    lk = syn.linkage
+    n_angles = 3600
+    cs, sn = grid_directions(n_angles)
+
+    # 1. pumplink batched: designs x angles, kinematics (B) + force
+    n_designs = 2000
+    many = feasible_designs(n_designs)
+    results = {}
+    for block in (1, 4, 64, n_designs):
+        t = median_time(lambda: batched(many, cs, sn, block))
+        results[f"pumplink force_kernel, {n_designs} designs x {n_angles} angles, {block} designs/block"] = (
+            n_designs * n_angles / t)
+    # single design, same sweep
+    t = median_time(lambda: force_kernel(lk, cs, sn, 13.5))
+    results[f"pumplink force_kernel, 1 design x {n_angles} angles"] = n_angles / t
+    t = median_time(lambda: vector(lk, np.arange(n_angles) * (2 * np.pi / n_angles), 13.5))
+    results[f"pumplink vector method (evaluate, full state), 1 design x {n_angles}"] = n_angles / t
+
+    # 2. pylinkage step_fast on the same four-bar: positions only
+    pl, rocker = pylinkage_fourbar(lk, n_angles)
+    traj = pl.step_fast(iterations=n_angles)
+    t = median_time(lambda: pl.step_fast(iterations=n_angles))
+    results[f"pylinkage {pylinkage.__version__} step_fast (numba), 1 design x {n_angles}, positions only"] = (
+        n_angles / t)
+    # sanity: pylinkage's rocker joint traces the same rocker circle as ours
+    bxy = traj[:, -1, :]
+    radius = np.hypot(bxy[:, 0] - lk.pivot_x, bxy[:, 1] - lk.pivot_y)
+    assert np.nanmax(np.abs(radius - lk.rocker)) < 1e-9, "pylinkage four-bar does not match"
+
+    # 3. numeric: scipy fsolve + central difference (slow: fewer angles)
+    few = np.arange(72) * (2 * np.pi / 72) + 0.01
+    t = median_time(lambda: numeric(lk, few, 13.5), repeats=3)
+    results["numeric (fsolve + central difference), 1 design x 72"] = few.size / t
+
+    width = max(len(k) for k in results)
+    best_pumplink = max(v for k, v in results.items() if k.startswith("pumplink force_") and " designs x " in k)
+    pyl = next(v for k, v in results.items() if k.startswith("pylinkage"))
+    num = results["numeric (fsolve + central difference), 1 design x 72"]
+    print(f"positions per second (median of {REPEATS}; one core; {time.strftime('%Y-%m-%d %H:%M')})")
+    for k, v in results.items():
+        print(f"  {k:<{width}}  {v / 1e6:10.3f} M/s")
+    print(f"ratio best batched pumplink (B + force) / pylinkage step_fast (positions): {best_pumplink / pyl:8.1f}x")
+    single = results[f"pumplink force_kernel, 1 design x {n_angles} angles"]
+    print(f"ratio single-design pumplink force_kernel / pylinkage step_fast:           {single / pyl:8.1f}x")
+    print(f"ratio best batched pumplink / numeric:                                     {best_pumplink / num:8.0f}x")
+    print(f"target >= 50 M positions/s (batched): {'met' if best_pumplink >= 50e6 else 'NOT met'} "
+          f"({best_pumplink / 1e6:.1f} M/s); target >= 5x pylinkage: {'met' if best_pumplink >= 5 * pyl else 'NOT met'}")
+
+
+if __name__ == "__main__":
+    import os
+
+    os.environ.setdefault("OMP_NUM_THREADS", "1")
+    main()

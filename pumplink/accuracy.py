@@ -1,0 +1,112 @@
+"""Accuracy comparisons of the force methods and the sampling study (issue #3).
+
+Pure functions: sample sets, error statistics against the ``reference`` method, and what a
+uniform sweep of N samples reports for the peak and mean force.  No timing here (the
+``methods`` command times the methods).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pumplink import force as _force
+from pumplink.kinematics import crank_grid, evaluate
+from pumplink.methods import DANGER_KINDS, DEAD_CENTRE, NEAR_DEAD_CENTRE, UNIFORM, MethodResult, danger_points
+from pumplink.synthesis import Linkage
+
+#: Offsets from each dead centre [deg] at which the methods are compared (issue #3 item 2b).
+DEAD_CENTRE_OFFSETS_DEG = (1.0, 1e-2, 1e-4, 1e-6)
+#: Sample counts of the sampling study (issue #3 item 3).
+SAMPLE_COUNTS = (12, 36, 72, 360, 3600)
+#: Name of the sample set made of every danger point (and 1e-9 rad either side).
+DANGER = "danger points"
+
+
+def sample_sets(lk: Linkage, dead_centre_extended, dead_centre_folded, n: int = 360) -> dict[str, np.ndarray]:
+    """Crank angles [rad] for each sampling of the comparison (single design).
+
+    ``UNIFORM``: n uniform angles (offset by half a step, so no sample is a dead centre by
+    construction); ``NEAR_DEAD_CENTRE``: both sides of both dead centres at
+    :data:`DEAD_CENTRE_OFFSETS_DEG`; ``DEAD_CENTRE``: the two dead centres; ``DANGER``: every
+    point of :func:`pumplink.methods.danger_points` and 1e-9 rad either side.
+    """
+    dc = np.array([dead_centre_extended, dead_centre_folded], float)
+    off = np.radians(np.array(DEAD_CENTRE_OFFSETS_DEG))
+    near = (dc[:, None, None] + np.array([-1.0, 1.0])[None, :, None] * off[None, None, :]).ravel()
+    pts = danger_points(lk)
+    danger = np.concatenate([pts[k] for k in DANGER_KINDS])
+    danger = (danger[:, None] + np.array([0.0, -1e-9, 1e-9])).ravel()
+    return {UNIFORM: crank_grid(n, np.pi / n), NEAR_DEAD_CENTRE: near, DEAD_CENTRE: dc, DANGER: danger}
+
+
+def error_stats(result: MethodResult, ref: MethodResult, tolerance: float) -> dict:
+    """How a method's forces compare with the reference on one sample set.
+
+    Returns
+    -------
+    dict with ``n`` (points), ``max_rel_error`` (over points both give a finite force; None if
+    none), ``flagged`` (points the method flagged), ``missed_singular`` (reference singular but the
+    method returned a finite force), ``wrong`` (unflagged finite values off by more than
+    ``tolerance``, or NaN without a flag: silent garbage).
+    """
+    f, fr = np.asarray(result.force, float), np.asarray(ref.force, float)
+    flagged = np.asarray(result.failed | result.singular)
+    both = np.isfinite(f) & np.isfinite(fr)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        err = np.where(both, np.abs(f - fr) / np.abs(fr), np.nan)
+    wrong = (both & (err > tolerance)) | (~flagged & ~np.isfinite(f) & np.isfinite(fr))
+    missed = np.asarray(ref.singular) & np.isfinite(f)
+    return {"n": int(f.size), "max_rel_error": float(np.max(err[both])) if both.any() else None,
+            "flagged": int(flagged.sum()), "missed_singular": int(missed.sum()), "wrong": int(wrong.sum())}
+
+
+def failures(stats_by_set: dict[str, dict]) -> list[str]:
+    """Sentences for the JSON ``failures`` list: where a method flagged or went silently wrong."""
+    out = []
+    for name, s in stats_by_set.items():
+        if s["wrong"]:
+            out.append(f"{name}: {s['wrong']} of {s['n']} values silently wrong")
+        if s["missed_singular"]:
+            out.append(f"{name}: {s['missed_singular']} dead centres returned as finite forces")
+        if s["flagged"] and name != DEAD_CENTRE:
+            out.append(f"{name}: {s['flagged']} of {s['n']} points flagged (no value)")
+    return out
+
+
+def sampled_mean_force(lk: Linkage, n: int, wheel_torque) -> float:
+    """Mean operator force a sweep of ``n`` uniform samples implies [N].
+
+    The cycle's work 2 pi Mw divided by the grip travel the samples see,
+    sum |Px(j+1) - Px(j)| around the closed sweep; the exact travel is twice the stroke
+    2 H sin(swing/2) (NOTES.md §1), which a coarse sweep underestimates at the turning points.
+    """
+    st = evaluate(lk, crank_grid(n), wheel_torque)
+    gx = lk.pivot_x + lk.handle * np.cos(st.rocker_angle)
+    travel = np.sum(np.abs(np.diff(np.append(gx, gx[0]))))
+    return float(2.0 * np.pi * wheel_torque / travel)
+
+
+def sampling_study(lk: Linkage, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, swing,
+                   counts=SAMPLE_COUNTS) -> list[dict]:
+    """What a uniform sweep of N samples (from crank angle 0) reports, against the exact values.
+
+    Returns one dict per N: ``n``; ``sampled_max`` (largest finite |F| of the sweep with no
+    dead band: what "maximum below 100 N" means for a plain sweep); ``sampled_peak`` (largest
+    |F| outside the dead bands) and ``exact_peak`` (:func:`pumplink.force.peak_force`) with the
+    relative error ``peak_error``; ``sampled_mean`` (:func:`sampled_mean_force`), ``exact_mean``
+    (:func:`pumplink.force.mean_force`) and ``mean_error``.  Forces [N].
+    """
+    exact_peak, _ = _force.peak_force(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque)
+    exact_mean = float(_force.mean_force(wheel_torque, lk.handle, swing))
+    rows = []
+    for n in counts:
+        st = evaluate(lk, crank_grid(n), wheel_torque)
+        f = np.abs(st.force[np.isfinite(st.force)])
+        peak = _force.sampled_peak(lk, n, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band)[0]
+        mean = sampled_mean_force(lk, n, wheel_torque)
+        rows.append({"n": int(n), "sampled_max": float(f.max()) if f.size else None,
+                     "sampled_peak": peak if np.isfinite(peak) else None, "exact_peak": float(exact_peak),
+                     "peak_error": abs(peak - exact_peak) / exact_peak if np.isfinite(peak) else None,
+                     "sampled_mean": mean, "exact_mean": exact_mean,
+                     "mean_error": abs(mean - exact_mean) / exact_mean})
+    return rows

@@ -1,0 +1,233 @@
+"""Stability and accuracy of the force methods (issue #3 items 4-5), and the `methods` command.
+
+Ground truth is ``pumplink.methods.reference``: a different route from every method under test
+(rocker angle from d . u4 = (l4^2 + |d|^2 - l3^2) / (2 l4) and the textbook velocity ratio
+l2 sin(t3 - t2) / (l4 sin(t3 - t4))) evaluated in mpmath at 50 digits at the same double
+crank angles.  Its own agreement with an independent closed form is checked first.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
+
+from pumplink import accuracy
+from pumplink.analysis import design
+from pumplink.methods import (CRANK_ALONG_FRAME, CRANK_PARALLEL_ROCKER, CRANK_PERPENDICULAR, DANGER_KINDS,
+                              DEAD_CENTRE, METHODS, NEAR_DEAD_CENTRE, ROCKER_PERPENDICULAR, danger_points,
+                              paper, paper_seed_coordinates, reference, seed_frame, vector)
+from pumplink.spec import default_spec
+from pumplink.synthesis import synthesize
+
+SETTINGS = settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
+                                                                            HealthCheck.too_slow])
+
+
+@st.composite
+def designs(draw):
+    """Feasible pump designs with a crank-rocker of transmission angle >= 5 deg from a change point."""
+    L1 = draw(st.floats(0.05, 1.0))
+    b = draw(st.floats(0.0, 0.3))
+    D1 = draw(st.floats(-0.4, 0.6))
+    rocker = draw(st.floats(0.08, 0.6))
+    swing = np.radians(draw(st.floats(15.0, 110.0)))
+    handle = draw(st.floats(0.4, 1.5))
+    syn = synthesize(L1, D1, b, rocker, swing, handle)
+    assume(bool(syn.feasible))
+    assume(min(syn.transmission_min, np.pi - syn.transmission_max) > np.radians(5.0))
+    return syn
+
+
+def _rel(a, b):
+    return np.abs(np.asarray(a) - b) / np.abs(b)
+
+
+def test_reference_matches_hand_derivation_at_a_dead_centre_neighbour():
+    # Independent check of the reference: at crank angle t the rocker tip B satisfies both circle
+    # equations (|B - A| = l3, |B - O4| = l4) to 40 digits, and omega4/omega2 equals a central
+    # difference of its rocker angle taken at 50 digits (step 1e-20).
+    import mpmath as mp
+
+    syn = design(default_spec()).synthesis
+    lk = syn.linkage
+    t = 1.234
+    r0 = reference(lk, np.array([t]), 1.0)
+    ax, ay = lk.crank * np.cos(t), lk.crank * np.sin(t)
+    assert abs(np.hypot(r0.coupler_x[0] - ax, r0.coupler_y[0] - ay) - lk.coupler) < 1e-15
+    assert abs(np.hypot(r0.coupler_x[0] - lk.pivot_x, r0.coupler_y[0] - lk.pivot_y) - lk.rocker) < 1e-15
+    with mp.workdps(50):
+        def rocker(th):
+            px, py, c, k, r = (mp.mpf(float(v)) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker))
+            dx, dy = c * mp.cos(th) - px, c * mp.sin(th) - py
+            d = mp.sqrt(dx * dx + dy * dy)
+            base, off = mp.atan2(dy, dx), mp.acos((r * r + d * d - k * k) / (2 * r * d))
+            cands = [base + off, base - off]
+            tip = mp.atan2(mp.mpf(r0.coupler_y[0]) - py, mp.mpf(r0.coupler_x[0]) - px)
+            return min(cands, key=lambda a: abs(mp.sin((a - tip) / 2)))
+        h = mp.mpf("1e-20")
+        rate = (rocker(mp.mpf(t) + h) - rocker(mp.mpf(t) - h)) / (2 * h)
+        grip_rate = -float(mp.mpf(lk.handle) * mp.sin(rocker(mp.mpf(t))) * rate)
+    assert abs(r0.handle_rate[0] / grip_rate - 1) < 1e-14
+
+
+@SETTINGS
+@given(designs(), st.floats(1.0, 179.0), st.sampled_from([-1.0, 1.0]))
+def test_vector_meets_item4_targets(syn, away_deg, side):
+    """Production path: <= 1e-12 at >= 1 deg from both dead centres, <= 1e-6 at 1e-6 deg,
+    NaN + singular exactly at the dead centres, finite and exact at the paper's danger points,
+    and no warnings."""
+    lk = syn.linkage
+    dc = np.array([syn.dead_centre_extended, syn.dead_centre_folded])
+    far = dc + side * np.radians(away_deg)
+    far = far[(accuracy._force.angular_distance(far[:, None], dc[None, :]) >= np.radians(1.0)).all(axis=1)]
+    near = np.concatenate([dc + np.radians(1e-6), dc - np.radians(1e-6)])
+    pts = danger_points(lk)
+    danger = np.concatenate([pts[k] for k in DANGER_KINDS])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for angles, tol in ((far, 1e-12), (near, 1e-6), (danger, 1e-12)):
+            if angles.size == 0:
+                continue
+            got, ref = vector(lk, angles, 7.0), reference(lk, angles, 7.0)
+            assert np.all(np.isfinite(got.force)) and not got.singular.any()
+            assert np.all(_rel(got.force, ref.force) <= tol), (angles, _rel(got.force, ref.force))
+            assert np.all(np.sign(got.force) == np.sign(ref.force))
+        at = vector(lk, dc, 7.0)
+        assert at.singular.all() and np.isnan(at.force).all() and np.isfinite(at.grip_x).all()
+
+
+def _danger_angles(draw, syn, kind):
+    lk = syn.linkage
+    if kind == NEAR_DEAD_CENTRE or kind == DEAD_CENTRE:
+        base = np.array([syn.dead_centre_extended, syn.dead_centre_folded])
+    else:
+        base = danger_points(lk)[kind]
+    assume(base.size > 0)
+    if kind == DEAD_CENTRE:
+        return base
+    if kind == NEAR_DEAD_CENTRE:
+        exps = draw(st.lists(st.floats(-6.0, 0.0), min_size=1, max_size=3))
+        offs = np.radians(10.0 ** np.array(exps))
+    else:
+        exps = draw(st.lists(st.floats(-15.0, -3.0), min_size=1, max_size=3))
+        offs = np.concatenate([[0.0], 10.0 ** np.array(exps)])
+    return (base[:, None] + np.concatenate([offs, -offs])[None, :]).ravel()
+
+
+@pytest.mark.parametrize("name", ["vector", "paper", "numeric"])
+@pytest.mark.parametrize("kind", [NEAR_DEAD_CENTRE, DEAD_CENTRE, CRANK_PERPENDICULAR, ROCKER_PERPENDICULAR,
+                                  CRANK_PARALLEL_ROCKER, CRANK_ALONG_FRAME])
+@settings(max_examples=4, deadline=None, suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
+@given(data=st.data())
+def test_registered_capabilities_hold_at_danger_points(name, kind, data):
+    """Each method does what its registry entry says at its danger points: where it declares
+    'flags' it either flags (NaN + failed/singular) or meets its tolerance; where it declares
+    'exact'/'accurate' it returns a value within tolerance.  Never garbage, never a warning."""
+    syn = data.draw(designs())
+    m = METHODS[name]
+    angles = _danger_angles(data.draw, syn, kind)
+    if name == "numeric":
+        angles = angles[:4]  # a few points: the numeric route costs ~0.4 ms each
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = m.function(syn.linkage, angles, 3.0)
+    ref = reference(syn.linkage, angles, 3.0)
+    flagged = got.failed | got.singular
+    assert np.all(np.isnan(got.force[flagged]))
+    tol = m.tolerance[kind]
+    ok = ~flagged & ~ref.singular
+    assert np.all(np.isfinite(got.force[ok]))
+    assert np.all(_rel(got.force[ok], ref.force[ok]) <= tol), (name, kind, angles[ok])
+    if m.handles[kind] in ("exact", "accurate"):
+        assert not got.failed.any(), (name, kind, angles[got.failed])
+    if kind == DEAD_CENTRE:  # finite force at an exact dead centre would be a made-up number
+        assert flagged.all()
+
+
+def test_paper_route_divides_by_zero_exactly_where_registered():
+    # xA = 0 (seed angle 0: crank normal to the frame line) makes tA infinite; the route returns
+    # a non-finite ratio there, and `paper` flags the equivalent product angle.
+    syn = design(default_spec()).synthesis
+    lk = syn.linkage
+    l1 = float(np.hypot(lk.pivot_x, lk.pivot_y))
+    with np.errstate(all="ignore"):
+        out = paper_seed_coordinates(l1, lk.crank, lk.coupler, lk.rocker, np.array([0.0, -0.0]), 1.0)
+    assert not np.isfinite(out[6]).any()
+    _, ex, ey = seed_frame(lk)
+    theta = np.arctan2(ey[1], ey[0])  # crank along e_y: seed angle 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = paper(lk, np.array([theta]), 1.0)
+    assert got.failed[0] or abs(got.force[0] / reference(lk, np.array([theta]), 1.0).force[0] - 1) < 1e-9
+
+
+def test_seed_plus_root_is_the_assembly_branch_for_half_the_cycle_only():
+    # The seed prints xB = (-b + sqrt(b^2 - 4ac)) / 2a.  Against the reference's B, that root is
+    # right only where the assembly branch and the sign of yA agree (pumplink.methods.paper).
+    syn = design(default_spec()).synthesis
+    lk = syn.linkage
+    th = np.linspace(0.0, 2 * np.pi, 73)[:-1] + 0.01
+    l1, ex, ey = seed_frame(lk)
+    cs, sn = np.cos(th), np.sin(th)
+    seed_angle = np.arctan2(cs * ex[0] + sn * ex[1], cs * ey[0] + sn * ey[1])
+    xa, ya, xb, yb, *_ = paper_seed_coordinates(l1, lk.crank, lk.coupler, lk.rocker, seed_angle, 1.0)
+    ref = reference(lk, th, 1.0)
+    rx = ref.coupler_x * ex[0] + ref.coupler_y * ex[1]
+    right = np.abs(xb - rx) < 1e-9
+    assert 0.3 < right.mean() < 0.7
+    handed = ex[0] * ey[1] - ex[1] * ey[0]
+    assert np.all(right == (handed * lk.branch * ya > 0))
+
+
+def test_sampling_study_converges_and_never_overshoots():
+    s = default_spec()
+    syn = design(s).synthesis
+    rows = accuracy.sampling_study(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded,
+                                   np.radians(s.operator.dead_band), s.wheel_torque, syn.swing)
+    for r in rows:
+        assert r["sampled_peak"] <= r["exact_peak"] * (1 + 1e-12)  # samples are points of the window
+        assert r["sampled_max"] >= r["sampled_peak"]
+    # grip travel converges like the square of the step: 10x the samples, >= 50x smaller error
+    assert rows[-1]["mean_error"] < rows[-2]["mean_error"] / 50
+    assert rows[-1]["mean_error"] < 1e-6
+
+
+def _run(*args, pre=""):
+    code = pre + "import sys; from pumplink.cli import main; sys.argv = ['pumplink', *sys.argv[1:]]; main()"
+    return subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True, timeout=120)
+
+
+def test_methods_command_json_and_charts(tmp_path):
+    png, svg = tmp_path / "m.png", tmp_path / "s.svg"
+    r = _run("methods", "--format", "json", "--repeats", "1", "--samples", "72", "--plot", str(png),
+             "--samples-plot", str(svg))
+    assert r.returncode == 0, r.stderr
+    obj = json.loads(r.stdout)
+    names = [m["name"] for m in obj["methods"]]
+    assert names == ["vector", "paper", "numeric", "reference"]
+    for m in obj["methods"]:
+        assert {"name", "seconds_per_position", "max_rel_error_uniform", "max_rel_error_near_dead_centre",
+                "failures"} <= set(m)
+        assert m["seconds_per_position"] > 0
+    vec = obj["methods"][0]
+    assert vec["max_rel_error_near_dead_centre"] <= 1e-6 and vec["failures"] == []
+    assert [row["n"] for row in obj["sampling"]] == [12, 36, 72, 360, 3600]
+    assert png.read_bytes()[:4] == b"\x89PNG"
+    assert b"<svg" in svg.read_bytes()[:2000]
+
+
+def test_methods_command_errors(tmp_path):
+    r = _run("methods", "--plot", str(tmp_path / "x.pdf"))
+    assert r.returncode == 2 and r.stderr.startswith("error: ") and ".png or .svg" in r.stderr
+    r = _run("methods", "--method", "magic")
+    assert r.returncode == 2 and "magic" in r.stderr
+    r = _run("methods", "--plot", str(tmp_path / "x.png"), pre="import sys; sys.modules['matplotlib'] = None; ")
+    assert r.returncode == 2 and "pip install 'pumplink[plot]'" in r.stderr
+    assert not (tmp_path / "x.png").exists()
