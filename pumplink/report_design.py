@@ -228,6 +228,10 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
     c.print(f"grip {o['grip_height_m'][0]:.3f}–{o['grip_height_m'][1]:.3f} m, stroke {o['stroke_m']:.3f} m, rocker pivot "
             f"{o['rocker_pivot_height_m']:+.3f} m above the ground{' (below ground: needs a pit)' if o['rocker_pivot_height_m'] < 0 else ''}",
             markup=False)
+    if not o["passes_force_limit"]:
+        c.print(f"no design inside these bounds and ergonomic limits keeps the force within {row['force_limit_N']:g} N: "
+                f"the best needs {o['peak_force_N']:.2f} N peak; it is held back by: {', '.join(row['binding'])}. "
+                "Widen the bounds that bind (--vary), or relax --grip-height / --stroke.", markup=False)
     verdict = "[bold green]PASS[/]" if o["passes_force_limit"] else "[bold red]FAIL[/]"
     c.print(f"{verdict}: optimum peak {o['peak_force_N']:.2f} N vs limit {row['force_limit_N']:g} N "
             f"({row['evaluations']} designs evaluated, {row['generations']} generations"
