@@ -264,6 +264,122 @@ def methods(
     raise typer.Exit(1 if silent else 0)
 
 
+# ----------------------------------------------------------------------------- design search (issue #5)
+class Objective(str, Enum):
+    peak = "peak"
+    mean = "mean"
+
+
+@app.command()
+def transmission(
+    time_ratio: Annotated[float, typer.Option("--time-ratio", "-k", help="Time ratio K > 1 (slow/fast stroke).")] = 1.1818,
+    swing: Annotated[float, typer.Option(help="Rocker swing φ [deg].")] = 40.0,
+    rocker: Annotated[float, typer.Option(help="Rocker length (any unit; the other lengths come out in it).")] = 50.0,
+    compare_seed: Annotated[bool, typer.Option("--compare-seed/--no-compare-seed",
+                                               help="Compare with seed 001's published designs (its example only).")] = True,
+    chart: Annotated[Optional[Path], typer.Option(help="Write seed 001's design diagram (contours over θ and φ) "
+                                                       "to this image file instead (needs pumplink[plot]).",
+                                                  show_default=False)] = None,
+    fmt: FormatOpt = Format.table,
+) -> None:
+    """Crank-rocker with the best minimum transmission angle for K and φ (seed 001, exact).
+
+    Solves seed 001's problem to solver tolerance on the one-branch arc of the design circle and
+    verifies the result by simulating the linkage (the swing and K it really produces).  With the
+    defaults it is the seed's worked example (K = 1.1818, φ = 40°, rocker 50 mm) compared with the
+    seed's published designs.
+
+    Example: [bold]pumplink transmission --time-ratio 1.25 --swing 50 --rocker 0.3[/]
+    """
+    import math
+
+    if chart is not None:
+        try:
+            import matplotlib  # noqa: F401
+        except ImportError:
+            raise SpecError("--chart needs matplotlib; install it with: pip install 'pumplink[plot]'") from None
+        import numpy as np
+
+        from pumplink.report_design import transmission_chart
+        from pumplink.transmission import optimal_crank_rocker, time_ratio_from_angle
+
+        th = np.linspace(1.0, 40.0, 40)  # 1 deg steps of theta
+        ph = np.linspace(10.0, 120.0, 56)  # 2 deg steps of phi
+        opt = optimal_crank_rocker(time_ratio_from_angle(np.radians(th))[:, None], np.radians(ph)[None, :])
+        try:
+            transmission_chart(chart, th, ph, opt)
+        except (OSError, ValueError) as exc:
+            raise SpecError(f"{chart}: cannot write the chart ({exc})") from None
+        typer.echo(f"wrote {chart}", err=True)
+        return
+
+    from pumplink.report_design import SEED_001_DESIGNS, SEED_001_EXAMPLE, render_transmission, transmission_rows
+    from pumplink.synthesis import Linkage
+    from pumplink.transmission import optimal_crank_rocker, optimum_linkage, simulate
+
+    for name, v in (("--time-ratio", time_ratio), ("--swing", swing), ("--rocker", rocker)):
+        if not math.isfinite(v):
+            raise SpecError(f"{name} {v!r} is not a finite number")
+    opt = optimal_crank_rocker(time_ratio, math.radians(swing), rocker)
+    sim = simulate(optimum_linkage(opt))
+    comps = []
+    ex = SEED_001_EXAMPLE
+    if compare_seed and (time_ratio, swing, rocker) == (ex["time_ratio"], ex["swing_deg"], ex["rocker"]):
+        for label, (c, k, r, f) in SEED_001_DESIGNS.items():
+            # Place the seed's design with the crank pivot at the origin and the frame along +x.
+            comps.append((label, (c, k, r, f), simulate(Linkage(f, 0.0, c, k, r, r, 1.0))))
+    render_transmission(transmission_rows(opt, sim, comps), fmt.value)
+
+
+@app.command()
+def optimize(
+    spec: Annotated[Path, typer.Argument(help="TOML pump spec: fixed values and the starting design.", show_default=False)],
+    vary: Annotated[Optional[list[str]], typer.Option("--vary", help="KEY=LO:HI in spec units (repeatable); keys: L1, D1, "
+                                                      "b, rocker, handle [m], swing [deg]. Default: rocker=0.1:0.4 "
+                                                      "L1=0:1 D1=-0.3:1.2 swing=30:100.", show_default=False)] = None,
+    objective: Annotated[Objective, typer.Option(help="Minimise the exact peak force or the mean force.")] = Objective.peak,
+    seed: Annotated[int, typer.Option(help="Random seed of the differential evolution (same seed, same answer).")] = 0,
+    axle_height: Annotated[Optional[float], typer.Option(help="Wheel-axle height [m] (default: the spec's "
+                                                         "wheel.axle_height, else 0.55).", show_default=False)] = None,
+    grip_height: Annotated[str, typer.Option(help="Allowed grip height above ground over the swing, LO:HI [m].")] = "0.5:0.9",
+    stroke: Annotated[str, typer.Option(help="Allowed horizontal grip stroke, LO:HI [m].")] = "0:1.0",
+    write: Annotated[Optional[Path], typer.Option(help="Write the optimum as a new spec (TOML).", show_default=False)] = None,
+    overwrite: Annotated[bool, typer.Option("--force", help="Overwrite the --write file if it exists.")] = False,
+    fmt: FormatOpt = Format.table,
+) -> None:
+    """Search frame placement, rocker and swing for the least operator force.
+
+    Differential evolution over the vectorised force kernel, then a local polish, subject to: a
+    crank-rocker exists, transmission angle >= 45°, grip height and stroke in the ergonomic
+    ranges.  Exit 0 if the optimum passes the force limit, 1 if it fails or nothing is feasible.
+
+    Example: [bold]pumplink optimize configs/prototype.toml --vary D1=0:0.8 --vary swing=40:90 --write best.toml[/]
+    """
+    from pumplink.optimize import GRIP_HEIGHT_M, STROKE_M, make_problem, optimize as run, parse_bounds, parse_range
+    from pumplink.report_design import optimize_row, render_optimize
+
+    bounds = parse_bounds(vary)
+    gh = parse_range("grip-height", grip_height, GRIP_HEIGHT_M)
+    st = parse_range("stroke", stroke, STROKE_M)
+    if write is not None and write.exists() and not overwrite:
+        raise SpecError(f"{write} exists; choose another path or add --force to overwrite it")
+    problem = make_problem(_load([spec])[0], bounds, objective.value, axle_height, gh, st)
+    result = run(problem, seed=seed)
+    row = optimize_row(result)
+    render_optimize(row, fmt.value)
+    if write is not None:
+        import tomli_w
+
+        from pumplink.optimize import best_spec_dict
+
+        try:
+            write.write_text(tomli_w.dumps(best_spec_dict(result)), encoding="utf-8")
+        except OSError as exc:
+            raise SpecError(f"{write}: cannot be written ({exc.strerror})") from None
+        typer.echo(f"wrote {write}; check it with: pumplink force {write}", err=True)
+    raise typer.Exit(0 if row["optimum"]["passes_force_limit"] else 1)
+
+
 def main() -> None:
     """Console-script entry point: PumplinkError -> one line on stderr and its exit code."""
     for stream in (sys.stdout, sys.stderr):  # a non-UTF-8 terminal or pipe gets '?' for θ, ±, ∞, not a crash

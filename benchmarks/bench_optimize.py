@@ -1,0 +1,45 @@
+"""Wall time of the design searches (issue #5): `optimize` on every configs/*.toml spec and the
+exact seed-001 transmission optimum.  Medians of repeated runs in this one process (the machine
+is shared, so absolute seconds are noisy; compare side by side).
+
+Run: .venv/bin/python benchmarks/bench_optimize.py   (or `make bench`)
+"""
+
+import math
+import statistics
+import time
+from pathlib import Path
+
+from pumplink.optimize import make_problem, optimize
+from pumplink.spec import load_spec
+from pumplink.transmission import optimal_crank_rocker
+
+REPEATS = 3
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def median_time(fn, repeats=REPEATS):
+    times, out = [], None
+    for _ in range(repeats):
+        t = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t)
+    return statistics.median(times), out
+
+
+def main():
+    optimal_crank_rocker(1.1818, math.radians(40), 50.0)  # warm-up: scipy import
+    t, _ = median_time(lambda: optimal_crank_rocker(1.1818, math.radians(40), 50.0), 5)
+    print(f"transmission optimum (seed 001 example): median {t * 1e3:.1f} ms")
+    for path in sorted((ROOT / "configs").glob("*.toml")):
+        spec = load_spec(path)
+        problem = make_problem(spec)
+        t, res = median_time(lambda: optimize(problem, seed=0))
+        peak = float(res.at_best.peak[0])
+        print(f"optimize {path.name}: median {t:.2f} s over {REPEATS} runs; {res.evaluations} designs; "
+              f"peak {peak:.2f} N (spec's own {float(res.at_spec.peak[0]):.2f} N); "
+              f"{'passes' if peak <= spec.operator.force_limit else 'fails'} {spec.operator.force_limit:g} N")
+
+
+if __name__ == "__main__":
+    main()

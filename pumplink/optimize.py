@@ -1,0 +1,375 @@
+"""Pump design search: the feasible linkage that needs the least operator force (issue #5).
+
+Variables (by default, in spec units): ``rocker`` [m], ``L1`` [m], ``D1`` [m], ``swing`` [deg]
+within :data:`DEFAULT_BOUNDS`; every other spec value stays fixed.  Objective: the exact
+windowed peak force outside the dead bands (``pumplink.force.peak_force``) or the mean force
+pi Mw / (2 H sin(swing/2)) (NOTES.md §1).  Constraints (all ``g >= 0``):
+
+* the dead-centre synthesis gives a crank-rocker with the exact swing: 0 < psi2 < psi1 < pi
+  (``pumplink.synthesis``);
+* transmission angle: min(gamma_min, 180 deg - gamma_max) >= 45 deg
+  (``pumplink.analysis.MIN_TRANSMISSION_DEG``, NOTES.md §3, seed 003: [lambda_max] <= 45 deg for
+  a rotating driven link);
+* hand-grip height over the whole swing within 0.5-0.9 m above the ground (NOTES.md §4,
+  "efficient push height ~0.84 m, range 0.5-0.9 m"); the grip is at axle height - D1 + H sin(theta4);
+* horizontal grip stroke 2 H sin(swing/2) at most 1.0 m: the pump paper's own prototype
+  (seed 000: H = 1 m, swing 60 deg, chosen "as function of the motion capability of human
+  operators"); no lower limit (a shorter stroke only raises the force);
+* the crank arcs outside the dead bands are not empty (the peak is then defined).
+
+Search: ``scipy.optimize.differential_evolution`` (vectorised over the population, the
+constraints by Lampinen's rule), then a local SLSQP polish; a polished point is kept only if it
+is strictly feasible and better (else the feasible point on the segment toward it that is).
+Deterministic for a given ``seed``.  Pure functions; the CLI renders the result.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from pumplink import force as _force
+from pumplink.analysis import MIN_TRANSMISSION_DEG
+from pumplink.errors import InfeasibleDesign, SpecError
+from pumplink.spec import PumpSpec, parse_spec, spec_to_dict
+from pumplink.synthesis import CHANGE_POINT_MARGIN, synthesize
+
+#: Keys that may vary (the [linkage] table of the spec), with their units.
+VARIABLE_UNITS = {"L1": "m", "D1": "m", "b": "m", "rocker": "m", "handle": "m", "swing": "deg"}
+#: Default search space (spec units) when no --vary is given.
+DEFAULT_BOUNDS = {"rocker": (0.10, 0.40), "L1": (0.0, 1.0), "D1": (-0.3, 1.2), "swing": (30.0, 100.0)}
+#: Ergonomic defaults (see the module docstring for the sources).
+GRIP_HEIGHT_M = (0.5, 0.9)
+STROKE_M = (0.0, 1.0)
+#: Wheel-axle height assumed when the spec has none: the middle of the pump paper's 0.40-0.70 m.
+DEFAULT_AXLE_HEIGHT_M = 0.55
+#: Objective value given to designs that are not crank-rockers (DE ranks them by violation).
+INFEASIBLE_OBJECTIVE = 1e6
+#: A constraint counts as binding when its slack is below this (in its unit: deg or m).
+BINDING_TOL = 1e-4
+
+CONSTRAINTS = (
+    ("crank-rocker exists (swing clear of the frame line)", "deg"),
+    (f"transmission angle >= {MIN_TRANSMISSION_DEG:g} deg", "deg"),
+    ("lowest grip height >= {lo} m", "m"),
+    ("highest grip height <= {hi} m", "m"),
+    ("grip stroke >= {lo} m", "m"),
+    ("grip stroke <= {hi} m", "m"),
+    ("crank arcs outside the dead bands", "deg"),
+)
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A design search: fixed spec values, the varied keys and their bounds (spec units)."""
+
+    spec: PumpSpec
+    names: tuple[str, ...]
+    lower: np.ndarray
+    upper: np.ndarray
+    objective: str = "peak"
+    axle_height: float = DEFAULT_AXLE_HEIGHT_M
+    grip_height: tuple[float, float] = GRIP_HEIGHT_M
+    stroke: tuple[float, float] = STROKE_M
+
+    def constraint_names(self) -> list[str]:
+        gl, gh = self.grip_height
+        sl, sh = self.stroke
+        fill = [{}, {}, {"lo": f"{gl:g}"}, {"hi": f"{gh:g}"}, {"lo": f"{sl:g}"}, {"hi": f"{sh:g}"}, {}]
+        return [name.format(**f) for (name, _), f in zip(CONSTRAINTS, fill)]
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """Batch evaluation (arrays over designs): objective, forces and constraint slacks g >= 0."""
+
+    objective: np.ndarray
+    peak: np.ndarray
+    mean: np.ndarray
+    slack: np.ndarray  # (constraints, designs) in the units of CONSTRAINTS (deg or m)
+    transmission: np.ndarray  # [deg]
+    grip_low: np.ndarray  # [m]
+    grip_high: np.ndarray  # [m]
+    stroke: np.ndarray  # [m]
+
+
+@dataclass(frozen=True)
+class OptimizationResult:
+    """Outcome of :func:`optimize` (spec units: m, deg, N)."""
+
+    problem: Problem
+    x: np.ndarray
+    best: PumpSpec
+    at_best: Evaluation
+    at_spec: Evaluation
+    binding: tuple[str, ...]
+    at_bounds: tuple[str, ...]
+    evaluations: int
+    iterations: int
+    polished: bool
+    seed: int | None
+    message: str = field(default="")
+
+
+def parse_bounds(items: list[str] | None) -> dict[str, tuple[float, float]]:
+    """``KEY=LO:HI`` strings -> {key: (lo, hi)}; default :data:`DEFAULT_BOUNDS`.
+
+    Raises
+    ------
+    SpecError
+        Unknown key, repeated key, missing '=' or ':', a value that is not a finite number,
+        lo >= hi, or a bound outside what the spec allows; the message names the key.
+    """
+    if not items:
+        return dict(DEFAULT_BOUNDS)
+    out: dict[str, tuple[float, float]] = {}
+    allowed = ", ".join(VARIABLE_UNITS)
+    for item in items:
+        key, sep, rng = item.partition("=")
+        key = key.strip()
+        if not sep:
+            raise SpecError(f"--vary {item!r} is not KEY=LO:HI; write e.g. --vary rocker=0.1:0.4")
+        if key not in VARIABLE_UNITS:
+            raise SpecError(f"--vary key '{key}' is unknown; allowed keys: {allowed}")
+        if key in out:
+            raise SpecError(f"--vary key '{key}' is given twice; give each key once")
+        lo_s, sep2, hi_s = rng.partition(":")
+        if not sep2:
+            raise SpecError(f"--vary {key}={rng!r} needs LO:HI; write e.g. --vary {key}=0.1:0.4")
+        try:
+            lo, hi = float(lo_s), float(hi_s)
+        except ValueError:
+            raise SpecError(f"--vary {key}={rng!r}: bounds must be numbers, e.g. --vary {key}=0.1:0.4") from None
+        if not (math.isfinite(lo) and math.isfinite(hi)):
+            raise SpecError(f"--vary {key}={rng!r}: bounds must be finite numbers")
+        if lo >= hi:
+            raise SpecError(f"--vary {key}: lower bound {lo:g} must be below the upper bound {hi:g}")
+        _check_spec_range(key, lo, hi)
+        out[key] = (lo, hi)
+    return out
+
+
+def _check_spec_range(key: str, lo: float, hi: float) -> None:
+    """Bounds must lie inside the spec's allowed range for the key (spec.Linkage fields)."""
+    from pumplink.spec import Linkage
+
+    info = Linkage.model_fields[key]
+    gt = ge = lt = le = None
+    for m in info.metadata:
+        gt = getattr(m, "gt", gt)
+        ge = getattr(m, "ge", ge)
+        lt = getattr(m, "lt", lt)
+        le = getattr(m, "le", le)
+    bad_lo = (gt is not None and lo <= gt) or (ge is not None and lo < ge)
+    bad_hi = (lt is not None and hi >= lt) or (le is not None and hi > le)
+    if bad_lo or bad_hi:
+        lo_txt = f"> {gt:g}" if gt is not None else f">= {ge:g}"
+        hi_txt = f"< {lt:g}" if lt is not None else f"<= {le:g}"
+        unit = VARIABLE_UNITS[key]
+        raise SpecError(f"--vary {key}={lo:g}:{hi:g} leaves the allowed range of linkage.{key} "
+                        f"({lo_txt} and {hi_txt} {unit}); narrow the bounds")
+
+
+def parse_range(name: str, text: str | None, default: tuple[float, float]) -> tuple[float, float]:
+    """``LO:HI`` for an ergonomic range option (metres); SpecError names the option."""
+    if text is None:
+        return default
+    lo_s, sep, hi_s = text.partition(":")
+    try:
+        lo, hi = float(lo_s), float(hi_s)
+    except ValueError:
+        lo = hi = float("nan")
+    if not sep or not (math.isfinite(lo) and math.isfinite(hi)) or lo < 0 or lo >= hi:
+        raise SpecError(f"--{name} {text!r} must be LO:HI in metres with 0 <= LO < HI, e.g. --{name} "
+                        f"{default[0]:g}:{default[1]:g}")
+    return lo, hi
+
+
+def make_problem(spec: PumpSpec, bounds: dict[str, tuple[float, float]] | None = None, objective: str = "peak",
+                 axle_height: float | None = None, grip_height=GRIP_HEIGHT_M, stroke=STROKE_M) -> Problem:
+    """Assemble a :class:`Problem`; the axle height is ``axle_height``, else the spec's
+    ``wheel.axle_height``, else :data:`DEFAULT_AXLE_HEIGHT_M`."""
+    bounds = dict(DEFAULT_BOUNDS) if bounds is None else bounds
+    if objective not in ("peak", "mean"):
+        raise SpecError(f"--objective {objective!r} is unknown; use peak or mean")
+    if axle_height is None:
+        axle_height = spec.wheel.axle_height if spec.wheel.axle_height is not None else DEFAULT_AXLE_HEIGHT_M
+    if not (math.isfinite(axle_height) and 0 < axle_height <= 5):
+        raise SpecError(f"--axle-height {axle_height:g} must be a height in metres with 0 < value <= 5, e.g. 0.55")
+    names = tuple(bounds)
+    return Problem(spec, names, np.array([bounds[k][0] for k in names], float),
+                   np.array([bounds[k][1] for k in names], float), objective, float(axle_height),
+                   tuple(grip_height), tuple(stroke))
+
+
+def _columns(problem: Problem, x: np.ndarray) -> dict[str, np.ndarray]:
+    """Design parameters (spec units) for x of shape (variables, designs)."""
+    x = np.atleast_2d(np.asarray(x, float))
+    n = x.shape[1]
+    lk = problem.spec.linkage
+    cols = {k: np.full(n, float(getattr(lk, k))) for k in VARIABLE_UNITS}
+    for i, k in enumerate(problem.names):
+        cols[k] = x[i]
+    return cols
+
+
+def evaluate(problem: Problem, x) -> Evaluation:
+    """Objective and constraint slacks for x of shape (variables, designs) (vectorised).
+
+    Slacks are in degrees (angles) or metres (heights, stroke); a design satisfies every
+    constraint iff all its slacks are >= 0.
+    """
+    p = _columns(problem, x)
+    sw = np.radians(p["swing"])
+    h = p["handle"]
+    syn = synthesize(p["L1"], p["D1"], p["b"], p["rocker"], sw, h)
+    ok = syn.feasible
+    spec = problem.spec
+    mw = spec.wheel_torque
+    band = math.radians(spec.operator.dead_band)
+
+    margin = np.minimum(syn.psi2, np.pi - syn.psi1) - 2 * CHANGE_POINT_MARGIN
+    margin = np.where(syn.frame_length > 1e-6, margin, -1.0)
+    mu = np.minimum(syn.transmission_min, np.pi - syn.transmission_max)
+    g_mu = np.where(ok, np.degrees(mu) - MIN_TRANSMISSION_DEG, 0.0)
+    pivot_h = problem.axle_height - p["D1"]
+    grip_low = pivot_h + h * np.cos(0.5 * sw)
+    grip_high = pivot_h + h
+    stroke = 2.0 * h * np.sin(0.5 * sw)
+    plus = syn.stroke_plus_x
+    win = np.where(ok, np.degrees(np.minimum(plus, 2 * np.pi - plus) - 2 * band), 0.0)
+    slack = np.stack([np.degrees(margin), g_mu, grip_low - problem.grip_height[0],
+                      problem.grip_height[1] - grip_high, stroke - problem.stroke[0],
+                      problem.stroke[1] - stroke, win])
+
+    mean = _force.mean_force(mw, h, sw)
+    peak = np.full(ok.shape, np.nan)
+    live = ok & (win > 0)
+    if live.any():
+        lk = syn.linkage
+        sub = type(lk)(*(np.asarray(getattr(lk, f))[live] for f in ("pivot_x", "pivot_y", "crank", "coupler",
+                                                                       "rocker", "handle", "branch")))
+        peak[live] = _force.peak_force(sub, syn.dead_centre_extended[live], syn.dead_centre_folded[live], band, mw)[0]
+    obj = peak if problem.objective == "peak" else np.where(ok, mean, np.nan)
+    obj = np.where(np.isfinite(obj), obj, INFEASIBLE_OBJECTIVE)
+    return Evaluation(obj, peak, np.where(ok, mean, np.nan), slack, np.where(ok, np.degrees(mu), np.nan),
+                      grip_low, grip_high, stroke)
+
+
+def _spec_with(problem: Problem, x) -> PumpSpec:
+    data = spec_to_dict(problem.spec)
+    for k, v in zip(problem.names, np.asarray(x, float).ravel()):
+        data["linkage"][k] = float(v)
+    data["wheel"]["axle_height"] = problem.axle_height
+    data["name"] = f"{problem.spec.name} (optimised)"
+    return parse_spec(data, source="optimum")
+
+
+def _feasible(ev: Evaluation, i: int = 0) -> bool:
+    return bool(np.all(ev.slack[:, i] >= 0) and ev.objective[i] < INFEASIBLE_OBJECTIVE)
+
+
+def optimize(problem: Problem, seed: int | None = 0, popsize: int = 20, maxiter: int = 300,
+             tol: float = 1e-8, polish: bool = True) -> OptimizationResult:
+    """Global search (differential evolution, vectorised) then a local SLSQP polish.
+
+    Raises
+    ------
+    InfeasibleDesign
+        No design inside the bounds satisfies every constraint; the message names the
+        constraint violated at the least-violating design found and by how much.
+    """
+    from scipy.optimize import NonlinearConstraint, differential_evolution, minimize
+
+    cache: dict[bytes, Evaluation] = {}
+    count = [0]
+
+    def ev(x):
+        x = np.asarray(x, float)
+        x2 = x.reshape(len(problem.names), -1)
+        key = x2.tobytes()
+        if key not in cache:
+            if len(cache) > 4:
+                cache.clear()
+            cache[key] = evaluate(problem, x2)
+            count[0] += x2.shape[1]
+        return cache[key]
+
+    n = len(problem.names)
+    con = NonlinearConstraint(lambda x: ev(x).slack, 0.0, np.inf)
+    res = differential_evolution(lambda x: ev(x).objective, list(zip(problem.lower, problem.upper)),
+                                 constraints=con, vectorized=True, updating="deferred", rng=seed,
+                                 popsize=popsize, maxiter=maxiter, tol=tol, polish=False, init="sobol")
+    x = np.asarray(res.x, float)
+    e = evaluate(problem, x[:, None])
+    if not _feasible(e):
+        names = problem.constraint_names()
+        j = int(np.argmin(e.slack[:, 0]))
+        unit = CONSTRAINTS[j][1]
+        raise InfeasibleDesign(
+            f"no design inside the bounds meets every constraint: the closest one found "
+            f"({_fmt_x(problem, x)}) misses '{names[j]}' by {-e.slack[j, 0]:.4g} {unit}; "
+            f"widen the --vary bounds or relax --grip-height / --stroke / --axle-height")
+    polished = False
+    if polish:
+        scale = problem.upper - problem.lower
+
+        def f(z):
+            return float(ev(problem.lower + z * scale).objective[0])
+
+        def g(z):
+            return ev(problem.lower + z * scale).slack[:, 0]
+
+        z0 = (x - problem.lower) / scale
+        loc = minimize(f, z0, method="SLSQP", bounds=[(0.0, 1.0)] * n,
+                       constraints=[{"type": "ineq", "fun": g}], options=dict(maxiter=200, ftol=1e-12))
+        xp = problem.lower + np.clip(loc.x, 0.0, 1.0) * scale
+        cand = _pull_back(problem, x, xp)
+        if cand is not None:
+            ec = evaluate(problem, cand[:, None])
+            if _feasible(ec) and ec.objective[0] < e.objective[0]:
+                x, e, polished = cand, ec, True
+    spec_x = np.array([float(getattr(problem.spec.linkage, k)) for k in problem.names])
+    at_spec = evaluate(problem, spec_x[:, None])
+    names = problem.constraint_names()
+    binding = tuple(nm for nm, s in zip(names, e.slack[:, 0]) if s <= BINDING_TOL)
+    span = problem.upper - problem.lower
+    at_bounds = tuple(f"{k} at {'lower' if abs(v - lo) <= 1e-6 * s else 'upper'} bound"
+                      for k, v, lo, hi, s in zip(problem.names, x, problem.lower, problem.upper, span)
+                      if min(abs(v - lo), abs(hi - v)) <= 1e-6 * s)
+    return OptimizationResult(problem, x, _spec_with(problem, x), e, at_spec, binding, at_bounds, count[0],
+                              int(res.nit), polished, seed, str(res.message))
+
+
+def _pull_back(problem: Problem, good: np.ndarray, cand: np.ndarray, steps: int = 40):
+    """``cand`` if feasible, else the feasible point nearest to it on the segment from ``good``."""
+    t = np.linspace(1.0, 0.0, steps + 1)
+    pts = good[:, None] + (cand - good)[:, None] * t[None, :]
+    e = evaluate(problem, pts)
+    ok = np.all(e.slack >= 0, axis=0) & (e.objective < INFEASIBLE_OBJECTIVE)
+    if ok[0]:
+        return cand
+    idx = np.nonzero(ok)[0]
+    if idx.size == 0 or idx[0] == steps:
+        return None
+    # Bisect between the last infeasible and the first feasible sample.
+    lo_t, hi_t = t[idx[0]], t[idx[0] - 1]
+    for _ in range(50):
+        mid = 0.5 * (lo_t + hi_t)
+        em = evaluate(problem, (good + (cand - good) * mid)[:, None])
+        if _feasible(em):
+            lo_t = mid
+        else:
+            hi_t = mid
+    return good + (cand - good) * lo_t
+
+
+def _fmt_x(problem: Problem, x) -> str:
+    return ", ".join(f"{k} = {v:.4g} {VARIABLE_UNITS[k]}" for k, v in zip(problem.names, np.ravel(x)))
+
+
+def best_spec_dict(result: OptimizationResult) -> dict:
+    """The optimum as a spec mapping for tomli-w (``--write``)."""
+    return spec_to_dict(result.best)

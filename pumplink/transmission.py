@@ -1,0 +1,329 @@
+"""Optimal-transmission crank-rocker for a given time ratio and rocker swing (seed 001, NOTES.md §2).
+
+Problem (seed 001 §1): given the time ratio K, the rocker swing phi and the rocker length, find
+the crank-rocker (crank, coupler, rocker, frame) whose effective minimum transmission angle
+min(gamma_min, 180 deg - gamma_max) is largest.  Seed 001 steps the crank pivot along the design
+circle and reads a diagram; here the optimum is solved to solver tolerance.
+
+Geometry (derived here; coordinates of this module only).  The rocker pivot D is the origin and
+the bisector of the rocker swing is +y.  The rocker's extreme positions are
+
+    C1 = rocker (-sin(phi/2), cos(phi/2))   (folded dead centre: |A C1| = coupler - crank)
+    C2 = rocker ( sin(phi/2), cos(phi/2))   (extended dead centre: |A C2| = coupler + crank)
+
+At the dead centres crank and coupler are collinear, so the crank directions there are A->C2 and
+C1->A: they differ by 180 deg + angle(C1 A C2).  The time ratio K therefore fixes the angle
+C1 A C2 = theta = 180 deg (K - 1)/(K + 1) (seed 001 Eq. 7), and the crank pivot A lies on one of
+the two circles through C1 and C2 on which the chord C1C2 subtends theta (the "design circle"
+of seed 001 Fig. 1, and its mirror image in the chord).  We place A with the law of sines in the
+triangle C1 A C2:  with a1 = |A C1| and w = rocker sin(phi/2) (half the chord),
+
+    sin v = a1 sin(theta) / (2 w),   u = pi - theta - v          (v, u: angles at C2, C1)
+    A = C1 + a1 (cos u, side * sin u)                           (side = -1 toward D, +1 away)
+    a2 = |A C2| = sqrt(a1^2 + 4 w^2 - 4 w a1 cos u)             (law of cosines at C1)
+    crank = (a2 - a1)/2,  coupler = (a2 + a1)/2,  frame = |A|   (seed 001 Eq. 8-9)
+
+for 0 < a1 < w / sin(theta/2) (beyond it a1 > a2: the mirror-image design with C1 and C2
+swapped, which has the same transmission angles).  This form stays finite as theta -> 0.
+
+Assembly branch.  A four-bar whose crank turns fully keeps one assembly branch: the sign of the
+triangle (crank tip, coupler point, rocker pivot).  At the dead centres that sign is the side of
+the line A-D on which C1 resp. C2 lies, so the linkage really swings between C1 and C2 **iff
+C1 and C2 lie strictly on the same side of the line A-D**; otherwise its folded extreme is the
+mirror image of C1 in A-D, and the swing and K it produces differ from the ones asked for.  On
+the boundary (A, D and C1 or C2 collinear) a transmission angle is 0 or 180 deg.  With the
+triangle inequalities of A-D-C1 and A-D-C2 (frame + crank <= coupler + rocker,
+frame - crank >= |coupler - rocker|) every admissible point gives a crank-rocker.
+:func:`simulate` checks all of this by running the linkage through ``pumplink.kinematics``.
+
+Transmission angle (NOTES.md §2, seed 001 Eq. 4-6): its extremes occur with crank and frame
+collinear, cos gamma = (coupler^2 + rocker^2 - (frame -+ crank)^2)/(2 coupler rocker); the
+effective minimum is min(gamma_min, pi - gamma_max).
+
+K = 1 (theta = 0) has no optimum: the design circle becomes the chord line, and the effective
+minimum rises toward 90 deg - phi/2 as the frame grows without bound (checked numerically in
+``tests/test_transmission.py``), so :func:`optimal_crank_rocker` needs K > 1.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from pumplink.errors import SpecError
+from pumplink.synthesis import Linkage, transmission_range
+
+#: Scan points per design-circle arc before the bracketing refinement.
+SCAN_POINTS = 2049
+#: Smallest a1 / (2 w) scanned (the arc starts at C1 where the linkage degenerates).
+SCAN_START = 1e-7
+#: Designs per chunk in the vectorised scan (bounds memory for chart grids).
+CHUNK = 256
+#: |gamma_min - (pi - gamma_max)| below this [rad] counts as "both extremes bind".
+BALANCE_TOL = 1e-9
+
+
+@dataclass(frozen=True)
+class OptimalCrankRocker:
+    """Optimal-transmission crank-rocker (lengths in the rocker's unit, angles in radians).
+
+    Attributes
+    ----------
+    time_ratio : K [-];  theta : extreme included angle [rad] (seed 001 Eq. 7).
+    swing : rocker swing phi [rad].
+    crank, coupler, rocker, frame : link lengths.
+    transmission : effective minimum transmission angle min(gamma_min, pi - gamma_max) [rad].
+    gamma_min, gamma_max : transmission-angle extremes [rad] (seed 001 Eq. 4-5).
+    rocker_to_frame : rocker / frame (seed 001's l3/l4).
+    crank_pivot_x, crank_pivot_y : crank pivot A, rocker pivot at the origin, swing bisector +y.
+    side : -1 if A is on the rocker pivot's side of the chord C1C2, +1 if beyond it.
+    binding : 0 both extremes equal (gamma_min = pi - gamma_max), 1 gamma_min alone, 2 gamma_max alone.
+    """
+
+    time_ratio: np.ndarray | float
+    theta: np.ndarray | float
+    swing: np.ndarray | float
+    crank: np.ndarray | float
+    coupler: np.ndarray | float
+    rocker: np.ndarray | float
+    frame: np.ndarray | float
+    transmission: np.ndarray | float
+    gamma_min: np.ndarray | float
+    gamma_max: np.ndarray | float
+    rocker_to_frame: np.ndarray | float
+    crank_pivot_x: np.ndarray | float
+    crank_pivot_y: np.ndarray | float
+    side: np.ndarray | float
+    binding: np.ndarray | int
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """What a crank-rocker really does, from the kinematics (angles in radians).
+
+    Attributes
+    ----------
+    swing : rocker swing between its two extremes [rad].
+    time_ratio : slow/fast ratio of the crank arcs between the rocker extremes [-].
+    transmission : smallest min(gamma, pi - gamma) over the cycle [rad].
+    assembles : False if the coupler cannot close the loop at some crank angle.
+    """
+
+    swing: float
+    time_ratio: float
+    transmission: float
+    assembles: bool
+
+
+def extreme_included_angle(time_ratio):
+    """Extreme included angle theta = pi (K - 1)/(K + 1) [rad] (seed 001 Eq. 7, NOTES.md §2)."""
+    k = np.asarray(time_ratio, float)
+    return np.pi * (k - 1.0) / (k + 1.0)  # seed 001 Eq. (7)
+
+
+def time_ratio_from_angle(theta):
+    """K = (pi + theta)/(pi - theta), the inverse of :func:`extreme_included_angle`."""
+    theta = np.asarray(theta, float)
+    return (np.pi + theta) / (np.pi - theta)
+
+
+def effective_transmission(crank, coupler, rocker, frame):
+    """min(gamma_min, pi - gamma_max) of a crank-rocker [rad] (seed 001 Eq. 4-6, NOTES.md §2).
+
+    Returns
+    -------
+    mu, gamma_min, gamma_max : [rad].
+    """
+    gmin, gmax = transmission_range(frame, crank, coupler, rocker)  # seed 001 Eq. (4)-(5)
+    return np.minimum(gmin, np.pi - gmax), gmin, gmax  # seed 001 Eq. (6)
+
+
+def arc_limit(theta):
+    """Upper end of the folded distance a1 / (2 w) on the design arc: 1 / (2 sin(theta/2))."""
+    with np.errstate(divide="ignore"):
+        return 0.5 / np.sin(0.5 * np.asarray(theta, float))
+
+
+def crank_rocker_on_circle(s, theta, swing, rocker, side):
+    """The crank-rocker whose crank pivot is the design-circle point with |A C1| = 2 w s.
+
+    Parameters
+    ----------
+    s : folded distance a1 as a fraction of the chord 2 w = 2 rocker sin(phi/2), 0 < s < :func:`arc_limit`.
+    theta : extreme included angle [rad];  swing : rocker swing phi [rad];  rocker : rocker length.
+    side : -1 (crank pivot on the rocker pivot's side of the chord) or +1.
+
+    Returns
+    -------
+    crank, coupler, frame, pivot_x, pivot_y, admissible
+        Lengths, the crank pivot A (module coordinates) and True where C1 and C2 lie strictly on
+        one side of the line A-D (one assembly branch; see the module docstring).
+    """
+    w = rocker * np.sin(0.5 * swing)
+    yc = rocker * np.cos(0.5 * swing)
+    a1 = 2.0 * w * s
+    v = np.arcsin(np.clip(s * np.sin(theta), -1.0, 1.0))  # law of sines in C1 A C2
+    u = np.pi - theta - v
+    ax = -w + a1 * np.cos(u)
+    ay = yc + side * a1 * np.sin(u)
+    a2 = np.sqrt(a1 * a1 + 4.0 * w * w - 4.0 * w * a1 * np.cos(u))  # law of cosines at C1
+    crank = 0.5 * (a2 - a1)  # seed 001 Eq. (8)
+    coupler = 0.5 * (a2 + a1)  # seed 001 Eq. (9)
+    frame = np.hypot(ax, ay)
+    # cross(C - A, D - A) for C = C1, C2 (D = origin): same sign <=> same side of line A-D.
+    s1 = (-w - ax) * (-ay) - (yc - ay) * (-ax)
+    s2 = (w - ax) * (-ay) - (yc - ay) * (-ax)
+    admissible = (s1 * s2 > 0) & (a2 > a1)
+    return crank, coupler, frame, ax, ay, admissible
+
+
+def _mu_on_arc(log_s, theta, swing, rocker, side):
+    c, k, f, _, _, _ = crank_rocker_on_circle(np.exp(log_s), theta, swing, rocker, side)
+    return effective_transmission(c, k, rocker, f)[0]
+
+
+def _optimum_chunk(theta, swing, rocker, n):
+    """Best (mu, log s, side) over both design circles for 1-D arrays of designs."""
+    from scipy.optimize.elementwise import find_minimum  # lazy: keeps start-up fast
+
+    d = theta.size
+    best_mu = np.full(d, -np.inf)
+    best_ls = np.full(d, np.nan)
+    best_side = np.zeros(d)
+    top = np.log(arc_limit(theta))  # (D,)
+    frac = np.linspace(0.0, 1.0, n)
+    lo = np.log(SCAN_START)
+    for side in (-1.0, 1.0):
+        ls = lo + (top[:, None] - lo) * frac[None, 1:-1]  # open interval (SCAN_START, arc limit)
+        th, ph, rk = theta[:, None], swing[:, None], rocker[:, None]
+        c, k, f, _, _, ok = crank_rocker_on_circle(np.exp(ls), th, ph, rk, side)
+        mu = np.where(ok, effective_transmission(c, k, rk, f)[0], -np.inf)
+        j = np.argmax(mu, axis=1)
+        m = ls.shape[1]
+        jc = np.clip(j, 1, m - 2)
+        rows = np.arange(d)
+        x0, x1, x2 = ls[rows, jc - 1], ls[rows, jc], ls[rows, jc + 1]
+        has = np.isfinite(mu[rows, j])
+        res = find_minimum(lambda x, t, p, r: -_mu_on_arc(x, t, p, r, side), (x0, x1, x2),
+                           args=(theta, swing, rocker), tolerances=dict(xatol=1e-15, xrtol=1e-15))
+        cand_ls = np.where(res.success & (-res.f_x >= mu[rows, j]), res.x, ls[rows, j])
+        cc, kk, ff, _, _, okc = crank_rocker_on_circle(np.exp(cand_ls), theta, swing, rocker, side)
+        cand_mu = np.where(okc & has, effective_transmission(cc, kk, rocker, ff)[0], -np.inf)
+        better = cand_mu > best_mu
+        best_mu = np.where(better, cand_mu, best_mu)
+        best_ls = np.where(better, cand_ls, best_ls)
+        best_side = np.where(better, side, best_side)
+    return best_mu, best_ls, best_side
+
+
+def optimal_crank_rocker(time_ratio, swing, rocker=1.0, samples: int = SCAN_POINTS) -> OptimalCrankRocker:
+    """Crank-rocker with the largest effective minimum transmission angle (seed 001, exact).
+
+    Both design circles are scanned on ``samples`` points (geometric in |A C1|) restricted to
+    the one-branch arc, and the best point is refined by scipy's bracketing minimiser
+    (``scipy.optimize.elementwise.find_minimum``, Chandrupatla) to |d ln a1| ~ 1e-15, so the
+    angle is exact to ~1e-12 deg.  Broadcasts over ``time_ratio``, ``swing`` and ``rocker``.
+
+    Parameters
+    ----------
+    time_ratio : K > 1 [-].
+    swing : rocker swing phi [rad], 0 < phi < pi.
+    rocker : rocker length (any unit; the other lengths come out in it).
+
+    Raises
+    ------
+    SpecError
+        K <= 1 (no optimum exists, see the module docstring), phi outside (0, pi), rocker <= 0.
+    """
+    k, phi, r = np.broadcast_arrays(*(np.asarray(v, float) for v in (time_ratio, swing, rocker)))
+    if not np.all(np.isfinite(k) & (k > 1.0)):
+        bad = k[~(np.isfinite(k) & (k > 1.0))].flat[0]
+        raise SpecError(f"time ratio K = {bad:g} must be > 1: at K = 1 the minimum transmission angle only "
+                        "approaches 90 deg - swing/2 as the frame grows without bound; give e.g. K = 1.05")
+    if not np.all(np.isfinite(phi) & (phi > 0) & (phi < np.pi)):
+        bad = phi[~(np.isfinite(phi) & (phi > 0) & (phi < np.pi))].flat[0]
+        raise SpecError(f"rocker swing {np.degrees(bad):g} deg must be between 0 and 180 deg; give e.g. 40")
+    if not np.all(np.isfinite(r) & (r > 0)):
+        raise SpecError(f"rocker length {r[~(np.isfinite(r) & (r > 0))].flat[0]:g} must be a positive number")
+    theta = extreme_included_angle(k)  # seed 001 Eq. (7)
+    shape = k.shape
+    th, ph, rr = theta.ravel(), phi.ravel(), r.ravel()
+    out_mu, out_ls, out_side = (np.empty(th.size) for _ in range(3))
+    for i0 in range(0, th.size, CHUNK):
+        sl = slice(i0, i0 + CHUNK)
+        out_mu[sl], out_ls[sl], out_side[sl] = _optimum_chunk(th[sl], ph[sl], rr[sl], samples)
+    c, kk, f, ax, ay, _ = crank_rocker_on_circle(np.exp(out_ls), th, ph, rr, out_side)
+    mu, gmin, gmax = effective_transmission(c, kk, rr, f)
+    binding = np.where(np.abs(gmin - (np.pi - gmax)) <= BALANCE_TOL, 0, np.where(gmin < np.pi - gmax, 1, 2))
+
+    def out(a):
+        a = np.asarray(a).reshape(shape)
+        return a[()] if a.ndim == 0 else a
+
+    return OptimalCrankRocker(
+        time_ratio=out(k), theta=out(theta), swing=out(phi), crank=out(c), coupler=out(kk), rocker=out(rr),
+        frame=out(f), transmission=out(mu), gamma_min=out(gmin), gamma_max=out(gmax),
+        rocker_to_frame=out(rr / f), crank_pivot_x=out(ax), crank_pivot_y=out(ay), side=out(out_side),
+        binding=out(binding.astype(np.int8)),
+    )
+
+
+def optimum_linkage(opt: OptimalCrankRocker) -> Linkage:
+    """The optimum as a :class:`~pumplink.synthesis.Linkage` (crank pivot at the origin).
+
+    Rocker pivot D - A = -A; branch = sign of cross(D - A, C2 - A), the side of the line A-D
+    on which the extended extreme C2 lies (module docstring), for the kinematics' convention
+    B = T + t d + q perp(d) with q proportional to the branch.
+    """
+    ax, ay = float(opt.crank_pivot_x), float(opt.crank_pivot_y)
+    r, phi = float(opt.rocker), float(opt.swing)
+    c2x, c2y = r * np.sin(0.5 * phi), r * np.cos(0.5 * phi)
+    cross = (-ax) * (c2y - ay) - (-ay) * (c2x - ax)
+    return Linkage(pivot_x=-ax, pivot_y=-ay, crank=float(opt.crank), coupler=float(opt.coupler),
+                   rocker=r, handle=r, branch=1.0 if cross > 0 else -1.0)
+
+
+def simulate(lk: Linkage, samples: int = 4096) -> Simulation:
+    """Run a crank-rocker through a full crank turn and measure its swing, K and transmission.
+
+    Independent of the design formulas: positions and the rocker rate d(theta4)/d(theta2) come
+    from ``pumplink.kinematics.evaluate``.  The rocker extremes are the two sign changes of the
+    rocker rate on ``samples`` crank angles, located exactly with a bracketing root finder; the
+    smallest transmission deviation min(gamma, pi - gamma) is refined with a bracketing minimiser.
+
+    Parameters
+    ----------
+    lk : scalar linkage (crank pivot at the origin).
+    samples : crank angles in the initial scan.
+    """
+    from scipy.optimize.elementwise import find_minimum, find_root
+
+    from pumplink.kinematics import evaluate
+
+    two_pi = 2.0 * np.pi
+    th = np.arange(samples + 1) * (two_pi / samples)
+    st = evaluate(lk, th)
+    assembles = bool(np.all(np.isfinite(st.coupler_x)))
+    rate = st.rocker_rate
+    flips = np.nonzero(np.sign(rate[:-1]) != np.sign(rate[1:]))[0]
+    nan = float("nan")
+    if not assembles or flips.size != 2:
+        return Simulation(nan, nan, nan, assembles)
+    roots = find_root(lambda x: evaluate(lk, x).rocker_rate, (th[flips], th[flips + 1]),
+                      tolerances=dict(xatol=1e-15, xrtol=1e-16)).x
+    ends = evaluate(lk, roots)
+    ang = np.arctan2(ends.coupler_y - lk.pivot_y, ends.coupler_x - lk.pivot_x)
+    swing = abs(float(np.angle(np.exp(1j * (ang[1] - ang[0])))))
+    arc = float(np.mod(roots[1] - roots[0], two_pi))
+    ratio = max(arc, two_pi - arc) / min(arc, two_pi - arc)
+
+    def dev(x):
+        g = evaluate(lk, x).transmission_angle
+        return np.minimum(g, np.pi - g)
+
+    dv = dev(th)
+    j = int(np.clip(np.argmin(dv), 1, samples - 1))
+    res = find_minimum(dev, (th[j - 1], th[j], th[j + 1]), tolerances=dict(xatol=1e-14, xrtol=1e-15))
+    tmin = min(float(res.f_x), float(dv[j]))
+    return Simulation(swing=swing, time_ratio=ratio, transmission=tmin, assembles=assembles)

@@ -1,0 +1,137 @@
+"""Pump design search: feasibility of every answer, a known interior optimum, CLI contract.
+
+The interior-optimum reference is independent of differential evolution: a dense scan of the
+single variable followed by scipy's bounded Brent minimiser (``minimize_scalar``).
+"""
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings, strategies as st
+from scipy.optimize import minimize_scalar
+
+from pumplink.analysis import MIN_TRANSMISSION_DEG, force_analysis
+from pumplink.errors import InfeasibleDesign, SpecError
+from pumplink.optimize import (
+    DEFAULT_BOUNDS, evaluate, make_problem, optimize, parse_bounds,
+)
+from pumplink.spec import default_spec, parse_spec, spec_to_dict
+
+RELAXED = dict(grip_height=(0.0, 5.0), stroke=(0.0, 5.0))
+
+
+def spec_with(**linkage):
+    d = spec_to_dict(default_spec())
+    d["linkage"].update(linkage)
+    return parse_spec(d)
+
+
+def strictly_feasible(spec, problem) -> bool:
+    """Re-check a returned design from its spec alone, through the public analysis path."""
+    r = force_analysis(spec, keep_samples=False)
+    if not r.design.feasible:
+        return False
+    lk, syn = spec.linkage, r.design.synthesis
+    mu = math.degrees(min(syn.transmission_min, math.pi - syn.transmission_max))
+    pivot = problem.axle_height - lk.D1
+    low = pivot + lk.handle * math.cos(math.radians(lk.swing) / 2)
+    high = pivot + lk.handle
+    stroke = 2 * lk.handle * math.sin(math.radians(lk.swing) / 2)
+    return (mu >= MIN_TRANSMISSION_DEG and problem.grip_height[0] <= low and high <= problem.grip_height[1]
+            and problem.stroke[0] <= stroke <= problem.stroke[1] and math.isfinite(r.peak_force))
+
+
+def test_known_interior_optimum_from_several_seeds():
+    # Peak force vs D1 alone (L1 = 1.5 m): an interior minimum with every constraint slack.
+    spec = spec_with(L1=1.5)
+    problem = make_problem(spec, {"D1": (-0.5, 0.8)}, **RELAXED)
+    grid = np.linspace(-0.5, 0.8, 2601)
+    e = evaluate(problem, grid[None, :])
+    ok = np.all(e.slack >= 0, axis=0)
+    j = int(np.argmin(np.where(ok, e.objective, np.inf)))
+    ref = minimize_scalar(lambda d: float(evaluate(problem, np.array([[d]])).objective[0]),
+                          bounds=(grid[j - 1], grid[j + 1]), method="bounded", options=dict(xatol=1e-10))
+    assert 0.0 < ref.x < 0.7 and ref.fun < e.objective[j] + 1e-12  # interior, away from both bounds
+    for seed in (0, 1, 2, 3):
+        res = optimize(problem, seed=seed)
+        assert abs(res.x[0] - ref.x) < 1e-5
+        assert abs(res.at_best.objective[0] - ref.fun) < 1e-9 * ref.fun
+        assert res.binding == () and res.at_bounds == ()
+
+
+def test_same_seed_same_answer():
+    problem = make_problem(default_spec(), {"D1": (0.0, 0.8), "swing": (40.0, 80.0)}, **RELAXED)
+    a = optimize(problem, seed=7, popsize=10, maxiter=60)
+    b = optimize(problem, seed=7, popsize=10, maxiter=60)
+    assert np.array_equal(a.x, b.x)
+
+
+bound = st.tuples(st.floats(0.0, 1.0), st.floats(0.05, 1.0))
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(rocker=st.tuples(st.floats(0.05, 0.5), st.floats(0.01, 0.5)),
+       l1=st.tuples(st.floats(0.0, 1.5), st.floats(0.01, 1.0)),
+       d1=st.tuples(st.floats(-0.8, 1.2), st.floats(0.01, 1.0)),
+       swing=st.tuples(st.floats(10.0, 150.0), st.floats(1.0, 60.0)),
+       axle=st.floats(0.3, 0.8), seed=st.integers(0, 2**16))
+def test_optimizer_never_returns_an_infeasible_design(rocker, l1, d1, swing, axle, seed):
+    bounds = {"rocker": (rocker[0], rocker[0] + rocker[1]), "L1": (l1[0], l1[0] + l1[1]),
+              "D1": (d1[0], d1[0] + d1[1]), "swing": (swing[0], min(179.0, swing[0] + swing[1]))}
+    problem = make_problem(default_spec(), bounds, axle_height=axle)
+    try:
+        res = optimize(problem, seed=seed, popsize=8, maxiter=30)
+    except InfeasibleDesign as exc:
+        assert "misses" in str(exc)
+        return
+    assert np.all(res.x >= problem.lower) and np.all(res.x <= problem.upper)
+    assert strictly_feasible(res.best, problem)
+
+
+def test_nothing_feasible_is_explained():
+    problem = make_problem(default_spec(), dict(DEFAULT_BOUNDS), grip_height=(2.5, 3.0))
+    with pytest.raises(InfeasibleDesign, match="grip height"):
+        optimize(problem, seed=0, popsize=8, maxiter=30)
+
+
+@pytest.mark.parametrize("items,key", [
+    (["wheel=0:1"], "'wheel'"), (["rocker=0.4:0.1"], "rocker"), (["L1=a:b"], "L1"),
+    (["D1=0.2"], "D1"), (["swing=10:200"], "swing"), (["rocker=0.1:0.2", "rocker=0.2:0.3"], "rocker"),
+    (["L1=-1:0.5"], "L1"), (["D1=nan:1"], "D1"), (["rocker"], "rocker"),
+])
+def test_bad_vary_names_the_key(items, key):
+    with pytest.raises(SpecError, match=key):
+        parse_bounds(items)
+
+
+def run(*args):
+    return subprocess.run([sys.executable, "-m", "pumplink", *args], capture_output=True, text=True)
+
+
+@pytest.mark.parametrize("args,key", [
+    (["--vary", "handel=0.5:1"], "handel"), (["--vary", "swing=90:30"], "swing"),
+    (["--vary", "D1=x:1"], "D1"), (["--grip-height", "0.9:0.5"], "grip-height"),
+    (["--stroke", "one"], "stroke"), (["--axle-height", "-1"], "axle-height"),
+])
+def test_cli_bad_input_exits_2_naming_the_key(args, key):
+    p = run("optimize", "configs/prototype.toml", *args)
+    assert p.returncode == 2 and key in p.stderr and "Traceback" not in p.stderr
+
+
+def test_cli_write_gives_the_same_numbers_through_force(tmp_path):
+    out = tmp_path / "best.toml"
+    p = run("optimize", "configs/prototype.toml", "--seed", "3", "--format", "json", "--write", str(out))
+    assert p.returncode == 0, p.stderr
+    d = json.loads(p.stdout)
+    f = run("force", str(out), "--summary", "--format", "json")
+    assert f.returncode == 0, f.stderr
+    g = json.loads(f.stdout)
+    assert abs(g["peak_force_N"] - d["optimum"]["peak_force_N"]) < 1e-9 * g["peak_force_N"]
+    assert abs(g["mean_force_N"] - d["optimum"]["mean_force_N"]) < 1e-12 * g["mean_force_N"]
+    assert g["pass"] and d["optimum"]["passes_force_limit"]
+    # It must beat the spec's own peak or say which of the spec's constraints it breaks.
+    assert d["improvement_N"] > 0 or d["spec_design"]["violated"]
