@@ -143,13 +143,17 @@ def force_kernel(lk: Linkage, cs, sn, wheel_torque, work: np.ndarray | None = No
 
 
 def _force_into(lk: Linkage, cs, sn, wheel_torque, work, shape):
+    # Every step writes into the scratch rows (f doubles as a temporary until the end), so no
+    # array is allocated except the returned force.
     px, py, c, k, r = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker
     p1, p2, e2, t, q, dx, dy, bx, by = work
     f = np.empty(shape)
     np.multiply(cs, px, out=p1)
-    p1 += sn * py  # P1 = dir . O4
+    np.multiply(sn, py, out=f)
+    p1 += f  # P1 = dir . O4
     np.multiply(cs, py, out=p2)
-    p2 -= sn * px  # P2 = dir x O4
+    np.multiply(sn, px, out=f)
+    p2 -= f  # P2 = dir x O4
     np.multiply(p1, -2.0 * c, out=e2)
     e2 += px * px + py * py + c * c  # e^2 = |O4 - A|^2
     np.divide(0.5 * (k * k - r * r), e2, out=t)
@@ -172,11 +176,13 @@ def _force_into(lk: Linkage, cs, sn, wheel_torque, work, shape):
     np.multiply(sn, -c, out=dy)
     dy += py
     np.multiply(t, dx, out=bx)  # Eq. (6) as B = A + t d + q perp(d), with A = O4 - d
-    bx -= q * dy
+    np.multiply(q, dy, out=f)
+    bx -= f
     bx -= dx
     bx += px
     np.multiply(t, dy, out=by)
-    by += q * dx
+    np.multiply(q, dx, out=f)
+    by += f
     by -= dy  # by is now Ry = By - O4y
     p1 -= c
     p1 *= q
@@ -188,7 +194,7 @@ def _force_into(lk: Linkage, cs, sn, wheel_torque, work, shape):
     f /= p2  # Eq. (3) by virtual work: F = Mw / (dPx/dt2)
     by += py
     np.abs(p2, out=p2)
-    f[p2 <= SINGULAR_SIN * k] = np.nan
+    np.copyto(f, np.nan, where=p2 <= SINGULAR_SIN * k)  # exactly at a dead centre
     return bx, by, f
 
 
