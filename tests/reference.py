@@ -45,6 +45,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import math
+
 import mpmath
 import numpy as np
 from hypothesis import strategies as st
@@ -248,3 +250,33 @@ def linkage_inputs():
         st.floats(0.0, 1.0), st.floats(-0.5, 0.8), st.floats(0.0, 0.3),
         st.floats(0.05, 0.6), st.floats(10.0, 150.0),
     )
+
+
+# ---------------------------------------------------------------------------------------------
+# Shared by test_kinematics.py and test_force.py
+
+#: Shortest crank [m] for which accuracy is asserted (see tests/test_synthesis.py MIN_CRANK).
+MIN_CRANK = 1e-6
+
+
+def angle_gap(a, b):
+    """|a - b| modulo 2 pi, in [0, pi] (numpy, elementwise)."""
+    d = np.mod(np.asarray(a, float) - float(b), 2 * math.pi)
+    return np.minimum(d, 2 * math.pi - d)
+
+
+def force_designs():
+    """Feasible designs in the issue's realistic ranges, with a handle [m] and a wheel torque [N m]."""
+    return st.tuples(linkage_inputs(), st.floats(0.3, 1.5), st.floats(1.0, 50.0))
+
+
+def setup_design(inputs):
+    """(pumplink synthesis, reference linkage, wheel torque); rejects infeasible or sub-micron cranks."""
+    from hypothesis import assume
+
+    from pumplink.synthesis import synthesize
+
+    (L1, D1, b, rocker, swing_deg), handle, mw = inputs
+    syn = synthesize(L1, D1, b, rocker, math.radians(swing_deg), handle)
+    assume(bool(syn.feasible) and syn.crank_length >= MIN_CRANK)
+    return syn, from_synthesis(syn), mw

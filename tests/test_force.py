@@ -21,23 +21,10 @@ from pumplink.spec import DEFAULT_SPEC, parse_spec
 from pumplink.synthesis import Linkage, synthesize
 
 DEG = math.pi / 180
-MIN_CRANK = 1e-4  # see tests/test_synthesis.py
+MIN_CRANK = R.MIN_CRANK
 
 
-def _gap(a, b):
-    d = np.mod(np.asarray(a, float) - float(b), 2 * math.pi)
-    return np.minimum(d, 2 * math.pi - d)
-
-
-def designs():
-    return st.tuples(R.linkage_inputs(), st.floats(0.3, 1.5), st.floats(1.0, 50.0))
-
-
-def _setup(inputs):
-    (L1, D1, b, rocker, swing_deg), handle, mw = inputs
-    syn = synthesize(L1, D1, b, rocker, math.radians(swing_deg), handle)
-    assume(bool(syn.feasible) and syn.crank_length >= MIN_CRANK)
-    return syn, R.from_synthesis(syn), mw
+_gap, designs, _setup = R.angle_gap, R.force_designs, R.setup_design
 
 
 # ---------------------------------------------------------------------------------------------

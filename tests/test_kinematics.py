@@ -14,26 +14,10 @@ from pumplink.kinematics import crank_grid, evaluate, force_kernel, grid_directi
 from pumplink.synthesis import Linkage, synthesize
 
 DEG = math.pi / 180
-#: Shortest crank for which accuracy is asserted (see tests/test_synthesis.py MIN_CRANK).
-MIN_CRANK = 1e-4
+MIN_CRANK = R.MIN_CRANK
 
 
-def _gap(a, b):
-    d = np.mod(np.asarray(a, float) - float(b), 2 * math.pi)
-    return np.minimum(d, 2 * math.pi - d)
-
-
-def designs():
-    """Feasible designs in the issue's realistic ranges, with a handle and a wheel torque."""
-    return st.tuples(R.linkage_inputs(), st.floats(0.3, 1.5), st.floats(1.0, 50.0))
-
-
-def _setup(inputs):
-    (L1, D1, b, rocker, swing_deg), handle, mw = inputs
-    syn = synthesize(L1, D1, b, rocker, math.radians(swing_deg), handle)
-    assume(bool(syn.feasible) and syn.crank_length >= MIN_CRANK)
-    lk = R.from_synthesis(syn)
-    return syn, lk, mw
+_gap, designs, _setup = R.angle_gap, R.force_designs, R.setup_design
 
 
 @settings(max_examples=40)

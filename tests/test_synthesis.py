@@ -55,11 +55,12 @@ def _near_threshold(ref):
             or abs(ref["frame"] - mpf("1e-9")) < 1e-15)
 
 
-#: Shortest crank [m] for which the exact-swing claims are asserted to 1e-9 deg.  Eq. (2) forms
-#: crank = (d1 - d2)/2 by subtraction, so in float64 its absolute error is ~eps * coupler and its
-#: relative error ~eps * coupler / crank; below 0.1 mm (not a buildable crank) that alone moves
-#: the rocker extremes by more than 1e-9 deg.  See test_tiny_crank_is_still_accurate.
-MIN_CRANK = 1e-4
+#: Shortest crank [m] for which the exact-swing claims are asserted to 1e-9 deg.  Eq. (2) is
+#: evaluated without cancellation (crank = 2 f r sin(beta) sin(swing/2) / (d1 + d2)), so the
+#: bound is set by conditioning, not by the formula: a design whose crank is below a micrometre
+#: (e.g. a rocker pivot 0.1 um from the axle) is not a linkage, and its rocker extremes move by
+#: ~1e-9 deg under float64 rounding of the inputs.  See test_tiny_crank_is_still_accurate.
+MIN_CRANK = 1e-6
 
 
 # ---------------------------------------------------------------------------------------------
