@@ -71,7 +71,7 @@ class Load(_Section):
         if self.rope_force is not None:
             return self.rope_force
         eff = 0.75 if self.efficiency is None else self.efficiency
-        return WATER_DENSITY * GRAVITY * self.head * math.pi * self.pipe_diameter**2 / 4.0 / eff
+        return WATER_DENSITY * GRAVITY * self.head * math.pi * (self.pipe_diameter * self.pipe_diameter) / 4.0 / eff
 
 
 class Operator(_Section):

@@ -134,7 +134,12 @@ def extreme_angles(L1, D1, b, swing):
 def _side(frame, rocker, psi):
     # |O2 B| from the law of cosines in the cancellation-free form
     # f^2 + r^2 - 2 f r cos psi = (f - r)^2 + 4 f r sin^2(psi/2).
-    return np.sqrt((frame - rocker) ** 2 + 4.0 * frame * rocker * np.sin(0.5 * psi) ** 2)
+    # Squares as products, never ``** 2``: on numpy scalars ``** 2`` calls libm pow(), which is
+    # not always correctly rounded, while arrays use an exact square; with products the scalar
+    # path (``pumplink force``) gives bit for bit the numbers of the array path (``pumplink batch``).
+    fr = frame - rocker
+    half = np.sin(0.5 * psi)
+    return np.sqrt(fr * fr + 4.0 * frame * rocker * (half * half))
 
 
 def transmission_range(frame, crank, coupler, rocker):
@@ -144,8 +149,10 @@ def transmission_range(frame, crank, coupler, rocker):
     cos gamma = (coupler^2 + rocker^2 - (frame -+ crank)^2) / (2 coupler rocker).
     """
     den = 2.0 * coupler * rocker
-    cmin = (coupler**2 + rocker**2 - (frame - crank) ** 2) / den  # seed 001 Eq. (4)
-    cmax = (coupler**2 + rocker**2 - (frame + crank) ** 2) / den  # seed 001 Eq. (5)
+    # Products, not ``** 2``, so scalars and arrays round identically (see ``_side``).
+    near, far = frame - crank, frame + crank
+    cmin = (coupler * coupler + rocker * rocker - near * near) / den  # seed 001 Eq. (4)
+    cmax = (coupler * coupler + rocker * rocker - far * far) / den  # seed 001 Eq. (5)
     return np.arccos(np.clip(cmin, -1.0, 1.0)), np.arccos(np.clip(cmax, -1.0, 1.0))
 
 

@@ -1,0 +1,112 @@
+"""Benchmark of `pumplink batch` (issue #4): 100,000 variants x 360 crank samples, CSV written.
+
+Runs the real command end to end (start-up, evaluation, CSV file) in a subprocess, several
+times, and reports the median wall time, variants/s, CPU time and the peak resident memory of
+the run (the largest process: the parent or a worker; measured with resource.getrusage in a
+wrapper subprocess, so runs do not mix).  Memory is also measured on a grid 4x larger to show
+it does not grow with the grid (rows are streamed in chunks).
+
+    .venv/bin/python benchmarks/bench_batch.py [--repeat 3] [--quick]
+
+Target (issue #4): <= 3 s wall for 100,000 variants on this 2-core machine; < 1 GB memory.
+The machine is shared: timings are noisy, compare medians run side by side.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+PUMPLINK = [sys.executable, "-m", "pumplink"]
+
+# 10 x 10 x 10 x 10 x 10 = 100,000 variants of the prototype; about 40 % of them fail the 100 N
+# limit, the rest pass (a realistic mix: every variant goes through the whole evaluation).
+GRID = """\
+base = "{base}"
+[vary]
+"linkage.rocker" = {{ start = 0.15, stop = 0.30, num = 10 }}
+"linkage.swing" = {{ start = 40, stop = 80, num = 10 }}
+"linkage.D1" = {{ start = -0.1, stop = 0.35, num = 10 }}
+"linkage.handle" = {{ start = 0.8, stop = 1.25, num = 10 }}
+"load.rope_force" = {{ start = 20, stop = 65, num = {num} }}
+"""
+
+WRAPPER = r"""
+import json, resource, subprocess, sys, time
+t = time.perf_counter()
+r = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+wall = time.perf_counter() - t
+u = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(json.dumps({"wall": wall, "cpu": u.ru_utime + u.ru_stime, "maxrss_kb": u.ru_maxrss,
+                  "rc": r.returncode, "stderr": r.stderr.strip()}))
+"""
+
+
+def measure(cmd: list[str]) -> dict:
+    out = subprocess.run([sys.executable, "-c", WRAPPER, *cmd], capture_output=True, text=True, check=True)
+    res = json.loads(out.stdout)
+    if res["rc"] != 0:
+        raise SystemExit(f"command failed ({res['rc']}): {' '.join(cmd)}\n{res['stderr']}")
+    return res
+
+
+SPIN = "import time; t = time.perf_counter(); x = sum(range(30_000_000)); print(time.perf_counter() - t)"
+
+
+def free_cores() -> float:
+    """How many cores this run gets right now: one CPU-bound process alone vs two at once."""
+    one = float(subprocess.run([sys.executable, "-c", SPIN], capture_output=True, text=True).stdout)
+    ps = [subprocess.Popen([sys.executable, "-c", SPIN], stdout=subprocess.PIPE, text=True) for _ in range(2)]
+    two = max(float(p.communicate()[0]) for p in ps)
+    return 2 * one / two
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--quick", action="store_true", help="skip the 400,000-variant memory run")
+    args = ap.parse_args()
+    base = (ROOT / "configs" / "prototype.toml").as_posix()
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        grid = tmp / "grid-100k.toml"
+        grid.write_text(GRID.format(base=base, num=10))
+        big = tmp / "grid-400k.toml"
+        big.write_text(GRID.format(base=base, num=40))
+        out = tmp / "out.csv"
+        print(f"pumplink batch, 100,000 variants x 360 crank samples, CSV written ({os.cpu_count()} CPUs; "
+              f"cores free for us before the runs: {free_cores():.1f})")
+        rows = {}
+        for _ in range(args.repeat):  # interleaved, so load from other processes hits all settings alike
+            for w in (1, 2):
+                cmd = [*PUMPLINK, "batch", str(grid), "--fail-on", "none", "--samples", "360",
+                       "--format", "csv", "--out", str(out), "--workers", str(w)]
+                rows.setdefault(w, []).append(measure(cmd))
+        n_rows = sum(1 for _ in out.open()) - 1
+        assert n_rows == 100_000, n_rows
+        for w, rs in rows.items():
+            wall = statistics.median(r["wall"] for r in rs)
+            cpu = statistics.median(r["cpu"] for r in rs)
+            rss = max(r["maxrss_kb"] for r in rs) / 1024
+            walls = ", ".join(f"{r['wall']:.2f}" for r in rs)
+            print(f"  --workers {w}: median wall {wall:.2f} s ({100_000 / wall:,.0f} variants/s), "
+                  f"CPU {cpu:.2f} s, peak RSS {rss:.0f} MB   [walls: {walls}]")
+        print("  command: pumplink batch GRID --fail-on none --samples 360 --format csv --out out.csv --workers W")
+        print(f"  CSV: {out.stat().st_size / 1e6:.1f} MB, {n_rows} rows")
+        print(f"  cores free for us after the runs: {free_cores():.1f} (other jobs share this machine)")
+        if not args.quick:
+            r = measure([*PUMPLINK, "batch", str(big), "--fail-on", "none", "--format", "csv", "--out",
+                         str(out), "--workers", "2"])
+            print(f"  400,000 variants, --workers 2: wall {r['wall']:.2f} s, peak RSS {r['maxrss_kb'] / 1024:.0f} MB "
+                  f"(memory does not grow with the grid)")
+
+
+if __name__ == "__main__":
+    main()

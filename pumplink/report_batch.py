@@ -1,0 +1,398 @@
+"""Rendering of batch runs (``pumplink batch``): rows, summary, CSV/JSON/table, JUnit XML.
+
+Rows are streamed chunk by chunk, so memory stays bounded whatever the grid size.  Files named
+with ``--out``/``--junit`` are written atomically: to a temporary file in the same folder, moved
+over the target (``os.replace``) only when the run completed; an interrupted or failed run
+leaves the target as it was (absent, or the previous complete file).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+import os
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any, Callable, Iterable, Iterator, Sequence
+from xml.sax.saxutils import escape, quoteattr
+
+import numpy as np
+
+from pumplink.batch import Batch, Chunk, variant_name, variant_names
+
+#: Per-variant columns after the name, the source and the varied keys (CSV order).
+FIXED_COLUMNS = (
+    "frame_length", "crank_length", "coupler_length", "feasible", "reason", "time_ratio",
+    "transmission_min_deg", "transmission_max_deg", "mean_force_N", "peak_force_N",
+    "sampled_peak_force_N", "power_W", "force_limit_N", "pass", "failed",
+)
+#: Rows shown by ``--format table``: all if the run has at most this many, else the failures.
+TABLE_ROWS = 100
+
+
+def varied_keys(batches: Sequence[Batch]) -> list[str]:
+    """Union of the varied spec keys, in first-seen order (one CSV column each)."""
+    keys: list[str] = []
+    for b in batches:
+        keys.extend(k for k in b.keys if k not in keys)
+    return keys
+
+
+def columns(batches: Sequence[Batch]) -> list[str]:
+    """CSV header: name, source, each varied key, then :data:`FIXED_COLUMNS`."""
+    return ["name", "source", *varied_keys(batches), *FIXED_COLUMNS]
+
+
+def _floats(a) -> list:
+    return [v if math.isfinite(v) else None for v in np.asarray(a, float).tolist()]
+
+
+def _failed_text(c: Chunk) -> list[str]:
+    feas, m, p = c.feasible.tolist(), c.mean_ok.tolist(), c.peak_ok.tolist()
+    out = []
+    for f, mo, po in zip(feas, m, p):
+        out.append("infeasible" if not f else ";".join(x for x, ok in (("mean", mo), ("peak", po)) if not ok))
+    return out
+
+
+def chunk_columns(batch: Batch, c: Chunk) -> dict[str, list]:
+    """The chunk's rows as columns of JSON-safe values (NaN -> None; angles in degrees)."""
+    return {
+        "name": variant_names(batch, c.start, c.stop),
+        "frame_length": _floats(c.frame_length),
+        "crank_length": _floats(c.crank_length),
+        "coupler_length": _floats(c.coupler_length),
+        "feasible": c.feasible.tolist(),
+        "reason": c.reason,
+        "time_ratio": _floats(c.time_ratio),
+        "transmission_min_deg": _floats(np.degrees(c.transmission_min)),
+        "transmission_max_deg": _floats(np.degrees(c.transmission_max)),
+        "mean_force_N": _floats(c.mean_force),
+        "peak_force_N": _floats(c.peak_force),
+        "sampled_peak_force_N": _floats(c.sampled_peak),
+        "power_W": _floats(c.power),
+        "force_limit_N": _floats(c.force_limit),
+        "pass": c.passed.tolist(),
+        "failed": _failed_text(c),
+    }
+
+
+def chunk_rows(batch: Batch, c: Chunk, cols: dict[str, list] | None = None) -> list[dict[str, Any]]:
+    """One JSON row per variant (the varied values under ``vary``)."""
+    cols = cols or chunk_columns(batch, c)
+    vals = c.values.tolist()
+    rows = []
+    for i in range(len(c)):
+        row = {"name": cols["name"][i], "source": batch.source,
+               "vary": {k: v for k, v in zip(batch.keys, vals[i])}}
+        row.update({k: cols[k][i] for k in FIXED_COLUMNS})
+        rows.append(row)
+    return rows
+
+
+def _csv_cell(text: str) -> str:
+    if any(ch in text for ch in ',"\n\r'):
+        return '"' + text.replace('"', '""') + '"'
+    return text
+
+
+def _csv_floats(a) -> list[str]:
+    """repr of each float (shortest round-trip text, as the csv module writes), '' for NaN/inf.
+
+    Grid columns repeat values (lengths depend on the geometry axes only), so each distinct
+    value is formatted once.
+    """
+    a = np.asarray(a, float)
+    uniq, inverse = np.unique(a, return_inverse=True)
+    if uniq.size * 2 > a.size:
+        out = list(map(repr, a.tolist()))
+        for i in np.nonzero(~np.isfinite(a))[0].tolist():
+            out[i] = ""
+        return out
+    text = np.array([repr(v) if math.isfinite(v) else "" for v in uniq.tolist()], dtype=object)
+    return text[inverse.ravel()].tolist()
+
+
+def csv_text(batch: Batch, c: Chunk, vkeys: Sequence[str]) -> str:
+    """The chunk's CSV lines (columns as :func:`columns`), built column-wise for speed."""
+    n = len(c)
+    names = variant_names(batch, c.start, c.stop)
+    if any(_csv_cell(x) != x for x in (batch.label,)):
+        names = [_csv_cell(x) for x in names]
+    cols: list[list[str]] = [names, [_csv_cell(batch.source)] * n]
+    for k in vkeys:
+        cols.append(_csv_floats(c.values[:, batch.keys.index(k)]) if k in batch.keys else [""] * n)
+    bools = {True: "True", False: "False"}
+    cache: dict = {None: ""}
+    reason = [cache[r] if r in cache else cache.setdefault(r, _csv_cell(r)) for r in c.reason]
+    cols += [_csv_floats(c.frame_length), _csv_floats(c.crank_length), _csv_floats(c.coupler_length),
+             [bools[x] for x in c.feasible.tolist()], reason, _csv_floats(c.time_ratio),
+             _csv_floats(np.degrees(c.transmission_min)), _csv_floats(np.degrees(c.transmission_max)),
+             _csv_floats(c.mean_force), _csv_floats(c.peak_force), _csv_floats(c.sampled_peak),
+             _csv_floats(c.power), _csv_floats(c.force_limit), [bools[x] for x in c.passed.tolist()],
+             _failed_text(c)]
+    return "".join(line + "\n" for line in map(",".join, zip(*cols)))
+
+
+def json_text(batch: Batch, c: Chunk) -> str:
+    """The chunk's JSON rows, one per line, each followed by ',\n'."""
+    return "".join(json.dumps(r, allow_nan=False, ensure_ascii=False) + ",\n" for r in chunk_rows(batch, c))
+
+
+def junit_text(batch: Batch, c: Chunk, fail_on: Sequence[str]) -> tuple[str, int, int]:
+    """The chunk's JUnit testcases, with the number of failures and skipped."""
+    cols = {"mean_force_N": _floats(c.mean_force), "peak_force_N": _floats(c.peak_force),
+            "force_limit_N": _floats(c.force_limit)}
+    cls = f"pumplink.batch.{Path(batch.source).stem}"
+    parts, failures, skipped = [], 0, 0
+    names = variant_names(batch, c.start, c.stop)
+    for name, (fail, skip) in zip(names, _junit_messages(batch, c, cols, fail_on)):
+        parts.append(_junit_case(name, cls, fail, skip))
+        failures += fail is not None
+        skipped += skip is not None
+    return "".join(parts), failures, skipped
+
+
+def render_chunk(batch: Batch, c: Chunk, fmt: str, vkeys: Sequence[str], fail_on: Sequence[str],
+                 junit: bool) -> dict[str, Any]:
+    """Text for one chunk, built where the chunk was evaluated (a worker process)."""
+    out: dict[str, Any] = {"data": None, "junit": None}
+    if fmt == "csv":
+        out["data"] = csv_text(batch, c, vkeys)
+    elif fmt == "json":
+        out["data"] = json_text(batch, c)
+    if junit:
+        out["junit"] = junit_text(batch, c, fail_on)
+    return out
+
+
+# ----------------------------------------------------------------------------- files
+@contextlib.contextmanager
+def atomic_write(path: Path) -> Iterator[Any]:
+    """A text file that appears at ``path`` complete or not at all (temp file + os.replace)."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or Path("."))
+    try:
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the file a normal file's mode
+        with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
+            yield f
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+def _junit_case(name: str, classname: str, failure: str | None, skipped: str | None) -> str:
+    head = f'    <testcase classname={quoteattr(classname)} name={quoteattr(name)} time="0"'
+    if failure is not None:
+        return f'{head}>\n      <failure message={quoteattr(failure)} type="pumplink">{escape(failure)}</failure>\n    </testcase>\n'
+    if skipped is not None:
+        return f'{head}>\n      <skipped message={quoteattr(skipped)}/>\n    </testcase>\n'
+    return f"{head}/>\n"
+
+
+def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequence[str]):
+    """(failure, skipped) message per variant: failures selected by --fail-on; infeasible
+    variants not selected are reported as skipped, other unselected failures pass."""
+    out = []
+    lim = cols["force_limit_N"]
+    for i in range(len(c)):
+        if not c.feasible[i]:
+            msg = f"infeasible: {c.reason[i]}"
+            out.append((msg, None) if "infeasible" in fail_on else (None, msg))
+            continue
+        bad = []
+        if "mean" in fail_on and not c.mean_ok[i]:
+            bad.append(f"mean force {cols['mean_force_N'][i]:.2f} N > limit {lim[i]:g} N")
+        if "peak" in fail_on and not c.peak_ok[i]:
+            pk = cols["peak_force_N"][i]
+            bad.append("peak force undefined (no crank angle outside the dead bands)" if pk is None
+                       else f"peak force {pk:.2f} N > limit {lim[i]:g} N")
+        out.append(("; ".join(bad) if bad else None, None))
+    return out
+
+
+# ----------------------------------------------------------------------------- progress
+@contextlib.contextmanager
+def progress(total: int, enabled: bool | None = None, delay: float = 1.0) -> Iterator[Callable[[int], None]]:
+    """``advance(n)`` for a Rich progress bar on stderr, shown only on a terminal and only once
+    the run has taken longer than ``delay`` seconds."""
+    if enabled is None:
+        enabled = sys.stderr.isatty()
+    state: dict[str, Any] = {"done": 0, "bar": None, "t0": time.monotonic()}
+
+    def advance(n: int) -> None:
+        state["done"] += n
+        if not enabled:
+            return
+        if state["bar"] is None and time.monotonic() - state["t0"] > delay:
+            from rich.console import Console
+            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+            bar = Progress(TextColumn("batch"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                           console=Console(stderr=True), transient=True)
+            bar.start()
+            state["bar"], state["task"] = bar, bar.add_task("batch", total=total)
+        if state["bar"] is not None:
+            state["bar"].update(state["task"], completed=state["done"])
+
+    try:
+        yield advance
+    finally:
+        if state["bar"] is not None:
+            state["bar"].stop()
+
+
+# ----------------------------------------------------------------------------- the stream
+def _new_summary(total: int, fail_on, samples, chunk) -> dict[str, Any]:
+    return {"variants": total, "pass": 0, "fail": 0, "infeasible": 0, "failed_selected": 0,
+            "fail_on": list(fail_on), "samples": samples, "chunk": f"{chunk[0]}/{chunk[1]}", "best": None}
+
+
+def _update_summary(s: dict, batch: Batch, c: Chunk, fail_on) -> None:
+    s["pass"] += int(c.passed.sum())
+    s["infeasible"] += int((~c.feasible).sum())
+    s["fail"] += int((c.feasible & ~c.passed).sum())
+    s["failed_selected"] += int(c.failed(fail_on).sum())
+    peak = np.where(np.isfinite(c.peak_force), c.peak_force, np.inf)
+    if peak.size:
+        i = int(np.argmin(peak))  # first of equal peaks: the lowest variant index wins ties
+        if math.isfinite(peak[i]) and (s["best"] is None or peak[i] < s["best"]["peak_force_N"]):
+            s["best"] = {"name": variant_name(batch, c.start + i), "peak_force_N": float(peak[i]),
+                         "mean_force_N": float(c.mean_force[i]), "pass": bool(c.passed[i])}
+
+
+def write_stream(batches: Sequence[Batch], results: Iterable[tuple[Chunk, dict]], total: int, fmt: str,
+                 out: Path | None, junit: Path | None, fail_on: Sequence[str], samples: int,
+                 chunk: tuple[int, int] = (1, 1), advance: Callable[[int], None] | None = None):
+    """Write the rendered chunks (from ``batch.run(..., post=render_chunk)``) as they come.
+
+    csv/json rows go to ``out`` (atomically) or stdout; JUnit to ``junit`` (atomically).
+    Returns (summary, table rows): with ``table`` the rows to show (all when ``total`` <=
+    :data:`TABLE_ROWS`, else up to that many failures).
+    """
+    summary = _new_summary(total, fail_on, samples, chunk)
+    table_rows: list[dict] = []
+    with contextlib.ExitStack() as stack:
+        data = None
+        if fmt in ("csv", "json"):
+            data = stack.enter_context(atomic_write(out)) if out is not None else sys.stdout
+        jfile = stack.enter_context(atomic_write(junit)) if junit is not None else None
+        suite = stack.enter_context(tempfile.TemporaryFile("w+", encoding="utf-8")) if junit is not None else None
+        counts = {"tests": 0, "failures": 0, "skipped": 0}
+        current = -1
+
+        def flush_suite():
+            if current < 0:
+                return
+            jfile.write(f'  <testsuite name={quoteattr(batches[current].source)} tests="{counts["tests"]}" '
+                        f'failures="{counts["failures"]}" errors="0" skipped="{counts["skipped"]}">\n')
+            suite.seek(0)
+            shutil.copyfileobj(suite, jfile)  # a finished suite's testcases, streamed from disk
+            jfile.write("  </testsuite>\n")
+            suite.seek(0)
+            suite.truncate()
+
+        if jfile is not None:
+            jfile.write('<?xml version="1.0" encoding="UTF-8"?>\n<testsuites name="pumplink batch">\n')
+        if fmt == "csv":
+            data.write(",".join(_csv_cell(x) for x in columns(batches)) + "\n")
+        pending = ""  # json: the previous row's trailing ",\n" is dropped before "]"
+        if fmt == "json":
+            data.write('{"variants": [\n')
+        for c, text in results:
+            b = batches[c.batch]
+            _update_summary(summary, b, c, fail_on)
+            if fmt == "csv":
+                data.write(text["data"])
+            elif fmt == "json" and len(c):
+                data.write(pending)
+                pending = text["data"]
+            elif fmt == "table" and len(table_rows) < TABLE_ROWS:
+                show = np.ones(len(c), bool) if total <= TABLE_ROWS else c.failed(fail_on)
+                pick = np.nonzero(show)[0][:TABLE_ROWS - len(table_rows)].tolist()
+                if pick:
+                    cc = chunk_columns(b, c)
+                    table_rows.extend({"name": cc["name"][i], **{k: cc[k][i] for k in FIXED_COLUMNS}} for i in pick)
+            if jfile is not None:
+                if c.batch != current:
+                    flush_suite()
+                    current = c.batch
+                    counts = {"tests": 0, "failures": 0, "skipped": 0}
+                cases, failures, skipped = text["junit"]
+                suite.write(cases)
+                counts["tests"] += len(c)
+                counts["failures"] += failures
+                counts["skipped"] += skipped
+            if advance is not None:
+                advance(len(c))
+        if fmt == "json":
+            data.write(pending.removesuffix(",\n") + ('\n' if pending else '') + '],\n"summary": '
+                       + json.dumps(summary, allow_nan=False, ensure_ascii=False) + "}\n")
+        if jfile is not None:
+            flush_suite()
+            jfile.write("</testsuites>\n")
+        if data is sys.stdout:
+            data.flush()
+    return summary, table_rows
+
+
+def summary_line(s: dict[str, Any], elapsed: float | None = None, wrote: Sequence[Path] = ()) -> str:
+    """One line for stderr: counts, best variant, what failed, what was written."""
+    best = s["best"]
+    best_txt = (f"; lowest peak {best['peak_force_N']:.1f} N: {best['name']}" if best else "; no feasible variant")
+    sel = ",".join(s["fail_on"]) or "none"
+    t = f" in {elapsed:.2f} s" if elapsed is not None else ""
+    w = f"; wrote {', '.join(map(str, wrote))}" if wrote else ""
+    chunk = f" (slice {s['chunk']})" if s["chunk"] != "1/1" else ""
+    return (f"batch: {s['variants']} variants{chunk}{t}: {s['pass']} pass, {s['fail']} fail, "
+            f"{s['infeasible']} infeasible; {s['failed_selected']} failing --fail-on {sel}{best_txt}{w}")
+
+
+def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
+    """``--format table``: the rows (or the failures of a large run) and the summary."""
+    from rich.table import Table
+
+    from pumplink.report import _f, console
+
+    out = out or sys.stdout
+    c = console(out)
+    if rows:
+        title = ("Batch variants" if s["variants"] <= TABLE_ROWS else
+                 f"Failing variants (first {len(rows)} of {s['failed_selected']}; all rows with --format csv --out FILE)")
+        t = Table(title=title, title_justify="left")
+        for h in ("variant", "crank l2 [m]", "coupler l3 [m]", "K", "γ min–max [deg]", "mean [N]", "peak [N]",
+                  "limit [N]", "power [W]", "result"):
+            t.add_column(h, justify="left" if h in ("variant", "result") else "right")
+        for r in rows:
+            if not r["feasible"]:
+                res = f"[red]infeasible[/]: {escape_markup(r['reason'])}"
+            else:
+                res = "[green]pass[/]" if r["pass"] else f"[red]FAIL[/] ({r['failed']})"
+            t.add_row(escape_markup(r["name"]), _f(r["crank_length"], "{:.4f}"), _f(r["coupler_length"], "{:.4f}"),
+                      _f(r["time_ratio"], "{:.4f}"),
+                      f"{_f(r['transmission_min_deg'], '{:.1f}')}–{_f(r['transmission_max_deg'], '{:.1f}')}",
+                      _f(r["mean_force_N"], "{:.1f}"), _f(r["peak_force_N"], "{:.1f}"), _f(r["force_limit_N"], "{:g}"),
+                      _f(r["power_W"], "{:.1f}"), res)
+        c.print(t)
+    best = s["best"]
+    c.print(f"{s['variants']} variants: [green]{s['pass']} pass[/], [red]{s['fail']} fail[/], "
+            f"{s['infeasible']} infeasible; {s['failed_selected']} failing --fail-on {','.join(s['fail_on']) or 'none'}")
+    if best:
+        c.print(f"lowest peak force: {escape_markup(best['name'])} — peak {best['peak_force_N']:.1f} N, "
+                f"mean {best['mean_force_N']:.1f} N ({'pass' if best['pass'] else 'FAIL'})")
+
+
+def escape_markup(text: str | None) -> str:
+    from rich.markup import escape as _esc
+
+    return _esc(text or "")

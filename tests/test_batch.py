@@ -1,0 +1,481 @@
+"""Batch runs (issue #4): batch files, the vectorised evaluation, `pumplink batch` end to end.
+
+The numbers of a batch are checked against `pumplink force --summary --format json` (and
+``force_analysis`` in-process) on the same variant, exactly: the per-design route is the
+independent reference.  CLI tests go through the real entry point (``python -m pumplink``).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+import tomllib
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pytest
+import tomli_w
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from pumplink import batch as B
+from pumplink import force as F
+from pumplink.analysis import force_analysis
+from pumplink.errors import SpecError
+from pumplink.kinematics import force_kernel, grid_directions, handle_force
+from pumplink.spec import parse_spec
+from pumplink.synthesis import Linkage, synthesize
+
+ROOT = Path(__file__).resolve().parents[1]
+CONFIGS = ROOT / "configs"
+GRID = CONFIGS / "grids" / "design-space.toml"
+PROTOTYPE = (CONFIGS / "prototype.toml").as_posix()
+
+
+def pumplink(*args, cwd=ROOT, **kw) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "pumplink", *map(str, args)], cwd=cwd, capture_output=True,
+                          text=True, timeout=120, **kw)
+
+
+def read_csv(text: str) -> list[dict[str, str]]:
+    return list(csv.DictReader(io.StringIO(text)))
+
+
+# A small batch whose outcome follows from a hand derivation: the prototype (L1 = 0.4) passes
+# with peak 85.8 N at 45 N rope force; the force is linear in the wheel torque (F = Mw / (dPx/dθ2),
+# NOTES.md §1), so at 80 N the peak is 85.8 * 80/45 = 152 N > 100 N while the mean
+# (35.3 N * 80/45 = 62.8 N) stays below; with L1 = 0 the frame line rises at
+# atan(0.2/0.05) = 76° > 90° - 30°, so psi2 < 0: no crank-rocker (NOTES.md §1).
+SMALL = f"""\
+name = "small"
+base = "{PROTOTYPE}"
+[vary]
+"linkage.L1" = [0.4, 0.0]
+"load.rope_force" = [45, 80]
+"""
+
+
+@pytest.fixture()
+def small(tmp_path) -> Path:
+    p = tmp_path / "small.toml"
+    p.write_text(SMALL)
+    return p
+
+
+@pytest.fixture(scope="module")
+def grid_csv() -> list[dict[str, str]]:
+    r = pumplink("batch", GRID, "--fail-on", "none", "--format", "csv")
+    assert r.returncode == 0, r.stderr
+    return read_csv(r.stdout)
+
+
+# ----------------------------------------------------------------------------- batch files
+def test_linspace_values_and_variant_names(tmp_path):
+    p = tmp_path / "t.toml"
+    p.write_text(f'base = "{PROTOTYPE}"\n[vary]\n"linkage.rocker" = {{ start = 0.2, stop = 0.3, num = 3 }}\n'
+                 f'"linkage.swing" = [40, 50]\n')
+    b = B.load_batch(p)
+    assert b.axes[0].values.tolist() == [0.2, 0.25, 0.3]  # what a user types, not 0.25000000000000006
+    assert b.size == 6
+    # itertools.product order, last axis fastest; names as documented in pumplink/batch.py
+    assert B.variant_names(b, 0, 6) == [
+        "t#0[rocker=0.2 swing=40]", "t#1[rocker=0.2 swing=50]", "t#2[rocker=0.25 swing=40]",
+        "t#3[rocker=0.25 swing=50]", "t#4[rocker=0.3 swing=40]", "t#5[rocker=0.3 swing=50]"]
+    assert [B.variant_name(b, i) for i in range(6)] == B.variant_names(b, 0, 6)
+    spec = B.variant_spec(b, 3)
+    assert spec["linkage"]["rocker"] == 0.25 and spec["linkage"]["swing"] == 50.0
+    assert spec["name"] == "t#3[rocker=0.25 swing=50]"
+
+
+def test_inline_base_and_ambiguous_short_keys(tmp_path):
+    p = tmp_path / "inline.toml"
+    base = tomllib.loads(Path(PROTOTYPE).read_text())
+    p.write_text(tomli_w.dumps({"name": "inl", "base": base,
+                                "vary": {"wheel.radius": [0.2, 0.25], "linkage.handle": [1.0]}}))
+    b = B.load_batch(p)
+    assert B.variant_names(b, 0, 2) == ["inl#0[radius=0.2 handle=1]", "inl#1[radius=0.25 handle=1]"]
+
+
+BAD_FILES = [
+    # (file text after the base line, what the one-line message must name)
+    ('[vary]\n"linkage.rockr" = [0.2]\n', "linkage.rockr"),
+    ('[vary]\n"pump.rocker" = [0.2]\n', "pump.rocker"),
+    ('[vary]\n"name" = [1.0]\n', "'name'"),
+    ('[vary]\n"linkage.rocker" = []\n', "linkage.rocker"),
+    ('[vary]\n"linkage.swing" = { start = 40, stop = 70, num = 0 }\n', "linkage.swing"),
+    ('[vary]\n"linkage.swing" = { start = 40, num = 7 }\n', "linkage.swing"),
+    ('[vary]\n"linkage.swing" = { start = 40, stop = 70, num = 2.5 }\n', "linkage.swing"),
+    ('[vary]\n"linkage.swing" = { start = "a", stop = 70, num = 3 }\n', "linkage.swing"),
+    ('[vary]\n"linkage.swing" = { start = 40, stop = 40, num = 3 }\n', "linkage.swing"),
+    ('[vary]\n"linkage.swing" = { start = 40, stop = 70, step = 5 }\n', "linkage.swing"),
+    ('[vary]\n"linkage.swing" = { start = 40, stop = 190, num = 4 }\n', "linkage.swing"),
+    ('[vary]\n"linkage.rocker" = ["0.2"]\n', "linkage.rocker"),
+    ('[vary]\n"linkage.rocker" = [true]\n', "linkage.rocker"),
+    ('[vary]\n"linkage.rocker" = 0.2\n', "linkage.rocker"),
+    ('[vary]\n"linkage.rocker" = [0.2, nan]\n', "linkage.rocker"),
+    ('[vary]\n"linkage.rocker" = [-0.1, 0.2]\n', "linkage.rocker"),
+    ('[vary]\n"load.head" = [10.0]\n', "load"),  # base has rope_force: both given
+    ("[vary]\n", "[vary]"),
+    ('varry = 1\n[vary]\n"linkage.rocker" = [0.2]\n', "varry"),
+    ('[vary\n"linkage.rocker" = [0.2]\n', "not valid TOML"),
+]
+
+
+@pytest.mark.parametrize("body,key", BAD_FILES)
+def test_bad_batch_files_name_the_key_in_one_line(tmp_path, body, key):
+    p = tmp_path / "bad.toml"
+    p.write_text(f'base = "{PROTOTYPE}"\n' + body)
+    with pytest.raises(SpecError) as exc:
+        B.load_batch(p)
+    msg = str(exc.value)
+    assert "\n" not in msg and key in msg and str(p) in msg
+
+
+@pytest.mark.parametrize("text,key", [
+    ('base = "nope.toml"\n[vary]\n"linkage.rocker" = [0.2]\n', "nope.toml"),
+    ('[vary]\n"linkage.rocker" = [0.2]\n', "'base'"),
+    ('base = 3\n[vary]\n"linkage.rocker" = [0.2]\n', "'base'"),
+    (f'base = "{PROTOTYPE}"\n', "[vary]"),
+    ('[base]\nname = "x"\n[vary]\n"linkage.rocker" = [0.2]\n', "wheel"),
+])
+def test_bad_base_names_the_key(tmp_path, text, key):
+    p = tmp_path / "bad.toml"
+    p.write_text(text)
+    with pytest.raises(SpecError, match=None) as exc:
+        B.load_batch(p)
+    assert key in str(exc.value) and "\n" not in str(exc.value)
+
+
+@pytest.mark.parametrize("args,key", [
+    (["BAD"], "linkage.rockr"),  # unknown spec path, through the real entry point
+    (["MISSING"], "nope.toml"),  # missing base file
+    (["EMPTYAXIS"], "linkage.rocker"),
+    (["SMALL", "--chunk", "0/3"], "--chunk"),
+    (["SMALL", "--chunk", "two/3"], "--chunk"),
+    (["SMALL", "--fail-on", "peak,bogus"], "bogus"),
+    (["SMALL", "--out", "x.csv"], "--out"),  # table output is not written to files
+    (["EMPTYDIR"], "no .toml"),
+])
+def test_cli_bad_input_exits_2_with_one_line(tmp_path, small, args, key):
+    (tmp_path / "bad.toml").write_text(f'base = "{PROTOTYPE}"\n[vary]\n"linkage.rockr" = [0.2]\n')
+    (tmp_path / "missing.toml").write_text('base = "nope.toml"\n[vary]\n"linkage.rocker" = [0.2]\n')
+    (tmp_path / "empty.toml").write_text(f'base = "{PROTOTYPE}"\n[vary]\n"linkage.rocker" = []\n')
+    (tmp_path / "emptydir").mkdir()
+    subst = {"BAD": tmp_path / "bad.toml", "MISSING": tmp_path / "missing.toml", "EMPTYAXIS": tmp_path / "empty.toml",
+             "SMALL": small, "EMPTYDIR": tmp_path / "emptydir"}
+    r = pumplink("batch", *[subst.get(a, a) for a in args], cwd=tmp_path)
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error:") and key in lines[0], r.stderr
+    assert r.stdout == "" and not (tmp_path / "x.csv").exists()
+
+
+# ----------------------------------------------------------------------------- numbers
+def test_handle_force_is_force_kernel_bit_for_bit():
+    rng = np.random.default_rng(7)
+    n = 400
+    syn = synthesize(rng.uniform(0, 0.7, n), rng.uniform(-0.3, 0.4, n), rng.uniform(0, 0.2, n),
+                     rng.uniform(0.1, 0.4, n), np.radians(rng.uniform(10, 120, n)), rng.uniform(0.5, 1.5, n))
+    ok = np.asarray(syn.feasible)
+    lk = Linkage(*(np.asarray(getattr(syn.linkage, f))[ok][:, None] for f in
+                   ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
+    mw = rng.uniform(1, 30, ok.sum())[:, None]
+    # a uniform sweep plus the exact dead centres (where both must give NaN)
+    cs, sn = grid_directions(720)
+    theta = np.concatenate([np.arctan2(sn, cs)[None, :].repeat(ok.sum(), 0),
+                            syn.dead_centre_extended[ok][:, None], syn.dead_centre_folded[ok][:, None]], axis=1)
+    ref = force_kernel(lk, np.cos(theta), np.sin(theta), mw)[2]
+    got = handle_force(lk, np.cos(theta), np.sin(theta), mw)
+    assert np.isnan(ref[:, -2:]).all()
+    assert np.array_equal(ref, got, equal_nan=True)
+    # scalars (the `pumplink force` path) too
+    one = Linkage(*(float(np.ravel(getattr(lk, f))[0]) for f in
+                    ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
+    t = np.linspace(0, 6, 50)
+    assert np.array_equal(force_kernel(one, np.cos(t), np.sin(t), 12.5)[2],
+                          handle_force(one, np.cos(t), np.sin(t), 12.5), equal_nan=True)
+
+
+def _sampled_reference(lk, samples, mw, dce, dcf, band):
+    """The per-design route of pumplink.force.sampled_peak, one design at a time."""
+    out = []
+    for i in range(len(mw)):
+        one = Linkage(*(np.float64(np.asarray(getattr(lk, f))[i]) for f in
+                        ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
+        out.append(F.sampled_peak(one, samples, float(mw[i]), dce[i], dcf[i], band[i])[0])
+    return np.array(out)
+
+
+def _feasible_designs(n, seed):
+    rng = np.random.default_rng(seed)
+    syn = synthesize(rng.uniform(0, 0.6, n), rng.uniform(-0.3, 0.4, n), np.full(n, 0.1), rng.uniform(0.1, 0.4, n),
+                     np.radians(rng.uniform(10, 120, n)), np.full(n, 1.0))
+    ok = np.asarray(syn.feasible)
+    lk = Linkage(*(np.asarray(getattr(syn.linkage, f))[ok] for f in
+                   ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
+    return lk, syn.dead_centre_extended[ok], syn.dead_centre_folded[ok], int(ok.sum())
+
+
+@pytest.mark.parametrize("samples", [1, 7, 63, 64, 97, 360, 1001, 5000])
+@pytest.mark.parametrize("band_deg", [0.0, 1.0, 20.0, 89.0])
+def test_sampled_peaks_equal_the_per_design_sweep(samples, band_deg):
+    lk, dce, dcf, m = _feasible_designs(120, samples)
+    mw = np.full(m, 12.0)
+    band = np.full(m, np.radians(band_deg))
+    got = B.sampled_peaks(lk, samples, mw, dce, dcf, band)
+    ref = _sampled_reference(lk, samples, mw, dce, dcf, band)
+    assert np.array_equal(got, ref, equal_nan=True)
+
+
+@settings(max_examples=60, deadline=None)
+@given(samples=st.integers(64, 5000), band=st.floats(0.0, 1.55), dc=st.lists(st.floats(0, 6.283185307179586),
+                                                                               min_size=2, max_size=2),
+       i0=st.integers(0, 4999), span=st.integers(1, 2000))
+def test_dead_band_mask_equals_in_dead_band(samples, band, dc, i0, span):
+    i0 = i0 % samples
+    i1 = min(samples, i0 + span)
+    e, f, b = (np.array([[v]]) for v in (dc[0], dc[1], band))
+    j = np.arange(i0, i1)
+    ref = F.in_dead_band(j * (2 * np.pi / samples), e, f, b)
+    assert np.array_equal(B._dead_band_mask(samples, i0, i1, e, f, b), ref)
+
+
+def test_random_variants_equal_force_analysis_exactly():
+    b = B.load_batch(GRID)
+    c = B.evaluate(b, 0, b.size, 360)
+    rng = random.Random(4)
+    picks = rng.sample(range(b.size), 250)
+    picks += [int(np.nonzero(~c.feasible)[0][0]), int(np.nonzero(c.feasible & ~c.passed)[0][0])]
+    for i in picks:
+        r = force_analysis(parse_spec(B.variant_spec(b, i)), samples=360, keep_samples=False)
+        s = r.design.synthesis
+        pairs = {"frame": (s.frame_length, c.frame_length[i]), "crank": (s.crank_length, c.crank_length[i]),
+                 "coupler": (s.coupler_length, c.coupler_length[i]), "K": (s.time_ratio, c.time_ratio[i]),
+                 "gmin": (s.transmission_min, c.transmission_min[i]), "gmax": (s.transmission_max, c.transmission_max[i]),
+                 "mean": (r.mean_force, c.mean_force[i]), "peak": (r.peak_force, c.peak_force[i]),
+                 "sampled": (r.sampled_peak, c.sampled_peak[i]), "power": (r.power, c.power[i])}
+        for what, (x, y) in pairs.items():
+            assert x == y or (math.isnan(x) and math.isnan(y)), (i, what, x, y)
+        assert r.passed == c.passed[i] and r.design.error == c.reason[i] and r.design.feasible == c.feasible[i]
+
+
+def test_random_variants_equal_pumplink_force_json(tmp_path, grid_csv):
+    """Rows of `pumplink batch --format csv` equal `pumplink force --summary --format json`."""
+    b = B.load_batch(GRID)
+    rows = {r["name"]: r for r in grid_csv}
+    assert len(rows) == b.size == 27216
+    rng = random.Random(11)
+    picks = rng.sample(range(b.size), 3)
+    picks.append(next(i for i, r in enumerate(grid_csv) if r["feasible"] == "False"))
+    picks.append(next(i for i, r in enumerate(grid_csv) if r["feasible"] == "True" and r["pass"] == "False"))
+    for i in picks:
+        spec = B.variant_spec(b, i)
+        row = rows[spec["name"]]
+        path = tmp_path / f"v{i}.toml"
+        path.write_text(tomli_w.dumps(spec))
+        r = pumplink("force", path, "--summary", "--format", "json", "--samples", 360)
+        assert r.returncode == (0 if row["pass"] == "True" else 1), r.stderr
+        got = json.loads(r.stdout)
+
+        def val(text):
+            return None if text == "" else float(text)
+
+        assert got["name"] == row["name"]
+        assert str(got["feasible"]) == row["feasible"] and (got["error"] or "") == row["reason"]
+        for key, col in (("frame_length", "frame_length"), ("crank_length", "crank_length"),
+                         ("coupler_length", "coupler_length"), ("time_ratio", "time_ratio"),
+                         ("mean_force_N", "mean_force_N"), ("peak_force_N", "peak_force_N"),
+                         ("sampled_peak_force_N", "sampled_peak_force_N"), ("power_W", "power_W"),
+                         ("force_limit_N", "force_limit_N")):
+            assert got[key] == val(row[col]), (i, key)
+        tr = got["transmission_angle_deg"]
+        assert (tr["min"], tr["max"]) == (val(row["transmission_min_deg"]), val(row["transmission_max_deg"]))
+        assert str(got["pass"]) == row["pass"]
+
+
+# ----------------------------------------------------------------------------- CLI
+def test_configs_folder_passes_as_in_ci(tmp_path):
+    """The CI recipe: `pumplink batch configs/ --junit report.xml` exits 0 with every design."""
+    junit = tmp_path / "report.xml"
+    r = pumplink("batch", "configs/", "--junit", junit)
+    assert r.returncode == 0, r.stdout + r.stderr
+    # expected test count, counted here from the files themselves
+    expected = 0
+    for f in sorted(CONFIGS.glob("*.toml")):
+        data = tomllib.loads(f.read_text())
+        expected += math.prod(len(v) if isinstance(v, list) else v["num"] for v in data["vary"].values()) \
+            if "vary" in data else 1
+    root = ET.parse(junit).getroot()
+    cases = root.findall(".//testcase")
+    assert len(cases) == expected >= 4
+    assert sum(int(s.get("tests")) for s in root) == expected
+    assert not root.findall(".//failure") and all(s.get("failures") == "0" for s in root)
+    assert not any("grids" in s.get("name") for s in root)  # the exploration grid is not a CI gate
+    assert f"{expected} variants: {expected} pass" in r.stdout
+
+
+@pytest.mark.parametrize("fail_on,code,failures,skipped", [
+    ("mean,peak,infeasible", 1, 3, 0),
+    ("none", 0, 0, 2),
+    ("mean", 0, 0, 2),
+    ("peak", 1, 1, 2),
+    ("infeasible", 1, 2, 0),
+])
+def test_fail_on_selects_exit_code_and_junit(tmp_path, small, fail_on, code, failures, skipped):
+    junit = tmp_path / "r.xml"
+    r = pumplink("batch", small, "--fail-on", fail_on, "--format", "csv", "--junit", junit)
+    assert r.returncode == code, r.stderr
+    rows = read_csv(r.stdout)
+    assert [x["name"] for x in rows] == ["small#0[L1=0.4 rope_force=45]", "small#1[L1=0.4 rope_force=80]",
+                                         "small#2[L1=0 rope_force=45]", "small#3[L1=0 rope_force=80]"]
+    assert [x["pass"] for x in rows] == ["True", "False", "False", "False"]
+    assert [x["failed"] for x in rows] == ["", "peak", "infeasible", "infeasible"]
+    assert [x["feasible"] for x in rows] == ["True", "True", "False", "False"]
+    assert "psi2" in rows[2]["reason"]
+    assert float(rows[1]["peak_force_N"]) == pytest.approx(float(rows[0]["peak_force_N"]) * 80 / 45, rel=1e-12)
+    root = ET.parse(junit).getroot()
+    assert len(root.findall(".//failure")) == failures and len(root.findall(".//skipped")) == skipped
+    assert "1 pass, 1 fail, 2 infeasible" in r.stderr
+
+
+def test_json_rows_and_summary(small):
+    r = pumplink("batch", small, "--format", "json", "--fail-on", "none")
+    assert r.returncode == 0
+    d = json.loads(r.stdout)
+    v = d["variants"]
+    assert len(v) == 4 and v[0]["vary"] == {"linkage.L1": 0.4, "load.rope_force": 45.0}
+    assert v[2]["peak_force_N"] is None and v[2]["feasible"] is False
+    s = d["summary"]
+    assert (s["variants"], s["pass"], s["fail"], s["infeasible"]) == (4, 1, 1, 2)
+    best = min((x for x in v if x["peak_force_N"] is not None), key=lambda x: x["peak_force_N"])
+    assert s["best"]["name"] == best["name"] == "small#0[L1=0.4 rope_force=45]"
+
+
+def test_chunks_partition_the_run():
+    batches = B.load_inputs([CONFIGS, GRID])
+    total = sum(b.size for b in batches)
+    for n in (1, 2, 3, 7, 40):
+        got = [(i, s, e) for k in range(1, n + 1) for (i, s, e) in B.plan(batches, (k, n), designs=1000)]
+        seen = [(i, j) for i, s, e in got for j in range(s, e)]
+        assert seen == [(i, j) for i, b in enumerate(batches) for j in range(b.size)] and len(seen) == total
+
+
+def test_chunk_union_equals_full_run(tmp_path):
+    full = pumplink("batch", "configs/", GRID, "--fail-on", "none", "--format", "csv", "--samples", 90)
+    assert full.returncode == 0, full.stderr
+    parts = []
+    for k in (1, 2, 3):
+        out = tmp_path / f"part{k}.csv"
+        r = pumplink("batch", "configs/", GRID, "--fail-on", "none", "--format", "csv", "--samples", 90,
+                     "--chunk", f"{k}/3", "--out", out)
+        assert r.returncode == 0, r.stderr
+        assert f"(slice {k}/3)" in r.stderr
+        parts.append(out.read_text().splitlines())
+    header = full.stdout.splitlines()[0]
+    assert all(p[0] == header for p in parts)
+    assert sum((p[1:] for p in parts), []) == full.stdout.splitlines()[1:]
+    assert all(len(p) > 1 for p in parts)
+
+
+def test_workers_give_the_same_rows(tmp_path):
+    outs = []
+    for w in (1, 2):
+        out = tmp_path / f"w{w}.csv"
+        r = pumplink("batch", GRID, "--fail-on", "none", "--format", "csv", "--out", out, "--workers", w,
+                     "--samples", 60)
+        assert r.returncode == 0, r.stderr
+        outs.append(out.read_bytes())
+    assert outs[0] == outs[1] and outs[0].count(b"\n") == 27216 + 1
+
+
+def test_no_progress_bar_or_colour_when_stderr_is_not_a_terminal(small):
+    r = pumplink("batch", small, "--format", "csv", "--fail-on", "none")
+    assert r.stderr.count("\n") == 1 and r.stderr.startswith("batch: 4 variants") and "\x1b" not in r.stderr
+
+
+# ----------------------------------------------------------------------------- atomic outputs
+def _leftovers(folder: Path) -> list[str]:
+    return sorted(p.name for p in folder.iterdir() if p.name.endswith(".tmp"))
+
+
+@pytest.mark.parametrize("exc", [KeyboardInterrupt, RuntimeError])
+def test_interrupted_stream_leaves_no_partial_file(tmp_path, monkeypatch, exc):
+    from pumplink import report_batch as rb
+
+    batches = B.load_inputs([GRID])
+    out, junit = tmp_path / "rows.csv", tmp_path / "r.xml"
+    junit.write_text("previous complete report\n")
+    real = B.evaluate
+    calls = []
+
+    def flaky(*a, **k):
+        calls.append(1)
+        if len(calls) == 3:  # two chunks already written to the temp files
+            raise exc("injected mid-stream")
+        return real(*a, **k)
+
+    monkeypatch.setattr(B, "evaluate", flaky)
+    post = lambda b, c: rb.render_chunk(b, c, "csv", rb.varied_keys(batches), B.FAIL_CHECKS, True)  # noqa: E731
+    with pytest.raises(exc):
+        rb.write_stream(batches, B.run(batches, 30, post=post), 27216, "csv", out, junit, B.FAIL_CHECKS, 30)
+    assert len(calls) == 3
+    assert not out.exists()
+    assert junit.read_text() == "previous complete report\n"  # the old file is untouched
+    assert _leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("sig,workers,group", [(signal.SIGINT, 1, False), (signal.SIGTERM, 2, False),
+                                               (signal.SIGINT, 2, True), (signal.SIGTERM, 2, True)])
+def test_killed_run_leaves_no_partial_file(tmp_path, sig, workers, group):
+    """Ctrl-C (SIGINT to the process group) or a CI runner's SIGTERM (to the process, or the
+    group with the workers) mid-stream: exit 130, no output file and no temp file."""
+    grid = tmp_path / "big.toml"
+    grid.write_text(f'base = "{PROTOTYPE}"\n[vary]\n"linkage.rocker" = {{ start = 0.15, stop = 0.3, num = 100 }}\n'
+                    f'"linkage.swing" = {{ start = 40, stop = 80, num = 100 }}\n"load.rope_force" = [30, 40, 50, 60, 70, 80]\n')
+    out = tmp_path / "rows.csv"
+    p = subprocess.Popen([sys.executable, "-m", "pumplink", "batch", grid, "--format", "csv", "--out", out,
+                          "--junit", tmp_path / "r.xml", "--samples", "4000", "--workers", str(workers)],
+                         cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         start_new_session=group)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline:  # wait until rows are being written to the temp file
+        tmp = [f for f in tmp_path.iterdir() if f.name.startswith(".rows.csv.") and f.stat().st_size > 20_000]
+        if tmp or p.poll() is not None:
+            break
+        time.sleep(0.05)
+    assert p.poll() is None, "the run finished before it could be interrupted"
+    if group:
+        os.killpg(p.pid, sig)
+    else:
+        p.send_signal(sig)
+    _, err = p.communicate(timeout=60)
+    assert p.returncode == 130, err
+    assert "interrupted" in err and "Traceback" not in err
+    assert not out.exists() and not (tmp_path / "r.xml").exists()
+    assert _leftovers(tmp_path) == []
+
+
+def test_csv_and_json_carry_the_same_rows():
+    rc = pumplink("batch", "configs/", GRID, "--format", "csv", "--fail-on", "none", "--samples", 30)
+    rj = pumplink("batch", "configs/", GRID, "--format", "json", "--fail-on", "none", "--samples", 30)
+    assert rc.returncode == rj.returncode == 0
+    rows, variants = read_csv(rc.stdout), json.loads(rj.stdout)["variants"]
+    assert len(rows) == len(variants) == 27216 + 11
+    for i in list(range(12)) + list(range(12, len(rows), 997)):  # every standard design, a spread of the grid
+        r, v = rows[i], variants[i]
+        assert (r["name"], r["source"]) == (v["name"], v["source"])  # names with commas are quoted
+        assert {k: float(x) for k, x in r.items() if "." in k and x} == v["vary"]
+        for k in ("frame_length", "crank_length", "mean_force_N", "peak_force_N", "sampled_peak_force_N", "power_W",
+                  "transmission_min_deg", "time_ratio", "force_limit_N"):
+            assert (None if r[k] == "" else float(r[k])) == v[k], (i, k)
+        assert (r["feasible"], r["pass"], r["reason"], r["failed"]) == (
+            str(v["feasible"]), str(v["pass"]), v["reason"] or "", v["failed"])
