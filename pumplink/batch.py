@@ -33,7 +33,7 @@ import numpy as np
 
 from pumplink import force as _force
 from pumplink.errors import SpecError
-from pumplink.kinematics import grid_directions, handle_force
+from pumplink.kinematics import force_kernel, kernel_work, offset_table
 from pumplink.spec import GRAVITY, WATER_DENSITY, PumpSpec, load_spec, parse_spec, spec_to_dict
 from pumplink.synthesis import Linkage, infeasibility_reason, synthesize
 
@@ -46,8 +46,11 @@ MAX_VARIANTS = 10**15
 #: Crank samples evaluated at once (designs x angles) in the sampled sweep; bounds the kernel's
 #: temporaries (about 10 arrays of this many float64 values, ~20 MB) whatever --samples is.
 SAMPLE_BLOCK = 262_144
-#: Designs per chunk (rows handed to the writer at once, one task for a worker process).
+#: Most designs per chunk (rows handed to the writer at once, one task for a worker process).
 CHUNK_DESIGNS = 8192
+#: Crank samples per chunk: fewer designs per chunk at large --samples, so a task stays short
+#: (an interrupted run waits for the running tasks) and its rows arrive steadily.
+TASK_SAMPLES = 3_000_000
 #: Designs swept together inside a chunk for the sampled peak: small enough that the kernel's
 #: temporaries (designs x 360 samples) stay in the CPU cache.
 SUB_DESIGNS = 128
@@ -445,61 +448,56 @@ def rope_force(batch: Batch, cols: dict[str, np.ndarray], n: int) -> np.ndarray:
     return WATER_DENSITY * GRAVITY * head * np.pi * (d * d) / 4.0 / eff  # NOTES.md §4
 
 
-def _dead_band_mask(samples: int, i0: int, i1: int, dce, dcf, band) -> np.ndarray:
-    """``pumplink.force.in_dead_band`` of the uniform crank samples i0..i1-1, shape (designs, i1-i0).
-
-    Bit-for-bit the same booleans, cheaper: each dead band is a contiguous (circular) run of
-    sample indices, so the run found from ``dead centre / step +- band / step`` is filled by
-    integer comparisons, and only the 5 samples at each end of it, where rounding can decide,
-    are evaluated with ``in_dead_band`` itself.  dce, dcf, band: shape (designs, 1) [rad].
-    """
-    step = _force.TWO_PI / samples
-    j = np.arange(i0, i1)
-    if samples < 64:  # bands may wrap onto themselves: evaluate every sample
-        return _force.in_dead_band(j * step, dce, dcf, band)
-    half = band / step
-    mask = np.zeros((dce.shape[0], j.size), bool)
-    edges = []
-    for dc in (dce, dcf):
-        centre = dc / step
-        lo = np.floor(centre - half).astype(np.int64) - 2  # superset of the run, ends inside +-2
-        hi = np.ceil(centre + half).astype(np.int64) + 2
-        wrap = np.mod(lo, samples) > np.mod(hi, samples)
-        mask |= ((j >= np.mod(lo, samples)) ^ (j > np.mod(hi, samples))) ^ wrap
-        edges += [lo + np.arange(5), hi - np.arange(5)]
-    idx = np.mod(np.concatenate(edges, axis=1), samples)  # (designs, 20) samples near the ends
-    exact = _force.in_dead_band(idx * step, dce, dcf, band)  # the same angles as j * step
-    rows, cols = np.nonzero((idx >= i0) & (idx < i1))
-    mask[rows, idx[rows, cols] - i0] = exact[rows, cols]
-    return mask
+#: Samples per angle-addition block of :func:`pumplink.force.sampled_peak` (its ``chunk``): the
+#: directions of samples j0 + m * SWEEP_BLOCK + i are built from the table entry i and the
+#: block's base angle, and must be built the same way here to give the same bits.
+SWEEP_BLOCK = 8192
 
 
 def sampled_peaks(lk: Linkage, samples: int, wheel_torque, dce, dcf, band) -> np.ndarray:
-    """Largest |force| over a uniform sweep of ``samples`` crank angles outside the dead bands,
-    per design (1-D arrays over designs) [N]; NaN where no sample is outside.
+    """Largest |force| over the uniform sweep of ``samples`` crank angles strictly outside the
+    dead bands, per design (1-D arrays over designs) [N]; NaN where no sample is.
 
-    The vectorised form of :func:`pumplink.force.sampled_peak`: the same angles
-    (``grid_directions``), the same force values (``handle_force`` is ``force_kernel``'s force
-    bit for bit), the same dead-band test; streamed in blocks of about :data:`SAMPLE_BLOCK`
-    designs x angles.
+    The vectorised form of :func:`pumplink.force.sampled_peak`, bit for bit: the same samples
+    (those strictly inside the two windows between the dead bands), the same directions (angle
+    addition from the same table and block bases), the same kernel (``force_kernel``); blocks
+    of about :data:`SAMPLE_BLOCK` designs x samples, so memory is bounded for any ``samples``.
     """
     n_designs = np.shape(wheel_torque)[0]
+    out = np.full(n_designs, np.nan)
     if samples <= 0 or n_designs == 0:
-        return np.full(n_designs, np.nan)
-    g = Linkage(*(np.asarray(v, float)[:, None] for v in (
-        lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch)))
-    mw, e, f, b = (np.asarray(v, float)[:, None] for v in (wheel_torque, dce, dcf, band))
+        return out
+    step = _force.TWO_PI / samples
+    start, length = _force._windows(np.asarray(dce, float), np.asarray(dcf, float), np.asarray(band, float))
+    j0 = np.floor(start / step).astype(np.int64) + 1  # first sample strictly inside each window
+    j1 = np.ceil((start + length) / step).astype(np.int64) - 1  # last one
+    count = np.where(length > 0, np.maximum(j1 - j0 + 1, 0), 0)  # (D, 2)
+    table = offset_table(step, SWEEP_BLOCK)
+    geom = [np.asarray(v, float)[:, None, None] for v in (
+        lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch, wheel_torque)]
     best = np.full(n_designs, -np.inf)
-    block = max(1, SAMPLE_BLOCK // n_designs)
-    for i0 in range(0, samples, block):
-        i1 = min(samples, i0 + block)
-        cs, sn = grid_directions(samples, i0, i1)
-        val = handle_force(g, cs, sn, mw)
-        np.abs(val, out=val)
-        np.copyto(val, -np.inf, where=_dead_band_mask(samples, i0, i1, e, f, b))
-        np.fmax(best, np.fmax.reduce(val, axis=1), out=best)  # fmax: NaN (dead centre) counts as -inf
-    with np.errstate(invalid="ignore"):
-        return np.where(np.isfinite(best), best, np.nan)
+    work = None
+    width = int(count.max())
+    span = max(1, min(SWEEP_BLOCK, SAMPLE_BLOCK // (2 * n_designs)))  # samples per window per pass
+    for m0 in range(0, width, span):
+        # offsets m0..m0+span-1 into each window: block m = offset // SWEEP_BLOCK, entry = offset % SWEEP_BLOCK
+        off = m0 + np.arange(min(span, width - m0))
+        blk, entry = off // SWEEP_BLOCK, off % SWEEP_BLOCK
+        base = (j0[..., None] + blk * SWEEP_BLOCK) * step  # (D, 2, L): the block's base angle a * step
+        cb, sb = np.cos(base), np.sin(base)
+        co, so = table[0][entry], table[1][entry]
+        cs = co * cb
+        cs -= so * sb  # cos(a + b) as in shifted_directions
+        sn = co * sb
+        sn += so * cb
+        if work is None or work.shape[1:] != cs.shape:
+            work = kernel_work(cs.shape)  # scratch reused across passes
+        f = np.abs(force_kernel(Linkage(*geom[:7]), cs, sn, geom[7], work)[2])
+        f[(off >= count[..., None]) | np.isnan(f)] = -np.inf  # beyond the window; a dead centre
+        np.maximum(best, f.max(axis=(1, 2)), out=best)
+    found = best > -np.inf
+    out[found] = best[found]
+    return out
 
 
 def evaluate(batch: Batch, start: int, stop: int, samples: int = 360, batch_index: int = 0) -> Chunk:
@@ -600,7 +598,10 @@ def _init_worker(batches: Sequence[Batch]) -> None:
 
     global _worker_batches
     _worker_batches = batches
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C and cleans up
+    # The parent handles Ctrl-C and SIGTERM (sent to the whole process group by a terminal or a
+    # CI runner): it cancels the queued chunks and the workers exit after their current one.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
 
 
 def _evaluate_one(batches: Sequence[Batch], task: tuple[int, int, int], samples: int, post):
@@ -614,7 +615,7 @@ def _task(task: tuple[int, int, int], samples: int, post):
 
 
 def run(batches: Sequence[Batch], samples: int = 360, chunk: tuple[int, int] = (1, 1), workers: int = 1,
-        designs: int = CHUNK_DESIGNS, post: Callable[[Batch, Chunk], Any] | None = None) -> Iterator[tuple[Chunk, Any]]:
+        designs: int | None = None, post: Callable[[Batch, Chunk], Any] | None = None) -> Iterator[tuple[Chunk, Any]]:
     """Evaluate slice ``chunk`` of the run, yielding ``(Chunk, post(batch, chunk))`` in variant order.
 
     With ``workers`` > 1 the chunks are evaluated by that many processes
@@ -622,6 +623,8 @@ def run(batches: Sequence[Batch], samples: int = 360, chunk: tuple[int, int] = (
     bounded whatever the grid size.  ``post`` (a picklable module-level function, e.g. the row
     formatting) runs in the worker too, so it is parallel as well.
     """
+    if designs is None:  # about TASK_SAMPLES crank samples per task, whatever --samples is
+        designs = max(64, min(CHUNK_DESIGNS, TASK_SAMPLES // max(samples, 1)))
     tasks = plan(batches, chunk, designs)
     if workers <= 1 or len(tasks) <= 1:
         for t in tasks:
@@ -646,13 +649,8 @@ def run(batches: Sequence[Batch], samples: int = 360, chunk: tuple[int, int] = (
             if nxt is not None:
                 pending.append(pool.submit(_task, nxt, samples, post))
             yield result
-    except BaseException:  # Ctrl-C, SIGTERM, an error: stop the workers now, not after their chunks
-        stop = getattr(pool, "kill_workers", None)  # Python >= 3.14
-        if stop is not None:
-            stop()
-        else:
-            for proc in list((getattr(pool, "_processes", None) or {}).values()):
-                proc.kill()
-        raise
     finally:
+        # Ctrl-C, SIGTERM or an error: drop the queued chunks and let the running ones finish
+        # (tasks are sized to take well under a second at ordinary --samples).  Killing a worker
+        # instead can cut a result message in half and leave the pool's reader thread blocked.
         pool.shutdown(wait=True, cancel_futures=True)

@@ -24,14 +24,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 import tomli_w
-from hypothesis import given, settings
-from hypothesis import strategies as st
 
 from pumplink import batch as B
 from pumplink import force as F
 from pumplink.analysis import force_analysis
 from pumplink.errors import SpecError
-from pumplink.kinematics import force_kernel, grid_directions, handle_force
 from pumplink.spec import parse_spec
 from pumplink.synthesis import Linkage, synthesize
 
@@ -180,31 +177,6 @@ def test_cli_bad_input_exits_2_with_one_line(tmp_path, small, args, key):
 
 
 # ----------------------------------------------------------------------------- numbers
-def test_handle_force_is_force_kernel_bit_for_bit():
-    rng = np.random.default_rng(7)
-    n = 400
-    syn = synthesize(rng.uniform(0, 0.7, n), rng.uniform(-0.3, 0.4, n), rng.uniform(0, 0.2, n),
-                     rng.uniform(0.1, 0.4, n), np.radians(rng.uniform(10, 120, n)), rng.uniform(0.5, 1.5, n))
-    ok = np.asarray(syn.feasible)
-    lk = Linkage(*(np.asarray(getattr(syn.linkage, f))[ok][:, None] for f in
-                   ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
-    mw = rng.uniform(1, 30, ok.sum())[:, None]
-    # a uniform sweep plus the exact dead centres (where both must give NaN)
-    cs, sn = grid_directions(720)
-    theta = np.concatenate([np.arctan2(sn, cs)[None, :].repeat(ok.sum(), 0),
-                            syn.dead_centre_extended[ok][:, None], syn.dead_centre_folded[ok][:, None]], axis=1)
-    ref = force_kernel(lk, np.cos(theta), np.sin(theta), mw)[2]
-    got = handle_force(lk, np.cos(theta), np.sin(theta), mw)
-    assert np.isnan(ref[:, -2:]).all()
-    assert np.array_equal(ref, got, equal_nan=True)
-    # scalars (the `pumplink force` path) too
-    one = Linkage(*(float(np.ravel(getattr(lk, f))[0]) for f in
-                    ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
-    t = np.linspace(0, 6, 50)
-    assert np.array_equal(force_kernel(one, np.cos(t), np.sin(t), 12.5)[2],
-                          handle_force(one, np.cos(t), np.sin(t), 12.5), equal_nan=True)
-
-
 def _sampled_reference(lk, samples, mw, dce, dcf, band):
     """The per-design route of pumplink.force.sampled_peak, one design at a time."""
     out = []
@@ -225,7 +197,7 @@ def _feasible_designs(n, seed):
     return lk, syn.dead_centre_extended[ok], syn.dead_centre_folded[ok], int(ok.sum())
 
 
-@pytest.mark.parametrize("samples", [1, 7, 63, 64, 97, 360, 1001, 5000])
+@pytest.mark.parametrize("samples", [1, 7, 64, 97, 360, 1001, 20000])
 @pytest.mark.parametrize("band_deg", [0.0, 1.0, 20.0, 89.0])
 def test_sampled_peaks_equal_the_per_design_sweep(samples, band_deg):
     lk, dce, dcf, m = _feasible_designs(120, samples)
@@ -234,19 +206,6 @@ def test_sampled_peaks_equal_the_per_design_sweep(samples, band_deg):
     got = B.sampled_peaks(lk, samples, mw, dce, dcf, band)
     ref = _sampled_reference(lk, samples, mw, dce, dcf, band)
     assert np.array_equal(got, ref, equal_nan=True)
-
-
-@settings(max_examples=60, deadline=None)
-@given(samples=st.integers(64, 5000), band=st.floats(0.0, 1.55), dc=st.lists(st.floats(0, 6.283185307179586),
-                                                                               min_size=2, max_size=2),
-       i0=st.integers(0, 4999), span=st.integers(1, 2000))
-def test_dead_band_mask_equals_in_dead_band(samples, band, dc, i0, span):
-    i0 = i0 % samples
-    i1 = min(samples, i0 + span)
-    e, f, b = (np.array([[v]]) for v in (dc[0], dc[1], band))
-    j = np.arange(i0, i1)
-    ref = F.in_dead_band(j * (2 * np.pi / samples), e, f, b)
-    assert np.array_equal(B._dead_band_mask(samples, i0, i1, e, f, b), ref)
 
 
 def test_random_variants_equal_force_analysis_exactly():
