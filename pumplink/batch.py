@@ -23,6 +23,7 @@ force --summary``) on the same variant: the same kernels, vectorised over design
 from __future__ import annotations
 
 import difflib
+import functools
 import math
 import tomllib
 from dataclasses import dataclass
@@ -454,6 +455,12 @@ def rope_force(batch: Batch, cols: dict[str, np.ndarray], n: int) -> np.ndarray:
 SWEEP_BLOCK = 8192
 
 
+@functools.lru_cache(maxsize=8)
+def _offset_table(samples: int):
+    """``offset_table(2 pi / samples, SWEEP_BLOCK)``, computed once per sample count."""
+    return offset_table(_force.TWO_PI / samples, SWEEP_BLOCK)
+
+
 def sampled_peaks(lk: Linkage, samples: int, wheel_torque, dce, dcf, band) -> np.ndarray:
     """Largest |force| over the uniform sweep of ``samples`` crank angles strictly outside the
     dead bands, per design (1-D arrays over designs) [N]; NaN where no sample is.
@@ -472,7 +479,7 @@ def sampled_peaks(lk: Linkage, samples: int, wheel_torque, dce, dcf, band) -> np
     j0 = np.floor(start / step).astype(np.int64) + 1  # first sample strictly inside each window
     j1 = np.ceil((start + length) / step).astype(np.int64) - 1  # last one
     count = np.where(length > 0, np.maximum(j1 - j0 + 1, 0), 0)  # (D, 2)
-    table = offset_table(step, SWEEP_BLOCK)
+    table = _offset_table(samples)
     geom = [np.asarray(v, float)[:, None, None] for v in (
         lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch, wheel_torque)]
     best = np.full(n_designs, -np.inf)
@@ -483,8 +490,9 @@ def sampled_peaks(lk: Linkage, samples: int, wheel_torque, dce, dcf, band) -> np
         # offsets m0..m0+span-1 into each window: block m = offset // SWEEP_BLOCK, entry = offset % SWEEP_BLOCK
         off = m0 + np.arange(min(span, width - m0))
         blk, entry = off // SWEEP_BLOCK, off % SWEEP_BLOCK
-        base = (j0[..., None] + blk * SWEEP_BLOCK) * step  # (D, 2, L): the block's base angle a * step
-        cb, sb = np.cos(base), np.sin(base)
+        ublk, inv = np.unique(blk, return_inverse=True)  # one or two blocks per pass
+        base = (j0[..., None] + ublk * SWEEP_BLOCK) * step  # (D, 2, U): the block's base angle a * step
+        cb, sb = np.cos(base)[..., inv], np.sin(base)[..., inv]
         co, so = table[0][entry], table[1][entry]
         cs = co * cb
         cs -= so * sb  # cos(a + b) as in shifted_directions
