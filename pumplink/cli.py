@@ -425,6 +425,10 @@ def batch(
     k_n = _batch.parse_chunk(chunk)
     if fmt.value == "table" and out is not None:
         raise SpecError("--out writes rows: give --format csv or --format json with it")
+    for opt, path in (("--out", out), ("--junit", junit)):  # before any work: fail fast, exit 2
+        if path is not None and (path.is_dir() or not path.parent.is_dir()):
+            raise SpecError(f"{opt} {path}: " + ("is a folder; give a file name" if path.is_dir() else
+                                                 f"folder {path.parent} does not exist"))
     batches = _batch.load_inputs(inputs)
     tasks = _batch.plan(batches, k_n)
     total = sum(e - s for _, s, e in tasks)

@@ -23,6 +23,7 @@ from xml.sax.saxutils import escape, quoteattr
 import numpy as np
 
 from pumplink.batch import Batch, Chunk, variant_name, variant_names
+from pumplink.errors import SpecError
 
 #: Per-variant columns after the name, the source and the varied keys (CSV order).
 FIXED_COLUMNS = (
@@ -175,7 +176,13 @@ def render_chunk(batch: Batch, c: Chunk, fmt: str, vkeys: Sequence[str], fail_on
 def atomic_write(path: Path) -> Iterator[Any]:
     """A text file that appears at ``path`` complete or not at all (temp file + os.replace)."""
     path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or Path("."))
+    if path.is_dir():
+        raise SpecError(f"{path}: is a folder; give a file name to write")
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    except OSError as exc:
+        raise SpecError(f"{path}: cannot be written ({exc.strerror}); check that the folder "
+                        f"{path.parent} exists and is writable") from None
     try:
         umask = os.umask(0)
         os.umask(umask)

@@ -161,6 +161,8 @@ def test_bad_base_names_the_key(tmp_path, text, key):
     (["SMALL", "--fail-on", "peak,bogus"], "bogus"),
     (["SMALL", "--out", "x.csv"], "--out"),  # table output is not written to files
     (["EMPTYDIR"], "no .toml"),
+    (["SMALL", "--format", "csv", "--out", "no-such-folder/x.csv"], "no-such-folder"),
+    (["SMALL", "--junit", "EMPTYDIR"], "is a folder"),
 ])
 def test_cli_bad_input_exits_2_with_one_line(tmp_path, small, args, key):
     (tmp_path / "bad.toml").write_text(f'base = "{PROTOTYPE}"\n[vary]\n"linkage.rockr" = [0.2]\n')
