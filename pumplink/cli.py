@@ -7,6 +7,7 @@ Heavy imports (numpy, pydantic, scipy) happen inside the commands so ``--help`` 
 
 from __future__ import annotations
 
+import signal
 import sys
 from enum import Enum
 from pathlib import Path
@@ -462,6 +463,8 @@ def batch(
 
 def main() -> None:
     """Console-script entry point: PumplinkError -> one line on stderr and its exit code."""
+    if hasattr(signal, "SIGPIPE"):  # `pumplink ... | head` ends quietly, like any Unix filter (not exit 1)
+        signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     for stream in (sys.stdout, sys.stderr):  # a non-UTF-8 terminal or pipe gets '?' for θ, ±, ∞, not a crash
         if hasattr(stream, "reconfigure"):
             stream.reconfigure(errors="replace")
