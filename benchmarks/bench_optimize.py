@@ -7,6 +7,7 @@ Run: .venv/bin/python benchmarks/bench_optimize.py   (or `make bench`)
 
 import math
 import statistics
+import tomllib
 import time
 from pathlib import Path
 
@@ -32,6 +33,8 @@ def main():
     t, _ = median_time(lambda: optimal_crank_rocker(1.1818, math.radians(40), 50.0), 5)
     print(f"transmission optimum (seed 001 example): median {t * 1e3:.1f} ms")
     for path in sorted((ROOT / "configs").glob("*.toml")):
+        if "vary" in tomllib.loads(path.read_text(encoding="utf-8")):
+            continue  # a batch file of variants, not a single spec
         spec = load_spec(path)
         problem = make_problem(spec)
         t, res = median_time(lambda: optimize(problem, seed=0))
