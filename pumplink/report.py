@@ -185,7 +185,7 @@ def render_designs(designs: list[Design], fmt: str, out=None) -> None:
 def _bar(value, limit, width=20) -> str:
     if value is None or not math.isfinite(value):
         return "[red]" + "▶" * width + "[/]"
-    n = min(width, int(round(abs(value) / limit * width / 1.5)))
+    n = int(round(min(float(width), abs(value) / limit * width / 1.5)))  # full bar at 1.5x the limit
     mark = "█" * n
     return f"[red]{mark}[/]" if abs(value) > limit else f"[green]{mark}[/]"
 

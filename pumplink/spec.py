@@ -40,7 +40,7 @@ class Linkage(_Section):
     b: float = Field(ge=0, le=10, description="width of the pump stand [m]")
     rocker: float = Field(ge=0.001, le=10, description="rocker length l4 [m]")
     handle: float = Field(ge=0.001, le=20, description="handle length H, rocker pivot to hand grip [m]")
-    swing: float = Field(gt=0, lt=180, description="total handle swing [deg], symmetric about vertical")
+    swing: float = Field(ge=1, lt=180, description="total handle swing [deg], symmetric about vertical")
 
 
 class Load(_Section):
@@ -51,7 +51,7 @@ class Load(_Section):
     head: float | None = Field(default=None, gt=0, le=200, description="pumping head [m]")
     pipe_diameter: float | None = Field(default=None, ge=0.001, le=0.5, description="rising-main bore [m]")
     efficiency: float | None = Field(
-        default=None, gt=0, le=1, description="rope-pump efficiency with head/pipe_diameter [-] (default 0.75)"
+        default=None, ge=0.05, le=1, description="rope-pump efficiency with head/pipe_diameter [-] (default 0.75)"
     )
 
     @model_validator(mode="after")
@@ -75,7 +75,7 @@ class Load(_Section):
 
 
 class Operator(_Section):
-    force_limit: float = Field(default=100.0, gt=0, le=10_000, description="largest acceptable operator force [N]")
+    force_limit: float = Field(default=100.0, ge=1, le=10_000, description="largest acceptable operator force [N]")
     speed: float = Field(default=360.0, gt=0, le=7200, description="wheel speed [deg/s]")
     dead_band: float = Field(
         default=20.0, ge=0, lt=90,

@@ -275,7 +275,7 @@ def valid_specs(draw):
             "L1": draw(st.floats(0, 10, **finite)), "D1": draw(st.floats(-10, 10, **finite)),
             "b": draw(st.floats(0, 10, **finite)), "rocker": draw(st.floats(0.001, 10, **finite)),
             "handle": draw(st.floats(0.001, 20, **finite)),
-            "swing": draw(st.floats(0, 180, exclude_min=True, exclude_max=True, **finite)),
+            "swing": draw(st.floats(1, 180, exclude_max=True, **finite)),
         },
     }
     if draw(st.booleans()):
@@ -285,10 +285,10 @@ def valid_specs(draw):
     else:
         d["load"] = {"head": draw(st.floats(0.01, 200, **finite)), "pipe_diameter": draw(st.floats(0.001, 0.5, **finite))}
         if draw(st.booleans()):
-            d["load"]["efficiency"] = draw(st.floats(0.01, 1, **finite))
+            d["load"]["efficiency"] = draw(st.floats(0.05, 1, **finite))
     op = {}
     if draw(st.booleans()):
-        op["force_limit"] = draw(st.floats(0.01, 10_000, **finite))
+        op["force_limit"] = draw(st.floats(1, 10_000, **finite))
     if draw(st.booleans()):
         op["speed"] = draw(st.floats(0.01, 7200, **finite))
     if draw(st.booleans()):
