@@ -97,3 +97,25 @@ def test_every_valid_spec_is_analysed_without_crash_or_warning(data, samples):
     import tomllib
 
     assert parse_spec(tomllib.loads(tomli_w.dumps(spec.model_dump(exclude_none=True))), "again") == spec
+
+
+BATCH_KEYS = ["base", "vary", "name", "start", "stop", "num", "linkage.swing", "linkage.rocker", "load.rope_force",
+              "wheel.radius", "operator.dead_band", "linkage", "nope.key", "linkage.rockr", "load.head"]
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.dictionaries(st.sampled_from(BATCH_KEYS), toml_values(), max_size=4),
+       st.dictionaries(st.sampled_from(BATCH_KEYS), st.one_of(
+           st.lists(SCALARS.filter(lambda v: v is not None), max_size=4),
+           st.dictionaries(st.sampled_from(["start", "stop", "num", "step"]), SCALARS.filter(lambda v: v is not None),
+                           max_size=4),
+           SCALARS.filter(lambda v: v is not None)), max_size=3))
+def test_arbitrary_batch_files_give_a_batch_or_a_spec_error(top, vary):
+    from pumplink.batch import parse_batch
+    from pumplink.spec import DEFAULT_SPEC
+
+    data = {**top, "base": DEFAULT_SPEC, "vary": vary} if "vary" in top else top
+    try:
+        parse_batch(data, "fuzz.toml")
+    except SpecError as exc:
+        assert "\n" not in str(exc)
