@@ -379,7 +379,7 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
         t = Table(title=title, title_justify="left")
         for h in ("variant", "crank l2 [m]", "coupler l3 [m]", "K", "γ min–max [deg]", "mean [N]", "peak [N]",
                   "limit [N]", "power [W]", "result"):
-            t.add_column(h, justify="left" if h in ("variant", "result") else "right")
+            t.add_column(h.replace("[", "\\["), justify="left" if h in ("variant", "result") else "right")
         for r in rows:
             if not r["feasible"]:
                 res = f"[red]infeasible[/]: {escape_markup(r['reason'])}"

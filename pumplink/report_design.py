@@ -73,6 +73,7 @@ def render_transmission(row: dict[str, Any], fmt: str, out=None) -> None:
     if fmt == "csv":
         flat = {k: v for k, v in row.items() if k != "compare"}
         return write_csv([flat], out)
+    from rich.markup import escape
     from rich.table import Table
 
     c = console(out)
@@ -81,7 +82,7 @@ def render_transmission(row: dict[str, Any], fmt: str, out=None) -> None:
     t = Table(title="Link lengths (rocker's unit) and transmission angle", title_justify="left")
     for h in ("design", "crank", "coupler", "rocker", "frame", "rocker/frame", "min transmission [deg]",
               "simulated swing [deg]", "simulated K"):
-        t.add_column(h, justify="left" if h == "design" else "right")
+        t.add_column(escape(h), justify="left" if h == "design" else "right")
     sim = row["simulated"]
     t.add_row("[bold]optimum (this tool)[/]", _f(row["crank"], "{:.6f}"), _f(row["coupler"], "{:.6f}"),
               _f(row["rocker"], "{:.6f}"), _f(row["frame"], "{:.6f}"), _f(row["rocker_to_frame"], "{:.6f}"),
@@ -191,6 +192,7 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
             flat[f"{v['key']}_optimum"] = v["optimum"]
         flat["binding"] = "; ".join(row["binding"])
         return write_csv([flat], out)
+    from rich.markup import escape
     from rich.table import Table
 
     c = console(out)
@@ -206,7 +208,7 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
     o, s = row["optimum"], row["spec_design"]
     t = Table(title="Forces", title_justify="left")
     for h in ("design", "peak [N]", "mean [N]", "transmission [deg]", "meets constraints"):
-        t.add_column(h, justify="left" if h in ("design",) else "right")
+        t.add_column(escape(h), justify="left" if h in ("design",) else "right")
     t.add_row("spec's own design", _f(s["peak_force_N"], "{:.3f}"), _f(s["mean_force_N"], "{:.3f}"),
               _f(s["transmission_deg"], "{:.2f}"), "yes" if s["meets_constraints"] else "[red]no[/]: " + "; ".join(s["violated"]))
     t.add_row("[bold]optimum[/]", _f(o["peak_force_N"], "{:.3f}"), _f(o["mean_force_N"], "{:.3f}"),
