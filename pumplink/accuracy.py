@@ -102,7 +102,7 @@ def sampling_study(lk: Linkage, dead_centre_extended, dead_centre_folded, dead_b
     for n in counts:
         st = evaluate(lk, crank_grid(n), wheel_torque)
         f = np.abs(st.force[np.isfinite(st.force)])
-        peak = _force.sampled_peak(lk, n, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band)[0]
+        peak = _force.sampled_peak(lk, n, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band)
         mean = sampled_mean_force(lk, n, wheel_torque)
         rows.append({"n": int(n), "sampled_max": float(f.max()) if f.size else None,
                      "sampled_peak": peak if np.isfinite(peak) else None, "exact_peak": float(exact_peak),

@@ -133,7 +133,7 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
         n = int(theta.size)
     else:
         state = band_mask = None
-        sampled = _force.sampled_peak(lk, samples, mw, dce, dcf, band)[0]
+        sampled = _force.sampled_peak(lk, samples, mw, dce, dcf, band)
         n = samples
 
     gamma = np.degrees(min(syn.transmission_min, np.pi - syn.transmission_max))

@@ -23,7 +23,6 @@ force --summary``) on the same variant: the same kernels, vectorised over design
 from __future__ import annotations
 
 import difflib
-import functools
 import math
 import tomllib
 from dataclasses import dataclass
@@ -34,7 +33,6 @@ import numpy as np
 
 from pumplink import force as _force
 from pumplink.errors import SpecError
-from pumplink.kinematics import force_kernel, kernel_work, offset_table
 from pumplink.spec import GRAVITY, WATER_DENSITY, PumpSpec, load_spec, parse_spec, spec_to_dict
 from pumplink.synthesis import Linkage, infeasibility_reason, synthesize
 
@@ -44,9 +42,6 @@ FAIL_CHECKS = ("mean", "peak", "infeasible")
 MAX_AXIS_VALUES = 1_000_000
 #: Largest number of variants in one run (indices stay exact in float64 and int64).
 MAX_VARIANTS = 10**15
-#: Crank samples evaluated at once (designs x angles) in the sampled sweep; bounds the kernel's
-#: temporaries (about 10 arrays of this many float64 values, ~20 MB) whatever --samples is.
-SAMPLE_BLOCK = 262_144
 #: Most designs per chunk (rows handed to the writer at once, one task for a worker process).
 CHUNK_DESIGNS = 8192
 #: Crank samples per chunk: fewer designs per chunk at large --samples, so a task stays short
@@ -449,65 +444,6 @@ def rope_force(batch: Batch, cols: dict[str, np.ndarray], n: int) -> np.ndarray:
     return WATER_DENSITY * GRAVITY * head * np.pi * (d * d) / 4.0 / eff  # NOTES.md §4
 
 
-#: Samples per angle-addition block of :func:`pumplink.force.sampled_peak` (its ``chunk``): the
-#: directions of samples j0 + m * SWEEP_BLOCK + i are built from the table entry i and the
-#: block's base angle, and must be built the same way here to give the same bits.
-SWEEP_BLOCK = 8192
-
-
-@functools.lru_cache(maxsize=8)
-def _offset_table(samples: int):
-    """``offset_table(2 pi / samples, SWEEP_BLOCK)``, computed once per sample count."""
-    return offset_table(_force.TWO_PI / samples, SWEEP_BLOCK)
-
-
-def sampled_peaks(lk: Linkage, samples: int, wheel_torque, dce, dcf, band) -> np.ndarray:
-    """Largest |force| over the uniform sweep of ``samples`` crank angles strictly outside the
-    dead bands, per design (1-D arrays over designs) [N]; NaN where no sample is.
-
-    The vectorised form of :func:`pumplink.force.sampled_peak`, bit for bit: the same samples
-    (those strictly inside the two windows between the dead bands), the same directions (angle
-    addition from the same table and block bases), the same kernel (``force_kernel``); blocks
-    of about :data:`SAMPLE_BLOCK` designs x samples, so memory is bounded for any ``samples``.
-    """
-    n_designs = np.shape(wheel_torque)[0]
-    out = np.full(n_designs, np.nan)
-    if samples <= 0 or n_designs == 0:
-        return out
-    step = _force.TWO_PI / samples
-    start, length = _force._windows(np.asarray(dce, float), np.asarray(dcf, float), np.asarray(band, float))
-    j0 = np.floor(start / step).astype(np.int64) + 1  # first sample strictly inside each window
-    j1 = np.ceil((start + length) / step).astype(np.int64) - 1  # last one
-    count = np.where(length > 0, np.maximum(j1 - j0 + 1, 0), 0)  # (D, 2)
-    table = _offset_table(samples)
-    geom = [np.asarray(v, float)[:, None, None] for v in (
-        lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch, wheel_torque)]
-    best = np.full(n_designs, -np.inf)
-    work = None
-    width = int(count.max())
-    span = max(1, min(SWEEP_BLOCK, SAMPLE_BLOCK // (2 * n_designs)))  # samples per window per pass
-    for m0 in range(0, width, span):
-        # offsets m0..m0+span-1 into each window: block m = offset // SWEEP_BLOCK, entry = offset % SWEEP_BLOCK
-        off = m0 + np.arange(min(span, width - m0))
-        blk, entry = off // SWEEP_BLOCK, off % SWEEP_BLOCK
-        ublk, inv = np.unique(blk, return_inverse=True)  # one or two blocks per pass
-        base = (j0[..., None] + ublk * SWEEP_BLOCK) * step  # (D, 2, U): the block's base angle a * step
-        cb, sb = np.cos(base)[..., inv], np.sin(base)[..., inv]
-        co, so = table[0][entry], table[1][entry]
-        cs = co * cb
-        cs -= so * sb  # cos(a + b) as in shifted_directions
-        sn = co * sb
-        sn += so * cb
-        if work is None or work.shape[1:] != cs.shape:
-            work = kernel_work(cs.shape)  # scratch reused across passes
-        f = np.abs(force_kernel(Linkage(*geom[:7]), cs, sn, geom[7], work)[2])
-        f[(off >= count[..., None]) | np.isnan(f)] = -np.inf  # beyond the window; a dead centre
-        np.maximum(best, f.max(axis=(1, 2)), out=best)
-    found = best > -np.inf
-    out[found] = best[found]
-    return out
-
-
 def evaluate(batch: Batch, start: int, stop: int, samples: int = 360, batch_index: int = 0) -> Chunk:
     """Synthesis, force checks and verdict for variants ``start..stop-1`` of a batch.
 
@@ -557,7 +493,7 @@ def evaluate(batch: Batch, start: int, stop: int, samples: int = 360, batch_inde
             s = slice(s0, s0 + SUB_DESIGNS)
             part = Linkage(*(getattr(sub, f)[s] for f in
                              ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
-            sampled[ok[s]] = sampled_peaks(part, samples, mw[ok][s], dce[s], dcf[s], band[ok][s])
+            sampled[ok[s]] = _force.sampled_peak(part, samples, mw[ok][s], dce[s], dcf[s], band[ok][s])
     mean_ok = feasible & (mean <= limit)
     peak_ok = feasible & (peak <= limit)
 

@@ -5,9 +5,11 @@ All functions are pure and broadcast over designs (1-D arrays of per-design para
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
-from pumplink.kinematics import force_kernel, kernel_work, offset_table, shifted_directions
+from pumplink.kinematics import force_kernel, kernel_work, offset_table
 from pumplink.synthesis import Linkage
 
 TWO_PI = 2.0 * np.pi
@@ -129,40 +131,77 @@ def peak_force(lk: Linkage, dead_centre_extended, dead_centre_folded, dead_band,
     return peak, angle
 
 
-def sampled_peak(lk: Linkage, n: int, wheel_torque, dead_centre_extended, dead_centre_folded,
-                 dead_band, chunk: int = 8192):
-    """Largest |force| over a uniform sweep of ``n`` crank angles outside the dead bands.
+#: Samples per angle-addition block of :func:`sampled_peak`: the directions of samples
+#: j0 + m * SWEEP_BLOCK + i come from one table entry i and the block's base angle.
+SWEEP_BLOCK = 8192
+#: Crank samples evaluated at once (designs x angles) in :func:`sampled_peak`; bounds the
+#: kernel's scratch (about 10 arrays of this many float64 values, ~20 MB) whatever ``n`` is.
+SAMPLE_BLOCK = 262_144
 
-    This is what a sampled sweep reports (it can step over the rise toward a dead centre).
-    Only the samples inside the two windows are evaluated, streamed in cache-sized chunks, so
-    memory stays bounded for any ``n``.  Single design (scalar linkage).
+
+@functools.lru_cache(maxsize=8)
+def _offset_table(n: int):
+    """``offset_table(2 pi / n, SWEEP_BLOCK)``, computed once per sample count."""
+    return offset_table(TWO_PI / n, SWEEP_BLOCK)
+
+
+def sampled_peak(lk: Linkage, n: int, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band):
+    """Largest |force| over a uniform sweep of ``n`` crank angles strictly outside the dead bands.
+
+    This is what a sampled sweep reports (it can step over the rise toward a dead centre);
+    the verdict uses :func:`peak_force` instead.  Only the samples inside the two windows
+    between the dead bands are evaluated, a few hundred thousand at a time, so memory stays
+    bounded for any ``n``; directions by angle addition (:func:`pumplink.kinematics.offset_table`).
+
+    Parameters
+    ----------
+    lk : linkage (scalars, or 1-D arrays over designs).
+    n : samples per revolution (crank angles 2 pi j / n).
+    wheel_torque : Mw [N m];  dead_centre_extended, dead_centre_folded : [rad];  dead_band : [rad].
 
     Returns
     -------
-    peak : largest sampled |force| [N] strictly outside the dead bands (NaN if no sample is).
-    angle : its crank angle [rad].
+    peak : largest sampled |force| [N] per design (NaN where no sample lies outside the bands).
     """
+    params = np.broadcast_arrays(*(np.asarray(v, float) for v in (
+        lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch, wheel_torque,
+        dead_centre_extended, dead_centre_folded, dead_band)))
+    scalar = params[0].ndim == 0
+    *geom, dce, dcf, band = [np.atleast_1d(p).ravel() for p in params]
+    n_designs = dce.size
+    out = np.full(n_designs, np.nan)
+    if n <= 0 or n_designs == 0:
+        return float(out[0]) if scalar and n_designs else out
     step = TWO_PI / n
-    start, length = _windows(float(dead_centre_extended), float(dead_centre_folded), float(dead_band))
-    table = offset_table(step, chunk)
-    dirs = np.empty((2, chunk))
-    work = kernel_work((chunk,))
-    best, best_j = -np.inf, -1
-    for s0, ln in zip(start, length):
-        if ln <= 0:
-            continue
-        j0 = int(np.floor(s0 / step)) + 1  # first sample strictly inside the window
-        j1 = int(np.ceil((s0 + ln) / step)) - 1  # last one
-        for a in range(j0, j1 + 1, chunk):
-            size = min(chunk, j1 + 1 - a)
-            cs, sn = shifted_directions(a * step, table, size, dirs)
-            w = work[:, :size]
-            f = np.abs(force_kernel(lk, cs, sn, wheel_torque, w)[2])
-            i = int(np.argmax(f))
-            if np.isnan(f[i]):
-                i = int(np.nanargmax(f)) if not np.isnan(f).all() else i
-            if f[i] > best:
-                best, best_j = float(f[i]), a + i
-    if best_j < 0:
-        return float("nan"), float("nan")
-    return best, float((best_j % n) * step)
+    start, length = _windows(dce, dcf, band)  # (D, 2)
+    j0 = np.floor(start / step).astype(np.int64) + 1  # first sample strictly inside each window
+    j1 = np.ceil((start + length) / step).astype(np.int64) - 1  # last one
+    count = np.where(length > 0, np.maximum(j1 - j0 + 1, 0), 0)  # (D, 2)
+    table = _offset_table(n)
+    g3 = [p[:, None, None] for p in geom]
+    best = np.full(n_designs, -np.inf)
+    work = None
+    width = int(count.max())
+    span = SWEEP_BLOCK  # samples per window per pass: a power of two, so a pass stays in one block
+    while span > 1 and span * 2 * n_designs > SAMPLE_BLOCK:
+        span //= 2
+    for m0 in range(0, width, span):
+        # offsets m0..m0+size-1 into each window, all in block m0 // SWEEP_BLOCK
+        size = min(span, width - m0)
+        off = m0 + np.arange(size)
+        e0 = m0 % SWEEP_BLOCK
+        base = (j0 + (m0 - e0)) * step  # (D, 2): the block's base angle
+        cb, sb = np.cos(base)[..., None], np.sin(base)[..., None]
+        co, so = table[0][e0:e0 + size], table[1][e0:e0 + size]
+        cs = co * cb
+        cs -= so * sb  # cos(a + b)
+        sn = co * sb
+        sn += so * cb  # sin(a + b)
+        if work is None or work.shape[1:] != cs.shape:
+            work = kernel_work(cs.shape)  # scratch reused across passes
+        f = np.abs(force_kernel(Linkage(*g3[:7]), cs, sn, g3[7], work)[2])
+        f[(off >= count[..., None]) | np.isnan(f)] = -np.inf  # beyond the window; a dead centre
+        np.maximum(best, f.max(axis=(1, 2)), out=best)
+    found = best > -np.inf
+    out[found] = best[found]
+    return float(out[0]) if scalar else out
