@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import difflib
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable, Iterator, Sequence
@@ -33,7 +32,8 @@ import numpy as np
 
 from pumplink import force as _force
 from pumplink.errors import SpecError
-from pumplink.spec import GRAVITY, WATER_DENSITY, PumpSpec, load_spec, parse_spec, spec_to_dict
+from pumplink.spec import (GRAVITY, WATER_DENSITY, PumpSpec, load_spec, parse_spec, read_toml,
+                           spec_from_file_data, spec_to_dict)
 from pumplink.synthesis import Linkage, infeasibility_reason, synthesize
 
 #: Checks ``--fail-on`` can select (the default selects all three, as ``pumplink force`` does).
@@ -314,21 +314,10 @@ def load_batch(path: str | Path) -> Batch:
         Unreadable file, invalid TOML, an invalid batch or spec (exit 2).
     """
     path = Path(path)
-    try:
-        text = path.read_bytes().decode("utf-8")
-    except FileNotFoundError:
-        raise SpecError(f"{path}: no such file or folder") from None
-    except UnicodeDecodeError:
-        raise SpecError(f"{path}: not a UTF-8 text file, expected a TOML spec or batch file") from None
-    except OSError as exc:
-        raise SpecError(f"{path}: cannot be read ({exc.strerror})") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise SpecError(f"{path}: not valid TOML: {exc}") from None
+    data = read_toml(path, "a TOML spec or batch")
     if is_batch_mapping(data):
         return parse_batch(data, str(path), path.parent, path.stem)
-    return spec_batch(load_spec(path), str(path))
+    return spec_batch(spec_from_file_data(data, path), str(path))
 
 
 def load_inputs(paths: Sequence[str | Path]) -> list[Batch]:

@@ -198,6 +198,40 @@ def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
         raise SpecError(f"{source}: {first}{more}.") from None
 
 
+def read_toml(path: str | Path, expected: str = "a TOML spec") -> dict[str, Any]:
+    """Read a UTF-8 TOML file into a mapping.
+
+    Raises
+    ------
+    SpecError
+        Missing, unreadable or non-UTF-8 file, or invalid TOML; ``expected`` names what the
+        file should have been.
+    """
+    path = Path(path)
+    try:
+        text = path.read_bytes().decode("utf-8")
+    except FileNotFoundError:
+        raise SpecError(f"{path}: no such file (write an example spec with `pumplink init {path}`)") from None
+    except IsADirectoryError:
+        raise SpecError(f"{path}: is a folder, expected {expected} file") from None
+    except UnicodeDecodeError:
+        raise SpecError(f"{path}: not a UTF-8 text file, expected {expected}") from None
+    except OSError as exc:
+        raise SpecError(f"{path}: cannot be read ({exc.strerror})") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise SpecError(f"{path}: not valid TOML: {exc}") from None
+
+
+def spec_from_file_data(data: Any, path: str | Path) -> PumpSpec:
+    """Validate the mapping read from ``path``; the name defaults to the file stem."""
+    path = Path(path)
+    if isinstance(data, dict) and data and "name" not in data:
+        data = {"name": path.stem, **data}
+    return parse_spec(data, source=str(path))
+
+
 def load_spec(path: str | Path) -> PumpSpec:
     """Read and validate a TOML spec file; the name defaults to the file stem.
 
@@ -206,24 +240,7 @@ def load_spec(path: str | Path) -> PumpSpec:
     SpecError
         Unreadable file, invalid TOML, or an invalid spec.
     """
-    path = Path(path)
-    try:
-        text = path.read_bytes().decode("utf-8")
-    except FileNotFoundError:
-        raise SpecError(f"{path}: no such file (write an example spec with `pumplink init {path}`)") from None
-    except IsADirectoryError:
-        raise SpecError(f"{path}: is a folder, expected a .toml spec file") from None
-    except UnicodeDecodeError:
-        raise SpecError(f"{path}: not a UTF-8 text file, expected a TOML spec") from None
-    except OSError as exc:
-        raise SpecError(f"{path}: cannot be read ({exc.strerror})") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise SpecError(f"{path}: not valid TOML: {exc}") from None
-    if isinstance(data, dict) and data and "name" not in data:
-        data = {"name": path.stem, **data}
-    return parse_spec(data, source=str(path))
+    return spec_from_file_data(read_toml(path), path)
 
 
 def spec_to_dict(spec: PumpSpec) -> dict[str, Any]:
