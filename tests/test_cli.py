@@ -193,7 +193,11 @@ def hand_force(h: dict, branch: float, theta_deg, Mw: float, H: float, step: flo
 
 # ----------------------------------------------------------------------------- help / version
 def test_help_of_every_command_has_an_example():
-    for args in ([], ["synth"], ["force"], ["init"]):
+    from pumplink.cli import app
+
+    commands = [c.name or c.callback.__name__ for c in app.registered_commands]
+    assert {"synth", "force", "init", "batch", "methods", "transmission", "optimize"} <= set(commands)
+    for args in [[]] + [[c] for c in commands]:
         p = run(*args, "--help")
         assert p.returncode == 0, p.stderr
         assert "Traceback" not in p.stderr
