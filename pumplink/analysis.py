@@ -140,7 +140,7 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
     checks = [
         _check("mean force", mean, op.force_limit, "<=", "N", "fail"),
         _check(f"peak force outside ±{op.dead_band:g}° of the dead centres", peak, op.force_limit, "<=", "N", "fail"),
-        _check("transmission angle (worst deviation from 90°)", gamma, MIN_TRANSMISSION_DEG, ">=", "deg", "warn"),
+        _check("transmission angle, min(γmin, 180° − γmax)", gamma, MIN_TRANSMISSION_DEG, ">=", "deg", "warn"),
         _check("operator power (sustained)", mw * speed, SUSTAINED_POWER_W, "<=", "W", "warn"),
     ]
     if spec.wheel.axle_height is not None:
