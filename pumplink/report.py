@@ -266,10 +266,16 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None) -> N
     c.print(ct)
     c.print("model: quasi-static + dead band (the wheel's inertia is assumed to carry the linkage "
             f"through ±{r.design.spec.operator.dead_band:g}° of each dead centre)")
+    warned = [ch for ch in r.checks if ch.severity == "warn" and not ch.passed]
     if r.passed:
+        note = f" ({len(warned)} warning{'s' if len(warned) > 1 else ''} below)" if warned else ""
         c.print(f"[bold green]VERDICT: PASS[/] — mean {r.mean_force:.1f} N and peak {r.peak_force:.1f} N are within "
-                f"the {r.force_limit:g} N limit")
+                f"the {r.force_limit:g} N limit{note}")
     else:
         bad = [ch.name for ch in r.checks if ch.severity == "fail" and not ch.passed]
         c.print(f"[bold red]VERDICT: FAIL[/] — {', '.join(bad)} above the {r.force_limit:g} N limit "
                 f"(mean {r.mean_force:.1f} N, peak {_f(r.peak_force, '{:.1f}', '∞')} N)")
+    for ch in warned:
+        c.print(f"[yellow]warning:[/] {escape(ch.name)} is {ch.value:.2f} {ch.unit}, outside {ch.relation} {ch.limit:g} {ch.unit}"
+                + (" (a person sustains ~75 W for hours; slow the wheel or lower the load)" if ch.unit == "W" else "")
+                + (" (pressure angle above 45°: the coupler pushes the crank at a poor angle and the joints wear)" if ch.unit == "deg" else ""))
