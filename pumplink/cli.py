@@ -94,7 +94,7 @@ def force(
                                                       show_default=False)] = None,
     summary: Annotated[bool, typer.Option("--summary", help="Only the checks and verdict (no per-sample rows).")] = False,
     plot: Annotated[Optional[Path], typer.Option(help="Also write the force curve to this .png/.svg/.pdf "
-                                                      "(needs the plot extra: pip install 'pumplink[plot]').",
+                                                      "(needs the plot extra: pip install 'pumplink\\[plot]').",
                                                  show_default=False)] = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
@@ -274,12 +274,12 @@ class Objective(str, Enum):
 @app.command()
 def transmission(
     time_ratio: Annotated[float, typer.Option("--time-ratio", "-k", help="Time ratio K > 1 (slow/fast stroke).")] = 1.1818,
-    swing: Annotated[float, typer.Option(help="Rocker swing φ [deg].")] = 40.0,
+    swing: Annotated[float, typer.Option(help="Rocker swing φ \\[deg].")] = 40.0,
     rocker: Annotated[float, typer.Option(help="Rocker length (any unit; the other lengths come out in it).")] = 50.0,
     compare_seed: Annotated[bool, typer.Option("--compare-seed/--no-compare-seed",
                                                help="Compare with seed 001's published designs (its example only).")] = True,
     chart: Annotated[Optional[Path], typer.Option(help="Write seed 001's design diagram (contours over θ and φ) "
-                                                       "to this image file instead (needs pumplink[plot]).",
+                                                       "to this image file instead (needs pumplink\\[plot]).",
                                                   show_default=False)] = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
@@ -336,14 +336,14 @@ def transmission(
 def optimize(
     spec: Annotated[Path, typer.Argument(help="TOML pump spec: fixed values and the starting design.", show_default=False)],
     vary: Annotated[Optional[list[str]], typer.Option("--vary", help="KEY=LO:HI in spec units (repeatable); keys: L1, D1, "
-                                                      "b, rocker, handle [m], swing [deg]. Default: rocker=0.1:0.4 "
+                                                      "b, rocker, handle \\[m], swing \\[deg]. Default: rocker=0.1:0.4 "
                                                       "L1=0:1 D1=-0.3:1.2 swing=30:100.", show_default=False)] = None,
     objective: Annotated[Objective, typer.Option(help="Minimise the exact peak force or the mean force.")] = Objective.peak,
     seed: Annotated[int, typer.Option(help="Random seed of the differential evolution (same seed, same answer).")] = 0,
-    axle_height: Annotated[Optional[float], typer.Option(help="Wheel-axle height [m] (default: the spec's "
+    axle_height: Annotated[Optional[float], typer.Option(help="Wheel-axle height \\[m] (default: the spec's "
                                                          "wheel.axle_height, else 0.55).", show_default=False)] = None,
-    grip_height: Annotated[str, typer.Option(help="Allowed grip height above ground over the swing, LO:HI [m].")] = "0.5:0.9",
-    stroke: Annotated[str, typer.Option(help="Allowed horizontal grip stroke, LO:HI [m].")] = "0:1.0",
+    grip_height: Annotated[str, typer.Option(help="Allowed grip height above ground over the swing, LO:HI \\[m].")] = "0.5:0.9",
+    stroke: Annotated[str, typer.Option(help="Allowed horizontal grip stroke, LO:HI \\[m].")] = "0:1.0",
     write: Annotated[Optional[Path], typer.Option(help="Write the optimum as a new spec (TOML).", show_default=False)] = None,
     overwrite: Annotated[bool, typer.Option("--force", help="Overwrite the --write file if it exists.")] = False,
     fmt: FormatOpt = Format.table,

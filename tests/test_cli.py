@@ -687,3 +687,14 @@ def test_init_writes_a_spec_that_loads_and_passes(tmp_path):
 
     line = one_error_line(run("init", tmp_path / "no" / "such" / "dir" / "x.toml"))
     assert "x.toml" in line
+
+
+def test_bracketed_units_and_extras_survive_rich_markup_in_help():
+    """Rich eats lowercase [tags]: units like [deg] and the extra [plot] must be escaped."""
+    wants = {"force": ["[deg/s]", "[deg]", "pumplink[plot]"], "transmission": ["[deg]", "pumplink[plot]"],
+             "optimize": ["[m]", "[deg]"]}
+    for cmd, needles in wants.items():
+        out = subprocess.run([sys.executable, "-m", "pumplink", cmd, "--help"], capture_output=True, text=True,
+                             env={**os.environ, "COLUMNS": "250"}, check=False).stdout
+        for n in needles:
+            assert n in out, (cmd, n)
