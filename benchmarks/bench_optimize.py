@@ -44,5 +44,27 @@ def main():
               f"{'passes' if peak <= spec.operator.force_limit else 'fails'} {spec.operator.force_limit:g} N")
 
 
+def grid_check(path: Path, m: int) -> None:
+    """Brute force over the default bounds: is the optimiser's answer really the best there is?"""
+    import numpy as np
+
+    from pumplink.optimize import evaluate
+
+    problem = make_problem(load_spec(path))
+    axes = [np.linspace(lo, hi, m) for lo, hi in zip(problem.lower, problem.upper)]
+    x = np.array(np.meshgrid(*axes, indexing="ij")).reshape(len(axes), -1)
+    best, feasible = np.inf, 0
+    for i in range(0, x.shape[1], 50_000):
+        ev = evaluate(problem, x[:, i:i + 50_000])
+        ok = np.all(ev.slack >= 0, axis=0) & np.isfinite(ev.peak)
+        feasible += int(ok.sum())
+        if ok.any():
+            best = min(best, float(ev.peak[ok].min()))
+    print(f"grid check {path.name}: {m}^{len(axes)} = {x.shape[1]} designs over the default bounds, "
+          f"{feasible} meet every constraint, lowest peak {best:.2f} N")
+
+
 if __name__ == "__main__":
     main()
+    for m in (21, 31):
+        grid_check(ROOT / "configs" / "village-10m.toml", m)
