@@ -372,7 +372,7 @@ METHODS: dict[str, Method] = {
         f"textbook loop closure in mpmath, {REFERENCE_DIGITS} digits (ground truth)", False,
         {kind: "exact" for kind in POINT_KINDS},
         {kind: 1e-15 for kind in POINT_KINDS},
-        "nothing in range; about 1e4 times slower than vector"),
+        "nothing in range; several hundred times slower than vector"),
 }
 
 
