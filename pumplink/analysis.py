@@ -92,7 +92,7 @@ def _check(name, value, limit, relation, unit, severity) -> Check:
 
 
 def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: int = 360,
-                   at_deg=None, keep_samples: bool = True) -> ForceResult:
+                   at_deg=None, keep_samples: bool = True, progress=None) -> ForceResult:
     """Quasi-static force sweep, checks and verdict for one spec.
 
     Parameters
@@ -102,6 +102,7 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
     samples : number of uniform crank samples (ignored when ``at_deg`` is given).
     at_deg : explicit crank angles [deg] to evaluate instead of the uniform sweep.
     keep_samples : False to stream the sweep without keeping it (``--summary``).
+    progress : optional callable given the fraction of a streamed sweep done (for a progress bar).
     """
     d = design(spec)
     op = spec.operator
@@ -133,7 +134,7 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
         n = int(theta.size)
     else:
         state = band_mask = None
-        sampled = _force.sampled_peak(lk, samples, mw, dce, dcf, band)
+        sampled = _force.sampled_peak(lk, samples, mw, dce, dcf, band, progress=progress)
         n = samples
 
     gamma = np.degrees(min(syn.transmission_min, np.pi - syn.transmission_max))

@@ -123,8 +123,18 @@ def force(
 
         check_path(plot)
         pyplot()  # fail early (exit 2) when matplotlib is missing
+    from pumplink.report import progress
+
     s = load_spec(spec) if spec is not None else default_spec()
-    result = force_analysis(s, speed, samples, at_deg=at or None, keep_samples=not summary)
+    with progress(1000, "force sweep") as advance:  # drawn on a terminal for sweeps over a second
+        done = [0]
+
+        def tick(fraction: float) -> None:
+            k = int(fraction * 1000)
+            advance(k - done[0])
+            done[0] = k
+
+        result = force_analysis(s, speed, samples, at_deg=at or None, keep_samples=not summary, progress=tick)
     render_force(result, fmt.value, summary=summary)
     if plot is not None and result.design.feasible:
         from pumplink.plots import force_curve

@@ -145,7 +145,8 @@ def _offset_table(n: int):
     return offset_table(TWO_PI / n, SWEEP_BLOCK)
 
 
-def sampled_peak(lk: Linkage, n: int, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band):
+def sampled_peak(lk: Linkage, n: int, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band,
+                 progress=None):
     """Largest |force| over a uniform sweep of ``n`` crank angles strictly outside the dead bands.
 
     This is what a sampled sweep reports (it can step over the rise toward a dead centre);
@@ -158,6 +159,7 @@ def sampled_peak(lk: Linkage, n: int, wheel_torque, dead_centre_extended, dead_c
     lk : linkage (scalars, or 1-D arrays over designs).
     n : samples per revolution (crank angles 2 pi j / n).
     wheel_torque : Mw [N m];  dead_centre_extended, dead_centre_folded : [rad];  dead_band : [rad].
+    progress : optional callable, called with the fraction of the sweep done (0..1) after each pass.
 
     Returns
     -------
@@ -202,6 +204,8 @@ def sampled_peak(lk: Linkage, n: int, wheel_torque, dead_centre_extended, dead_c
         f = np.abs(force_kernel(Linkage(*g3[:7]), cs, sn, g3[7], work)[2])
         f[(off >= count[..., None]) | np.isnan(f)] = -np.inf  # beyond the window; a dead centre
         np.maximum(best, f.max(axis=(1, 2)), out=best)
+        if progress is not None:
+            progress((m0 + size) / width)
     found = best > -np.inf
     out[found] = best[found]
     return float(out[0]) if scalar else out

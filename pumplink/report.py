@@ -6,12 +6,14 @@ an empty cell in CSV and "∞ (dead centre)" or "—" in tables.
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import json
 import math
 import sys
-from typing import Any, Iterable
+import time
+from typing import Any, Callable, Iterable, Iterator
 
 import numpy as np
 
@@ -101,6 +103,38 @@ def sample_rows(r: ForceResult) -> list[dict[str, Any]]:
         row["in_dead_band"] = band[i]
         rows.append(row)
     return rows
+
+
+# ----------------------------------------------------------------------------- progress
+@contextlib.contextmanager
+def progress(total: int, label: str = "batch", enabled: bool | None = None,
+             delay: float = 1.0) -> Iterator[Callable[[int], None]]:
+    """``advance(n)`` for a Rich progress bar on stderr, shown only on a terminal and only once
+    the run has taken longer than ``delay`` seconds."""
+    if enabled is None:
+        enabled = sys.stderr.isatty()
+    state: dict[str, Any] = {"done": 0, "bar": None, "t0": time.monotonic()}
+
+    def advance(n: int) -> None:
+        state["done"] += n
+        if not enabled:
+            return
+        if state["bar"] is None and time.monotonic() - state["t0"] > delay:
+            from rich.console import Console
+            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+            bar = Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                           console=Console(stderr=True), transient=True)
+            bar.start()
+            state["bar"], state["task"] = bar, bar.add_task(label, total=total)
+        if state["bar"] is not None:
+            state["bar"].update(state["task"], completed=state["done"])
+
+    try:
+        yield advance
+    finally:
+        if state["bar"] is not None:
+            state["bar"].stop()
 
 
 # ----------------------------------------------------------------------------- text output

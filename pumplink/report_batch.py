@@ -15,7 +15,6 @@ import os
 import shutil
 import sys
 import tempfile
-import time
 from pathlib import Path
 from typing import Any, Callable, Iterable, Iterator, Sequence
 from xml.sax.saxutils import escape, quoteattr
@@ -24,6 +23,7 @@ import numpy as np
 
 from pumplink.batch import Batch, Chunk, variant_name, variant_names
 from pumplink.errors import SpecError
+from pumplink.report import progress  # noqa: F401  (re-exported: the batch command uses rb.progress)
 
 #: Per-variant columns after the name, the source and the varied keys (CSV order).
 FIXED_COLUMNS = (
@@ -226,37 +226,6 @@ def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequ
                        else f"peak force {pk:.2f} N > limit {lim[i]:g} N")
         out.append(("; ".join(bad) if bad else None, None))
     return out
-
-
-# ----------------------------------------------------------------------------- progress
-@contextlib.contextmanager
-def progress(total: int, enabled: bool | None = None, delay: float = 1.0) -> Iterator[Callable[[int], None]]:
-    """``advance(n)`` for a Rich progress bar on stderr, shown only on a terminal and only once
-    the run has taken longer than ``delay`` seconds."""
-    if enabled is None:
-        enabled = sys.stderr.isatty()
-    state: dict[str, Any] = {"done": 0, "bar": None, "t0": time.monotonic()}
-
-    def advance(n: int) -> None:
-        state["done"] += n
-        if not enabled:
-            return
-        if state["bar"] is None and time.monotonic() - state["t0"] > delay:
-            from rich.console import Console
-            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
-
-            bar = Progress(TextColumn("batch"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
-                           console=Console(stderr=True), transient=True)
-            bar.start()
-            state["bar"], state["task"] = bar, bar.add_task("batch", total=total)
-        if state["bar"] is not None:
-            state["bar"].update(state["task"], completed=state["done"])
-
-    try:
-        yield advance
-    finally:
-        if state["bar"] is not None:
-            state["bar"].stop()
 
 
 # ----------------------------------------------------------------------------- the stream
