@@ -58,12 +58,12 @@ def main() -> None:
 
     n, chunk = 5_000_000, 8192
     step = 2 * np.pi / n
-    table, dirs, work = offset_table(step, chunk), np.empty((2, chunk)), kernel_work((chunk,))
+    table, work = offset_table(step, chunk), kernel_work((chunk,))
 
     def stream():
         for a in range(0, n, chunk):
             size = min(chunk, n - a)
-            cs, sn = shifted_directions(a * step, table, size, dirs)
+            cs, sn = shifted_directions(a * step, table, 0, size)
             force_kernel(lk, cs, sn, mw, work[:, :size])
 
     t = median_time(stream)

@@ -120,20 +120,23 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
     mean = float(_force.mean_force(mw, spec.linkage.handle, syn.swing))
     peak, peak_angle = _force.peak_force(lk, dce, dcf, band, mw)
 
+    # Kept samples: the given --at angles, else the uniform sweep.  The sampled peak of a
+    # uniform sweep always comes from the one streamed route (so --summary does not change it).
     if at_deg is not None:
         theta = np.radians(np.asarray(at_deg, float))
     elif keep_samples:
         theta = np.arange(samples) * (2 * np.pi / samples)
     else:
         theta = None
+    state = band_mask = None
     if theta is not None:
         state = evaluate(lk, theta, mw)
         band_mask = _force.in_dead_band(theta, dce, dcf, band)
+    if at_deg is not None:
         f = np.where(band_mask | state.singular, -np.inf, np.abs(state.force))
         sampled = float(f.max()) if f.size and np.isfinite(f.max()) else nan
         n = int(theta.size)
     else:
-        state = band_mask = None
         sampled = _force.sampled_peak(lk, samples, mw, dce, dcf, band, progress=progress)
         n = samples
 

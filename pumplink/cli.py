@@ -430,6 +430,7 @@ def batch(
 
     from pumplink import batch as _batch
     from pumplink import report_batch as rb
+    from pumplink.report import progress
 
     t0 = time.perf_counter()
     sel = _batch.parse_fail_on(fail_on)
@@ -450,7 +451,7 @@ def batch(
 
     previous = signal.signal(signal.SIGTERM, _terminate)
     try:
-        with rb.progress(total) as advance:
+        with progress(total, "batch") as advance:
             post = functools.partial(rb.render_chunk, fmt=fmt.value, vkeys=rb.varied_keys(batches), fail_on=sel,
                                      junit=junit is not None)  # runs in the workers
             results = _batch.run(batches, samples, k_n, n_workers, post=post)

@@ -9,7 +9,7 @@ import functools
 
 import numpy as np
 
-from pumplink.kinematics import force_kernel, kernel_work, offset_table
+from pumplink.kinematics import force_kernel, kernel_work, offset_table, shifted_directions
 from pumplink.synthesis import Linkage
 
 TWO_PI = 2.0 * np.pi
@@ -192,13 +192,7 @@ def sampled_peak(lk: Linkage, n: int, wheel_torque, dead_centre_extended, dead_c
         size = min(span, width - m0)
         off = m0 + np.arange(size)
         e0 = m0 % SWEEP_BLOCK
-        base = (j0 + (m0 - e0)) * step  # (D, 2): the block's base angle
-        cb, sb = np.cos(base)[..., None], np.sin(base)[..., None]
-        co, so = table[0][e0:e0 + size], table[1][e0:e0 + size]
-        cs = co * cb
-        cs -= so * sb  # cos(a + b)
-        sn = co * sb
-        sn += so * cb  # sin(a + b)
+        cs, sn = shifted_directions((j0 + (m0 - e0)) * step, table, e0, size)  # (D, 2, size)
         if work is None or work.shape[1:] != cs.shape:
             work = kernel_work(cs.shape)  # scratch reused across passes
         f = np.abs(force_kernel(Linkage(*g3[:7]), cs, sn, g3[7], work)[2])

@@ -48,20 +48,18 @@ def crank_grid(n: int, start: float = 0.0) -> np.ndarray:
 def grid_directions(n: int, i0: int = 0, i1: int | None = None, start: float = 0.0):
     """cos and sin of the uniform crank angles ``crank_grid(n, start)[i0:i1]``.
 
-    Uses the angle-addition formula (one sin/cos pair per block of 1024 plus one table), several
-    times cheaper than ``np.cos``/``np.sin`` per angle and within a few ulp of them.
+    Uses the angle-addition formula (:func:`shifted_directions`: one sin/cos pair per block of
+    1024 plus one table), several times cheaper than ``np.cos``/``np.sin`` per angle and within
+    a few ulp of them.
     """
     i1 = n if i1 is None else i1
     step = 2.0 * np.pi / n
     block = 1024
     j0 = i0 - i0 % block
     nblocks = -(-(i1 - j0) // block)
-    co, so = offset_table(step, block)
     base = start + (j0 + np.arange(nblocks) * block) * step
-    cb, sb = np.cos(base)[:, None], np.sin(base)[:, None]
-    c = (cb * co - sb * so).ravel()[i0 - j0:i1 - j0]
-    s = (sb * co + cb * so).ravel()[i0 - j0:i1 - j0]
-    return c, s
+    c, s = shifted_directions(base, offset_table(step, block), 0, block)
+    return c.ravel()[i0 - j0:i1 - j0], s.ravel()[i0 - j0:i1 - j0]
 
 
 def offset_table(step: float, size: int):
@@ -70,17 +68,17 @@ def offset_table(step: float, size: int):
     return np.cos(off), np.sin(off)
 
 
-def shifted_directions(base: float, table, size: int, out):
-    """cos/sin of ``base + j * step`` for j < size, from ``offset_table(step, >= size)``.
+def shifted_directions(base, table, first: int, size: int):
+    """cos/sin of ``base + (first + j) * step`` for j < size, from ``offset_table(step, ...)``.
 
-    Angle addition: cos(a + b) = cos a cos b - sin a sin b; written into ``out`` (2, >= size).
+    Angle addition, cos(a + b) = cos a cos b - sin a sin b; ``base`` may be an array of any
+    shape, the result has shape ``base.shape + (size,)``.
     """
-    co, so = table[0][:size], table[1][:size]
-    cb, sb = np.cos(base), np.sin(base)
-    c, s = out[0, :size], out[1, :size]
-    np.multiply(co, cb, out=c)
+    co, so = table[0][first:first + size], table[1][first:first + size]
+    cb, sb = np.cos(base)[..., None], np.sin(base)[..., None]
+    c = co * cb
     c -= so * sb
-    np.multiply(co, sb, out=s)
+    s = co * sb
     s += so * cb
     return c, s
 

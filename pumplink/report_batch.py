@@ -23,7 +23,6 @@ import numpy as np
 
 from pumplink.batch import Batch, Chunk, variant_name, variant_names
 from pumplink.errors import SpecError
-from pumplink.report import progress  # noqa: F401  (re-exported: the batch command uses rb.progress)
 
 #: Per-variant columns after the name, the source and the varied keys (CSV order).
 FIXED_COLUMNS = (

@@ -703,26 +703,11 @@ def test_bracketed_units_and_extras_survive_rich_markup_in_help():
 def test_long_force_sweep_draws_a_progress_bar_on_a_terminal_only(tmp_path):
     """`force --summary` with a sweep of more than a second: a Rich bar on a terminal's stderr,
     nothing extra when stderr is a pipe (the verdict on stdout is the same)."""
-    import pty
+    from terminal import run_on_terminal
 
     args = [*CMD, "force", "--summary", "--samples", "150000000", "--format", "json"]
-    master, slave = pty.openpty()
-    p = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=slave,
-                         env={**os.environ, "COLUMNS": "100", "TERM": "xterm"})
-    os.close(slave)
-    chunks = []
-    while True:
-        try:
-            data = os.read(master, 65536)
-        except OSError:  # the child closed the terminal
-            break
-        if not data:
-            break
-        chunks.append(data)
-    out = p.communicate(timeout=300)[0]
-    os.close(master)
-    assert p.returncode == 0
-    text = b"".join(chunks).decode("utf-8", "replace")
+    code, text, out = run_on_terminal(args)
+    assert code == 0
     assert "force sweep" in text and "━" in text and "/1000" in text
     piped = subprocess.run(args, capture_output=True, check=False)
     assert piped.returncode == 0 and piped.stderr == b""

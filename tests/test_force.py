@@ -178,3 +178,15 @@ def test_vectorised_peak_force_equals_per_design_calls(items):
         p1, a1 = peak_force(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, bd, m)
         assert peaks[i] == pytest.approx(p1, rel=1e-12)
         assert _gap(angles[i], a1) <= 1e-9
+
+
+def test_sampled_peak_does_not_depend_on_keeping_the_samples():
+    """`force` and `force --summary` report the same sampled peak (one route for uniform sweeps)."""
+    from pumplink.analysis import force_analysis
+
+    spec = parse_spec(DEFAULT_SPEC)
+    for n in (12, 360, 3600, 100001):
+        kept = force_analysis(spec, samples=n, keep_samples=True)
+        streamed = force_analysis(spec, samples=n, keep_samples=False)
+        assert kept.sampled_peak == streamed.sampled_peak
+        assert kept.samples.crank_angle.size == n and streamed.samples is None
