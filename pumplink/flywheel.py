@@ -1,0 +1,558 @@
+"""The flywheel scene: the wheel's inertia carries the linkage through the dead centres.
+
+The quasi-static force (``pumplink.kinematics``) is infinite at both dead centres, and speed
+cancels out of it.  In the pump the upper wheel and the moving rope and water are a flywheel.
+This module answers the question the quasi-static model cannot: *what is the least peak
+force an operator needs to keep the wheel turning at a mean speed with a bounded speed
+fluctuation?*  (issue #6, NOTES.md §1 and §4).
+
+The scene
+---------
+Crank angle t (the wheel's angle), kinetic energy E = J w^2 / 2 of the wheel plus the rope and
+water that move with its rim; link inertias are neglected (their size is estimated by
+:func:`link_energy`).  The load is a constant torque Mw; the operator applies a horizontal
+force F at the grip with |F| <= Fp.  Per crank radian the energy balance is
+
+    dE/dt = F g(t) - Mw,    g = dPx/dt  (grip travel per crank radian)          (1)
+
+which does not contain w: in the crank angle the scene is the same at every speed.
+
+Speed fluctuation
+-----------------
+The coefficient of speed fluctuation is delta = (w_max - w_min) / w_bar with the mean speed
+w_bar = (w_max + w_min) / 2 (the machine-design definition).  Then exactly
+
+    E_max - E_min = J (w_max^2 - w_min^2) / 2 = J w_bar^2 delta                  (2)
+
+so a periodic motion with mean speed w_bar and delta <= delta_allow is a periodic E(t) whose
+range is at most the *energy band* W = J w_bar^2 delta_allow.  J, w_bar and delta_allow enter
+the answer only through W (the scaling law, tested).
+
+The least peak force, exactly
+-----------------------------
+With |F| <= Fp the fastest possible gain is u(t) = Fp |g(t)| - Mw, and any slope between
+-Fp |g| - Mw < 0 and u is possible.  Keeping the flywheel "as full as possible" (push with Fp
+in the direction the grip moves; once the wheel is at the top of the band, push just the
+quasi-static force, which is <= Fp there because u >= 0) is a reflected path at the top of
+the band: with U(t) the integral of u, started at the top W at t0,
+
+    E(t) = min(W + U(t) - U(t0), min over t0 <= s <= t of W + U(t) - U(s)).
+
+Over one revolution this maps a start x to min(x + A, C), A = U(t + 2 pi) - U(t) = 2 Fp S -
+2 pi Mw (S: grip stroke), C a constant.  A periodic path needs A >= 0, i.e. Fp >= F_mean
+(NOTES.md §1), and then the fixed point is reached after one revolution; the path from the
+top dominates every other feasible path, so a periodic motion inside the band exists **iff**
+A >= 0 and it never drops more than W below the top:
+
+    D(Fp) = max over arcs s < t < s + 2 pi of U(s) - U(t)  <=  W.                  (3)
+
+U(s) - U(t) = Mw (t - s) - Fp G(s, t) is linear in Fp, with G the grip's horizontal travel over
+the arc (its total variation: |dPx| summed; Px is monotone between the dead centres, so G comes
+from positions, no quadrature).  Hence the least peak force is the fractional programme
+
+    Fp* = max(F_mean, max over arcs of (Mw (t - s) - W) / G(s, t)),                (4)
+
+solved here by Dinkelbach's iteration on Eq. (3).  At the optimum the arc ends where the
+quasi-static force equals Fp* (the operator's limit meets the load): the wheel decelerates
+exactly on the arcs around the dead centres where |F_qs| > Fp*.  Limits: W -> inf gives F_mean;
+W -> 0 gives the quasi-static maximum, infinite.
+
+Numerics: U on a grid (uniform, plus nodes clustered geometrically at both dead centres, so the
+deficit arc around a dead centre is seen however short it is), every local extremum refined with
+scipy's bracketing minimiser, then the drawdown of Eq. (3) over the refined extrema.  Wiggles of
+|F_qs| narrower than one grid cell (2 pi / ``GRID``) are merged; their height is second order in
+the cell size.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from pumplink.kinematics import _loop, evaluate
+from pumplink.synthesis import Linkage
+
+TWO_PI = 2.0 * np.pi
+
+#: Uniform grid points per revolution on which the extrema of U are located before refinement.
+GRID = 256
+#: Geometric nodes each side of a dead centre (spacing halves down to GRID cell / 2**CLUSTER).
+CLUSTER = 44
+#: Relative convergence of Dinkelbach's iteration on the peak force.
+RTOL = 1e-13
+#: Peak forces above this [N] are reported as infinite (the energy band is then, for every
+#: practical purpose, zero).
+FORCE_CAP = 1e12
+
+#: Coefficient of speed fluctuation the product uses unless the spec says otherwise: 0.2, the
+#: loosest class of the machine-design tables (crushers, hammers, punch presses; e.g.
+#: Shigley's "Mechanical Engineering Design", Table 16-6, and the Machinery's Handbook table of
+#: Cf).  A hand-driven rope pump has no machine to protect from speed ripple; what limits delta
+#: is that the operator must follow the handle.
+DEFAULT_SPEED_FLUCTUATION = 0.2
+
+#: Mass per metre [kg/m] of the steel tube the link-energy estimate assumes: 3/4" medium steel
+#: tube (EN 10255, 26.9 x 2.6 mm), 7850 kg/m^3 * pi/4 (26.9^2 - 21.7^2) mm^2.
+LINK_MASS_PER_METRE = 7850.0 * np.pi / 4.0 * (26.9e-3 ** 2 - 21.7e-3 ** 2)
+#: Link kinetic energy, as a fraction of the energy band, above which the flywheel scene stops
+#: being enough (the links then exchange energy comparable with the band: full dynamics).
+LINK_ENERGY_LIMIT = 0.1
+
+
+def rim_inertia(mass, radius):
+    """Moment of inertia of mass at a radius, J = m r^2 [kg m^2] (a rim; issue #6)."""
+    return np.asarray(mass, float) * np.asarray(radius, float) ** 2
+
+
+def energy_band(inertia, mean_speed, speed_fluctuation):
+    """Kinetic-energy band of a cycle, W = J w_bar^2 delta [J] (Eq. (2) of this module).
+
+    Parameters
+    ----------
+    inertia : J about the axle [kg m^2];  mean_speed : w_bar = (w_max + w_min)/2 [rad/s];
+    speed_fluctuation : delta = (w_max - w_min)/w_bar [-].
+    """
+    return np.asarray(inertia, float) * np.asarray(mean_speed, float) ** 2 * speed_fluctuation  # Eq. (2)
+
+
+# ----------------------------------------------------------------------------- grip travel G
+def _grip_x(theta, px, py, c, k, r, h, br):
+    """Horizontal grip position Px [m] at crank angles theta (vector loop closure)."""
+    cs, sn = np.cos(theta), np.sin(theta)
+    lk = Linkage(px, py, c, k, r, h, br)
+    _p1, _p2, _e2, t, q = _loop(lk, cs, sn)
+    dx, dy = px - c * cs, py - c * sn
+    bx = c * cs + t * dx - q * dy  # Eq. (6) as a vector (pumplink.kinematics)
+    return px + (h / r) * (bx - px)
+
+
+def _travel(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke):
+    """Grip travel G [m] from the extended dead centre to crank angle dce + phi (phi unrolled).
+
+    Px is monotone between the dead centres, so G is |Px - Px(dce)| on the first arc,
+    stroke + |Px - Px(dcf)| on the second, plus 2 * stroke per full revolution.
+    """
+    turns = np.floor(phi / TWO_PI)
+    p = phi - turns * TWO_PI
+    x = _grip_x(dce + p, px, py, c, k, r, h, br)
+    g = np.where(p <= plus, np.abs(x - xe), stroke + np.abs(x - xf))
+    return g + 2.0 * stroke * turns
+
+
+def _nodes(dce, dcf):
+    """Grid nodes phi in [0, 2 pi) per design, sorted, shape (D, M): uniform (half-cell offset)
+    plus geometric clusters at both dead centres (phi = 0 and phi = plus)."""
+    h = TWO_PI / GRID
+    plus = np.mod(dcf - dce, TWO_PI)
+    uni = (np.arange(GRID) + 0.5) * h
+    off = h * 2.0 ** -np.arange(2, CLUSTER + 2)  # h/4 ... : inside the first half cell
+    near0 = np.concatenate([off, TWO_PI - off, [0.0]])
+    nearp = np.concatenate([-off, off, [0.0]])
+    x = np.concatenate([np.broadcast_to(uni, plus.shape + uni.shape),
+                        np.broadcast_to(near0, plus.shape + near0.shape),
+                        np.mod(plus[:, None] + nearp, TWO_PI)], axis=1)
+    return np.sort(x, axis=1), plus
+
+
+@dataclass(frozen=True)
+class _Prepared:
+    geom: tuple  # px, py, c, k, r, h, br as (D,) arrays
+    dce: np.ndarray
+    plus: np.ndarray
+    xe: np.ndarray
+    xf: np.ndarray
+    stroke: np.ndarray
+    mw: np.ndarray
+    nodes: np.ndarray  # (D, M)
+    travel: np.ndarray  # (D, M)
+
+    def args(self, idx=slice(None)):
+        g = tuple(p[idx] for p in self.geom)
+        return g + (self.dce[idx], self.plus[idx], self.xe[idx], self.xf[idx], self.stroke[idx])
+
+
+def _prepare(lk: Linkage, dce, dcf, wheel_torque):
+    params = np.broadcast_arrays(*(np.asarray(v, float) for v in (
+        lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch,
+        dce, dcf, wheel_torque)))
+    scalar = params[0].ndim == 0
+    *geom, dce, dcf, mw = [np.atleast_1d(p).ravel() for p in params]
+    with np.errstate(all="ignore"):
+        xe = _grip_x(dce, *geom)
+        xf = _grip_x(dcf, *geom)
+        stroke = np.abs(xf - xe)
+        nodes, plus = _nodes(dce, dcf)
+        g2 = [p[:, None] for p in geom]
+        travel = _travel(nodes, *g2, dce[:, None], plus[:, None], xe[:, None], xf[:, None], stroke[:, None])
+    return _Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, travel), scalar
+
+
+def _u_integral(phi, force, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke, mw):
+    """U(phi) = Fp G(phi) - Mw phi [J]: the largest energy the operator can have added [Eq. (3)]."""
+    return force * _travel(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke) - mw * phi
+
+
+def _refined_extrema(prep: _Prepared, force, rows=None):
+    """Nodes, U and G with every local extremum of U refined (a bracketing minimiser).
+
+    Returns (x, u, g, a) with shape (D, M) (rows: the designs to do) and the drift
+    a = U(phi + 2 pi) - U(phi) = 2 Fp S - 2 pi Mw.
+    """
+    from scipy.optimize.elementwise import find_minimum  # lazy: keeps start-up fast
+
+    rows = np.arange(prep.dce.size) if rows is None else rows
+    x = prep.nodes[rows].copy()
+    g = prep.travel[rows].copy()
+    fp = force[:, None]
+    mw = prep.mw[rows][:, None]
+    u = fp * g - mw * x
+    a = 2.0 * force * prep.stroke[rows] - TWO_PI * prep.mw[rows]
+    # neighbours with the period wrap: U(phi - 2 pi) = U(phi) - a
+    u_prev = np.concatenate([u[:, -1:] - a[:, None], u[:, :-1]], axis=1)
+    u_next = np.concatenate([u[:, 1:], u[:, :1] + a[:, None]], axis=1)
+    x_prev = np.concatenate([x[:, -1:] - TWO_PI, x[:, :-1]], axis=1)
+    x_next = np.concatenate([x[:, 1:], x[:, :1] + TWO_PI], axis=1)
+    with np.errstate(invalid="ignore"):
+        is_max = (u >= u_prev) & (u > u_next)
+        is_min = (u <= u_prev) & (u < u_next)
+    for mask, sign in ((is_max, -1.0), (is_min, 1.0)):
+        d_idx, n_idx = np.nonzero(mask)
+        if d_idx.size == 0:
+            continue
+        args = prep.args(rows[d_idx])
+        f_el = force[d_idx]
+        mw_el = prep.mw[rows[d_idx]]
+        res = find_minimum(lambda t, f, *p, sign=sign: sign * _u_integral(t, f, *p),
+                           (x_prev[d_idx, n_idx], x[d_idx, n_idx], x_next[d_idx, n_idx]),
+                           args=(f_el,) + args + (mw_el,), tolerances=dict(xatol=0.0, xrtol=1e-15))
+        # keep the refined point only where it is at least as extreme as the node
+        better = np.isfinite(res.f_x) & ((-res.f_x >= u[d_idx, n_idx]) if sign < 0 else (res.f_x <= u[d_idx, n_idx]))
+        xi = np.where(better, res.x, x[d_idx, n_idx])
+        x[d_idx, n_idx] = xi
+        g[d_idx, n_idx] = _travel(xi, *prep.args(rows[d_idx]))
+        u[d_idx, n_idx] = f_el * g[d_idx, n_idx] - mw_el * xi
+    return x, u, g, a
+
+
+def _drawdown(x, u, g, a, stroke):
+    """Largest drop of U over an arc shorter than a revolution [Eq. (3)], and that arc.
+
+    Returns (drop [J], arc length [rad], travel over the arc [m]) per design.
+    """
+    x2 = np.concatenate([x, x + TWO_PI], axis=1)
+    u2 = np.concatenate([u, u + a[:, None]], axis=1)
+    g2 = np.concatenate([g, g + 2.0 * stroke[:, None]], axis=1)
+    top = np.maximum.accumulate(u2, axis=1)
+    dd = top - u2
+    j = np.argmax(dd, axis=1)
+    idx = np.arange(x.shape[0])
+    drop = dd[idx, j]
+    cols = np.arange(u2.shape[1])
+    i = np.argmax(np.where(cols[None, :] <= j[:, None], u2, -np.inf), axis=1)
+    return drop, x2[idx, j] - x2[idx, i], g2[idx, j] - g2[idx, i]
+
+
+def mean_operator_force(wheel_torque, stroke):
+    """F_mean = 2 pi Mw / (2 S) [N]: the constant push/pull doing one cycle's work (NOTES.md §1)."""
+    return np.pi * np.asarray(wheel_torque, float) / stroke  # NOTES.md §1
+
+
+def energy_deficit(lk: Linkage, dead_centre_extended, dead_centre_folded, wheel_torque, peak_force):
+    """Least energy band W [J] an operator limited to ``peak_force`` needs: D(Fp) of Eq. (3).
+
+    The flywheel must be able to give up this much kinetic energy on the arcs where the
+    quasi-static force exceeds ``peak_force``; infinite when the peak is below F_mean (the
+    operator cannot do a cycle's work).  Broadcasts over designs.
+
+    Parameters
+    ----------
+    lk : linkage (scalars or 1-D arrays over designs).
+    dead_centre_extended, dead_centre_folded : dead-centre crank angles [rad].
+    wheel_torque : Mw [N m];  peak_force : the operator's largest |F| [N].
+    """
+    prep, scalar = _prepare(lk, dead_centre_extended, dead_centre_folded, wheel_torque)
+    fp = np.broadcast_to(np.asarray(peak_force, float), prep.dce.shape).astype(float)
+    out = np.full(prep.dce.shape, np.nan)
+    with np.errstate(all="ignore"):
+        ok = np.isfinite(prep.stroke) & np.isfinite(fp)
+        low = ok & (fp < mean_operator_force(prep.mw, prep.stroke) * (1 - 1e-15))
+        out[low] = np.inf
+        rows = np.nonzero(ok & ~low)[0]
+        if rows.size:
+            x, u, g, a = _refined_extrema(prep, fp[rows], rows)
+            out[rows] = _drawdown(x, u, g, np.maximum(a, 0.0), prep.stroke[rows])[0]
+    return float(out[0]) if scalar else out
+
+
+def required_peak_force(lk: Linkage, dead_centre_extended, dead_centre_folded, wheel_torque, energy_band):
+    """Least peak operator force [N] for a periodic motion inside the energy band, Eq. (4).
+
+    Exact to solver tolerance (Dinkelbach's iteration on Eq. (3), every extremum refined).
+    Between F_mean (W -> inf: an infinite flywheel) and the quasi-static maximum (W -> 0: no
+    flywheel, infinite at the dead centres).
+
+    Parameters
+    ----------
+    lk : linkage (scalars or 1-D arrays over designs).
+    dead_centre_extended, dead_centre_folded : dead-centre crank angles [rad].
+    wheel_torque : Mw [N m].
+    energy_band : W = J w_bar^2 delta [J] (:func:`energy_band`).
+
+    Returns
+    -------
+    Fp* [N]: inf where the band is zero, NaN for an infeasible design.
+    """
+    prep, scalar = _prepare(lk, dead_centre_extended, dead_centre_folded, wheel_torque)
+    band = np.broadcast_to(np.asarray(energy_band, float), prep.dce.shape).astype(float)
+    n = prep.dce.size
+    out = np.full(n, np.nan)
+    with np.errstate(all="ignore"):
+        ok = np.isfinite(prep.stroke) & (prep.stroke > 0) & ~np.isnan(band)
+        f_mean = mean_operator_force(prep.mw, prep.stroke)
+        out[ok & (band <= 0)] = np.inf
+        out[ok & (band == np.inf)] = f_mean[ok & (band == np.inf)]
+        active = np.nonzero(ok & (band > 0) & np.isfinite(band))[0]
+        lam = f_mean.copy()
+        for _ in range(100):
+            if active.size == 0:
+                break
+            x, u, g, a = _refined_extrema(prep, lam[active], active)
+            drop, length, travel = _drawdown(x, u, g, np.maximum(a, 0.0), prep.stroke[active])
+            new = (prep.mw[active] * length - band[active]) / travel  # Eq. (4): the arc's ratio
+            grow = (drop > band[active]) & (new > lam[active])
+            done = ~grow | (new - lam[active] <= RTOL * new)
+            lam[active] = np.where(grow, new, lam[active])
+            capped = lam[active] > FORCE_CAP
+            lam[active[capped]] = np.inf
+            active = active[~(done | capped)]
+        out[ok & (band > 0) & np.isfinite(band)] = lam[ok & (band > 0) & np.isfinite(band)]
+    return float(out[0]) if scalar else out
+
+
+def min_passing_speed(lk: Linkage, dead_centre_extended, dead_centre_folded, wheel_torque, force_limit,
+                      inertia, speed_fluctuation):
+    """Least mean wheel speed [rad/s] at which ``force_limit`` suffices: w = sqrt(D(F_limit) / (J delta)).
+
+    From Eq. (2)-(3): the design passes iff D(F_limit) <= J w_bar^2 delta.  Infinite when the
+    limit is below F_mean (no speed helps), NaN for an infeasible design.
+    """
+    need = energy_deficit(lk, dead_centre_extended, dead_centre_folded, wheel_torque, force_limit)
+    with np.errstate(all="ignore"):
+        return np.sqrt(need / (np.asarray(inertia, float) * speed_fluctuation))
+
+
+# ----------------------------------------------------------------------------- one design in detail
+@dataclass(frozen=True)
+class Scene:
+    """The flywheel scene of one design at one speed (SI units, radians).
+
+    Attributes
+    ----------
+    inertia : J [kg m^2];  mean_speed : w_bar [rad/s];  speed_fluctuation : delta_allow [-].
+    energy_band : W = J w_bar^2 delta_allow [J].
+    peak_force : Fp*, least peak operator force [N].
+    mean_force : F_mean [N].
+    fluctuation : delta of the reported motion [-] (= delta_allow unless Fp* = F_mean).
+    max_speed, min_speed : w_max, w_min of the reported motion [rad/s].
+    ceiling : (k, 2) crank angles [rad] of the arcs on which the wheel is at w_max and the
+        operator pushes only the quasi-static force; elsewhere |F| = Fp*.
+    top_angle : crank angle [rad] where the motion is at w_max (start of the verification).
+    """
+
+    inertia: float
+    mean_speed: float
+    speed_fluctuation: float
+    energy_band: float
+    peak_force: float
+    mean_force: float
+    fluctuation: float
+    max_speed: float
+    min_speed: float
+    ceiling: np.ndarray
+    top_angle: float
+    linkage: Linkage
+    wheel_torque: float
+    dead_centre_extended: float
+    dead_centre_folded: float
+
+
+def scene(lk: Linkage, dead_centre_extended: float, dead_centre_folded: float, wheel_torque: float,
+          inertia: float, mean_speed: float, speed_fluctuation: float) -> Scene:
+    """Solve the flywheel scene of one design: Fp*, the operator's force profile and w(t).
+
+    The reported motion is the "as full as possible" one of the module docstring at Fp*: the
+    operator pushes Fp* in the grip's direction of motion, except on the ``ceiling`` arcs where
+    the wheel is at its top speed and the push is the quasi-static force.
+    """
+    from scipy.optimize.elementwise import find_root
+
+    band = float(energy_band(inertia, mean_speed, speed_fluctuation))
+    fp = required_peak_force(lk, dead_centre_extended, dead_centre_folded, wheel_torque, band)
+    prep, _ = _prepare(lk, dead_centre_extended, dead_centre_folded, wheel_torque)
+    f_mean = float(mean_operator_force(wheel_torque, prep.stroke[0]))
+    nan = float("nan")
+    if not np.isfinite(fp):
+        return Scene(inertia, mean_speed, speed_fluctuation, band, fp, f_mean, nan, nan, nan,
+                     np.empty((0, 2)), nan, lk, wheel_torque, dead_centre_extended, dead_centre_folded)
+    x, u, g, a = _refined_extrema(prep, np.array([fp]))
+    a0 = max(float(a[0]), 0.0)
+    x, u = x[0], u[0]
+    drop = float(_drawdown(x[None], u[None], g, np.array([a0]), prep.stroke)[0][0])
+    # local maxima of U (refined) and their running maximum over the previous revolution
+    u_prev = np.concatenate([[u[-1] - a0], u[:-1]])
+    u_next = np.concatenate([u[1:], [u[0] + a0]])
+    peaks = np.nonzero((u >= u_prev) & (u > u_next))[0]
+    xm, um = x[peaks], u[peaks]
+    ceil = []
+    args = prep.args(slice(0, 1))
+    for m in range(peaks.size):
+        # maxima in (xm - 2 pi, xm): the earlier ones this revolution and the later ones shifted back
+        before = np.concatenate([um[:m], um[m + 1:] - a0, [um[m] - a0]])
+        level = before.max()
+        if um[m] <= level:
+            continue  # below an earlier top: the wheel is not full here
+        # the ceiling arc starts where U climbs back to `level`, after the previous local minimum
+        k = peaks[m]
+        lo_idx = k - 1
+        while True:  # walk back to the preceding node below `level` (wrapping, at most one revolution)
+            xl = x[lo_idx % x.size] - (TWO_PI if lo_idx < 0 else 0.0)
+            ul = u[lo_idx % x.size] - (a0 if lo_idx < 0 else 0.0)
+            if ul <= level or lo_idx < k - x.size:
+                break
+            lo_idx -= 1
+        res = find_root(lambda t, *p: _u_integral(t, fp, *p, prep.mw[:1]) - level,
+                        (xl, xm[m]), args=args, tolerances=dict(xatol=0.0, xrtol=1e-15))
+        ceil.append((float(res.x[0]), float(xm[m])))
+    ceiling = np.mod(np.array(ceil).reshape(-1, 2) + dead_centre_extended, TWO_PI)
+    top = float(np.mod(xm[np.argmax(um)] + dead_centre_extended, TWO_PI))
+    fluct = drop / (inertia * mean_speed ** 2)  # Eq. (2): the range of E is the drawdown
+    return Scene(inertia, mean_speed, speed_fluctuation, band, float(fp), f_mean, fluct,
+                 mean_speed * (1 + fluct / 2), mean_speed * (1 - fluct / 2), ceiling, top, lk,
+                 float(wheel_torque), float(dead_centre_extended), float(dead_centre_folded))
+
+
+def on_ceiling(sc: Scene, crank_angle):
+    """True where a crank angle lies on one of the scene's ceiling arcs."""
+    th = np.asarray(crank_angle, float)
+    out = np.zeros(th.shape, bool)
+    for s, e in sc.ceiling:
+        out |= np.mod(th - s, TWO_PI) <= np.mod(e - s, TWO_PI)
+    return out
+
+
+def operator_force(sc: Scene, crank_angle):
+    """The reported operator force profile F(t) [N], +x positive.
+
+    Fp* in the grip's direction of motion, the quasi-static force on the ceiling arcs; at a
+    dead centre (grip at rest) the push reverses and the force is reported as 0.
+    """
+    th = np.asarray(crank_angle, float)
+    st = evaluate(sc.linkage, th, sc.wheel_torque)
+    push = sc.peak_force * np.sign(st.handle_rate)
+    return np.where(on_ceiling(sc, th) & ~st.singular, st.force, push)
+
+
+def wheel_speed(sc: Scene, crank_angle):
+    """Wheel speed w(t) [rad/s] of the reported motion (energy balance Eq. (1) from the top)."""
+    th = np.asarray(crank_angle, float)
+    prep, _ = _prepare(sc.linkage, sc.dead_centre_extended, sc.dead_centre_folded, sc.wheel_torque)
+    x, u, g, a = _refined_extrema(prep, np.array([sc.peak_force]))
+    a0 = max(float(a[0]), 0.0)
+    x, u = x[0], u[0]
+    u_prev = np.concatenate([[u[-1] - a0], u[:-1]])
+    u_next = np.concatenate([u[1:], [u[0] + a0]])
+    peaks = np.nonzero((u >= u_prev) & (u > u_next))[0]
+    xm, um = x[peaks], u[peaks]
+    phi = np.mod(th - sc.dead_centre_extended, TWO_PI)
+    uphi = _u_integral(phi, sc.peak_force, *prep.args(slice(0, 1)), prep.mw[:1])
+    # running maximum of U over (phi - 2 pi, phi]: U(phi) itself or a local maximum in the window
+    cand_x = np.concatenate([xm, xm - TWO_PI])
+    cand_u = np.concatenate([um, um - a0])
+    inside = (cand_x[None, :] <= phi[..., None].reshape(-1, 1)) & (cand_x[None, :] > phi.reshape(-1, 1) - TWO_PI)
+    top = np.maximum(uphi.reshape(-1), np.where(inside, cand_u[None, :], -np.inf).max(axis=1)).reshape(phi.shape)
+    energy = 0.5 * sc.inertia * sc.max_speed ** 2 - (top - uphi)  # Eq. (1) from the top of the band
+    return np.sqrt(2.0 * energy / sc.inertia)
+
+
+# ----------------------------------------------------------------------------- cross-check
+@dataclass(frozen=True)
+class Simulation:
+    """Equation of motion integrated in time under the scene's force profile (scipy ``solve_ivp``).
+
+    Attributes
+    ----------
+    cycles : revolutions integrated.
+    speeds_at_start : w [rad/s] each time the crank passes the start angle again (periodic: all
+        equal to the first).
+    periodicity : max |w_k - w_0| / w_0 over those passes [-].
+    max_speed, min_speed : over the last revolution [rad/s].
+    mean_speed : (w_max + w_min) / 2 over the last revolution [rad/s].
+    time_mean_speed : 2 pi / (duration of the last revolution) [rad/s].
+    fluctuation : (w_max - w_min) / mean_speed [-].
+    """
+
+    cycles: int
+    speeds_at_start: np.ndarray
+    periodicity: float
+    max_speed: float
+    min_speed: float
+    mean_speed: float
+    time_mean_speed: float
+    fluctuation: float
+
+
+def simulate(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> Simulation:
+    """Integrate J dw/dt = (F(t) g(t) - Mw) (Eq. (1) in time) from the reported top speed.
+
+    The force is the reported profile F(t) as a function of the crank angle alone (open loop):
+    an error in the profile shows as a drift from one revolution to the next.
+    """
+    from scipy.integrate import solve_ivp
+
+    j, mw, t0 = sc.inertia, sc.wheel_torque, sc.top_angle
+
+    def rhs(_t, y):
+        th = y[0]
+        g = evaluate(sc.linkage, th, 1.0).handle_rate
+        return [y[1], (float(operator_force(sc, th)) * float(g) - mw) / j]  # Eq. (1): J w dw/dt = (F g - Mw) w
+
+    def turn(_t, y):
+        return np.sin(0.5 * (y[0] - t0))  # zero each time the crank is back at the start angle
+
+    turn.terminal = cycles + 1  # the start itself may count as a crossing
+    turn.direction = 0.0
+    horizon = 4.0 * cycles * TWO_PI / sc.min_speed
+    sol = solve_ivp(rhs, (0.0, horizon), [t0, sc.max_speed], method="DOP853", rtol=rtol, atol=1e-12 * sc.max_speed,
+                    events=turn, dense_output=True)
+    times = sol.t_events[0]
+    times = times[times > 1e-9 * horizon][:cycles]
+    speeds = np.array([sc.max_speed] + [float(sol.sol(t)[1]) for t in times])
+    last0, last1 = (times[-2] if times.size > 1 else 0.0), times[-1]
+    w = sol.sol(np.linspace(last0, last1, 40001))[1]
+    wmax, wmin = float(w.max()), float(w.min())
+    mean = 0.5 * (wmax + wmin)
+    return Simulation(int(times.size), speeds, float(np.max(np.abs(speeds - speeds[0])) / speeds[0]), wmax, wmin,
+                      mean, TWO_PI / (last1 - last0), (wmax - wmin) / mean)
+
+
+# ----------------------------------------------------------------------------- neglected effects
+def link_energy(lk: Linkage, crank_angle, mean_speed, mass_per_length=LINK_MASS_PER_METRE):
+    """Kinetic energy [J] of the coupler and the handle at crank angles, turning at ``mean_speed``.
+
+    Both are taken as uniform bars of ``mass_per_length`` [kg/m] (the handle from the rocker pivot
+    to the grip, length max(H, rocker)); a uniform bar whose ends move at vA, vB has
+    T = m (vA^2 + vA.vB + vB^2) / 6.  The crank is part of the wheel.
+    """
+    th = np.asarray(crank_angle, float)
+    st = evaluate(lk, th, 1.0)
+    w = mean_speed
+    c = lk.crank
+    vax, vay = -w * c * np.sin(th), w * c * np.cos(th)
+    w4 = st.rocker_rate * w
+    rx, ry = st.coupler_x - lk.pivot_x, st.coupler_y - lk.pivot_y
+    vbx, vby = -w4 * ry, w4 * rx
+    coupler = mass_per_length * lk.coupler / 6.0 * (vax * vax + vay * vay + vax * vbx + vay * vby + vbx * vbx + vby * vby)
+    arm = np.maximum(lk.handle, lk.rocker)
+    handle = mass_per_length * arm / 6.0 * (w4 * arm) ** 2
+    return coupler + handle
