@@ -96,17 +96,26 @@ def force(
     plot: Annotated[Optional[Path], typer.Option(help="Also write the force curve to this .png/.svg/.pdf "
                                                       "(needs the plot extra: pip install 'pumplink\\[plot]').",
                                                  show_default=False)] = None,
+    explain: Annotated[bool, typer.Option("--explain", help="Also report which effects the model includes, their "
+                                                            "size at this speed, and why the model is enough.")] = False,
+    verify: Annotated[bool, typer.Option("--verify", help="Flywheel model: integrate the equation of motion "
+                                                          "(scipy solve_ivp) under the reported force profile and "
+                                                          "check it is periodic with the mean speed and δ.")] = False,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Operator force over the crank cycle, the checks and the 100 N verdict.
 
-    The force is quasi-static (Eq. 3 of the pump paper by virtual work): infinite at the two dead
-    centres, so the peak is taken outside ±operator.dead_band of them, exactly, whatever
-    --samples.  Exit 0 if the design passes, 1 if it fails or is infeasible.
+    Two models decide the verdict.  With the wheel's inertia in the spec (wheel.mass or
+    wheel.inertia, plus the rope and water) the [bold]flywheel[/] model finds the least peak force
+    that keeps the wheel turning at the mean --speed with a speed fluctuation within
+    operator.speed_fluctuation, so the speed changes the answer.  Without it the force is
+    [bold]quasi-static[/] (Eq. 3 of the pump paper): infinite at the two dead centres, so the peak
+    is taken outside ±operator.dead_band of them, exactly, whatever --samples.  Exit 0 if the
+    design passes, 1 if it fails, is infeasible or --verify disagrees.
 
     Example: [bold]pumplink force pump.toml --speed 360 --at 90 --at 270 --format json[/]
 
-    Example: [bold]pumplink force pump.toml --summary --plot force.png[/]
+    Example: [bold]pumplink force examples/well-12m-flywheel.toml --speed 540 --summary --explain --verify[/]
     """
     import math
 
@@ -126,6 +135,9 @@ def force(
     from pumplink.report import progress
 
     s = load_spec(spec) if spec is not None else default_spec()
+    if verify and s.inertia is None:
+        raise SpecError(f"--verify checks the flywheel model, but {s.name} gives no inertia; add wheel.mass [kg] "
+                        "or wheel.inertia [kg m^2] to the spec")
     with progress(1000, "force sweep") as advance:  # drawn on a terminal for sweeps over a second
         done = [0]
 
@@ -135,13 +147,83 @@ def force(
             done[0] = k
 
         result = force_analysis(s, speed, samples, at_deg=at or None, keep_samples=not summary, progress=tick)
-    render_force(result, fmt.value, summary=summary)
+    extra, agrees = {}, True
+    if explain and result.design.feasible:
+        from pumplink.analysis import explain as explain_model
+        from pumplink.report import explain_rows
+
+        effects, why = explain_model(result)
+        extra["explain"] = {"model": result.model, "effects": explain_rows(effects), "why": why}
+    scene_ok = result.scene is not None and math.isfinite(result.scene.peak_force)
+    if verify and scene_ok:
+        from pumplink.flywheel import simulate
+        from pumplink.report import verify_row
+
+        extra["verify"] = verify_row(simulate(result.scene), result)
+        agrees = extra["verify"]["agrees"]
+    render_force(result, fmt.value, summary=summary, extra=extra)
+    if fmt.value != "json":  # the reports follow the table; with CSV on stdout they go to stderr
+        from pumplink.report import render_explain, render_verify
+
+        side = sys.stdout if fmt.value == "table" else sys.stderr
+        if "explain" in extra:
+            render_explain(effects, why, out=side)
+        if "verify" in extra:
+            render_verify(extra["verify"], out=side)
     if plot is not None and result.design.feasible:
         from pumplink.plots import force_curve
 
         force_curve(result, plot)
         sys.stderr.write(f"wrote {plot}\n")
-    raise typer.Exit(0 if result.passed else 1)
+    raise typer.Exit(0 if result.passed and agrees else 1)
+
+
+@app.command()
+def speed(
+    spec: Annotated[Path, typer.Argument(help="TOML pump spec with the wheel's inertia (wheel.mass or wheel.inertia).",
+                                         show_default=False)],
+    lo: Annotated[float, typer.Option("--from", help="Lowest mean wheel speed \\[deg/s].", min=1e-6, max=7200)] = 120.0,
+    hi: Annotated[float, typer.Option("--to", help="Highest mean wheel speed \\[deg/s].", min=1e-6, max=7200)] = 720.0,
+    step: Annotated[float, typer.Option(help="Speed step \\[deg/s].", min=1e-3, max=7200)] = 30.0,
+    plot: Annotated[Optional[Path], typer.Option(help="Write the chart (peak force against speed) to this "
+                                                      ".png/.svg/.pdf (needs pumplink\\[plot]).", show_default=False)] = None,
+    fmt: FormatOpt = Format.table,
+) -> None:
+    """Least peak operator force against mean wheel speed, and the slowest speed that passes.
+
+    The flywheel model (see [bold]pumplink force --help[/]): a faster wheel stores more energy
+    (J·ω̄²·δ) to carry the linkage through the dead centres, so the operator's peak force falls
+    toward the mean force, while the power Mw·ω̄ rises.  Exit 0 if the spec's own speed passes,
+    1 if not, 2 if the spec gives no inertia.
+
+    Example: [bold]pumplink speed examples/well-12m-flywheel.toml --from 120 --to 720 --plot speed.png[/]
+    """
+    import numpy as np
+
+    from pumplink.analysis import speed_sweep
+    from pumplink.report import render_speed
+
+    if hi < lo:
+        raise SpecError(f"--to {hi:g} is below --from {lo:g}; give --from LOW --to HIGH in deg/s")
+    n = int(np.floor((hi - lo) / step + 1e-9)) + 1
+    if n > 10_000:
+        raise SpecError(f"--from {lo:g} --to {hi:g} --step {step:g} gives {n} speeds; at most 10,000 (raise --step)")
+    if plot is not None:
+        from pumplink.plots import check_path, pyplot
+
+        check_path(plot)
+        pyplot()
+    s = _load([spec])[0]
+    speeds = lo + step * np.arange(n)
+    sw = speed_sweep(s, speeds)
+    render_speed(sw, fmt.value)
+    if plot is not None:
+        from pumplink.plots import speed_chart
+
+        speed_chart(sw, plot)
+        sys.stderr.write(f"wrote {plot}\n")
+    own = speed_sweep(s, [s.operator.speed])
+    raise typer.Exit(0 if bool(own.passed[0]) else 1)
 
 
 @app.command()

@@ -32,6 +32,21 @@ class Wheel(_Section):
         default=None, gt=0, le=5,
         description="height of the wheel axle above the ground [m] (optional; the paper uses 0.40-0.70 m)",
     )
+    inertia: float | None = Field(
+        default=None, gt=0, le=1000,
+        description="moment of inertia of the wheel about its axle [kg m^2] (optional; turns on the flywheel model)",
+    )
+    mass: float | None = Field(
+        default=None, gt=0, le=1000,
+        description="wheel mass [kg], taken as a rim: J = mass * radius^2 (optional, instead of inertia)",
+    )
+
+    @model_validator(mode="after")
+    def _one_inertia(self) -> "Wheel":
+        if self.inertia is not None and self.mass is not None:
+            raise ValueError(f"give either wheel.inertia [kg m^2] or wheel.mass [kg], not both "
+                             f"(inertia = {self.inertia!r}, mass = {self.mass!r})")
+        return self
 
 
 class Linkage(_Section):
@@ -41,6 +56,11 @@ class Linkage(_Section):
     rocker: float = Field(ge=0.001, le=10, description="rocker length l4 [m]")
     handle: float = Field(ge=0.001, le=20, description="handle length H, rocker pivot to hand grip [m]")
     swing: float = Field(ge=1, lt=180, description="total handle swing [deg], symmetric about vertical")
+    mass_per_length: float | None = Field(
+        default=None, gt=0, le=100,
+        description="mass per metre of the handle and coupler [kg/m] for the link-energy estimate "
+                    "(default 1.56: 3/4-inch steel tube)",
+    )
 
 
 class Load(_Section):
@@ -52,6 +72,11 @@ class Load(_Section):
     pipe_diameter: float | None = Field(default=None, ge=0.001, le=0.5, description="rising-main bore [m]")
     efficiency: float | None = Field(
         default=None, ge=0.05, le=1, description="rope-pump efficiency with head/pipe_diameter [-] (default 0.75)"
+    )
+    moving_mass: float | None = Field(
+        default=None, ge=0, le=10_000,
+        description="rope, pistons and water moving with the wheel rim [kg] (default with head and "
+                    "pipe_diameter: the water in the rising main)",
     )
 
     @model_validator(mode="after")
@@ -73,13 +98,28 @@ class Load(_Section):
         eff = 0.75 if self.efficiency is None else self.efficiency
         return WATER_DENSITY * GRAVITY * self.head * math.pi * (self.pipe_diameter * self.pipe_diameter) / 4.0 / eff
 
+    @property
+    def moving_mass_kg(self) -> float:
+        """Mass moving at rim speed [kg]: ``moving_mass``, else the water column in the rising
+        main, rho * head * pi d^2 / 4, when head and pipe_diameter are given, else 0."""
+        if self.moving_mass is not None:
+            return self.moving_mass
+        if self.head is not None:
+            return WATER_DENSITY * self.head * math.pi * (self.pipe_diameter * self.pipe_diameter) / 4.0
+        return 0.0
+
 
 class Operator(_Section):
     force_limit: float = Field(default=100.0, ge=1, le=10_000, description="largest acceptable operator force [N]")
     speed: float = Field(default=360.0, gt=0, le=7200, description="wheel speed [deg/s]")
     dead_band: float = Field(
         default=20.0, ge=0, lt=90,
-        description="crank angle each side of a dead centre left to the wheel's inertia [deg]",
+        description="crank angle each side of a dead centre left to the wheel's inertia [deg] "
+                    "(quasi-static model only)",
+    )
+    speed_fluctuation: float = Field(
+        default=0.2, gt=0, le=1,
+        description="allowed coefficient of speed fluctuation (w_max - w_min) / w_mean [-] (flywheel model)",
     )
 
 
@@ -88,12 +128,27 @@ class PumpSpec(_Section):
     wheel: Wheel = Field(description="the [wheel] table: radius [m]")
     linkage: Linkage = Field(description="the [linkage] table: L1, D1, b, rocker, handle, swing")
     load: Load = Field(description="the [load] table: rope_force [N], or head [m] with pipe_diameter [m]")
-    operator: Operator = Field(default=Operator(), description="the [operator] table: force_limit, speed, dead_band")
+    operator: Operator = Field(default=Operator(), description="the [operator] table: force_limit, speed, dead_band, "
+                                                               "speed_fluctuation")
 
     @property
     def wheel_torque(self) -> float:
         """Load torque Mw = Fw * rw on the wheel axle [N m] (Eq. 3 of the pump paper)."""
         return self.load.rope_force_N * self.wheel.radius
+
+    @property
+    def inertia(self) -> float | None:
+        """Moment of inertia about the wheel axle [kg m^2] for the flywheel model, or None.
+
+        Given when the spec states wheel.inertia, wheel.mass or load.moving_mass (issue #6): the
+        wheel's J (or mass * radius^2, a rim) plus the moving mass * radius^2.  A spec with none of
+        them is analysed quasi-statically with the dead band, as before.
+        """
+        w = self.wheel
+        if w.inertia is None and w.mass is None and self.load.moving_mass is None:
+            return None
+        wheel = w.inertia if w.inertia is not None else (w.mass or 0.0) * w.radius * w.radius
+        return wheel + self.load.moving_mass_kg * w.radius * w.radius
 
 
 #: The built-in default design (``pumplink force`` with no spec; ``pumplink init``).  It is the
