@@ -219,6 +219,7 @@ class SpeedSweep:
     mean_force: float
     quasi_static_peak: float  # exact windowed peak outside the dead band (dead-band model) [N]
     min_passing_speed: float  # [rad/s]; inf: no speed passes
+    speed_deg_s: np.ndarray  # as given (echoed exactly in reports)
     speed: np.ndarray
     energy_band: np.ndarray
     required_peak_force: np.ndarray
@@ -254,7 +255,8 @@ def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
     mps = float(_fw.min_passing_speed(lk, syn.dead_centre_extended, syn.dead_centre_folded, mw, op.force_limit, j,
                                       op.speed_fluctuation))
     passed = (req <= op.force_limit) & (mean <= op.force_limit)
-    return SpeedSweep(d, j, op.speed_fluctuation, op.force_limit, mean, float(qs), mps, w, band, req, mw * w, passed)
+    return SpeedSweep(d, j, op.speed_fluctuation, op.force_limit, mean, float(qs), mps,
+                      np.asarray(speeds_deg_s, float), w, band, req, mw * w, passed)
 
 
 # ----------------------------------------------------------------------------- model choice (issue #6)

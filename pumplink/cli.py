@@ -214,7 +214,7 @@ def speed(
         check_path(plot)
         pyplot()
     s = _load([spec])[0]
-    speeds = lo + step * np.arange(n)
+    speeds = [float(f"{v:.12g}") for v in lo + step * np.arange(n)]  # 420, not 420.00000000000006
     sw = speed_sweep(s, speeds)
     render_speed(sw, fmt.value)
     if plot is not None:

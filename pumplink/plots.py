@@ -99,7 +99,7 @@ def speed_chart(sweep, path) -> Path:
     """
     path = check_path(path)
     plt = pyplot()
-    v = np.degrees(sweep.speed)
+    v = sweep.speed_deg_s
     fig, ax = plt.subplots(figsize=(8, 4.8), layout="constrained")
     ax.plot(v, sweep.required_peak_force, color="C1", lw=2, marker="o", ms=3,
             label=f"least peak force, flywheel (J = {sweep.inertia:.3f} kg·m², δ ≤ {sweep.speed_fluctuation:g})")

@@ -446,9 +446,9 @@ def render_verify(row: dict[str, Any], out=None) -> None:
 
 
 def speed_rows(sw: SpeedSweep) -> list[dict[str, Any]]:
-    return [{"speed_deg_s": float(np.degrees(w)), "energy_band_J": num(b), "required_peak_force_N": num(f),
+    return [{"speed_deg_s": float(w), "energy_band_J": num(b), "required_peak_force_N": num(f),
              "power_W": num(p), "pass": bool(ok)}
-            for w, b, f, p, ok in zip(sw.speed, sw.energy_band, sw.required_peak_force, sw.power, sw.passed)]
+            for w, b, f, p, ok in zip(sw.speed_deg_s, sw.energy_band, sw.required_peak_force, sw.power, sw.passed)]
 
 
 def speed_summary(sw: SpeedSweep) -> dict[str, Any]:

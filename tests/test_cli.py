@@ -712,3 +712,111 @@ def test_long_force_sweep_draws_a_progress_bar_on_a_terminal_only(tmp_path):
     piped = subprocess.run(args, capture_output=True, check=False)
     assert piped.returncode == 0 and piped.stderr == b""
     assert json.loads(piped.stdout)["sampled_peak_force_N"] == json.loads(out)["sampled_peak_force_N"]
+
+
+# ----------------------------------------------------------------------------- flywheel model (issue #6)
+FLY = Path(__file__).parents[1] / "examples" / "well-12m-flywheel.toml"
+
+
+def _force_json(*args):
+    p = run("force", *args, "--summary", "--format", "json", cache=True)
+    return p, json.loads(p.stdout)
+
+
+def test_speed_decides_the_verdict_with_inertia():
+    """Done-when of issue #6: with inertia in the spec, --speed 360 and --speed 540 give different
+    verdicts, each cross-checked by integrating the equation of motion (--verify).
+
+    Physically right: a faster wheel stores J w^2 / 2, so the least peak force falls (from above the
+    limit to below it), bounded below by the mean force; the power Mw w rises in proportion."""
+    p360, j360 = _force_json(FLY, "--speed", "360", "--verify")
+    p540, j540 = _force_json(FLY, "--speed", "540", "--verify")
+    assert (p360.returncode, p540.returncode) == (1, 0), (p360.stderr, p540.stderr)
+    for j in (j360, j540):
+        assert j["model"] == "flywheel" and j["inertia_kg_m2"] > 0 and j["speed_fluctuation"] == 0.2
+        assert j["verify"]["agrees"] is True
+        assert j["verify"]["periodicity"] < 1e-6 and j["verify"]["fluctuation"] <= 0.2 * (1 + 1e-6)
+        assert j["verify"]["mean_speed_deg_s"] == pytest.approx(j["speed_deg_s"], rel=1e-6)
+        assert j["required_peak_force_N"] >= j["mean_force_N"] * (1 - 1e-12)
+    assert j360["required_peak_force_N"] > 100 > j540["required_peak_force_N"]
+    assert j360["pass"] is False and j540["pass"] is True
+    assert j540["power_W"] == pytest.approx(1.5 * j360["power_W"], rel=1e-12)
+    # The energy band scales as w^2: J w^2 delta (Eq. (2) of pumplink.flywheel).
+    assert j540["energy_band_J"] == pytest.approx(2.25 * j360["energy_band_J"], rel=1e-12)
+    # The speed-blind dead-band model passes this design at both speeds: the flywheel answer differs.
+    assert j360["peak_force_N"] < 100
+
+
+def test_verdict_flips_at_the_reported_minimum_speed():
+    """min_passing_speed_deg_s is where the verdict changes: just below fails, just above passes."""
+    _, j = _force_json(FLY)
+    v = j["min_passing_speed_deg_s"]
+    assert 360 < v < 540
+    below, jb = _force_json(FLY, "--speed", f"{v * 0.999:.6f}")
+    above, ja = _force_json(FLY, "--speed", f"{v * 1.001:.6f}")
+    assert (below.returncode, above.returncode) == (1, 0)
+    assert jb["required_peak_force_N"] > 100 > ja["required_peak_force_N"]
+
+
+def test_samples_carry_the_operator_profile_and_wheel_speed():
+    p = run("force", FLY, "--samples", "72", "--format", "json", cache=True)
+    j = json.loads(p.stdout)
+    rows = j["samples"]
+    fp = j["required_peak_force_N"]
+    ops = [r["operator_force_N"] for r in rows]
+    ws = [r["wheel_speed_deg_s"] for r in rows]
+    assert all(o is not None and abs(o) <= fp * (1 + 1e-12) for o in ops)
+    assert max(abs(o) for o in ops) == pytest.approx(fp, rel=1e-12)  # the operator does push Fp somewhere
+    lo, hi = j["wheel_speed_range_deg_s"]["min"], j["wheel_speed_range_deg_s"]["max"]
+    assert all(lo * (1 - 1e-9) <= w <= hi * (1 + 1e-9) for w in ws)
+    assert (hi + lo) / 2 == pytest.approx(360.0, rel=1e-12) and (hi - lo) / 360.0 == pytest.approx(0.2, rel=1e-9)
+    # Quasi-static specs keep the same columns: the quasi-static force at a constant speed.
+    q = json.loads(run("force", "--samples", "8", "--format", "json", cache=True).stdout)
+    assert q["model"] == "quasi-static + dead band" and q["required_peak_force_N"] is None
+    assert all(r["wheel_speed_deg_s"] == 360.0 for r in q["samples"])
+    assert all(r["operator_force_N"] == r["force_N"] for r in q["samples"])
+
+
+def test_table_names_the_model_that_answered():
+    fly = run("force", FLY, "--summary", cache=True).stdout
+    assert "model: flywheel, J = " in fly and "VERDICT: FAIL" in fly and "passes from a mean 375 deg/s" in fly
+    qs = run("force", "--summary", cache=True).stdout
+    assert "model: quasi-static + dead band" in qs and "give wheel.mass or wheel.inertia" in qs
+
+
+def test_explain_reports_effects_and_reason():
+    p, j = _force_json(FLY, "--explain")
+    ex = j["explain"]
+    names = [e["effect"] for e in ex["effects"]]
+    assert any("coupler + handle" in n for n in names) and any("power" in n for n in names)
+    link = next(e for e in ex["effects"] if "coupler + handle" in e["effect"])
+    assert link["included"] is False and link["ratio"] == pytest.approx(link["value"] / j["energy_band_J"], rel=1e-12)
+    # a 1.2 m steel handle at 360 deg/s carries more energy than the band: the reason says so
+    assert link["ratio"] > 1 and "Full dynamics" in ex["why"]
+    q = run("force", "--summary", "--explain", cache=True).stdout
+    assert "Quasi-static + dead band answered" in q and "Model choice" in q
+
+
+def test_verify_without_inertia_is_one_line_exit_2():
+    p = run("force", "--verify", cache=True)
+    assert p.returncode == 2 and p.stderr.count("\n") == 1 and "wheel.mass" in p.stderr
+
+
+def test_speed_command(tmp_path):
+    p = run("speed", FLY, "--from", "300", "--to", "600", "--step", "60", "--format", "json", cache=True)
+    assert p.returncode == 1  # the spec's own 360 deg/s fails
+    j = json.loads(p.stdout)
+    sp = [r["speed_deg_s"] for r in j["speeds"]]
+    assert sp == [300.0, 360.0, 420.0, 480.0, 540.0, 600.0]
+    f = [r["required_peak_force_N"] for r in j["speeds"]]
+    assert all(a > b for a, b in zip(f, f[1:]))  # faster: less force
+    assert [r["pass"] for r in j["speeds"]] == [v >= j["min_passing_speed_deg_s"] for v in sp]
+    _, one = _force_json(FLY, "--speed", "480")
+    assert f[3] == pytest.approx(one["required_peak_force_N"], rel=1e-12)  # same numbers as `force`
+    png = tmp_path / "s.png"
+    t = run("speed", FLY, "--plot", png)
+    assert png.stat().st_size > 10_000 and "passes the 100 N limit from a mean" in t.stdout
+    q = run("speed", "configs/prototype.toml", cwd=Path(__file__).parents[1])
+    assert q.returncode == 2 and q.stderr.count("\n") == 1 and "wheel.mass" in q.stderr
+    bad = run("speed", FLY, "--from", "500", "--to", "100")
+    assert bad.returncode == 2 and "--to" in bad.stderr

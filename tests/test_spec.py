@@ -322,3 +322,48 @@ def test_example_configs_round_trip(tmp_path):
         p = tmp_path / c.name
         p.write_text(tomli_w.dumps(spec_to_dict(spec)), encoding="utf-8")
         assert load_spec(p) == spec
+
+
+# ----------------------------------------------------------------------------- flywheel keys (issue #6)
+def _fly(**wheel):
+    d = copy.deepcopy(default_spec().model_dump(exclude_none=True))
+    d["wheel"].update(wheel)
+    return d
+
+
+def test_inertia_is_none_without_inertia_keys():
+    """No wheel.inertia / wheel.mass / load.moving_mass: the quasi-static model (as before issue #6)."""
+    assert default_spec().inertia is None
+    d = _fly()
+    d["load"] = {"head": 10.0, "pipe_diameter": 0.023}  # a water column alone does not switch the model
+    assert parse_spec(d).inertia is None
+
+
+def test_inertia_from_mass_and_water_column():
+    """Hand derivation: J = m rw^2 + rho head (pi d^2/4) rw^2 (a rim plus the water moving with it)."""
+    d = _fly(mass=4.0)
+    d["load"] = {"head": 10.0, "pipe_diameter": 0.023}
+    water = 1000.0 * 10.0 * math.pi * 0.023 ** 2 / 4  # 4.1548 kg
+    assert parse_spec(d).inertia == pytest.approx(4.0 * 0.25 ** 2 + water * 0.25 ** 2, rel=1e-14)
+    d["load"]["moving_mass"] = 1.5  # an explicit moving mass replaces the water-column estimate
+    assert parse_spec(d).inertia == pytest.approx((4.0 + 1.5) * 0.0625, rel=1e-14)
+    assert parse_spec(_fly(inertia=0.3)).inertia == 0.3
+    d = _fly()
+    d["load"]["moving_mass"] = 2.0  # moving mass alone is inertia too
+    assert parse_spec(d).inertia == pytest.approx(2.0 * 0.0625)
+
+
+def test_mass_and_inertia_together_is_one_sentence():
+    with pytest.raises(SpecError) as e:
+        parse_spec(_fly(mass=4.0, inertia=0.3), "p.toml")
+    msg = str(e.value)
+    assert "wheel.inertia" in msg and "wheel.mass" in msg and "not both" in msg and "\n" not in msg
+
+
+@pytest.mark.parametrize("key,value", [("speed_fluctuation", 0.0), ("speed_fluctuation", 1.5)])
+def test_speed_fluctuation_range(key, value):
+    d = _fly()
+    d["operator"][key] = value
+    with pytest.raises(SpecError) as e:
+        parse_spec(d)
+    assert f"operator.{key}" in str(e.value) and "allowed" in str(e.value)
