@@ -77,8 +77,12 @@ TWO_PI = 2.0 * np.pi
 
 #: Uniform grid points per revolution on which the extrema of U are located before refinement.
 GRID = 256
-#: Geometric nodes each side of a dead centre (spacing halves down to GRID cell / 2**CLUSTER).
-CLUSTER = 44
+#: Geometric nodes each side of a dead centre, at GRID cell / 4**k for k = 1..CLUSTER (down to
+#: ~1e-13 rad: a deficit arc around a dead centre is seen up to forces of FORCE_CAP).
+CLUSTER = 20
+#: Tolerances of the extremum refinement [rad]: U is flat at an extremum, so 1e-9 rad puts U within
+#: ~1e-16 of its extreme value relative to the energy band for practical designs.
+REFINE_TOL = dict(xatol=1e-9, xrtol=1e-12, fatol=0.0, frtol=0.0)
 #: Relative convergence of Dinkelbach's iteration on the peak force.
 RTOL = 1e-13
 #: Peak forces above this [N] are reported as infinite (the energy band is then, for every
@@ -146,7 +150,7 @@ def _nodes(dce, dcf):
     h = TWO_PI / GRID
     plus = np.mod(dcf - dce, TWO_PI)
     uni = (np.arange(GRID) + 0.5) * h
-    off = h * 2.0 ** -np.arange(2, CLUSTER + 2)  # h/4 ... : inside the first half cell
+    off = h * 4.0 ** -np.arange(1, CLUSTER + 1)  # h/4 ... : inside the first half cell
     near0 = np.concatenate([off, TWO_PI - off, [0.0]])
     nearp = np.concatenate([-off, off, [0.0]])
     x = np.concatenate([np.broadcast_to(uni, plus.shape + uni.shape),
@@ -193,7 +197,7 @@ def _u_integral(phi, force, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke, m
     return force * _travel(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke) - mw * phi
 
 
-def _refined_extrema(prep: _Prepared, force, rows=None):
+def _refined_extrema(prep: _Prepared, force, rows=None, refine: bool = True):
     """Nodes, U and G with every local extremum of U refined (a bracketing minimiser).
 
     Returns (x, u, g, a) with shape (D, M) (rows: the designs to do) and the drift
@@ -208,6 +212,8 @@ def _refined_extrema(prep: _Prepared, force, rows=None):
     mw = prep.mw[rows][:, None]
     u = fp * g - mw * x
     a = 2.0 * force * prep.stroke[rows] - TWO_PI * prep.mw[rows]
+    if not refine:
+        return x, u, g, a
     # neighbours with the period wrap: U(phi - 2 pi) = U(phi) - a
     u_prev = np.concatenate([u[:, -1:] - a[:, None], u[:, :-1]], axis=1)
     u_next = np.concatenate([u[:, 1:], u[:, :1] + a[:, None]], axis=1)
@@ -225,7 +231,7 @@ def _refined_extrema(prep: _Prepared, force, rows=None):
         mw_el = prep.mw[rows[d_idx]]
         res = find_minimum(lambda t, f, *p, sign=sign: sign * _u_integral(t, f, *p),
                            (x_prev[d_idx, n_idx], x[d_idx, n_idx], x_next[d_idx, n_idx]),
-                           args=(f_el,) + args + (mw_el,), tolerances=dict(xatol=0.0, xrtol=1e-15))
+                           args=(f_el,) + args + (mw_el,), tolerances=REFINE_TOL)
         # keep the refined point only where it is at least as extreme as the node
         better = np.isfinite(res.f_x) & ((-res.f_x >= u[d_idx, n_idx]) if sign < 0 else (res.f_x <= u[d_idx, n_idx]))
         xi = np.where(better, res.x, x[d_idx, n_idx])
@@ -244,12 +250,12 @@ def _drawdown(x, u, g, a, stroke):
     u2 = np.concatenate([u, u + a[:, None]], axis=1)
     g2 = np.concatenate([g, g + 2.0 * stroke[:, None]], axis=1)
     top = np.maximum.accumulate(u2, axis=1)
-    dd = top - u2
-    j = np.argmax(dd, axis=1)
+    j = np.argmax(top - u2, axis=1)
     idx = np.arange(x.shape[0])
-    drop = dd[idx, j]
+    drop = top[idx, j] - u2[idx, j]
+    # the arc starts at the last node before j where U reached that running maximum
     cols = np.arange(u2.shape[1])
-    i = np.argmax(np.where(cols[None, :] <= j[:, None], u2, -np.inf), axis=1)
+    i = np.argmax((u2 == top[idx, j][:, None]) & (cols[None, :] <= j[:, None]), axis=1)
     return drop, x2[idx, j] - x2[idx, i], g2[idx, j] - g2[idx, i]
 
 
@@ -314,20 +320,31 @@ def required_peak_force(lk: Linkage, dead_centre_extended, dead_centre_folded, w
         out[ok & (band == np.inf)] = f_mean[ok & (band == np.inf)]
         active = np.nonzero(ok & (band > 0) & np.isfinite(band))[0]
         lam = f_mean.copy()
-        for _ in range(100):
-            if active.size == 0:
-                break
-            x, u, g, a = _refined_extrema(prep, lam[active], active)
-            drop, length, travel = _drawdown(x, u, g, np.maximum(a, 0.0), prep.stroke[active])
-            new = (prep.mw[active] * length - band[active]) / travel  # Eq. (4): the arc's ratio
-            grow = (drop > band[active]) & (new > lam[active])
-            done = ~grow | (new - lam[active] <= RTOL * new)
-            lam[active] = np.where(grow, new, lam[active])
-            capped = lam[active] > FORCE_CAP
-            lam[active[capped]] = np.inf
-            active = active[~(done | capped)]
+        todo = active
+        for refine in (False, True):
+            # Dinkelbach on the grid nodes first (cheap; the grid's arcs are a subset of all arcs, so its
+            # answer is a lower bound to start from), then with every extremum refined
+            lam = _dinkelbach(prep, lam, band, todo[np.isfinite(lam[todo])], refine)
         out[ok & (band > 0) & np.isfinite(band)] = lam[ok & (band > 0) & np.isfinite(band)]
     return float(out[0]) if scalar else out
+
+
+def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool):
+    """Dinkelbach's iteration for Eq. (4) from ``lam`` (a lower bound) on the designs ``active``."""
+    lam = lam.copy()
+    for _ in range(100):
+        if active.size == 0:
+            break
+        x, u, g, a = _refined_extrema(prep, lam[active], active, refine)
+        drop, length, travel = _drawdown(x, u, g, np.maximum(a, 0.0), prep.stroke[active])
+        new = (prep.mw[active] * length - band[active]) / travel  # Eq. (4): the arc's ratio
+        grow = (drop > band[active]) & (new > lam[active])
+        done = ~grow | (new - lam[active] <= RTOL * new)
+        lam[active] = np.where(grow, new, lam[active])
+        capped = lam[active] > FORCE_CAP
+        lam[active[capped]] = np.inf
+        active = active[~(done | capped)]
+    return lam
 
 
 def min_passing_speed(lk: Linkage, dead_centre_extended, dead_centre_folded, wheel_torque, force_limit,
