@@ -78,16 +78,17 @@ TWO_PI = 2.0 * np.pi
 #: Uniform grid points per revolution on which the extrema of U are located before refinement.
 GRID = 256
 #: Geometric nodes each side of a dead centre, at GRID cell / 4**k for k = 1..CLUSTER (down to
-#: ~1e-13 rad: a deficit arc around a dead centre is seen up to forces of FORCE_CAP).
+#: ~1e-13 rad: a deficit arc around a dead centre is seen up to forces of FORCE_CAP_RATIO * F_mean).
 CLUSTER = 20
 #: Tolerances of the extremum refinement [rad]: U is flat at an extremum, so 1e-9 rad puts U within
 #: ~1e-16 of its extreme value relative to the energy band for practical designs.
 REFINE_TOL = dict(xatol=1e-9, xrtol=1e-12, fatol=0.0, frtol=0.0)
 #: Relative convergence of Dinkelbach's iteration on the peak force.
 RTOL = 1e-13
-#: Peak forces above this [N] are reported as infinite (the energy band is then, for every
-#: practical purpose, zero).
-FORCE_CAP = 1e12
+#: Peak forces above this multiple of F_mean are reported as infinite: the energy band is then, for
+#: every practical purpose, zero (no operator pushes 10,000 times the mean force), and beyond it the
+#: rounding of U (~eps Fp S) grows past ~1e-6 of the band (tests/test_flywheel.py).
+FORCE_CAP_RATIO = 1e4
 
 #: Coefficient of speed fluctuation the product uses unless the spec says otherwise: 0.2, the
 #: loosest class of the machine-design tables (crushers, hammers, punch presses; e.g.
@@ -131,17 +132,57 @@ def _grip_x(theta, px, py, c, k, r, h, br):
     return px + (h / r) * (bx - px)
 
 
-def _travel(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke):
-    """Grip travel G [m] from the extended dead centre to crank angle dce + phi (phi unrolled).
+#: Within this crank angle [rad] of a dead centre the grip travel is integrated (Gauss-Legendre on
+#: |dPx/dt2|) instead of taken from position differences, which cancel there: the deficit arc
+#: around a dead centre has travel ~ kappa a^2 / 2, far below the rounding of positions for small bands.
+NEAR_DEAD_CENTRE = 0.02
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(12)
 
-    Px is monotone between the dead centres, so G is |Px - Px(dce)| on the first arc,
-    stroke + |Px - Px(dcf)| on the second, plus 2 * stroke per full revolution.
+
+def _grip_rate(theta, px, py, c, k, r, h, br):
+    """dPx/dt2 [m/rad] (the kinematics of ``pumplink.kinematics``, no cancellation at a dead centre)."""
+    cs, sn = np.cos(theta), np.sin(theta)
+    p1, p2, e2, t, q = _loop(Linkage(px, py, c, k, r, h, br), cs, sn)
+    dx, dy = px - c * cs, py - c * sn
+    ry = c * sn + t * dy + q * dx - py
+    w = t * p2 + q * (p1 - c)
+    return (h / r) * ry * c * w / (q * e2)  # -(H/r) Ry omega4/omega2, omega4/omega2 = -c w / (q e^2)
+
+
+def _travel_parts(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke):
+    """Grip travel G = base + local [m] from the extended dead centre to crank angle dce + phi.
+
+    ``base`` is G at the nearest dead centre (0, S or 2S, plus 2S per full turn of the unrolled
+    phi); ``local`` the signed travel from it.  Px is monotone between the dead centres, so away
+    from them local comes from positions; within NEAR_DEAD_CENTRE it is integrated from the rate.
+    Differences of G near one dead centre are then (local - local): no cancellation.
     """
     turns = np.floor(phi / TWO_PI)
     p = phi - turns * TWO_PI
+    # nearest dead centre: 0 (extended), plus (folded) or 2 pi (extended, next turn)
+    to_fold = p - plus
+    at_fold = np.abs(to_fold) <= np.minimum(p, TWO_PI - p)
+    s = np.where(at_fold, to_fold, np.where(p <= TWO_PI - p, p, p - TWO_PI))  # signed offset from it
+    base = np.where(at_fold, stroke, np.where(s >= 0, 0.0, 2.0 * stroke)) + 2.0 * stroke * turns
     x = _grip_x(dce + p, px, py, c, k, r, h, br)
-    g = np.where(p <= plus, np.abs(x - xe), stroke + np.abs(x - xf))
-    return g + 2.0 * stroke * turns
+    ref = np.where(at_fold, xf, xe)
+    local = np.sign(s) * np.abs(x - ref)
+    near = np.abs(s) < NEAR_DEAD_CENTRE
+    if np.any(near):
+        geom = [np.broadcast_to(v, s.shape)[near] for v in (px, py, c, k, r, h, br)]
+        dc = np.broadcast_to(np.where(at_fold, dce + plus, dce), s.shape)[near]
+        sn = s[near]
+        t = 0.5 * sn[..., None] * (1.0 + _GL_X)  # nodes on (0, s)
+        g = _grip_rate(dc[..., None] + t, *(v[..., None] for v in geom))
+        local = np.array(local, float, copy=True)
+        local[near] = 0.5 * np.abs(sn) * np.sign(sn) * (np.abs(g) @ _GL_W)
+    return base, local
+
+
+def _travel(phi, *args):
+    """Grip travel G [m] from the extended dead centre to crank angle dce + phi (phi unrolled)."""
+    base, local = _travel_parts(phi, *args)
+    return base + local
 
 
 def _nodes(dce, dcf):
@@ -169,7 +210,8 @@ class _Prepared:
     stroke: np.ndarray
     mw: np.ndarray
     nodes: np.ndarray  # (D, M)
-    travel: np.ndarray  # (D, M)
+    base: np.ndarray  # (D, M) grip travel at the nearest dead centre [m]
+    local: np.ndarray  # (D, M) signed travel from it [m]
 
     def args(self, idx=slice(None)):
         g = tuple(p[idx] for p in self.geom)
@@ -188,8 +230,9 @@ def _prepare(lk: Linkage, dce, dcf, wheel_torque):
         stroke = np.abs(xf - xe)
         nodes, plus = _nodes(dce, dcf)
         g2 = [p[:, None] for p in geom]
-        travel = _travel(nodes, *g2, dce[:, None], plus[:, None], xe[:, None], xf[:, None], stroke[:, None])
-    return _Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, travel), scalar
+        base, local = _travel_parts(nodes, *g2, dce[:, None], plus[:, None], xe[:, None], xf[:, None],
+                                    stroke[:, None])
+    return _Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local), scalar
 
 
 def _u_integral(phi, force, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke, mw):
@@ -197,23 +240,30 @@ def _u_integral(phi, force, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke, m
     return force * _travel(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke) - mw * phi
 
 
-def _refined_extrema(prep: _Prepared, force, rows=None, refine: bool = True):
-    """Nodes, U and G with every local extremum of U refined (a bracketing minimiser).
+def _u_relative(phi, force, ref_base, ref_x, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke, mw):
+    """U(phi) - (Fp ref_base - Mw ref_x) [J], computed without the large constant (for the refinement)."""
+    base, local = _travel_parts(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke)
+    return force * ((base - ref_base) + local) - mw * (phi - ref_x)
 
-    Returns (x, u, g, a) with shape (D, M) (rows: the designs to do) and the drift
+
+def _refined_extrema(prep: _Prepared, force, rows=None, refine: bool = True):
+    """Nodes, U and the grip travel (base, local) with every local extremum of U refined.
+
+    Returns (x, u, base, local, a) with shape (D, M) (rows: the designs to do) and the drift
     a = U(phi + 2 pi) - U(phi) = 2 Fp S - 2 pi Mw.
     """
     from scipy.optimize.elementwise import find_minimum  # lazy: keeps start-up fast
 
     rows = np.arange(prep.dce.size) if rows is None else rows
     x = prep.nodes[rows].copy()
-    g = prep.travel[rows].copy()
+    base = prep.base[rows].copy()
+    local = prep.local[rows].copy()
     fp = force[:, None]
     mw = prep.mw[rows][:, None]
-    u = fp * g - mw * x
+    u = fp * (base + local) - mw * x
     a = 2.0 * force * prep.stroke[rows] - TWO_PI * prep.mw[rows]
     if not refine:
-        return x, u, g, a
+        return x, u, base, local, a
     # neighbours with the period wrap: U(phi - 2 pi) = U(phi) - a
     u_prev = np.concatenate([u[:, -1:] - a[:, None], u[:, :-1]], axis=1)
     u_next = np.concatenate([u[:, 1:], u[:, :1] + a[:, None]], axis=1)
@@ -229,26 +279,31 @@ def _refined_extrema(prep: _Prepared, force, rows=None, refine: bool = True):
         args = prep.args(rows[d_idx])
         f_el = force[d_idx]
         mw_el = prep.mw[rows[d_idx]]
-        res = find_minimum(lambda t, f, *p, sign=sign: sign * _u_integral(t, f, *p),
-                           (x_prev[d_idx, n_idx], x[d_idx, n_idx], x_next[d_idx, n_idx]),
-                           args=(f_el,) + args + (mw_el,), tolerances=REFINE_TOL)
-        # keep the refined point only where it is at least as extreme as the node
-        better = np.isfinite(res.f_x) & ((-res.f_x >= u[d_idx, n_idx]) if sign < 0 else (res.f_x <= u[d_idx, n_idx]))
-        xi = np.where(better, res.x, x[d_idx, n_idx])
+        rb, rx = base[d_idx, n_idx], x[d_idx, n_idx]  # U relative to the node's dead centre: no cancellation
+        res = find_minimum(lambda t, f, b0, x0, *p, sign=sign: sign * _u_relative(t, f, b0, x0, *p),
+                           (x_prev[d_idx, n_idx], rx, x_next[d_idx, n_idx]),
+                           args=(f_el, rb, rx) + args + (mw_el,), tolerances=REFINE_TOL)
+        at_node = f_el * local[d_idx, n_idx]  # the node's own relative U
+        better = np.isfinite(res.f_x) & ((-res.f_x >= at_node) if sign < 0 else (res.f_x <= at_node))
+        xi = np.where(better, res.x, rx)
+        b_new, l_new = _travel_parts(xi, *args)
         x[d_idx, n_idx] = xi
-        g[d_idx, n_idx] = _travel(xi, *prep.args(rows[d_idx]))
-        u[d_idx, n_idx] = f_el * g[d_idx, n_idx] - mw_el * xi
-    return x, u, g, a
+        base[d_idx, n_idx] = b_new
+        local[d_idx, n_idx] = l_new
+        u[d_idx, n_idx] = f_el * (b_new + l_new) - mw_el * xi
+    return x, u, base, local, a
 
 
-def _drawdown(x, u, g, a, stroke):
+def _drawdown(x, u, base, local, a, stroke):
     """Largest drop of U over an arc shorter than a revolution [Eq. (3)], and that arc.
 
-    Returns (drop [J], arc length [rad], travel over the arc [m]) per design.
+    Returns (drop [J], arc length [rad], travel over the arc [m]) per design; the travel is
+    (base difference) + (local difference), exact when both ends lie near one dead centre.
     """
     x2 = np.concatenate([x, x + TWO_PI], axis=1)
     u2 = np.concatenate([u, u + a[:, None]], axis=1)
-    g2 = np.concatenate([g, g + 2.0 * stroke[:, None]], axis=1)
+    b2 = np.concatenate([base, base + 2.0 * stroke[:, None]], axis=1)
+    l2 = np.concatenate([local, local], axis=1)
     top = np.maximum.accumulate(u2, axis=1)
     j = np.argmax(top - u2, axis=1)
     idx = np.arange(x.shape[0])
@@ -256,7 +311,8 @@ def _drawdown(x, u, g, a, stroke):
     # the arc starts at the last node before j where U reached that running maximum
     cols = np.arange(u2.shape[1])
     i = np.argmax((u2 == top[idx, j][:, None]) & (cols[None, :] <= j[:, None]), axis=1)
-    return drop, x2[idx, j] - x2[idx, i], g2[idx, j] - g2[idx, i]
+    travel = (b2[idx, j] - b2[idx, i]) + (l2[idx, j] - l2[idx, i])
+    return drop, x2[idx, j] - x2[idx, i], travel
 
 
 def mean_operator_force(wheel_torque, stroke):
@@ -286,8 +342,8 @@ def energy_deficit(lk: Linkage, dead_centre_extended, dead_centre_folded, wheel_
         out[low] = np.inf
         rows = np.nonzero(ok & ~low)[0]
         if rows.size:
-            x, u, g, a = _refined_extrema(prep, fp[rows], rows)
-            out[rows] = _drawdown(x, u, g, np.maximum(a, 0.0), prep.stroke[rows])[0]
+            x, u, b, l, a = _refined_extrema(prep, fp[rows], rows)
+            out[rows] = _drawdown(x, u, b, l, np.maximum(a, 0.0), prep.stroke[rows])[0]
     return float(out[0]) if scalar else out
 
 
@@ -307,7 +363,8 @@ def required_peak_force(lk: Linkage, dead_centre_extended, dead_centre_folded, w
 
     Returns
     -------
-    Fp* [N]: inf where the band is zero, NaN for an infeasible design.
+    Fp* [N]: inf where the band is zero or Fp* exceeds FORCE_CAP_RATIO * F_mean, NaN for an
+    infeasible design.
     """
     prep, scalar = _prepare(lk, dead_centre_extended, dead_centre_folded, wheel_torque)
     band = np.broadcast_to(np.asarray(energy_band, float), prep.dce.shape).astype(float)
@@ -324,24 +381,24 @@ def required_peak_force(lk: Linkage, dead_centre_extended, dead_centre_folded, w
         for refine in (False, True):
             # Dinkelbach on the grid nodes first (cheap; the grid's arcs are a subset of all arcs, so its
             # answer is a lower bound to start from), then with every extremum refined
-            lam = _dinkelbach(prep, lam, band, todo[np.isfinite(lam[todo])], refine)
+            lam = _dinkelbach(prep, lam, band, todo[np.isfinite(lam[todo])], refine, FORCE_CAP_RATIO * f_mean)
         out[ok & (band > 0) & np.isfinite(band)] = lam[ok & (band > 0) & np.isfinite(band)]
     return float(out[0]) if scalar else out
 
 
-def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool):
+def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool, cap):
     """Dinkelbach's iteration for Eq. (4) from ``lam`` (a lower bound) on the designs ``active``."""
     lam = lam.copy()
     for _ in range(100):
         if active.size == 0:
             break
-        x, u, g, a = _refined_extrema(prep, lam[active], active, refine)
-        drop, length, travel = _drawdown(x, u, g, np.maximum(a, 0.0), prep.stroke[active])
+        x, u, b, l, a = _refined_extrema(prep, lam[active], active, refine)
+        drop, length, travel = _drawdown(x, u, b, l, np.maximum(a, 0.0), prep.stroke[active])
         new = (prep.mw[active] * length - band[active]) / travel  # Eq. (4): the arc's ratio
         grow = (drop > band[active]) & (new > lam[active])
         done = ~grow | (new - lam[active] <= RTOL * new)
         lam[active] = np.where(grow, new, lam[active])
-        capped = lam[active] > FORCE_CAP
+        capped = lam[active] > cap[active]
         lam[active[capped]] = np.inf
         active = active[~(done | capped)]
     return lam
@@ -412,10 +469,10 @@ def scene(lk: Linkage, dead_centre_extended: float, dead_centre_folded: float, w
     if not np.isfinite(fp):
         return Scene(inertia, mean_speed, speed_fluctuation, band, fp, f_mean, nan, nan, nan,
                      np.empty((0, 2)), nan, lk, wheel_torque, dead_centre_extended, dead_centre_folded)
-    x, u, g, a = _refined_extrema(prep, np.array([fp]))
+    x, u, b, l, a = _refined_extrema(prep, np.array([fp]))
     a0 = max(float(a[0]), 0.0)
+    drop = float(_drawdown(x, u, b, l, np.array([a0]), prep.stroke)[0][0])
     x, u = x[0], u[0]
-    drop = float(_drawdown(x[None], u[None], g, np.array([a0]), prep.stroke)[0][0])
     # local maxima of U (refined) and their running maximum over the previous revolution
     u_prev = np.concatenate([[u[-1] - a0], u[:-1]])
     u_next = np.concatenate([u[1:], [u[0] + a0]])
@@ -474,7 +531,7 @@ def wheel_speed(sc: Scene, crank_angle):
     """Wheel speed w(t) [rad/s] of the reported motion (energy balance Eq. (1) from the top)."""
     th = np.asarray(crank_angle, float)
     prep, _ = _prepare(sc.linkage, sc.dead_centre_extended, sc.dead_centre_folded, sc.wheel_torque)
-    x, u, g, a = _refined_extrema(prep, np.array([sc.peak_force]))
+    x, u, _b, _l, a = _refined_extrema(prep, np.array([sc.peak_force]))
     a0 = max(float(a[0]), 0.0)
     x, u = x[0], u[0]
     u_prev = np.concatenate([[u[-1] - a0], u[:-1]])
@@ -540,8 +597,10 @@ def simulate(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> Simulation:
     turn.terminal = cycles + 1  # the start itself may count as a crossing
     turn.direction = 0.0
     horizon = 4.0 * cycles * TWO_PI / sc.min_speed
+    # On the top-speed arcs dw/dt is exactly 0, so the error estimate vanishes and, unbounded, one
+    # step could jump over whole revolutions: at most 1/64 revolution per step.
     sol = solve_ivp(rhs, (0.0, horizon), [t0, sc.max_speed], method="DOP853", rtol=rtol, atol=1e-12 * sc.max_speed,
-                    events=turn, dense_output=True)
+                    events=turn, dense_output=True, max_step=TWO_PI / 64 / sc.max_speed)
     times = sol.t_events[0]
     times = times[times > 1e-9 * horizon][:cycles]
     speeds = np.array([sc.max_speed] + [float(sol.sol(t)[1]) for t in times])
