@@ -105,17 +105,19 @@ def force(
 ) -> None:
     """Operator force over the crank cycle, the checks and the 100 N verdict.
 
-    Two models decide the verdict.  With the wheel's inertia in the spec (wheel.mass or
-    wheel.inertia, plus the rope and water) the [bold]flywheel[/] model finds the least peak force
-    that keeps the wheel turning at the mean --speed with a speed fluctuation within
-    operator.speed_fluctuation, so the speed changes the answer.  Without it the force is
-    [bold]quasi-static[/] (Eq. 3 of the pump paper): infinite at the two dead centres, so the peak
-    is taken outside ±operator.dead_band of them, exactly, whatever --samples.  Exit 0 if the
-    design passes, 1 if it fails, is infeasible or --verify disagrees.
+    Two models decide the verdict.  With the wheel's inertia in the spec
+    (wheel.mass or wheel.inertia; the rope and water are added) the
+    [bold]flywheel[/] model finds the least peak force that keeps the wheel at
+    the mean --speed with a speed fluctuation within
+    operator.speed_fluctuation: the speed changes the answer.  Without it the
+    force is [bold]quasi-static[/] (Eq. 3 of the pump paper), infinite at the
+    two dead centres, so the peak is taken outside ±operator.dead_band of
+    them, exactly, whatever --samples. Exit 0 if the design passes, 1 if it
+    fails, is infeasible or --verify disagrees.
 
     Example: [bold]pumplink force pump.toml --speed 360 --at 90 --at 270 --format json[/]
 
-    Example: [bold]pumplink force examples/well-12m-flywheel.toml --speed 540 --summary --explain --verify[/]
+    Example: [bold]pumplink force examples/well-12m-flywheel.toml --speed 540 --explain --verify[/]
     """
     import math
 
@@ -189,14 +191,16 @@ def speed(
                                                       ".png/.svg/.pdf (needs pumplink\\[plot]).", show_default=False)] = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
-    """Least peak operator force against mean wheel speed, and the slowest speed that passes.
+    """Least peak operator force against mean wheel speed, and the slowest speed
+    that passes.
 
-    The flywheel model (see [bold]pumplink force --help[/]): a faster wheel stores more energy
-    (J·ω̄²·δ) to carry the linkage through the dead centres, so the operator's peak force falls
-    toward the mean force, while the power Mw·ω̄ rises.  Exit 0 if the spec's own speed passes,
-    1 if not, 2 if the spec gives no inertia.
+    The flywheel model (see [bold]pumplink force --help[/]): a faster wheel
+    stores more energy (J·ω̄²·δ) to carry the linkage through the dead
+    centres, so the operator's peak force falls toward the mean force, while
+    the power Mw·ω̄ rises.  Exit 0 if the spec's own speed passes, 1 if not, 2
+    if the spec gives no inertia.
 
-    Example: [bold]pumplink speed examples/well-12m-flywheel.toml --from 120 --to 720 --plot speed.png[/]
+    Example: [bold]pumplink speed examples/well-12m-flywheel.toml --plot speed.png[/]
     """
     import numpy as np
 
