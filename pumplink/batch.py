@@ -14,6 +14,16 @@ and the short key (the part after the last dot, the full key where that is ambig
 example ``rocker-study#07[rocker=0.25 swing=45]``.  Names depend only on the batch file, so a
 ``--chunk K/N`` slice names its variants as the full run does.
 
+The verdict is that of ``pumplink force`` (issue #6).  A variant whose spec gives inertia
+(``wheel.inertia``, ``wheel.mass`` or ``load.moving_mass``, in the base or on an axis) is decided by
+the flywheel model: it passes iff it is feasible, the mean force is within the limit and the least
+peak force with the flywheel (:func:`pumplink.flywheel.required_peak_force` at the variant's speed and
+speed fluctuation) is within the limit; the windowed peak outside the dead bands (``peak_force_N``) is
+then reported for information only.  Any other variant is decided by the quasi-static model with the
+dead band, as before.  The ``peak`` check of ``--fail-on`` is the verdict's peak: the flywheel one
+where the variant gives inertia.  Every variant of one batch file has the same spec keys, so one
+model decides a whole batch file; a run over several files can mix the models.
+
 Everything here is a pure function of the parsed files except :func:`load_batch` /
 :func:`load_inputs` (read files) and :func:`run` (schedules chunks on worker processes).  The
 numbers per variant are bit-for-bit those of :func:`pumplink.analysis.force_analysis` (``pumplink
@@ -30,6 +40,7 @@ from typing import Any, Callable, Iterator, Sequence
 
 import numpy as np
 
+from pumplink import flywheel as _fw
 from pumplink import force as _force
 from pumplink.errors import SpecError
 from pumplink.spec import (GRAVITY, WATER_DENSITY, PumpSpec, load_spec, parse_spec, read_toml,
@@ -37,7 +48,11 @@ from pumplink.spec import (GRAVITY, WATER_DENSITY, PumpSpec, load_spec, parse_sp
 from pumplink.synthesis import Linkage, infeasibility_reason, synthesize
 
 #: Checks ``--fail-on`` can select (the default selects all three, as ``pumplink force`` does).
+#: ``peak`` is the verdict's peak: the flywheel's least peak force where the variant gives
+#: inertia, else the windowed peak outside the dead bands.
 FAIL_CHECKS = ("mean", "peak", "infeasible")
+#: Spec keys that give the inertia and so turn on the flywheel model (``PumpSpec.inertia``).
+INERTIA_KEYS = ("wheel.inertia", "wheel.mass", "load.moving_mass")
 #: Largest number of values on one axis (each axis is held in memory and sent to every worker).
 MAX_AXIS_VALUES = 1_000_000
 #: Largest number of variants in one run (indices stay exact in float64 and int64).
@@ -50,6 +65,10 @@ TASK_SAMPLES = 3_000_000
 #: Designs swept together inside a chunk for the sampled peak: small enough that the kernel's
 #: temporaries (designs x 360 samples) stay in the CPU cache.
 SUB_DESIGNS = 128
+#: Most designs per chunk, and per call of the flywheel kernel, for variants that give inertia:
+#: the least peak force costs ~0.5 ms per design (a chunk ~0.5 s) and its temporaries are
+#: (designs x ~430 nodes) arrays.
+FLYWHEEL_DESIGNS = 1024
 #: Significant digits kept for linspace values, so {start=0.2, stop=0.3, num=3} gives 0.25
 #: exactly (what a user would type), not 0.25000000000000006.
 LINSPACE_DIGITS = 12
@@ -107,6 +126,19 @@ class Batch:
     def keys(self) -> tuple[str, ...]:
         return tuple(a.key for a in self.axes)
 
+    def given(self, key: str) -> bool:
+        """True when the variants set the spec key ``section.name`` (in the base or on an axis)."""
+        section, name = key.split(".")
+        return key in self.keys or getattr(getattr(self.spec, section), name) is not None
+
+    @property
+    def flywheel(self) -> bool:
+        """True when the variants give inertia (:data:`INERTIA_KEYS`): the flywheel model decides.
+
+        Every variant of a batch sets the same keys, so this holds for all of them or none.
+        """
+        return any(self.given(k) for k in INERTIA_KEYS)
+
 
 @dataclass(frozen=True)
 class Chunk:
@@ -114,7 +146,10 @@ class Chunk:
 
     ``reason`` holds the infeasibility sentence (None when feasible); the checks follow
     :func:`pumplink.analysis.force_analysis`: ``mean_ok`` = mean <= limit, ``peak_ok`` =
-    peak <= limit (False when the peak is NaN), ``passed`` = feasible and both.
+    verdict peak <= limit (False when it is NaN), ``passed`` = feasible and both.  The verdict
+    peak (:attr:`verdict_peak`) is ``required_peak_force`` where ``flywheel`` (the variant gives
+    inertia), else ``peak_force``.  The flywheel columns are NaN for quasi-static variants, and
+    ``required_peak_force`` / ``min_passing_speed`` also for infeasible ones.
     """
 
     batch: int  # index of the batch in the run
@@ -137,6 +172,16 @@ class Chunk:
     mean_ok: np.ndarray
     peak_ok: np.ndarray
     passed: np.ndarray
+    flywheel: np.ndarray  # True: the variant gives inertia, the flywheel model decides
+    inertia: np.ndarray  # J [kg m^2]
+    speed_fluctuation: np.ndarray  # delta_allow [-]
+    required_peak_force: np.ndarray  # least peak force with the flywheel [N] (inf: no energy band)
+    min_passing_speed: np.ndarray  # [rad/s] (inf: no speed passes)
+
+    @property
+    def verdict_peak(self) -> np.ndarray:
+        """The peak force that decides the verdict [N]: flywheel or windowed dead-band peak."""
+        return np.where(self.flywheel, self.required_peak_force, self.peak_force)
 
     def __len__(self) -> int:
         return self.stop - self.start
@@ -433,11 +478,48 @@ def rope_force(batch: Batch, cols: dict[str, np.ndarray], n: int) -> np.ndarray:
     return WATER_DENSITY * GRAVITY * head * np.pi * (d * d) / 4.0 / eff  # NOTES.md §4
 
 
+def moving_mass(batch: Batch, cols: dict[str, np.ndarray], n: int) -> np.ndarray:
+    """Mass moving at rim speed per variant [kg]: as ``Load.moving_mass_kg`` (the water column
+    rho * head * pi d^2 / 4 by default with head and pipe_diameter, NOTES.md §4), same operation
+    order so the numbers are identical."""
+    if batch.given("load.moving_mass"):
+        return _field(batch, cols, "load.moving_mass", n)
+    if batch.given("load.head"):
+        head = _field(batch, cols, "load.head", n)
+        d = _field(batch, cols, "load.pipe_diameter", n)
+        return WATER_DENSITY * head * np.pi * (d * d) / 4.0  # NOTES.md §4
+    return np.zeros(n)
+
+
+def inertia(batch: Batch, cols: dict[str, np.ndarray], n: int) -> np.ndarray:
+    """Moment of inertia about the axle per variant [kg m^2], NaN where the variant gives none.
+
+    As ``PumpSpec.inertia`` (issue #6): wheel.inertia, or wheel.mass * radius^2 (a rim), plus
+    the moving mass * radius^2; same operation order so the numbers are identical.
+    """
+    if not batch.flywheel:
+        return np.full(n, np.nan)
+    r = _field(batch, cols, "wheel.radius", n)
+    if batch.given("wheel.inertia"):
+        wheel = _field(batch, cols, "wheel.inertia", n)
+    elif batch.given("wheel.mass"):
+        wheel = _field(batch, cols, "wheel.mass", n) * r * r
+    else:
+        wheel = 0.0 * r * r
+    return wheel + moving_mass(batch, cols, n) * r * r
+
+
+def _take(lk: Linkage, idx) -> Linkage:
+    return Linkage(*(np.asarray(getattr(lk, f))[idx] for f in
+                     ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
+
+
 def evaluate(batch: Batch, start: int, stop: int, samples: int = 360, batch_index: int = 0) -> Chunk:
     """Synthesis, force checks and verdict for variants ``start..stop-1`` of a batch.
 
     Vectorised over the variants; the numbers equal :func:`pumplink.analysis.force_analysis`
-    (``keep_samples=False``) on each variant's spec exactly.
+    (``keep_samples=False``) on each variant's spec exactly, the flywheel scene included where
+    the variant gives inertia (the verdict then uses its least peak force).
 
     Parameters
     ----------
@@ -483,8 +565,22 @@ def evaluate(batch: Batch, start: int, stop: int, samples: int = 360, batch_inde
             part = Linkage(*(getattr(sub, f)[s] for f in
                              ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
             sampled[ok[s]] = _force.sampled_peak(part, samples, mw[ok][s], dce[s], dcf[s], band[ok][s])
+    # The flywheel scene (issue #6), only for the variants that give inertia.
+    j = inertia(batch, cols, n)
+    fly = ~np.isnan(j)
+    delta = np.where(fly, get("operator.speed_fluctuation"), np.nan)
+    required = np.full(n, np.nan)
+    passing = np.full(n, np.nan)
+    rows = np.nonzero(fly & feasible)[0]
+    for s0 in range(0, rows.size, FLYWHEEL_DESIGNS):  # bounded temporaries
+        r = rows[s0:s0 + FLYWHEEL_DESIGNS]
+        part = _take(lk, r)
+        dce, dcf = syn.dead_centre_extended[r], syn.dead_centre_folded[r]
+        energy = _fw.energy_band(j[r], speed[r], delta[r])  # W = J w^2 delta, Eq. (2) of pumplink.flywheel
+        required[r] = _fw.required_peak_force(part, dce, dcf, mw[r], energy)  # Eq. (4) there
+        passing[r] = _fw.min_passing_speed(part, dce, dcf, mw[r], limit[r], j[r], delta[r])
     mean_ok = feasible & (mean <= limit)
-    peak_ok = feasible & (peak <= limit)
+    peak_ok = feasible & (np.where(fly, required, peak) <= limit)
 
     reasons: list = [None] * n
     bad = np.nonzero(~feasible)[0]
@@ -499,7 +595,8 @@ def evaluate(batch: Batch, start: int, stop: int, samples: int = 360, batch_inde
     return Chunk(batch_index, start, stop, values, np.asarray(syn.frame_length), np.asarray(syn.crank_length),
                  np.asarray(syn.coupler_length), feasible, reasons, np.asarray(syn.time_ratio),
                  np.asarray(syn.transmission_min), np.asarray(syn.transmission_max), mean, peak, sampled,
-                 power, limit, mean_ok, peak_ok, mean_ok & peak_ok)
+                 power, limit, mean_ok, peak_ok, mean_ok & peak_ok, flywheel=fly, inertia=j,
+                 speed_fluctuation=delta, required_peak_force=required, min_passing_speed=passing)
 
 
 # ----------------------------------------------------------------------------- scheduling
@@ -509,7 +606,8 @@ def plan(batches: Sequence[Batch], chunk: tuple[int, int] = (1, 1),
 
     The run is all variants of all batches, concatenated; slice K (1-based) of N is the
     contiguous range ``[(K-1) T // N, K T // N)`` of that sequence, so the N slices partition it
-    and every variant keeps its name.
+    and every variant keeps its name.  A task has at most ``designs`` variants, and at most
+    :data:`FLYWHEEL_DESIGNS` for a batch that gives inertia (its variants cost far more).
     """
     k, n = chunk
     total = sum(b.size for b in batches)
@@ -517,8 +615,9 @@ def plan(batches: Sequence[Batch], chunk: tuple[int, int] = (1, 1),
     tasks, offset = [], 0
     for i, b in enumerate(batches):
         s, e = max(lo, offset) - offset, min(hi, offset + b.size) - offset
-        for a in range(s, e, designs):
-            tasks.append((i, a, min(e, a + designs)))
+        step = min(designs, FLYWHEEL_DESIGNS) if b.flywheel else designs
+        for a in range(s, e, step):
+            tasks.append((i, a, min(e, a + step)))
         offset += b.size
     return tasks
 

@@ -492,7 +492,11 @@ def batch(
                                                                   "(atomically).", show_default=False)] = None,
     workers: Annotated[int, typer.Option(help="Worker processes (0: one per CPU).", min=0, max=256)] = 1,
     fail_on: Annotated[str, typer.Option("--fail-on", help="Checks that make the run fail (exit 1): any of "
-                                                           "mean,peak,infeasible; or all, or none.")] = "mean,peak,infeasible",
+                                                           "mean,peak,infeasible; or all, or none. peak is the "
+                                                           "verdict's peak: the least peak force with the flywheel "
+                                                           "where the variant gives inertia (wheel.mass, "
+                                                           "wheel.inertia or load.moving_mass), else the peak "
+                                                           "outside the dead bands.")] = "mean,peak,infeasible",
     chunk: Annotated[Optional[str], typer.Option("--chunk", help="Evaluate only slice K of N (1-based) of all "
                                                                  "variants, e.g. 3/8; names stay those of the full run.",
                                                  show_default=False)] = None,
@@ -504,7 +508,9 @@ def batch(
     a folder means its *.toml files (not sub-folders).
 
     One row per variant (lengths, feasibility, forces, verdict) and a summary (counts, lowest
-    peak force).  Exit 0 if no variant fails a --fail-on check, 1 if one does, 2 for bad input.
+    peak force).  The verdict is that of pumplink force: the flywheel model where the variant
+    gives inertia, else quasi-static with the dead band (the model column says which).  Exit 0 if
+    no variant fails a --fail-on check, 1 if one does, 2 for bad input.
 
     Example: [bold]pumplink batch configs/ --junit report.xml[/]
     """

@@ -21,14 +21,18 @@ from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
+from pumplink.analysis import FLYWHEEL, QUASI_STATIC
 from pumplink.batch import Batch, Chunk, variant_name, variant_names
 from pumplink.errors import SpecError
 
-#: Per-variant columns after the name, the source and the varied keys (CSV order).
+#: Per-variant columns after the name, the source and the varied keys (CSV order).  The
+#: flywheel scene's columns are named as in ``pumplink force --format json``
+#: (``pumplink.report.force_summary``); empty (null) for quasi-static variants.
+SCENE_COLUMNS = ("model", "inertia_kg_m2", "speed_fluctuation", "required_peak_force_N", "min_passing_speed_deg_s")
 FIXED_COLUMNS = (
     "frame_length", "crank_length", "coupler_length", "feasible", "reason", "time_ratio",
     "transmission_min_deg", "transmission_max_deg", "mean_force_N", "peak_force_N",
-    "sampled_peak_force_N", "power_W", "force_limit_N", "pass", "failed",
+    "sampled_peak_force_N", "power_W", "force_limit_N", *SCENE_COLUMNS, "pass", "failed",
 )
 #: Rows shown by ``--format table``: all if the run has at most this many, else the failures.
 TABLE_ROWS = 100
@@ -59,6 +63,10 @@ def _failed_text(c: Chunk) -> list[str]:
     return out
 
 
+def _models(c: Chunk) -> list[str]:
+    return [FLYWHEEL if f else QUASI_STATIC for f in c.flywheel.tolist()]
+
+
 def chunk_columns(batch: Batch, c: Chunk) -> dict[str, list]:
     """The chunk's rows as columns of JSON-safe values (NaN -> None; angles in degrees)."""
     return {
@@ -76,6 +84,11 @@ def chunk_columns(batch: Batch, c: Chunk) -> dict[str, list]:
         "sampled_peak_force_N": _floats(c.sampled_peak),
         "power_W": _floats(c.power),
         "force_limit_N": _floats(c.force_limit),
+        "model": _models(c),
+        "inertia_kg_m2": _floats(c.inertia),
+        "speed_fluctuation": _floats(c.speed_fluctuation),
+        "required_peak_force_N": _floats(c.required_peak_force),
+        "min_passing_speed_deg_s": _floats(np.degrees(c.min_passing_speed)),
         "pass": c.passed.tolist(),
         "failed": _failed_text(c),
     }
@@ -133,8 +146,13 @@ def csv_text(batch: Batch, c: Chunk, vkeys: Sequence[str]) -> str:
              [bools[x] for x in c.feasible.tolist()], reason, _csv_floats(c.time_ratio),
              _csv_floats(np.degrees(c.transmission_min)), _csv_floats(np.degrees(c.transmission_max)),
              _csv_floats(c.mean_force), _csv_floats(c.peak_force), _csv_floats(c.sampled_peak),
-             _csv_floats(c.power), _csv_floats(c.force_limit), [bools[x] for x in c.passed.tolist()],
-             _failed_text(c)]
+             _csv_floats(c.power), _csv_floats(c.force_limit)]
+    if c.flywheel.any():
+        cols += [[_csv_cell(m) for m in _models(c)], _csv_floats(c.inertia), _csv_floats(c.speed_fluctuation),
+                 _csv_floats(c.required_peak_force), _csv_floats(np.degrees(c.min_passing_speed))]
+    else:  # quasi-static only: no scene columns to format
+        cols += [[_csv_cell(QUASI_STATIC)] * n] + [[""] * n] * 4
+    cols += [[bools[x] for x in c.passed.tolist()], _failed_text(c)]
     return "".join(line + "\n" for line in map(",".join, zip(*cols)))
 
 
@@ -220,9 +238,17 @@ def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequ
         if "mean" in fail_on and not c.mean_ok[i]:
             bad.append(f"mean force {cols['mean_force_N'][i]:.2f} N > limit {lim[i]:g} N")
         if "peak" in fail_on and not c.peak_ok[i]:
-            pk = cols["peak_force_N"][i]
-            bad.append("peak force undefined (no crank angle outside the dead bands)" if pk is None
-                       else f"peak force {pk:.2f} N > limit {lim[i]:g} N")
+            if c.flywheel[i]:
+                pk = float(c.required_peak_force[i])
+                what = f"peak force with the flywheel (δ ≤ {float(c.speed_fluctuation[i]):g})"
+                if pk == math.inf:
+                    bad.append(f"{what} infinite (the energy band J ω² δ is zero: J = {float(c.inertia[i]):g} kg m^2)")
+                else:
+                    bad.append(f"{what} undefined" if math.isnan(pk) else f"{what} {pk:.2f} N > limit {lim[i]:g} N")
+            else:
+                pk = cols["peak_force_N"][i]
+                bad.append("peak force undefined (no crank angle outside the dead bands)" if pk is None
+                           else f"peak force {pk:.2f} N > limit {lim[i]:g} N")
         out.append(("; ".join(bad) if bad else None, None))
     return out
 
@@ -234,16 +260,20 @@ def _new_summary(total: int, fail_on, samples, chunk) -> dict[str, Any]:
 
 
 def _update_summary(s: dict, batch: Batch, c: Chunk, fail_on) -> None:
+    """Add a chunk to the counts; ``best`` is the variant with the lowest verdict peak
+    (``peak_force_N`` there is the peak that decided: the flywheel's where ``model`` is flywheel)."""
     s["pass"] += int(c.passed.sum())
     s["infeasible"] += int((~c.feasible).sum())
     s["fail"] += int((c.feasible & ~c.passed).sum())
     s["failed_selected"] += int(c.failed(fail_on).sum())
-    peak = np.where(np.isfinite(c.peak_force), c.peak_force, np.inf)
+    verdict = c.verdict_peak
+    peak = np.where(np.isfinite(verdict), verdict, np.inf)
     if peak.size:
         i = int(np.argmin(peak))  # first of equal peaks: the lowest variant index wins ties
         if math.isfinite(peak[i]) and (s["best"] is None or peak[i] < s["best"]["peak_force_N"]):
-            s["best"] = {"name": variant_name(batch, c.start + i), "peak_force_N": float(peak[i]),
-                         "mean_force_N": float(c.mean_force[i]), "pass": bool(c.passed[i])}
+            s["best"] = {"name": variant_name(batch, c.start + i), "model": FLYWHEEL if c.flywheel[i] else QUASI_STATIC,
+                         "peak_force_N": float(peak[i]), "mean_force_N": float(c.mean_force[i]),
+                         "pass": bool(c.passed[i])}
 
 
 def write_stream(batches: Sequence[Batch], results: Iterable[tuple[Chunk, dict]], total: int, fmt: str,
@@ -324,7 +354,8 @@ def write_stream(batches: Sequence[Batch], results: Iterable[tuple[Chunk, dict]]
 def summary_line(s: dict[str, Any], elapsed: float | None = None, wrote: Sequence[Path] = ()) -> str:
     """One line for stderr: counts, best variant, what failed, what was written."""
     best = s["best"]
-    best_txt = (f"; lowest peak {best['peak_force_N']:.1f} N: {best['name']}" if best else "; no feasible variant")
+    fly = " (flywheel)" if best and best["model"] == FLYWHEEL else ""
+    best_txt = (f"; lowest peak{fly} {best['peak_force_N']:.1f} N: {best['name']}" if best else "; no feasible variant")
     sel = ",".join(s["fail_on"]) or "none"
     t = f" in {elapsed:.2f} s" if elapsed is not None else ""
     w = f"; wrote {', '.join(map(str, wrote))}" if wrote else ""
@@ -345,25 +376,36 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
         title = ("Batch variants" if s["variants"] <= TABLE_ROWS else
                  f"Failing variants (first {len(rows)} of {s['failed_selected']}; all rows with --format csv --out FILE)")
         t = Table(title=title, title_justify="left")
-        for h in ("variant", "crank l2 [m]", "coupler l3 [m]", "K", "γ min–max [deg]", "mean [N]", "peak [N]",
-                  "limit [N]", "power [W]", "result"):
-            t.add_column(h.replace("[", "\\["), justify="left" if h in ("variant", "result") else "right")
+        mixed = any(r["model"] == FLYWHEEL for r in rows)  # the model column only when a flywheel decides
+        heads = ("variant", "crank l2 [m]", "coupler l3 [m]", "K", "γ min–max [deg]", "mean [N]", "peak [N]",
+                 *(("model",) if mixed else ()), "limit [N]", "power [W]", "result")
+        for h in heads:
+            t.add_column(h.replace("[", "\\["), justify="left" if h in ("variant", "model", "result") else "right")
         for r in rows:
             if not r["feasible"]:
                 res = f"[red]infeasible[/]: {escape_markup(r['reason'])}"
             else:
                 res = "[green]pass[/]" if r["pass"] else f"[red]FAIL[/] ({r['failed']})"
+            fly = r["model"] == FLYWHEEL
+            # the peak that decided: with the flywheel (None there: infinite), else outside the dead bands
+            peak = (_f(r["required_peak_force_N"], "{:.1f}", none="∞" if r["feasible"] else "—") if fly
+                    else _f(r["peak_force_N"], "{:.1f}"))
+            model = (("flywheel" if fly else "dead band"),) if mixed else ()
             t.add_row(escape_markup(r["name"]), _f(r["crank_length"], "{:.4f}"), _f(r["coupler_length"], "{:.4f}"),
                       _f(r["time_ratio"], "{:.4f}"),
                       f"{_f(r['transmission_min_deg'], '{:.1f}')}–{_f(r['transmission_max_deg'], '{:.1f}')}",
-                      _f(r["mean_force_N"], "{:.1f}"), _f(r["peak_force_N"], "{:.1f}"), _f(r["force_limit_N"], "{:g}"),
+                      _f(r["mean_force_N"], "{:.1f}"), peak, *model, _f(r["force_limit_N"], "{:g}"),
                       _f(r["power_W"], "{:.1f}"), res)
         c.print(t)
+        if mixed:
+            c.print("peak: the least peak force with the flywheel where the model is flywheel (the spec gives "
+                    "inertia), else the peak outside the dead bands", markup=False)
     best = s["best"]
     c.print(f"{s['variants']} variants: [green]{s['pass']} pass[/], [red]{s['fail']} fail[/], "
             f"{s['infeasible']} infeasible; {s['failed_selected']} failing --fail-on {','.join(s['fail_on']) or 'none'}")
     if best:
-        c.print(f"lowest peak force: {escape_markup(best['name'])} — peak {best['peak_force_N']:.1f} N, "
+        fly = " with the flywheel" if best["model"] == FLYWHEEL else ""
+        c.print(f"lowest peak force{fly}: {escape_markup(best['name'])} — peak {best['peak_force_N']:.1f} N, "
                 f"mean {best['mean_force_N']:.1f} N ({'pass' if best['pass'] else 'FAIL'})")
 
 

@@ -36,6 +36,7 @@ ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = ROOT / "configs"
 GRID = CONFIGS / "grids" / "design-space.toml"
 PROTOTYPE = (CONFIGS / "prototype.toml").as_posix()
+VILLAGE = (CONFIGS / "village-10m.toml").as_posix()
 
 
 def pumplink(*args, cwd=ROOT, **kw) -> subprocess.CompletedProcess:
@@ -61,6 +62,67 @@ base = "{PROTOTYPE}"
 """
 
 
+# Batches that give inertia (issue #6): the flywheel model decides their verdict.  They cover every
+# route to J of PumpSpec.inertia: wheel.mass plus the water column from head and pipe_diameter (the
+# village base, also with head and bore on axes), wheel.inertia plus an explicit load.moving_mass on
+# a rope-force base, and a moving mass alone; speed, speed fluctuation and force limit on axes; and
+# infeasible variants (L1 = 0, see SMALL).
+PROTO_INLINE = """\
+[base.wheel]
+radius = 0.25
+[base.linkage]
+L1 = 0.40
+D1 = 0.20
+b = 0.10
+rocker = 0.20
+handle = 1.00
+swing = 60.0
+[base.load]
+rope_force = 45.0
+"""
+FLYWHEEL_BATCHES = {
+    "fly-mass": f"""\
+base = "{VILLAGE}"
+[vary]
+"wheel.mass" = [0.5, 4.0, 20.0]
+"operator.speed" = [180, 360, 540]
+"linkage.rocker" = {{ start = 0.15, stop = 0.3, num = 4 }}
+"linkage.L1" = [0.4, 0.0]
+"operator.speed_fluctuation" = [0.1, 0.2]
+""",
+    "fly-water": f"""\
+base = "{VILLAGE}"
+[vary]
+"load.head" = [6.0, 10.0, 14.0]
+"load.pipe_diameter" = [0.02, 0.023]
+"operator.speed" = [300, 420]
+""",
+    "fly-inertia": 'name = "fly-inertia"\n' + PROTO_INLINE + """\
+[vary]
+"wheel.inertia" = [0.05, 0.5]
+"load.moving_mass" = [0.0, 10.0]
+"operator.force_limit" = [60, 100]
+"linkage.swing" = [60, 70]
+""",
+    "fly-moving": PROTO_INLINE + """\
+[vary]
+"load.moving_mass" = [5.0, 40.0]
+"operator.speed" = [360, 720]
+""",
+}
+
+
+@pytest.fixture(scope="module")
+def fly_files(tmp_path_factory) -> list[Path]:
+    folder = tmp_path_factory.mktemp("fly")
+    out = []
+    for name, text in FLYWHEEL_BATCHES.items():
+        p = folder / f"{name}.toml"
+        p.write_text(text)
+        out.append(p)
+    return out
+
+
 @pytest.fixture()
 def small(tmp_path) -> Path:
     p = tmp_path / "small.toml"
@@ -69,8 +131,30 @@ def small(tmp_path) -> Path:
 
 
 @pytest.fixture(scope="module")
-def grid_csv() -> list[dict[str, str]]:
-    r = pumplink("batch", GRID, "--fail-on", "none", "--format", "csv")
+def qs_grid(tmp_path_factory) -> Path:
+    """The design-space grid on a quasi-static base: the village well without its wheel mass.
+
+    configs/grids/design-space.toml builds on configs/village-10m.toml, whose wheel.mass turns on
+    the flywheel model for all 27,216 variants (~10 s a run).  The streaming, chunking and worker
+    tests below are about the plumbing, not the model, and run this copy (~1 s); the flywheel
+    path has its own tests, and a slice of the real grid is checked against force_analysis.
+    """
+    folder = tmp_path_factory.mktemp("qs")
+    village = tomllib.loads(Path(VILLAGE).read_text())
+    del village["wheel"]["mass"]
+    (folder / "village-10m.toml").write_text(tomli_w.dumps(village))
+    text = GRID.read_text()
+    assert text.count('base = "../village-10m.toml"') == 1
+    path = folder / "design-space.toml"  # the same text (axis order and names), the other base
+    path.write_text(text.replace('base = "../village-10m.toml"', 'base = "village-10m.toml"'))
+    assert not B.load_batch(path).flywheel and B.load_batch(GRID).flywheel
+    assert B.variant_names(B.load_batch(path), 0, 50) == B.variant_names(B.load_batch(GRID), 0, 50)
+    return path
+
+
+@pytest.fixture(scope="module")
+def grid_csv(qs_grid) -> list[dict[str, str]]:
+    r = pumplink("batch", qs_grid, "--fail-on", "none", "--format", "csv")
     assert r.returncode == 0, r.stderr
     return read_csv(r.stdout)
 
@@ -227,34 +311,79 @@ def test_sampled_peak_equals_a_brute_force_sweep(samples, band_deg):
     assert (np.abs(got[ok] / ref[ok] - 1) <= bound).all()
 
 
-def test_random_variants_equal_force_analysis_exactly():
-    b = B.load_batch(GRID)
-    c = B.evaluate(b, 0, b.size, 360)
-    rng = random.Random(4)
-    picks = rng.sample(range(b.size), 250)
-    picks += [int(np.nonzero(~c.feasible)[0][0]), int(np.nonzero(c.feasible & ~c.passed)[0][0])]
+def _same(x, y) -> bool:
+    return x == y or (math.isnan(x) and math.isnan(y))
+
+
+def _assert_equals_force_analysis(b: B.Batch, c: B.Chunk, picks) -> None:
+    """Row i of the chunk (variant c.start + i) equals force_analysis of its spec, exactly."""
+    from pumplink.analysis import FLYWHEEL
+
+    nan = float("nan")
     for i in picks:
-        r = force_analysis(parse_spec(B.variant_spec(b, i)), samples=360, keep_samples=False)
+        r = force_analysis(parse_spec(B.variant_spec(b, c.start + i)), samples=360, keep_samples=False)
         s = r.design.synthesis
         pairs = {"frame": (s.frame_length, c.frame_length[i]), "crank": (s.crank_length, c.crank_length[i]),
                  "coupler": (s.coupler_length, c.coupler_length[i]), "K": (s.time_ratio, c.time_ratio[i]),
                  "gmin": (s.transmission_min, c.transmission_min[i]), "gmax": (s.transmission_max, c.transmission_max[i]),
                  "mean": (r.mean_force, c.mean_force[i]), "peak": (r.peak_force, c.peak_force[i]),
-                 "sampled": (r.sampled_peak, c.sampled_peak[i]), "power": (r.power, c.power[i])}
+                 "sampled": (r.sampled_peak, c.sampled_peak[i]), "power": (r.power, c.power[i]),
+                 # the flywheel scene (None in force_analysis: quasi-static, or not computed)
+                 "inertia": (nan if r.inertia is None else r.inertia, c.inertia[i]),
+                 "delta": (nan if r.speed_fluctuation is None else r.speed_fluctuation, c.speed_fluctuation[i]),
+                 "required": (nan if r.required_peak_force is None else r.required_peak_force,
+                              c.required_peak_force[i]),
+                 "min speed": (nan if r.min_passing_speed is None else r.min_passing_speed, c.min_passing_speed[i])}
         for what, (x, y) in pairs.items():
-            assert x == y or (math.isnan(x) and math.isnan(y)), (i, what, x, y)
+            assert _same(x, y), (i, what, x, y)
+        assert (r.model == FLYWHEEL) == c.flywheel[i]
         assert r.passed == c.passed[i] and r.design.error == c.reason[i] and r.design.feasible == c.feasible[i]
 
 
-def test_random_variants_equal_pumplink_force_json(tmp_path, grid_csv):
-    """Rows of `pumplink batch --format csv` equal `pumplink force --summary --format json`."""
+def test_random_variants_equal_force_analysis_exactly(qs_grid):
+    b = B.load_batch(qs_grid)
+    c = B.evaluate(b, 0, b.size, 360)
+    assert not c.flywheel.any() and np.isnan(c.required_peak_force).all()  # this grid gives no inertia
+    rng = random.Random(4)
+    picks = rng.sample(range(b.size), 250)
+    picks += [int(np.nonzero(~c.feasible)[0][0]), int(np.nonzero(c.feasible & ~c.passed)[0][0])]
+    _assert_equals_force_analysis(b, c, picks)
+
+
+def test_flywheel_variants_equal_force_analysis_exactly(fly_files):
+    """Every variant of the batches that give inertia: J, the least peak force with the flywheel,
+    the minimum passing speed and the verdict equal force_analysis (the per-design scene) exactly."""
+    outcomes = set()
+    for f in fly_files:
+        b = B.load_batch(f)
+        assert b.flywheel
+        c = B.evaluate(b, 0, b.size, 360)
+        assert c.flywheel.all()
+        _assert_equals_force_analysis(b, c, range(b.size))
+        # the verdict's peak is the flywheel one: dead-band peak and verdict disagree somewhere
+        ok = c.feasible
+        outcomes |= {(bool(p), bool(q)) for p, q in zip(c.peak_force[ok] <= c.force_limit[ok], c.peak_ok[ok])}
+    assert outcomes == {(True, True), (True, False), (False, True), (False, False)}
+
+
+def test_design_space_grid_slice_equals_force_analysis_exactly():
+    """The real exploration grid (flywheel: its village base gives wheel.mass): a slice, from a
+    start that is no chunk boundary, against force_analysis."""
     b = B.load_batch(GRID)
-    rows = {r["name"]: r for r in grid_csv}
-    assert len(rows) == b.size == 27216
-    rng = random.Random(11)
-    picks = rng.sample(range(b.size), 3)
-    picks.append(next(i for i, r in enumerate(grid_csv) if r["feasible"] == "False"))
-    picks.append(next(i for i, r in enumerate(grid_csv) if r["feasible"] == "True" and r["pass"] == "False"))
+    start, stop = 5000, 5600
+    c = B.evaluate(b, start, stop, 360)
+    assert c.flywheel.all() and (~c.feasible).any() and (c.feasible & ~c.passed).any() and c.passed.any()
+    rng = random.Random(5)
+    picks = rng.sample(range(stop - start), 60)
+    _assert_equals_force_analysis(b, c, picks)
+
+
+def _val(text):
+    return None if text == "" else float(text)
+
+
+def _assert_rows_equal_force_json(tmp_path, b: B.Batch, rows: dict, picks) -> None:
+    """Rows of `pumplink batch --format csv` equal `pumplink force --summary --format json`."""
     for i in picks:
         spec = B.variant_spec(b, i)
         row = rows[spec["name"]]
@@ -263,21 +392,45 @@ def test_random_variants_equal_pumplink_force_json(tmp_path, grid_csv):
         r = pumplink("force", path, "--summary", "--format", "json", "--samples", 360)
         assert r.returncode == (0 if row["pass"] == "True" else 1), r.stderr
         got = json.loads(r.stdout)
-
-        def val(text):
-            return None if text == "" else float(text)
-
         assert got["name"] == row["name"]
         assert str(got["feasible"]) == row["feasible"] and (got["error"] or "") == row["reason"]
-        for key, col in (("frame_length", "frame_length"), ("crank_length", "crank_length"),
-                         ("coupler_length", "coupler_length"), ("time_ratio", "time_ratio"),
-                         ("mean_force_N", "mean_force_N"), ("peak_force_N", "peak_force_N"),
-                         ("sampled_peak_force_N", "sampled_peak_force_N"), ("power_W", "power_W"),
-                         ("force_limit_N", "force_limit_N")):
-            assert got[key] == val(row[col]), (i, key)
+        for key in ("frame_length", "crank_length", "coupler_length", "time_ratio", "mean_force_N", "peak_force_N",
+                    "sampled_peak_force_N", "power_W", "force_limit_N", "inertia_kg_m2", "speed_fluctuation",
+                    "required_peak_force_N", "min_passing_speed_deg_s"):
+            assert got[key] == _val(row[key]), (i, key)
+        assert got["model"] == row["model"]
         tr = got["transmission_angle_deg"]
-        assert (tr["min"], tr["max"]) == (val(row["transmission_min_deg"]), val(row["transmission_max_deg"]))
+        assert (tr["min"], tr["max"]) == (_val(row["transmission_min_deg"]), _val(row["transmission_max_deg"]))
         assert str(got["pass"]) == row["pass"]
+
+
+def test_random_variants_equal_pumplink_force_json(tmp_path, qs_grid, grid_csv):
+    b = B.load_batch(qs_grid)
+    rows = {r["name"]: r for r in grid_csv}
+    assert len(rows) == b.size == 27216
+    rng = random.Random(11)
+    picks = rng.sample(range(b.size), 3)
+    picks.append(next(i for i, r in enumerate(grid_csv) if r["feasible"] == "False"))
+    picks.append(next(i for i, r in enumerate(grid_csv) if r["feasible"] == "True" and r["pass"] == "False"))
+    _assert_rows_equal_force_json(tmp_path, b, rows, picks)
+
+
+def test_flywheel_rows_equal_pumplink_force_json(tmp_path, fly_files):
+    """The scene columns of batch rows (CSV) equal `pumplink force --summary --format json`: a
+    passing, a peak-failing and an infeasible flywheel variant, and a moving mass alone."""
+    r = pumplink("batch", *fly_files, "--format", "csv", "--fail-on", "none")
+    assert r.returncode == 0, r.stderr
+    all_rows = read_csv(r.stdout)
+    b = B.load_batch(fly_files[0])
+    rows = [x for x in all_rows if x["source"] == str(fly_files[0])]
+    assert len(rows) == b.size and {x["model"] for x in all_rows} == {"flywheel"}
+    picks = [next(i for i, x in enumerate(rows) if x["pass"] == "True"),
+             next(i for i, x in enumerate(rows) if x["failed"] == "peak"),
+             next(i for i, x in enumerate(rows) if x["feasible"] == "False")]
+    _assert_rows_equal_force_json(tmp_path, b, {x["name"]: x for x in rows}, picks)
+    moving = B.load_batch(fly_files[3])
+    _assert_rows_equal_force_json(tmp_path, moving, {x["name"]: x for x in all_rows if x["source"] == str(fly_files[3])},
+                                  [1])
 
 
 # ----------------------------------------------------------------------------- CLI
@@ -325,6 +478,78 @@ def test_fail_on_selects_exit_code_and_junit(tmp_path, small, fail_on, code, fai
     assert "1 pass, 1 fail, 2 infeasible" in r.stderr
 
 
+# The flywheel decides the peak check (issue #6), with outcomes that follow from the limits of the
+# scene (pumplink/flywheel.py): the energy band W = J w^2 delta is 7.9e3 J for J = 1000 kg m^2 at
+# 360 deg/s and delta = 0.2, far above the few joules the load can draw down near a dead centre
+# (Mw * arc ~ 11 N m * 0.5 rad), so the least peak force is the mean force (W -> inf); for
+# J = 1e-6 kg m^2, W = 7.9e-6 J and the least peak force tends to the quasi-static maximum,
+# infinite at the dead centres (W -> 0).  The dead-band peaks are those of SMALL: 85.8 N at 45 N,
+# 152 N at 80 N.  So the verdict is the opposite of the dead band's for two variants.
+FLY_SMALL = 'name = "flysmall"\n' + PROTO_INLINE + """\
+[vary]
+"wheel.inertia" = [1e-6, 1000.0]
+"load.rope_force" = [45, 80]
+"""
+
+
+@pytest.mark.parametrize("fail_on,code,failures", [("mean,peak,infeasible", 1, 2), ("peak", 1, 2), ("mean", 0, 0)])
+def test_fail_on_peak_is_the_flywheel_peak(tmp_path, fail_on, code, failures):
+    p = tmp_path / "flysmall.toml"
+    p.write_text(FLY_SMALL)
+    junit = tmp_path / "r.xml"
+    r = pumplink("batch", p, "--fail-on", fail_on, "--format", "json", "--junit", junit)
+    assert r.returncode == code, r.stderr
+    d = json.loads(r.stdout)
+    v = d["variants"]
+    assert [x["name"] for x in v] == ["flysmall#0[inertia=1e-06 rope_force=45]", "flysmall#1[inertia=1e-06 rope_force=80]",
+                                      "flysmall#2[inertia=1000 rope_force=45]", "flysmall#3[inertia=1000 rope_force=80]"]
+    assert [x["model"] for x in v] == ["flywheel"] * 4 and [x["inertia_kg_m2"] for x in v] == [1e-6, 1e-6, 1000.0, 1000.0]
+    assert [x["peak_force_N"] <= 100 for x in v] == [True, False, True, False]  # the dead band's verdict
+    assert [x["pass"] for x in v] == [False, False, True, True]  # the flywheel's
+    assert [x["failed"] for x in v] == ["peak", "peak", "", ""]
+    assert all(x["required_peak_force_N"] > 1000 for x in v[:2])
+    for x in v[2:]:  # W -> inf: the mean force (NOTES.md §1, a different formula: pi Mw / (2 H sin(swing/2)))
+        assert x["required_peak_force_N"] == pytest.approx(x["mean_force_N"], rel=1e-12)
+        assert x["min_passing_speed_deg_s"] < 360
+    s = d["summary"]
+    assert (s["pass"], s["fail"], s["failed_selected"]) == (2, 2, 2 if "peak" in fail_on else 0)
+    assert s["best"]["name"] == v[2]["name"] and s["best"]["model"] == "flywheel"
+    assert s["best"]["peak_force_N"] == v[2]["required_peak_force_N"]
+    msgs = [f.get("message") for f in ET.parse(junit).getroot().iter("failure")]
+    assert len(msgs) == failures and all("with the flywheel (δ ≤ 0.2)" in m and "> limit 100 N" in m for m in msgs)
+    assert "lowest peak (flywheel) 35.3 N: flysmall#2" in r.stderr
+
+
+def test_flywheel_table_shows_the_verdict_peak_and_the_model(tmp_path):
+    p = tmp_path / "flysmall.toml"
+    p.write_text(FLY_SMALL)
+    r = pumplink("batch", p, PROTOTYPE, "--fail-on", "none", env={**os.environ, "COLUMNS": "250"})
+    assert r.returncode == 0, r.stderr
+    lines = {ln.split("│")[1].strip(): [c.strip() for c in ln.split("│")[2:-1]] for ln in r.stdout.splitlines()
+             if ln.startswith("│")}
+    # peak [N] and model columns (7th and 8th): the flywheel's least peak (the mean, 62.8 N at 80 N rope
+    # force) where inertia is given, the dead-band peak of the quasi-static prototype (85.8 N)
+    assert lines["flysmall#3[inertia=1000 rope_force=80]"][5:7] == ["62.8", "flywheel"]
+    assert lines["Prototype"][5:7] == ["85.8", "dead band"]
+    assert "lowest peak force with the flywheel: flysmall#2" in r.stdout
+
+
+def test_zero_inertia_fails_with_an_infinite_peak(tmp_path):
+    """A moving mass of 0 kg and no wheel mass: J = 0, no energy band (W = 0), so the least peak
+    force is the quasi-static maximum, infinite (flywheel.required_peak_force: inf for band 0)."""
+    p = tmp_path / "j0.toml"
+    p.write_text(PROTO_INLINE + '[vary]\n"load.moving_mass" = [0.0, 40.0]\n')
+    junit = tmp_path / "r.xml"
+    r = pumplink("batch", p, "--format", "csv", "--junit", junit)
+    assert r.returncode == 1, r.stderr
+    rows = read_csv(r.stdout)
+    assert [x["inertia_kg_m2"] for x in rows] == ["0.0", "2.5"]  # 40 kg * 0.25^2 m^2
+    assert (rows[0]["required_peak_force_N"], rows[0]["min_passing_speed_deg_s"], rows[0]["pass"]) == ("", "", "False")
+    assert rows[1]["pass"] == "True" and float(rows[1]["required_peak_force_N"]) <= 100
+    (msg,) = [f.get("message") for f in ET.parse(junit).getroot().iter("failure")]
+    assert "infinite" in msg and "J = 0" in msg
+
+
 def test_json_rows_and_summary(small):
     r = pumplink("batch", small, "--format", "json", "--fail-on", "none")
     assert r.returncode == 0
@@ -338,22 +563,25 @@ def test_json_rows_and_summary(small):
     assert s["best"]["name"] == best["name"] == "small#0[L1=0.4 rope_force=45]"
 
 
-def test_chunks_partition_the_run():
-    batches = B.load_inputs([CONFIGS, GRID])
+def test_chunks_partition_the_run(qs_grid):
+    batches = B.load_inputs([CONFIGS, qs_grid, GRID])
     total = sum(b.size for b in batches)
     for n in (1, 2, 3, 7, 40):
-        got = [(i, s, e) for k in range(1, n + 1) for (i, s, e) in B.plan(batches, (k, n), designs=1000)]
+        got = [(i, s, e) for k in range(1, n + 1) for (i, s, e) in B.plan(batches, (k, n), designs=5000)]
         seen = [(i, j) for i, s, e in got for j in range(s, e)]
         assert seen == [(i, j) for i, b in enumerate(batches) for j in range(b.size)] and len(seen) == total
+        # tasks of a batch that gives inertia (the real grid) are cut smaller: the flywheel costs more
+        size = {b.flywheel: max(e - s for i, s, e in got if batches[i].flywheel == b.flywheel) for b in batches[-2:]}
+        assert size[True] <= B.FLYWHEEL_DESIGNS < size[False] <= 5000
 
 
-def test_chunk_union_equals_full_run(tmp_path):
-    full = pumplink("batch", "configs/", GRID, "--fail-on", "none", "--format", "csv", "--samples", 90)
+def test_chunk_union_equals_full_run(tmp_path, qs_grid, fly_files):
+    full = pumplink("batch", "configs/", qs_grid, *fly_files, "--fail-on", "none", "--format", "csv", "--samples", 90)
     assert full.returncode == 0, full.stderr
     parts = []
     for k in (1, 2, 3):
         out = tmp_path / f"part{k}.csv"
-        r = pumplink("batch", "configs/", GRID, "--fail-on", "none", "--format", "csv", "--samples", 90,
+        r = pumplink("batch", "configs/", qs_grid, *fly_files, "--fail-on", "none", "--format", "csv", "--samples", 90,
                      "--chunk", f"{k}/3", "--out", out)
         assert r.returncode == 0, r.stderr
         assert f"(slice {k}/3)" in r.stderr
@@ -364,15 +592,17 @@ def test_chunk_union_equals_full_run(tmp_path):
     assert all(len(p) > 1 for p in parts)
 
 
-def test_workers_give_the_same_rows(tmp_path):
+def test_workers_give_the_same_rows(tmp_path, qs_grid, fly_files):
     outs = []
+    n_fly = sum(B.load_batch(f).size for f in fly_files)
     for w in (1, 2):
         out = tmp_path / f"w{w}.csv"
-        r = pumplink("batch", GRID, "--fail-on", "none", "--format", "csv", "--out", out, "--workers", w,
+        r = pumplink("batch", qs_grid, *fly_files, "--fail-on", "none", "--format", "csv", "--out", out, "--workers", w,
                      "--samples", 60)
         assert r.returncode == 0, r.stderr
         outs.append(out.read_bytes())
-    assert outs[0] == outs[1] and outs[0].count(b"\n") == 27216 + 1
+    assert outs[0] == outs[1] and outs[0].count(b"\n") == 27216 + n_fly + 1
+    assert outs[0].count(b",flywheel,") == n_fly
 
 
 def test_no_progress_bar_or_colour_when_stderr_is_not_a_terminal(small):
@@ -442,28 +672,35 @@ def test_killed_run_leaves_no_partial_file(tmp_path, sig, workers, group):
     assert _leftovers(tmp_path) == []
 
 
-def test_csv_and_json_carry_the_same_rows():
-    rc = pumplink("batch", "configs/", GRID, "--format", "csv", "--fail-on", "none", "--samples", 30)
-    rj = pumplink("batch", "configs/", GRID, "--format", "json", "--fail-on", "none", "--samples", 30)
+def test_csv_and_json_carry_the_same_rows(qs_grid, fly_files):
+    """Standard designs (both models), the quasi-static grid and the flywheel batches in one run."""
+    rc = pumplink("batch", "configs/", qs_grid, *fly_files, "--format", "csv", "--fail-on", "none", "--samples", 30)
+    rj = pumplink("batch", "configs/", qs_grid, *fly_files, "--format", "json", "--fail-on", "none", "--samples", 30)
     assert rc.returncode == rj.returncode == 0
     rows, variants = read_csv(rc.stdout), json.loads(rj.stdout)["variants"]
-    assert len(rows) == len(variants) == 27216 + 11
-    for i in list(range(12)) + list(range(12, len(rows), 997)):  # every standard design, a spread of the grid
+    n_fly = sum(B.load_batch(f).size for f in fly_files)
+    assert len(rows) == len(variants) == 27216 + 11 + n_fly
+    assert {r["model"] for r in rows[:11]} == {"flywheel", "quasi-static + dead band"}  # configs/ mixes the models
+    spread = list(range(12)) + list(range(12, len(rows) - n_fly, 997)) + list(range(len(rows) - n_fly, len(rows), 7))
+    for i in spread:  # every standard design, a spread of the grid and of the flywheel batches
         r, v = rows[i], variants[i]
         assert (r["name"], r["source"]) == (v["name"], v["source"])  # names with commas are quoted
         assert {k: float(x) for k, x in r.items() if "." in k and x} == v["vary"]
         for k in ("frame_length", "crank_length", "mean_force_N", "peak_force_N", "sampled_peak_force_N", "power_W",
-                  "transmission_min_deg", "time_ratio", "force_limit_N"):
+                  "transmission_min_deg", "time_ratio", "force_limit_N", "inertia_kg_m2", "speed_fluctuation",
+                  "required_peak_force_N", "min_passing_speed_deg_s"):
             assert (None if r[k] == "" else float(r[k])) == v[k], (i, k)
-        assert (r["feasible"], r["pass"], r["reason"], r["failed"]) == (
-            str(v["feasible"]), str(v["pass"]), v["reason"] or "", v["failed"])
+        assert (r["feasible"], r["pass"], r["reason"], r["failed"], r["model"]) == (
+            str(v["feasible"]), str(v["pass"]), v["reason"] or "", v["failed"], v["model"])
+        fly = r["model"] == "flywheel"
+        assert (r["inertia_kg_m2"] != "") == fly and (r["speed_fluctuation"] != "") == fly
 
 
-def test_progress_bar_on_a_terminal_for_long_runs(tmp_path):
+def test_progress_bar_on_a_terminal_for_long_runs(tmp_path, qs_grid):
     """stderr on a pseudo-terminal: a run longer than a second draws the Rich progress bar."""
     from terminal import run_on_terminal
 
-    code, text, _ = run_on_terminal([sys.executable, "-m", "pumplink", "batch", GRID, "--fail-on", "none", "--samples",
+    code, text, _ = run_on_terminal([sys.executable, "-m", "pumplink", "batch", qs_grid, "--fail-on", "none", "--samples",
                                      "1500", "--format", "csv", "--out", tmp_path / "g.csv"], timeout=120, cwd=ROOT,
                                     stdout=subprocess.DEVNULL)
     assert code == 0
