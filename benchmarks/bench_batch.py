@@ -6,6 +6,10 @@ the run (the largest process: the parent or a worker; measured with resource.get
 wrapper subprocess, so runs do not mix).  Memory is also measured on a grid 4x larger to show
 it does not grow with the grid (rows are streamed in chunks).
 
+A second grid gives the wheel a mass (issue #6): 10,000 variants decided by the flywheel model,
+whose least peak force (``pumplink.flywheel.required_peak_force``) and minimum passing speed
+cost far more per design than the quasi-static sweep; measured the same way.
+
     .venv/bin/python benchmarks/bench_batch.py [--repeat 3] [--quick]
 
 Target (issue #4): <= 3 s wall for 100,000 variants on this 2-core machine; < 1 GB memory.
@@ -36,6 +40,17 @@ base = "{base}"
 "linkage.D1" = {{ start = -0.1, stop = 0.35, num = 10 }}
 "linkage.handle" = {{ start = 0.8, stop = 1.25, num = 10 }}
 "load.rope_force" = {{ start = 20, stop = 65, num = {num} }}
+"""
+
+# 10 x 10 x 10 x 10 = 10,000 variants of the prototype with a wheel mass (1-20 kg rim, J = m rw^2):
+# every variant is decided by the flywheel model; light wheels and heavy loads fail the 100 N limit.
+FLYWHEEL_GRID = """\
+base = "{base}"
+[vary]
+"wheel.mass" = {{ start = 1, stop = 20, num = 10 }}
+"linkage.rocker" = {{ start = 0.15, stop = 0.30, num = 10 }}
+"linkage.swing" = {{ start = 40, stop = 80, num = 10 }}
+"load.rope_force" = {{ start = 20, stop = 65, num = 10 }}
 """
 
 WRAPPER = r"""
@@ -106,6 +121,30 @@ def main() -> None:
                          str(out), "--workers", "2"])
             print(f"  400,000 variants, --workers 2: wall {r['wall']:.2f} s, peak RSS {r['maxrss_kb'] / 1024:.0f} MB "
                   f"(memory does not grow with the grid)")
+
+        fly = tmp / "grid-flywheel-10k.toml"
+        fly.write_text(FLYWHEEL_GRID.format(base=base))
+        print(f"pumplink batch, 10,000 variants with wheel.mass (flywheel model), CSV written "
+              f"(cores free: {free_cores():.1f})")
+        rows = {}
+        for _ in range(args.repeat):
+            for w in (1, 2):
+                cmd = [*PUMPLINK, "batch", str(fly), "--fail-on", "none", "--samples", "360",
+                       "--format", "csv", "--out", str(out), "--workers", str(w)]
+                rows.setdefault(w, []).append(measure(cmd))
+        lines = out.read_text().splitlines()
+        n_rows = len(lines) - 1
+        assert n_rows == 10_000 and all(",flywheel," in ln for ln in lines[1:]), n_rows
+        passed = sum(ln.endswith(",True,") for ln in lines[1:])
+        for w, rs in rows.items():
+            wall = statistics.median(r["wall"] for r in rs)
+            cpu = statistics.median(r["cpu"] for r in rs)
+            rss = max(r["maxrss_kb"] for r in rs) / 1024
+            walls = ", ".join(f"{r['wall']:.2f}" for r in rs)
+            print(f"  --workers {w}: median wall {wall:.2f} s ({10_000 / wall:,.0f} variants/s), "
+                  f"CPU {cpu:.2f} s, peak RSS {rss:.0f} MB   [walls: {walls}]")
+        print(f"  command: pumplink batch FLYWHEEL_GRID --fail-on none --samples 360 --format csv --out out.csv "
+              f"--workers W ({passed} of 10,000 pass)")
 
 
 if __name__ == "__main__":
