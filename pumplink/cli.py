@@ -434,7 +434,9 @@ def optimize(
     vary: Annotated[Optional[list[str]], typer.Option("--vary", help="KEY=LO:HI in spec units (repeatable); keys: L1, D1, "
                                                       "b, rocker, handle \\[m], swing \\[deg]. Default: rocker=0.1:0.4 "
                                                       "L1=0:1 D1=-0.3:1.2 swing=30:100.", show_default=False)] = None,
-    objective: Annotated[Objective, typer.Option(help="Minimise the exact peak force or the mean force.")] = Objective.peak,
+    objective: Annotated[Objective, typer.Option(help="Minimise the peak force of the verdict (the flywheel's "
+                                                     "least peak force when the spec gives inertia, else the exact "
+                                                     "peak outside the dead bands) or the mean force.")] = Objective.peak,
     seed: Annotated[int, typer.Option(help="Random seed of the differential evolution (same seed, same answer).")] = 0,
     axle_height: Annotated[Optional[float], typer.Option(help="Wheel-axle height \\[m] (default: the spec's "
                                                          "wheel.axle_height, else 0.55).", show_default=False)] = None,
@@ -448,7 +450,8 @@ def optimize(
 
     Differential evolution over the vectorised force kernel, then a local polish, subject to: a
     crank-rocker exists, transmission angle >= 45°, grip height and stroke in the ergonomic
-    ranges.  Exit 0 if the optimum passes the force limit, 1 if it fails or nothing is feasible.
+    ranges.  The verdict is that of pumplink force (the model key says which model decided).
+    Exit 0 if the optimum passes the force limit, 1 if it fails or nothing is feasible.
 
     Example: [bold]pumplink optimize configs/prototype.toml --vary D1=0:0.8 --vary swing=40:90 --write best.toml[/]
     """

@@ -1,9 +1,14 @@
 """Pump design search: the feasible linkage that needs the least operator force (issue #5).
 
 Variables (by default, in spec units): ``rocker`` [m], ``L1`` [m], ``D1`` [m], ``swing`` [deg]
-within :data:`DEFAULT_BOUNDS`; every other spec value stays fixed.  Objective: the exact
-windowed peak force outside the dead bands (``pumplink.force.peak_force``) or the mean force
-pi Mw / (2 H sin(swing/2)) (NOTES.md §1).  Constraints (all ``g >= 0``):
+within :data:`DEFAULT_BOUNDS`; every other spec value stays fixed.  Objective: the peak force of
+the verdict (as ``pumplink force``) or the mean force pi Mw / (2 H sin(swing/2)) (NOTES.md §1).
+The peak of the verdict depends on the model (issue #6): when the spec gives inertia
+(``wheel.inertia``, ``wheel.mass`` or ``load.moving_mass``) it is the flywheel's least peak force
+at the spec's speed and speed fluctuation (``pumplink.flywheel.required_peak_force``, vectorised
+over the population); otherwise the exact windowed peak outside the dead bands
+(``pumplink.force.peak_force``).  The pass flag is that verdict: mean and peak within the force
+limit.  Constraints (all ``g >= 0``):
 
 * the dead-centre synthesis gives a crank-rocker with the exact swing: 0 < psi2 < psi1 < pi
   (``pumplink.synthesis``);
@@ -15,7 +20,9 @@ pi Mw / (2 H sin(swing/2)) (NOTES.md §1).  Constraints (all ``g >= 0``):
 * horizontal grip stroke 2 H sin(swing/2) at most 1.0 m: the pump paper's own prototype
   (seed 000: H = 1 m, swing 60 deg, chosen "as function of the motion capability of human
   operators"); no lower limit (a shorter stroke only raises the force);
-* the crank arcs outside the dead bands are not empty (the peak is then defined).
+* the crank arcs outside the dead bands are not empty (the peak is then defined); quasi-static
+  model only: the flywheel's peak is defined for every crank-rocker, and the dead band plays no
+  part in its verdict.
 
 Search: ``scipy.optimize.differential_evolution`` (vectorised over the population, the
 constraints by Lampinen's rule), then a local SLSQP polish; a polished point is kept only if it
@@ -30,8 +37,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from pumplink import flywheel as _fw
 from pumplink import force as _force
-from pumplink.analysis import MIN_TRANSMISSION_DEG
+from pumplink.analysis import FLYWHEEL, MIN_TRANSMISSION_DEG, QUASI_STATIC
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.spec import PumpSpec, parse_spec, spec_to_dict
 from pumplink.synthesis import CHANGE_POINT_MARGIN, synthesize
@@ -74,16 +82,33 @@ class Problem:
     grip_height: tuple[float, float] = GRIP_HEIGHT_M
     stroke: tuple[float, float] = STROKE_M
 
+    @property
+    def flywheel(self) -> bool:
+        """True when the spec gives inertia: the flywheel model decides the peak (issue #6)."""
+        return self.spec.inertia is not None
+
+    @property
+    def model(self) -> str:
+        """The model whose peak force is the objective and decides the pass flag."""
+        return FLYWHEEL if self.flywheel else QUASI_STATIC
+
     def constraint_names(self) -> list[str]:
+        """Names of the constraints in force (the last of :data:`CONSTRAINTS` only for the
+        quasi-static model)."""
         gl, gh = self.grip_height
         sl, sh = self.stroke
         fill = [{}, {}, {"lo": f"{gl:g}"}, {"hi": f"{gh:g}"}, {"lo": f"{sl:g}"}, {"hi": f"{sh:g}"}, {}]
-        return [name.format(**f) for (name, _), f in zip(CONSTRAINTS, fill)]
+        names = [name.format(**f) for (name, _), f in zip(CONSTRAINTS, fill)]
+        return names[:-1] if self.flywheel else names
 
 
 @dataclass(frozen=True)
 class Evaluation:
-    """Batch evaluation (arrays over designs): objective, forces and constraint slacks g >= 0."""
+    """Batch evaluation (arrays over designs): objective, forces and constraint slacks g >= 0.
+
+    ``peak`` is the windowed peak outside the dead bands, ``required`` the flywheel's least peak
+    force (NaN unless the spec gives inertia); ``verdict_peak`` is the one that decides.
+    """
 
     objective: np.ndarray
     peak: np.ndarray
@@ -93,6 +118,12 @@ class Evaluation:
     grip_low: np.ndarray  # [m]
     grip_high: np.ndarray  # [m]
     stroke: np.ndarray  # [m]
+    required: np.ndarray  # [N]
+    flywheel: bool = False
+
+    @property
+    def verdict_peak(self) -> np.ndarray:
+        return self.required if self.flywheel else self.peak
 
 
 @dataclass(frozen=True)
@@ -194,6 +225,10 @@ def make_problem(spec: PumpSpec, bounds: dict[str, tuple[float, float]] | None =
     bounds = dict(DEFAULT_BOUNDS) if bounds is None else bounds
     if objective not in ("peak", "mean"):
         raise SpecError(f"--objective {objective!r} is unknown; use peak or mean")
+    if spec.inertia == 0.0 and objective == "peak":
+        raise SpecError(f"{spec.name}: the inertia is 0 kg m^2 (load.moving_mass = 0 and no wheel mass), so there is no "
+                        "energy band (J w^2 delta = 0) and every design needs an infinite peak force; give wheel.mass "
+                        "[kg] or wheel.inertia [kg m^2], or leave out load.moving_mass for the quasi-static model")
     if axle_height is None:
         axle_height = spec.wheel.axle_height if spec.wheel.axle_height is not None else DEFAULT_AXLE_HEIGHT_M
     if not (math.isfinite(axle_height) and 0 < axle_height <= 5):
@@ -243,6 +278,8 @@ def evaluate(problem: Problem, x) -> Evaluation:
     slack = np.stack([np.degrees(margin), g_mu, grip_low - problem.grip_height[0],
                       problem.grip_height[1] - grip_high, stroke - problem.stroke[0],
                       problem.stroke[1] - stroke, win])
+    if problem.flywheel:
+        slack = slack[:-1]  # the dead-band window: quasi-static model only
 
     mean = _force.mean_force(mw, h, sw)
     peak = np.full(ok.shape, np.nan)
@@ -252,10 +289,21 @@ def evaluate(problem: Problem, x) -> Evaluation:
         sub = type(lk)(*(np.asarray(getattr(lk, f))[live] for f in ("pivot_x", "pivot_y", "crank", "coupler",
                                                                        "rocker", "handle", "branch")))
         peak[live] = _force.peak_force(sub, syn.dead_centre_extended[live], syn.dead_centre_folded[live], band, mw)[0]
-    obj = peak if problem.objective == "peak" else np.where(ok, mean, np.nan)
+    required = np.full(ok.shape, np.nan)
+    if problem.flywheel and ok.any():
+        # the flywheel's least peak force at the spec's speed, as force_analysis (pumplink.flywheel.scene)
+        op = spec.operator
+        energy = float(_fw.energy_band(spec.inertia, float(np.radians(float(op.speed))), op.speed_fluctuation))
+        lk = syn.linkage
+        sub = type(lk)(*(np.asarray(getattr(lk, f))[ok] for f in ("pivot_x", "pivot_y", "crank", "coupler",
+                                                                     "rocker", "handle", "branch")))
+        required[ok] = _fw.required_peak_force(sub, syn.dead_centre_extended[ok], syn.dead_centre_folded[ok], mw,
+                                               energy)  # Eq. (4) of pumplink.flywheel
+    verdict = required if problem.flywheel else peak
+    obj = verdict if problem.objective == "peak" else np.where(ok, mean, np.nan)
     obj = np.where(np.isfinite(obj), obj, INFEASIBLE_OBJECTIVE)
     return Evaluation(obj, peak, np.where(ok, mean, np.nan), slack, np.where(ok, np.degrees(mu), np.nan),
-                      grip_low, grip_high, stroke)
+                      grip_low, grip_high, stroke, required, problem.flywheel)
 
 
 def _spec_with(problem: Problem, x) -> PumpSpec:
@@ -306,6 +354,13 @@ def optimize(problem: Problem, seed: int | None = 0, popsize: int = 20, maxiter:
     e = evaluate(problem, x[:, None])
     if not _feasible(e):
         names = problem.constraint_names()
+        if np.all(e.slack[:, 0] >= 0):  # constraints met, but the objective is not finite
+            fix = ("give the wheel more inertia (wheel.mass) or allow more speed fluctuation" if problem.flywheel
+                   else "give operator.dead_band > 0")
+            raise InfeasibleDesign(
+                f"no design inside the bounds needs a finite {problem.objective} force ({problem.model} model): the "
+                f"best one found ({_fmt_x(problem, x)}) meets every constraint but needs more than "
+                f"{INFEASIBLE_OBJECTIVE:g} N; {fix}")
         j = int(np.argmin(e.slack[:, 0]))
         unit = CONSTRAINTS[j][1]
         raise InfeasibleDesign(

@@ -141,19 +141,31 @@ def transmission_chart(path, theta_deg: np.ndarray, swing_deg: np.ndarray, opt) 
 
 # ----------------------------------------------------------------------------- optimize
 def optimize_row(res) -> dict[str, Any]:
-    """JSON contract of ``pumplink optimize`` (spec units: m, deg, N)."""
+    """JSON contract of ``pumplink optimize`` (spec units: m, deg, N).
+
+    ``model`` says which model's peak force was the objective and decides ``passes_force_limit``
+    (as ``pumplink force``): "flywheel" when the spec gives inertia, its least peak force then in
+    ``required_peak_force_N`` (null for the quasi-static model); ``peak_force_N`` is always the
+    windowed peak outside the dead bands.
+    """
     from pumplink.optimize import CONSTRAINTS, VARIABLE_UNITS
 
     p = res.problem
     b, s = res.at_best, res.at_spec
     names = p.constraint_names()
     spec_lk = p.spec.linkage
+    op = p.spec.operator
     peak_b, peak_s = float(b.peak[0]), float(s.peak[0])
+    verdict_b = float(b.verdict_peak[0])
     obj_b, obj_s = float(b.objective[0]), float(s.objective[0])
     spec_ok = bool(np.all(s.slack[:, 0] >= 0))
     return {
         "name": p.spec.name,
         "objective": p.objective,
+        "model": p.model,
+        "inertia_kg_m2": None if p.spec.inertia is None else num(p.spec.inertia),
+        "speed_fluctuation": op.speed_fluctuation if p.flywheel else None,
+        "speed_deg_s": op.speed,
         "seed": res.seed,
         "axle_height_m": p.axle_height,
         "grip_height_range_m": list(p.grip_height),
@@ -162,11 +174,13 @@ def optimize_row(res) -> dict[str, Any]:
         "variables": [{"key": k, "unit": VARIABLE_UNITS[k], "lower": float(lo), "upper": float(hi),
                        "spec": float(getattr(spec_lk, k)), "optimum": float(v)}
                       for k, lo, hi, v in zip(p.names, p.lower, p.upper, res.x)],
-        "optimum": {"peak_force_N": num(peak_b), "mean_force_N": num(b.mean[0]),
+        "optimum": {"peak_force_N": num(peak_b), "required_peak_force_N": num(b.required[0]),
+                    "mean_force_N": num(b.mean[0]),
                     "transmission_deg": num(b.transmission[0]), "grip_height_m": [num(b.grip_low[0]), num(b.grip_high[0])],
                     "stroke_m": num(b.stroke[0]), "rocker_pivot_height_m": num(p.axle_height - res.best.linkage.D1),
-                    "passes_force_limit": bool(max(peak_b, float(b.mean[0])) <= p.spec.operator.force_limit)},
-        "spec_design": {"peak_force_N": num(peak_s), "mean_force_N": num(s.mean[0]),
+                    "passes_force_limit": bool(max(verdict_b, float(b.mean[0])) <= op.force_limit)},
+        "spec_design": {"peak_force_N": num(peak_s), "required_peak_force_N": num(s.required[0]),
+                        "mean_force_N": num(s.mean[0]),
                         "transmission_deg": num(s.transmission[0]), "meets_constraints": spec_ok,
                         "violated": [n for n, g in zip(names, s.slack[:, 0]) if g < 0]},
         "improvement_N": num(obj_s - obj_b) if obj_s < 1e5 else None,
@@ -196,7 +210,10 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
     from rich.table import Table
 
     c = console(out)
-    c.print(f"[bold]{row['name']}[/]: minimise the {row['objective']} operator force (seed {row['seed']}); axle height "
+    fly = row["model"] == "flywheel"
+    model = (f"model: flywheel, J = {row['inertia_kg_m2']:.4g} kg·m², δ ≤ {row['speed_fluctuation']:g}, at "
+             f"{row['speed_deg_s']:g} deg/s" if fly else "model: quasi-static + dead band")
+    c.print(f"[bold]{row['name']}[/]: minimise the {row['objective']} operator force ({model}; seed {row['seed']}); axle height "
             f"{row['axle_height_m']:g} m, grip height {row['grip_height_range_m'][0]:g}–{row['grip_height_range_m'][1]:g} m, "
             f"stroke {row['stroke_range_m'][0]:g}–{row['stroke_range_m'][1]:g} m")
     t = Table(title="Variables", title_justify="left")
@@ -206,13 +223,17 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
         t.add_row(f"{v['key']} [{v['unit']}]", f"{v['lower']:g} … {v['upper']:g}", f"{v['spec']:.4f}", f"{v['optimum']:.6f}")
     c.print(t)
     o, s = row["optimum"], row["spec_design"]
+    peak_key = "required_peak_force_N" if fly else "peak_force_N"  # the peak of the verdict
     t = Table(title="Forces", title_justify="left")
-    for h in ("design", "peak [N]", "mean [N]", "transmission [deg]", "meets constraints"):
+    heads = ("design", *(("peak with the flywheel [N]", "peak outside the dead bands [N]") if fly else ("peak [N]",)),
+             "mean [N]", "transmission [deg]", "meets constraints")
+    for h in heads:
         t.add_column(escape(h), justify="left" if h in ("design",) else "right")
-    t.add_row("spec's own design", _f(s["peak_force_N"], "{:.3f}"), _f(s["mean_force_N"], "{:.3f}"),
-              _f(s["transmission_deg"], "{:.2f}"), "yes" if s["meets_constraints"] else "[red]no[/]: " + "; ".join(s["violated"]))
-    t.add_row("[bold]optimum[/]", _f(o["peak_force_N"], "{:.3f}"), _f(o["mean_force_N"], "{:.3f}"),
-              _f(o["transmission_deg"], "{:.2f}"), "yes")
+    for label, d, meets in (("spec's own design", s, "yes" if s["meets_constraints"] else "[red]no[/]: " + "; ".join(s["violated"])),
+                            ("[bold]optimum[/]", o, "yes")):
+        peaks = (_f(d["required_peak_force_N"], "{:.3f}", none="∞"), _f(d["peak_force_N"], "{:.3f}")) if fly else \
+            (_f(d["peak_force_N"], "{:.3f}"),)
+        t.add_row(label, *peaks, _f(d["mean_force_N"], "{:.3f}"), _f(d["transmission_deg"], "{:.2f}"), meets)
     c.print(t)
     t = Table(title="Constraints at the optimum (slack >= 0 is satisfied)", title_justify="left")
     for h in ("constraint", "slack", "binding"):
@@ -221,8 +242,8 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
         t.add_row(k["name"], f"{k['slack']:.6g} {k['unit']}", "[bold]binds[/]" if k["binding"] else "")
     c.print(t)
     if row["improvement_N"] is not None:
-        c.print(f"{row['objective']} force {_f(s['peak_force_N'] if row['objective'] == 'peak' else s['mean_force_N'], '{:.2f}')} N → "
-                f"{_f(o['peak_force_N'] if row['objective'] == 'peak' else o['mean_force_N'], '{:.2f}')} N "
+        c.print(f"{row['objective']} force {_f(s[peak_key] if row['objective'] == 'peak' else s['mean_force_N'], '{:.2f}')} N → "
+                f"{_f(o[peak_key] if row['objective'] == 'peak' else o['mean_force_N'], '{:.2f}')} N "
                 f"({row['improvement_pct']:+.1f} % lower than the spec's own design)" if row["improvement_pct"] >= 0 else
                 f"the optimum needs {-row['improvement_N']:.2f} N more than the spec's own design, which breaks: "
                 f"{'; '.join(s['violated'])}", markup=False)
@@ -232,9 +253,11 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
             markup=False)
     if not o["passes_force_limit"]:
         c.print(f"no design inside these bounds and ergonomic limits keeps the force within {row['force_limit_N']:g} N: "
-                f"the best needs {o['peak_force_N']:.2f} N peak; it is held back by: {', '.join(row['binding'])}. "
+                f"the best needs {_f(o[peak_key], '{:.2f}', none='∞')} N peak; it is held back by: "
+                f"{', '.join(row['binding'])}. "
                 "Widen the bounds that bind (--vary), or relax --grip-height / --stroke.", markup=False)
     verdict = "[bold green]PASS[/]" if o["passes_force_limit"] else "[bold red]FAIL[/]"
-    c.print(f"{verdict}: optimum peak {o['peak_force_N']:.2f} N vs limit {row['force_limit_N']:g} N "
+    c.print(f"{verdict}: optimum peak{' with the flywheel' if fly else ''} {_f(o[peak_key], '{:.2f}', none='∞')} N "
+            f"vs limit {row['force_limit_N']:g} N "
             f"({row['evaluations']} designs evaluated, {row['generations']} generations"
             f"{', polished' if row['polished'] else ''})")

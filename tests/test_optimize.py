@@ -135,3 +135,85 @@ def test_cli_write_gives_the_same_numbers_through_force(tmp_path):
     assert g["pass"] and d["optimum"]["passes_force_limit"]
     # It must beat the spec's own peak or say which of the spec's constraints it breaks.
     assert d["improvement_N"] > 0 or d["spec_design"]["violated"]
+    assert d["model"] == "quasi-static + dead band" and d["optimum"]["required_peak_force_N"] is None
+    assert g["model"] == d["model"]
+
+
+# ----------------------------------------------------------------------------- flywheel (issue #6)
+def fly_spec(mass, **linkage):
+    d = spec_to_dict(default_spec())
+    d["linkage"].update(linkage)
+    d["wheel"]["mass"] = mass
+    return parse_spec(d)
+
+
+def _scan_minimum(problem, peak_of):
+    """Independent of differential evolution: a dense scan of the single variable, then scipy's
+    bounded Brent minimiser around the best feasible grid point."""
+    grid = np.linspace(problem.lower[0], problem.upper[0], 2601)
+    e = evaluate(problem, grid[None, :])
+    ok = np.all(e.slack >= 0, axis=0)
+    j = int(np.argmin(np.where(ok, peak_of(e), np.inf)))
+    ref = minimize_scalar(lambda d: float(peak_of(evaluate(problem, np.array([[d]])))[0]),
+                          bounds=(grid[j - 1], grid[j + 1]), method="bounded", options=dict(xatol=1e-10))
+    assert grid[0] < ref.x < grid[-1]  # interior
+    return ref
+
+
+def test_inertia_spec_optimises_on_the_flywheel_peak():
+    """An 8 kg rim wheel (J = 0.5 kg m^2): the objective is the flywheel's least peak force, whose
+    minimiser over D1 is not the dead-band peak's; the optimum's peak equals force_analysis of the
+    optimum spec (the per-design scene) exactly."""
+    from pumplink.analysis import FLYWHEEL
+
+    spec = fly_spec(8.0, L1=1.5)
+    problem = make_problem(spec, {"D1": (-0.5, 0.8)}, **RELAXED)
+    assert problem.model == FLYWHEEL
+    assert len(problem.constraint_names()) == 6  # no dead-band window: the flywheel's peak needs none
+    fly = _scan_minimum(problem, lambda e: e.required)
+    dead_band = _scan_minimum(problem, lambda e: e.peak)
+    assert abs(fly.x - dead_band.x) > 0.01  # the two models prefer different designs
+    res = optimize(problem, seed=0)
+    # The flywheel's minimum is a kink (the two dead-centre arcs' ratios of Eq. (4) cross there), where
+    # Brent's parabolic steps do not help: the reference may stop a little above the true minimum, so
+    # the optimiser must find the same point and be no worse, not equal to the last digit.
+    assert abs(res.x[0] - fly.x) < 1e-5 and res.at_best.objective[0] <= fly.fun * (1 + 1e-12)
+    assert res.at_best.objective[0] == res.at_best.required[0] == res.at_best.verdict_peak[0]
+    r = force_analysis(res.best, keep_samples=False)
+    assert r.model == FLYWHEEL and r.required_peak_force == res.at_best.required[0]
+    assert r.peak_force == res.at_best.peak[0]  # the dead-band peak, reported for information
+
+
+@pytest.mark.parametrize("mass,code", [(8.0, 0), (3.0, 1)])
+def test_cli_flywheel_verdict_through_force(tmp_path, mass, code):
+    """`pumplink optimize` on a spec with a wheel mass: the model, the flywheel peak and the pass flag
+    equal `pumplink force --summary` of the written optimum.  With 3 kg the dead-band peak (~67 N)
+    is within the 100 N limit but the flywheel's (~170 N) is not: exit 1."""
+    spec = tmp_path / "fly.toml"
+    import tomli_w
+
+    spec.write_text(tomli_w.dumps(spec_to_dict(fly_spec(mass, L1=1.5))))
+    out = tmp_path / "best.toml"
+    p = run("optimize", str(spec), "--vary", "D1=-0.5:0.8", "--grip-height", "0:5", "--stroke", "0:5",
+            "--format", "json", "--write", str(out))
+    assert p.returncode == code, p.stderr
+    d = json.loads(p.stdout)
+    assert d["model"] == "flywheel" and d["inertia_kg_m2"] == mass * 0.25 ** 2 and d["speed_fluctuation"] == 0.2
+    f = run("force", str(out), "--summary", "--format", "json")
+    assert f.returncode == code, f.stderr
+    g = json.loads(f.stdout)
+    assert g["model"] == d["model"]
+    assert g["required_peak_force_N"] == d["optimum"]["required_peak_force_N"]
+    assert g["pass"] == d["optimum"]["passes_force_limit"] == (code == 0)
+    assert d["optimum"]["peak_force_N"] < 100  # the dead band alone would pass both
+    if code:  # the table says which model decided, and fails on the flywheel's peak
+        t = run("optimize", str(spec), "--vary", "D1=-0.5:0.8", "--grip-height", "0:5", "--stroke", "0:5")
+        assert t.returncode == 1 and "model: flywheel, J = 0.1875 kg·m², δ ≤ 0.2, at 360 deg/s" in t.stdout
+        assert f"FAIL: optimum peak with the flywheel {d['optimum']['required_peak_force_N']:.2f} N vs limit 100 N" in t.stdout
+
+
+def test_zero_inertia_cannot_optimise_the_peak():
+    d = spec_to_dict(default_spec())
+    d["load"]["moving_mass"] = 0.0
+    with pytest.raises(SpecError, match="inertia is 0"):
+        make_problem(parse_spec(d))
