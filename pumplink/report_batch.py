@@ -242,7 +242,8 @@ def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequ
                 pk = float(c.required_peak_force[i])
                 what = f"peak force with the flywheel (δ ≤ {float(c.speed_fluctuation[i]):g})"
                 if pk == math.inf:
-                    bad.append(f"{what} infinite (the energy band J ω² δ is zero: J = {float(c.inertia[i]):g} kg m^2)")
+                    bad.append(f"{what} infinite (the energy band J ω² δ is too small to carry the linkage through "
+                               f"the dead centres: J = {float(c.inertia[i]):g} kg m^2)")
                 else:
                     bad.append(f"{what} undefined" if math.isnan(pk) else f"{what} {pk:.2f} N > limit {lim[i]:g} N")
             else:
