@@ -181,8 +181,9 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
                        wheel_speed=_fw.wheel_speed(sc, theta) if np.isfinite(sc.peak_force) else None)
         checks.append(_check(f"peak force with the flywheel (δ ≤ {op.speed_fluctuation:g})", sc.peak_force,
                              op.force_limit, "<=", "N", "fail"))
-        checks.append(_check("links' kinetic energy (neglected), share of the energy band",
-                             100.0 * link / fly["energy_band"], 100.0 * _fw.LINK_ENERGY_LIMIT, "<=", "%", "warn"))
+        share = 100.0 * link / fly["energy_band"] if fly["energy_band"] > 0 else np.inf  # J = 0: no band at all
+        checks.append(_check("links' kinetic energy (neglected), share of the energy band", share,
+                             100.0 * _fw.LINK_ENERGY_LIMIT, "<=", "%", "warn"))
     checks += [
         _check("transmission angle, min(γmin, 180° − γmax)", gamma, MIN_TRANSMISSION_DEG, ">=", "deg", "warn"),
         _check("operator power (sustained)", mw * speed, SUSTAINED_POWER_W, "<=", "W", "warn"),
@@ -273,6 +274,11 @@ class Effect:
     note: str
 
 
+def _ratio(a: float, b: float) -> float:
+    """a / b, with inf (a > 0) or NaN (a = 0) for b = 0 (a flywheel of zero inertia has no band)."""
+    return float(a) / float(b) if b else (float("inf") if a else float("nan"))
+
+
 def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
     """Which effects the verdict's model includes, their size at this speed, and why it suffices.
 
@@ -300,19 +306,19 @@ def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
         wheel_ke = 0.5 * r.inertia * w * w
         moving = spec.load.moving_mass_kg * spec.wheel.radius ** 2
         effects.append(Effect("inertia of wheel + rope and water, J", True, r.inertia, "kg·m²",
-                              "of which rope and water", moving / r.inertia,
+                              "of which rope and water", _ratio(moving, r.inertia),
                               f"kinetic energy {wheel_ke:.2f} J at {r.speed_deg_s:g} deg/s; band W = J ω̄² δ = "
                               f"{r.energy_band:.2f} J"))
         ref, ref_name = r.energy_band, "the energy band W"
     else:
         ref, ref_name = work, "the work per revolution"
     effects.append(Effect("kinetic energy of coupler + handle (largest)", False, r.link_energy, "J", ref_name,
-                          r.link_energy / ref, f"links taken as {mpl:.2f} kg/m tube; grows as speed²"))
-    effects.append(Effect("weight of the handle (lift over the swing)", False, lift, "J", ref_name, lift / ref,
+                          _ratio(r.link_energy, ref), f"links taken as {mpl:.2f} kg/m tube; grows as speed²"))
+    effects.append(Effect("weight of the handle (lift over the swing)", False, lift, "J", ref_name, _ratio(lift, ref),
                           f"{handle_mass:.2f} kg; given back on the way down each stroke"))
     effects.append(Effect("operator power Mw ω̄", True, r.power, "W", "75 W sustained for hours", r.power / SUSTAINED_POWER_W,
                           "a person gives 50-150 W for an hour (NOTES.md §4)"))
-    small = r.link_energy / ref <= fw.LINK_ENERGY_LIMIT and lift / ref <= fw.LINK_ENERGY_LIMIT
+    small = _ratio(r.link_energy, ref) <= fw.LINK_ENERGY_LIMIT and _ratio(lift, ref) <= fw.LINK_ENERGY_LIMIT
     if not r.flywheel:
         why = ("Quasi-static + dead band answered: the spec gives no inertia, so speed cannot enter and the dead band "
                f"±{op.dead_band:g}° stands in for the flywheel. Give wheel.mass or wheel.inertia to let the wheel's "

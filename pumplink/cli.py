@@ -163,6 +163,9 @@ def force(
 
         extra["verify"] = verify_row(simulate(result.scene), result)
         agrees = extra["verify"]["agrees"]
+    elif verify and result.design.feasible:  # an infinite least peak force: no periodic motion exists
+        sys.stderr.write(f"verify: nothing to integrate; no finite peak force keeps the wheel turning "
+                         f"(energy band J·ω̄²·δ = {result.energy_band:.3g} J)\n")
     render_force(result, fmt.value, summary=summary, extra=extra)
     if fmt.value != "json":  # the reports follow the table; with CSV on stdout they go to stderr
         from pumplink.report import render_explain, render_verify

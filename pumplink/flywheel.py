@@ -175,7 +175,7 @@ def _travel_parts(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke):
         t = 0.5 * sn[..., None] * (1.0 + _GL_X)  # nodes on (0, s)
         g = _grip_rate(dc[..., None] + t, *(v[..., None] for v in geom))
         local = np.array(local, float, copy=True)
-        local[near] = 0.5 * np.abs(sn) * np.sign(sn) * (np.abs(g) @ _GL_W)
+        local[near] = 0.5 * sn * (np.abs(g) * _GL_W).sum(axis=-1)  # not @: no BLAS threads
     return base, local
 
 

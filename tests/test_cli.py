@@ -820,3 +820,18 @@ def test_speed_command(tmp_path):
     assert q.returncode == 2 and q.stderr.count("\n") == 1 and "wheel.mass" in q.stderr
     bad = run("speed", FLY, "--from", "500", "--to", "100")
     assert bad.returncode == 2 and "--to" in bad.stderr
+
+
+def test_zero_inertia_fails_cleanly(tmp_path):
+    """load.moving_mass = 0 and no wheel mass: a flywheel with J = 0 has no energy band, so no finite
+    peak force keeps the wheel turning (the limit W -> 0).  Found by review: it used to raise
+    ZeroDivisionError in the link-energy share and in --explain."""
+    d = tomllib.loads((Path(__file__).parents[1] / "configs" / "prototype.toml").read_text(encoding="utf-8"))
+    d["load"]["moving_mass"] = 0.0
+    spec = tmp_path / "j0.toml"
+    spec.write_text(tomli_w.dumps(d), encoding="utf-8")
+    p = run("force", spec, "--summary", "--explain", "--verify", "--format", "json")
+    assert p.returncode == 1 and "Traceback" not in p.stderr and "nothing to integrate" in p.stderr
+    j = json.loads(p.stdout)
+    assert j["model"] == "flywheel" and j["inertia_kg_m2"] == 0 and j["required_peak_force_N"] is None
+    assert j["pass"] is False and "verify" not in j
