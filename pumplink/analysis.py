@@ -167,7 +167,7 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
 
     gamma = np.degrees(min(syn.transmission_min, np.pi - syn.transmission_max))
     mpl = spec.linkage.mass_per_length or _fw.LINK_MASS_PER_METRE
-    link = float(np.nanmax(_fw.link_energy(lk, _force_grid(), speed, mpl)))
+    link = float(np.nanmax(_fw.link_energy(lk, _link_grid(), speed, mpl)))
     checks = [_check("mean force", mean, op.force_limit, "<=", "N", "fail")]
     if inertia is None:
         checks.append(_check(f"peak force outside ±{op.dead_band:g}° of the dead centres", peak, op.force_limit, "<=",
@@ -199,7 +199,7 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
                        evaluate(lk, np.array([dce, dcf, peak_angle]), mw), model=model, link_energy=link, **fly)
 
 
-def _force_grid() -> np.ndarray:
+def _link_grid() -> np.ndarray:
     """Crank angles [rad] on which the link kinetic energy is maximised (0.5 deg steps)."""
     return np.arange(720) * (np.pi / 360)
 

@@ -105,11 +105,6 @@ LINK_MASS_PER_METRE = 7850.0 * np.pi / 4.0 * (26.9e-3 ** 2 - 21.7e-3 ** 2)
 LINK_ENERGY_LIMIT = 0.1
 
 
-def rim_inertia(mass, radius):
-    """Moment of inertia of mass at a radius, J = m r^2 [kg m^2] (a rim; issue #6)."""
-    return np.asarray(mass, float) * np.asarray(radius, float) ** 2
-
-
 def energy_band(inertia, mean_speed, speed_fluctuation):
     """Kinetic-energy band of a cycle, W = J w_bar^2 delta [J] (Eq. (2) of this module).
 
@@ -174,7 +169,6 @@ def _travel_parts(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke):
         sn = s[near]
         t = 0.5 * sn[..., None] * (1.0 + _GL_X)  # nodes on (0, s)
         g = _grip_rate(dc[..., None] + t, *(v[..., None] for v in geom))
-        local = np.array(local, float, copy=True)
         local[near] = 0.5 * sn * (np.abs(g) * _GL_W).sum(axis=-1)  # not @: no BLAS threads
     return base, local
 
@@ -375,14 +369,14 @@ def required_peak_force(lk: Linkage, dead_centre_extended, dead_centre_folded, w
         f_mean = mean_operator_force(prep.mw, prep.stroke)
         out[ok & (band <= 0)] = np.inf
         out[ok & (band == np.inf)] = f_mean[ok & (band == np.inf)]
-        active = np.nonzero(ok & (band > 0) & np.isfinite(band))[0]
+        finite = ok & (band > 0) & np.isfinite(band)
+        todo = np.nonzero(finite)[0]
         lam = f_mean.copy()
-        todo = active
         for refine in (False, True):
             # Dinkelbach on the grid nodes first (cheap; the grid's arcs are a subset of all arcs, so its
             # answer is a lower bound to start from), then with every extremum refined
             lam = _dinkelbach(prep, lam, band, todo[np.isfinite(lam[todo])], refine, FORCE_CAP_RATIO * f_mean)
-        out[ok & (band > 0) & np.isfinite(band)] = lam[ok & (band > 0) & np.isfinite(band)]
+        out[finite] = lam[finite]
     return float(out[0]) if scalar else out
 
 
@@ -432,6 +426,8 @@ class Scene:
     ceiling : (k, 2) crank angles [rad] of the arcs on which the wheel is at w_max and the
         operator pushes only the quasi-static force; elsewhere |F| = Fp*.
     top_angle : crank angle [rad] where the motion is at w_max (start of the verification).
+    peaks_phi, peaks_u : the refined local maxima of U [rad from the extended dead centre, J] and
+        drift : U(phi + 2 pi) - U(phi) [J], from which :func:`wheel_speed` follows.
     """
 
     inertia: float
@@ -449,6 +445,16 @@ class Scene:
     wheel_torque: float
     dead_centre_extended: float
     dead_centre_folded: float
+    peaks_phi: np.ndarray
+    peaks_u: np.ndarray
+    drift: float
+
+
+def _local_maxima(x, u, a0):
+    """Indices of the local maxima of U over one period (neighbours wrap with the drift a0)."""
+    u_prev = np.concatenate([[u[-1] - a0], u[:-1]])
+    u_next = np.concatenate([u[1:], [u[0] + a0]])
+    return np.nonzero((u >= u_prev) & (u > u_next))[0]
 
 
 def scene(lk: Linkage, dead_centre_extended: float, dead_centre_folded: float, wheel_torque: float,
@@ -468,15 +474,14 @@ def scene(lk: Linkage, dead_centre_extended: float, dead_centre_folded: float, w
     nan = float("nan")
     if not np.isfinite(fp):
         return Scene(inertia, mean_speed, speed_fluctuation, band, fp, f_mean, nan, nan, nan,
-                     np.empty((0, 2)), nan, lk, wheel_torque, dead_centre_extended, dead_centre_folded)
+                     np.empty((0, 2)), nan, lk, wheel_torque, dead_centre_extended, dead_centre_folded,
+                     np.empty(0), np.empty(0), nan)
     x, u, b, l, a = _refined_extrema(prep, np.array([fp]))
     a0 = max(float(a[0]), 0.0)
     drop = float(_drawdown(x, u, b, l, np.array([a0]), prep.stroke)[0][0])
     x, u = x[0], u[0]
     # local maxima of U (refined) and their running maximum over the previous revolution
-    u_prev = np.concatenate([[u[-1] - a0], u[:-1]])
-    u_next = np.concatenate([u[1:], [u[0] + a0]])
-    peaks = np.nonzero((u >= u_prev) & (u > u_next))[0]
+    peaks = _local_maxima(x, u, a0)
     xm, um = x[peaks], u[peaks]
     ceil = []
     args = prep.args(slice(0, 1))
@@ -503,7 +508,7 @@ def scene(lk: Linkage, dead_centre_extended: float, dead_centre_folded: float, w
     fluct = drop / (inertia * mean_speed ** 2)  # Eq. (2): the range of E is the drawdown
     return Scene(inertia, mean_speed, speed_fluctuation, band, float(fp), f_mean, fluct,
                  mean_speed * (1 + fluct / 2), mean_speed * (1 - fluct / 2), ceiling, top, lk,
-                 float(wheel_torque), float(dead_centre_extended), float(dead_centre_folded))
+                 float(wheel_torque), float(dead_centre_extended), float(dead_centre_folded), xm, um, a0)
 
 
 def on_ceiling(sc: Scene, crank_angle):
@@ -531,20 +536,15 @@ def wheel_speed(sc: Scene, crank_angle):
     """Wheel speed w(t) [rad/s] of the reported motion (energy balance Eq. (1) from the top)."""
     th = np.asarray(crank_angle, float)
     prep, _ = _prepare(sc.linkage, sc.dead_centre_extended, sc.dead_centre_folded, sc.wheel_torque)
-    x, u, _b, _l, a = _refined_extrema(prep, np.array([sc.peak_force]))
-    a0 = max(float(a[0]), 0.0)
-    x, u = x[0], u[0]
-    u_prev = np.concatenate([[u[-1] - a0], u[:-1]])
-    u_next = np.concatenate([u[1:], [u[0] + a0]])
-    peaks = np.nonzero((u >= u_prev) & (u > u_next))[0]
-    xm, um = x[peaks], u[peaks]
+    xm, um, a0 = sc.peaks_phi, sc.peaks_u, sc.drift
     phi = np.mod(th - sc.dead_centre_extended, TWO_PI)
     uphi = _u_integral(phi, sc.peak_force, *prep.args(slice(0, 1)), prep.mw[:1])
     # running maximum of U over (phi - 2 pi, phi]: U(phi) itself or a local maximum in the window
     cand_x = np.concatenate([xm, xm - TWO_PI])
     cand_u = np.concatenate([um, um - a0])
-    inside = (cand_x[None, :] <= phi[..., None].reshape(-1, 1)) & (cand_x[None, :] > phi.reshape(-1, 1) - TWO_PI)
-    top = np.maximum(uphi.reshape(-1), np.where(inside, cand_u[None, :], -np.inf).max(axis=1)).reshape(phi.shape)
+    col = phi.reshape(-1, 1)
+    inside = (cand_x <= col) & (cand_x > col - TWO_PI)
+    top = np.maximum(uphi.reshape(-1), np.where(inside, cand_u, -np.inf).max(axis=1)).reshape(phi.shape)
     energy = 0.5 * sc.inertia * sc.max_speed ** 2 - (top - uphi)  # Eq. (1) from the top of the band
     return np.sqrt(2.0 * energy / sc.inertia)
 

@@ -119,7 +119,7 @@ class Operator(_Section):
     )
     speed_fluctuation: float = Field(
         default=0.2, gt=0, le=1,
-        description="allowed coefficient of speed fluctuation (w_max - w_min) / w_mean [-] (flywheel model)",
+        description="largest coefficient of speed fluctuation (w_max - w_min) / w_mean [-] (flywheel model)",
     )
 
 
