@@ -7,7 +7,7 @@ wrapper subprocess, so runs do not mix).  Memory is also measured on a grid 4x l
 it does not grow with the grid (rows are streamed in chunks).
 
 A second grid gives the wheel a mass (issue #6): 10,000 variants decided by the flywheel model,
-whose least peak force (``pumplink.flywheel.required_peak_force``) and minimum passing speed
+whose least peak force (``pumplink.models.flywheel.least_peak_force``) and minimum passing speed
 cost far more per design than the quasi-static sweep; measured the same way.
 
     .venv/bin/python benchmarks/bench_batch.py [--repeat 3] [--quick]

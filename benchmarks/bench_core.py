@@ -18,7 +18,8 @@ from pathlib import Path
 import numpy as np
 
 from pumplink.analysis import design
-from pumplink.kinematics import evaluate, force_kernel, kernel_work, offset_table, shifted_directions
+from pumplink.mechanisms.angles import offset_table, shifted_directions
+from pumplink.mechanisms.fourbar import kinematic_state, force_kernel, kernel_work
 from pumplink.spec import default_spec
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -53,7 +54,7 @@ def main() -> None:
     print(f"machine: {machine()}")
 
     theta = np.arange(3600) * (2 * np.pi / 3600)
-    t = median_time(lambda: evaluate(lk, theta, mw), 50)
+    t = median_time(lambda: kinematic_state(lk, theta, mw), 50)
     print(f"sweep of 3600 crank angles, full state (evaluate):       {t * 1e3:8.3f} ms  ({3600 / t / 1e6:6.1f} M positions/s)")
 
     n, chunk = 5_000_000, 8192

@@ -14,11 +14,12 @@ import time
 
 import numpy as np
 
-from pumplink.kinematics import force_kernel, grid_directions, kernel_work
+from pumplink.mechanisms.angles import grid_directions
+from pumplink.mechanisms.fourbar import force_kernel, kernel_work
 from pumplink.methods import numeric, vector
 from pumplink.spec import default_spec
 from pumplink.analysis import design
-from pumplink.synthesis import Linkage, synthesize
+from pumplink.mechanisms.fourbar import FourBar, synthesize
 
 REPEATS = 7
 
@@ -40,28 +41,28 @@ def feasible_designs(n, seed=1):
                      rng.uniform(0.15, 0.4, m), np.radians(rng.uniform(30, 80, m)), rng.uniform(0.6, 1.2, m))
     ok = np.nonzero(syn.feasible)[0][:n]
     assert ok.size == n
-    return Linkage(*(np.asarray(v)[ok][:, None] for v in (syn.pivot_x, syn.pivot_y, syn.crank_length,
+    return FourBar(*(np.asarray(v)[ok][:, None] for v in (syn.pivot_x, syn.pivot_y, syn.crank_length,
                                                            syn.coupler_length, syn.rocker_length,
                                                            syn.handle_length, syn.branch)))
 
 
-def batched(lk: Linkage, cs, sn, block=8):
+def batched(lk: FourBar, cs, sn, block=8):
     """Designs x angles through force_kernel, `block` designs at a time with one reused scratch
     buffer (keeps arrays in cache); cos/sin of the angles computed once for all designs."""
     d = lk.crank.shape[0]
     work = kernel_work((block, cs.size))
     for i in range(0, d, block):
-        sub = Linkage(*(v[i:i + block] for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker,
+        sub = FourBar(*(v[i:i + block] for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker,
                                                  lk.handle, lk.branch)))
         force_kernel(sub, cs, sn, 13.5, work if sub.crank.shape[0] == block else None)
 
 
-def pylinkage_fourbar(lk: Linkage, n):
+def pylinkage_fourbar(lk: FourBar, n):
     """The same four-bar in pylinkage 1.3.0 (crank at the wheel axle, RRR dyad to the rocker pivot)."""
     from pylinkage.actuators import Crank
     from pylinkage.components import Ground
     from pylinkage.dyads import RRRDyad
-    from pylinkage.simulation import Linkage as PlLinkage
+    from pylinkage.simulation import FourBar as PlLinkage
 
     o2 = Ground(0.0, 0.0, name="O2")
     o4 = Ground(float(lk.pivot_x), float(lk.pivot_y), name="O4")

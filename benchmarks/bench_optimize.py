@@ -13,7 +13,7 @@ from pathlib import Path
 
 from pumplink.optimize import make_problem, optimize
 from pumplink.spec import load_spec
-from pumplink.transmission import optimal_crank_rocker
+from pumplink.mechanisms.crank_rocker import optimal_crank_rocker
 
 REPEATS = 3
 ROOT = Path(__file__).resolve().parent.parent
@@ -48,14 +48,14 @@ def grid_check(path: Path, m: int) -> None:
     """Brute force over the default bounds: is the optimiser's answer really the best there is?"""
     import numpy as np
 
-    from pumplink.optimize import evaluate
+    from pumplink.optimize import evaluate_designs
 
     problem = make_problem(load_spec(path))
     axes = [np.linspace(lo, hi, m) for lo, hi in zip(problem.lower, problem.upper)]
     x = np.array(np.meshgrid(*axes, indexing="ij")).reshape(len(axes), -1)
     best, feasible = np.inf, 0
     for i in range(0, x.shape[1], 50_000):
-        ev = evaluate(problem, x[:, i:i + 50_000])
+        ev = evaluate_designs(problem, x[:, i:i + 50_000])
         ok = np.all(ev.slack >= 0, axis=0) & np.isfinite(ev.verdict_peak)
         feasible += int(ok.sum())
         if ok.any():

@@ -9,10 +9,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from pumplink import force as _force
-from pumplink.kinematics import crank_grid, evaluate
+from pumplink.models import quasi_static as _force
+from pumplink.mechanisms.angles import crank_grid
+from pumplink.mechanisms.fourbar import kinematic_state
 from pumplink.methods import DANGER_KINDS, DEAD_CENTRE, NEAR_DEAD_CENTRE, UNIFORM, MethodResult, danger_points
-from pumplink.synthesis import Linkage
+from pumplink.mechanisms.fourbar import FourBar, grip_stroke
 
 #: Offsets from each dead centre [deg] at which the methods are compared (issue #3 item 2b).
 DEAD_CENTRE_OFFSETS_DEG = (1.0, 1e-2, 1e-4, 1e-6)
@@ -22,7 +23,7 @@ SAMPLE_COUNTS = (12, 36, 72, 360, 3600)
 DANGER = "danger points"
 
 
-def sample_sets(lk: Linkage, dead_centre_extended, dead_centre_folded, n: int = 360) -> dict[str, np.ndarray]:
+def sample_sets(lk: FourBar, dead_centre_extended, dead_centre_folded, n: int = 360) -> dict[str, np.ndarray]:
     """Crank angles [rad] for each sampling of the comparison (single design).
 
     ``UNIFORM``: n uniform angles (offset by half a step, so no sample is a dead centre by
@@ -73,34 +74,34 @@ def failures(stats_by_set: dict[str, dict]) -> list[str]:
     return out
 
 
-def sampled_mean_force(lk: Linkage, n: int, wheel_torque) -> float:
+def sampled_mean_force(lk: FourBar, n: int, wheel_torque) -> float:
     """Mean operator force a sweep of ``n`` uniform samples implies [N].
 
     The cycle's work 2 pi Mw divided by the grip travel the samples see,
     sum |Px(j+1) - Px(j)| around the closed sweep; the exact travel is twice the stroke
     2 H sin(swing/2) (NOTES.md §1), which a coarse sweep underestimates at the turning points.
     """
-    st = evaluate(lk, crank_grid(n), wheel_torque)
+    st = kinematic_state(lk, crank_grid(n), wheel_torque)
     gx = lk.pivot_x + lk.handle * np.cos(st.rocker_angle)
     travel = np.sum(np.abs(np.diff(np.append(gx, gx[0]))))
     return float(2.0 * np.pi * wheel_torque / travel)
 
 
-def sampling_study(lk: Linkage, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, swing,
+def sampling_study(lk: FourBar, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, swing,
                    counts=SAMPLE_COUNTS) -> list[dict]:
     """What a uniform sweep of N samples (from crank angle 0) reports, against the exact values.
 
     Returns one dict per N: ``n``; ``sampled_max`` (largest finite |F| of the sweep with no
     dead band: what "maximum below 100 N" means for a plain sweep); ``sampled_peak`` (largest
-    |F| outside the dead bands) and ``exact_peak`` (:func:`pumplink.force.peak_force`) with the
+    |F| outside the dead bands) and ``exact_peak`` (:func:`pumplink.models.quasi_static.peak_force`) with the
     relative error ``peak_error``; ``sampled_mean`` (:func:`sampled_mean_force`), ``exact_mean``
-    (:func:`pumplink.force.mean_force`) and ``mean_error``.  Forces [N].
+    (:func:`pumplink.models.quasi_static.mean_force`) and ``mean_error``.  Forces [N].
     """
-    exact_peak, _ = _force.peak_force(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque)
-    exact_mean = float(_force.mean_force(wheel_torque, lk.handle, swing))
+    exact_peak, _ = _force.dead_band_peak_force(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque)
+    exact_mean = float(_force.mean_force(wheel_torque, grip_stroke(lk.handle, swing)))
     rows = []
     for n in counts:
-        st = evaluate(lk, crank_grid(n), wheel_torque)
+        st = kinematic_state(lk, crank_grid(n), wheel_torque)
         f = np.abs(st.force[np.isfinite(st.force)])
         peak = _force.sampled_peak(lk, n, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band)
         mean = sampled_mean_force(lk, n, wheel_torque)

@@ -1,32 +1,32 @@
-"""From a validated spec to results: synthesis, force sweep, checks and the verdict.
+"""One design: from a validated spec to the synthesis, the force analysis, the speed study, the
+model-choice report, the time-domain check and the curves a chart shows.
 
 Pure functions (no I/O); the results are frozen dataclasses in SI units (radians inside),
-converted to degrees and rows only by ``pumplink.report``.
+converted to degrees and rows only by :mod:`pumplink.output`.  The verdict comes from
+:func:`pumplink.verdict.assess`, the peak force from the model :func:`pumplink.models.choose_model`
+picks.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from pumplink import flywheel as _fw
-from pumplink import force as _force
-from pumplink.kinematics import State, evaluate
+from pumplink.constants import GRAVITY, LINK_ENERGY_LIMIT, LINK_MASS_PER_METRE, SUSTAINED_POWER_W
+from pumplink.errors import InfeasibleDesign, SpecError
+from pumplink.mechanisms.fourbar import State, Synthesis, grip_stroke, infeasibility_reason, kinematic_state, synthesize
+from pumplink.models import FLYWHEEL, MODELS, Conditions, choose_model
+from pumplink.models import flywheel as _fw
+from pumplink.models import quasi_static as _qs
 from pumplink.spec import PumpSpec
-from pumplink.synthesis import Linkage, Synthesis, infeasibility_reason, synthesize
+from pumplink.verdict import Check, Verdict, assess
 
-#: Warning limits (NOTES.md §3-4).  Transmission: the crank is the rotating driven link, so the
-#: pressure angle should stay below 45 deg (transmission angle within 45..135 deg).
-MIN_TRANSMISSION_DEG = 45.0
-#: Sustained human power for hours [W] (NOTES.md §4).
-SUSTAINED_POWER_W = 75.0
-#: Wheel-axle height range used in the pump paper [m].
-AXLE_HEIGHT_RANGE_M = (0.40, 0.70)
-
-#: The two models that can decide the verdict (issue #6).
-QUASI_STATIC = "quasi-static + dead band"
-FLYWHEEL = "flywheel"
+#: Crank angles of the curve a force chart draws (0.05 deg steps, both ends).
+CURVE_POINTS = 7201
+#: Relative agreement the time-domain check demands (periodicity, mean speed, fluctuation).
+VERIFY_RTOL = 1e-6
 
 
 @dataclass(frozen=True)
@@ -41,23 +41,27 @@ class Design:
     def feasible(self) -> bool:
         return self.error is None
 
+    @property
+    def handle_stroke(self) -> float:
+        """Horizontal grip stroke 2 H sin(swing/2) [m] (docs/physics.md §4)."""
+        lk = self.spec.linkage
+        return 2 * lk.handle * math.sin(math.radians(lk.swing) / 2)
 
-@dataclass(frozen=True)
-class Check:
-    """One verdict line: ``value`` compared with ``limit`` by ``relation`` ('<=' or '>=')."""
-
-    name: str
-    value: float
-    limit: float
-    relation: str
-    unit: str
-    severity: str  # "fail": decides the verdict; "warn": reported only
-    passed: bool
+    @property
+    def transmission_angle(self) -> float:
+        """Effective smallest transmission angle min(γmin, 180° − γmax) [rad]."""
+        syn = self.synthesis
+        return min(syn.transmission_min, np.pi - syn.transmission_max)
 
 
 @dataclass(frozen=True)
 class ForceResult:
-    """Force analysis of one design at one wheel speed (SI units, radians)."""
+    """Force analysis of one design at one wheel speed (SI units, radians).
+
+    Three peak forces, named apart: ``dead_band_peak_force`` (the quasi-static model's exact peak
+    outside the dead bands), ``least_peak_force`` (the flywheel model's, None without inertia) and
+    :attr:`verdict_peak_force` (the one of the model that decided).
+    """
 
     design: Design
     speed_deg_s: float  # wheel speed as given [deg/s] (echoed exactly in reports)
@@ -67,30 +71,45 @@ class ForceResult:
     force_limit: float  # [N]
     dead_band: float  # [rad]
     mean_force: float  # [N]
-    peak_force: float  # exact windowed peak [N]
-    peak_angle: float  # [rad]
+    dead_band_peak_force: float  # exact windowed peak [N]
+    dead_band_peak_angle: float  # [rad]
     sampled_peak: float  # peak over the requested samples outside the dead bands [N]
     samples_n: int
-    checks: tuple[Check, ...]
-    passed: bool
+    verdict: Verdict | None  # None for an infeasible design
     samples: State | None  # None with --summary
     in_dead_band: np.ndarray | None
-    marks: State | None = None  # state at (extended dead centre, folded dead centre, peak)
-    # The flywheel scene (issue #6); model == QUASI_STATIC leaves the rest None.
-    model: str = "quasi-static + dead band"
+    marks: State | None = None  # state at (extended dead centre, folded dead centre, dead-band peak)
+    # The flywheel model; model == the quasi-static label leaves the rest None.
+    model: str = MODELS["quasi-static"].label
     inertia: float | None = None  # J [kg m^2]
     speed_fluctuation: float | None = None  # delta_allow [-]
     energy_band: float | None = None  # W = J w^2 delta [J]
-    required_peak_force: float | None = None  # Fp* [N]
+    least_peak_force: float | None = None  # Fp* [N]
     min_passing_speed: float | None = None  # [rad/s]; inf: no speed passes
     scene: _fw.Scene | None = None
     operator_force: np.ndarray | None = None  # at the samples [N]
     wheel_speed: np.ndarray | None = None  # at the samples [rad/s]
+    on_ceiling: np.ndarray | None = None  # at the samples: the wheel at its top speed
+    mark_operator_force: np.ndarray | None = None  # at the marks [N] (flywheel)
+    mark_wheel_speed: np.ndarray | None = None  # at the marks [rad/s]
     link_energy: float = float("nan")  # largest kinetic energy of coupler + handle at this speed [J]
 
     @property
     def flywheel(self) -> bool:
-        return self.model == FLYWHEEL
+        return self.model == MODELS[FLYWHEEL].label
+
+    @property
+    def passed(self) -> bool:
+        return bool(self.verdict is not None and self.verdict.passed)
+
+    @property
+    def checks(self) -> tuple[Check, ...]:
+        return () if self.verdict is None else self.verdict.checks
+
+    @property
+    def verdict_peak_force(self) -> float:
+        """The peak force that decided the verdict [N]."""
+        return self.least_peak_force if self.flywheel else self.dead_band_peak_force
 
     @property
     def handle_speed(self) -> np.ndarray:
@@ -98,23 +117,34 @@ class ForceResult:
         w = self.speed if self.wheel_speed is None else self.wheel_speed
         return np.abs(self.samples.rocker_rate) * w * self.design.spec.linkage.handle
 
+    @property
+    def mark_grip_speed(self) -> np.ndarray:
+        """Grip speed [m/s] at the marks (0 at a dead centre)."""
+        w = self.speed if self.mark_wheel_speed is None else self.mark_wheel_speed
+        m = self.marks
+        speed = np.abs(m.rocker_rate) * w * self.design.spec.linkage.handle
+        return np.where(m.singular, 0.0, speed)
+
 
 def design(spec: PumpSpec) -> Design:
-    """Run the dead-centre synthesis (Eq. 1-2) for one spec."""
+    """Run the dead-centre synthesis (Eq. 1-2 of the pump paper) for one spec."""
     lk = spec.linkage
     swing = np.radians(lk.swing)
     syn = synthesize(lk.L1, lk.D1, lk.b, lk.rocker, swing, lk.handle)
     return Design(spec, syn, infeasibility_reason(syn.reason, lk.L1, lk.D1, lk.b, swing))
 
 
-def _check(name, value, limit, relation, unit, severity) -> Check:
-    ok = bool(value <= limit) if relation == "<=" else bool(value >= limit)
-    return Check(name, float(value), float(limit), relation, unit, severity, ok)
+def conditions(spec: PumpSpec, speed: float | None = None) -> Conditions:
+    """The spec's operating conditions at wheel speed ``speed`` [rad/s] (default: the spec's)."""
+    op = spec.operator
+    w = np.radians(op.speed) if speed is None else speed
+    j = np.nan if spec.inertia is None else spec.inertia
+    return Conditions(w, np.radians(op.dead_band), j, op.speed_fluctuation)
 
 
 def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: int = 360,
                    at_deg=None, keep_samples: bool = True, progress=None) -> ForceResult:
-    """Quasi-static force sweep, checks and verdict for one spec.
+    """Force sweep, checks and verdict for one spec.
 
     Parameters
     ----------
@@ -134,16 +164,17 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
     syn = d.synthesis
     nan = float("nan")
     inertia = spec.inertia
-    model = QUASI_STATIC if inertia is None else FLYWHEEL
+    model = choose_model(inertia is not None)
     fly = {} if inertia is None else dict(inertia=inertia, speed_fluctuation=op.speed_fluctuation,
                                           energy_band=float(_fw.energy_band(inertia, speed, op.speed_fluctuation)))
     if not d.feasible:
         return ForceResult(d, speed_deg, float(speed), mw, mw * float(speed), op.force_limit, float(band), nan, nan,
-                           nan, nan, 0, (), False, None, None, model=model, **fly)
+                           nan, nan, 0, None, None, None, model=model.label, **fly)
     lk = syn.linkage
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
-    mean = float(_force.mean_force(mw, spec.linkage.handle, syn.swing))
-    peak, peak_angle = _force.peak_force(lk, dce, dcf, band, mw)
+    mean = float(_qs.mean_force(mw, grip_stroke(spec.linkage.handle, syn.swing)))
+    cond = conditions(spec, float(speed))
+    peak, peak_angle = _qs.dead_band_peak_force(lk, dce, dcf, band, mw)
 
     # Kept samples: the given --at angles, else the uniform sweep.  The sampled peak of a
     # uniform sweep always comes from the one streamed route (so --summary does not change it).
@@ -155,48 +186,40 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
         theta = None
     state = band_mask = None
     if theta is not None:
-        state = evaluate(lk, theta, mw)
-        band_mask = _force.in_dead_band(theta, dce, dcf, band)
+        state = kinematic_state(lk, theta, mw)
+        band_mask = _qs.in_dead_band(theta, dce, dcf, band)
     if at_deg is not None:
         f = np.where(band_mask | state.singular, -np.inf, np.abs(state.force))
         sampled = float(f.max()) if f.size and np.isfinite(f.max()) else nan
         n = int(theta.size)
     else:
-        sampled = _force.sampled_peak(lk, samples, mw, dce, dcf, band, progress=progress)
+        sampled = _qs.sampled_peak(lk, samples, mw, dce, dcf, band, progress=progress)
         n = samples
 
-    gamma = np.degrees(min(syn.transmission_min, np.pi - syn.transmission_max))
-    mpl = spec.linkage.mass_per_length or _fw.LINK_MASS_PER_METRE
+    marks = kinematic_state(lk, np.array([dce, dcf, peak_angle]), mw)
+    mpl = spec.linkage.mass_per_length or LINK_MASS_PER_METRE
     link = float(np.nanmax(_fw.link_energy(lk, _link_grid(), speed, mpl)))
-    checks = [_check("mean force", mean, op.force_limit, "<=", "N", "fail")]
-    if inertia is None:
-        checks.append(_check(f"peak force outside ±{op.dead_band:g}° of the dead centres", peak, op.force_limit, "<=",
-                             "N", "fail"))
-    else:
-        sc = _fw.scene(lk, dce, dcf, mw, inertia, float(speed), op.speed_fluctuation)
-        fly.update(required_peak_force=sc.peak_force, scene=sc, min_passing_speed=float(_fw.min_passing_speed(
+    share = None
+    verdict_peak = peak
+    if model.key == FLYWHEEL:
+        fp = float(model.peak_force(lk, dce, dcf, mw, cond))
+        sc = _fw.scene(lk, dce, dcf, mw, inertia, float(speed), op.speed_fluctuation, solved=fp)
+        fly.update(least_peak_force=sc.least_peak_force, scene=sc, min_passing_speed=float(_fw.min_passing_speed(
             lk, dce, dcf, mw, op.force_limit, inertia, op.speed_fluctuation)))
-        if theta is not None:
-            fly.update(operator_force=_fw.operator_force(sc, theta) if np.isfinite(sc.peak_force) else None,
-                       wheel_speed=_fw.wheel_speed(sc, theta) if np.isfinite(sc.peak_force) else None)
-        checks.append(_check(f"peak force with the flywheel (δ ≤ {op.speed_fluctuation:g})", sc.peak_force,
-                             op.force_limit, "<=", "N", "fail"))
+        if np.isfinite(sc.least_peak_force):
+            fly.update(mark_operator_force=_fw.operator_force(sc, marks.crank_angle),
+                       mark_wheel_speed=_fw.wheel_speed(sc, marks.crank_angle))
+            if theta is not None:
+                fly.update(operator_force=_fw.operator_force(sc, theta), wheel_speed=_fw.wheel_speed(sc, theta),
+                           on_ceiling=_fw.on_ceiling(sc, theta))
+        verdict_peak = sc.least_peak_force
         share = 100.0 * link / fly["energy_band"] if fly["energy_band"] > 0 else np.inf  # J = 0: no band at all
-        checks.append(_check("links' kinetic energy (neglected), share of the energy band", share,
-                             100.0 * _fw.LINK_ENERGY_LIMIT, "<=", "%", "warn"))
-    checks += [
-        _check("transmission angle, min(γmin, 180° − γmax)", gamma, MIN_TRANSMISSION_DEG, ">=", "deg", "warn"),
-        _check("operator power (sustained)", mw * speed, SUSTAINED_POWER_W, "<=", "W", "warn"),
-    ]
-    if spec.wheel.axle_height is not None:
-        lo, hi = AXLE_HEIGHT_RANGE_M
-        h = spec.wheel.axle_height
-        checks.append(_check("axle height (paper: 0.40-0.70 m)", h, lo if h < lo else hi, ">=" if h < lo else "<=", "m", "warn"))
-    passed = all(c.passed for c in checks if c.severity == "fail")
+    verdict = assess(True, mean, verdict_peak, op.force_limit, link_energy_share=share,
+                     transmission_angle=np.degrees(d.transmission_angle), power=mw * speed,
+                     axle_height=spec.wheel.axle_height)
     return ForceResult(d, speed_deg, float(speed), mw, mw * float(speed), op.force_limit, float(band), mean, peak,
-                       peak_angle, sampled, n, tuple(checks), passed,
-                       state if keep_samples or at_deg is not None else None, band_mask,
-                       evaluate(lk, np.array([dce, dcf, peak_angle]), mw), model=model, link_energy=link, **fly)
+                       peak_angle, sampled, n, verdict, state if keep_samples or at_deg is not None else None,
+                       band_mask, marks, model=model.label, link_energy=link, **fly)
 
 
 def _link_grid() -> np.ndarray:
@@ -204,13 +227,67 @@ def _link_grid() -> np.ndarray:
     return np.arange(720) * (np.pi / 360)
 
 
-# ----------------------------------------------------------------------------- speed sweep (issue #6)
+# ----------------------------------------------------------------------------- curves for charts
+@dataclass(frozen=True)
+class ForceCurve:
+    """The force over one revolution on a fine grid, for a chart (SI units, radians).
+
+    ``force`` is the quasi-static force (NaN at a dead centre); ``operator_force`` and
+    ``wheel_speed`` the flywheel model's profile (None for the quasi-static model).
+    """
+
+    crank_angle: np.ndarray
+    force: np.ndarray
+    operator_force: np.ndarray | None
+    wheel_speed: np.ndarray | None
+    peak_sign: float  # sign of the quasi-static force at the dead-band peak
+
+
+def force_curve(r: ForceResult, points: int = CURVE_POINTS) -> ForceCurve:
+    """The curves ``pumplink force --plot`` draws, computed here so the chart only draws."""
+    syn = r.design.synthesis
+    theta = np.linspace(0.0, 2 * np.pi, points)
+    f = kinematic_state(syn.linkage, theta, r.wheel_torque).force
+    op = ws = None
+    if r.flywheel and r.scene is not None and np.isfinite(r.scene.least_peak_force):
+        op, ws = _fw.operator_force(r.scene, theta), _fw.wheel_speed(r.scene, theta)
+    return ForceCurve(theta, f, op, ws, float(np.sign(np.interp(r.dead_band_peak_angle, theta, f))))
+
+
+# ----------------------------------------------------------------------------- time-domain check
+@dataclass(frozen=True)
+class Verification:
+    """The flywheel answer checked by integrating the equation of motion in time."""
+
+    integration: _fw.TimeIntegration
+    tolerance: float
+    agrees: bool
+
+
+def verify(r: ForceResult, rtol: float = VERIFY_RTOL) -> Verification:
+    """Integrate the equation of motion under the reported force profile (scipy ``solve_ivp``) and
+    check the motion is periodic with the mean speed and fluctuation asked for, to ``rtol``.
+
+    Raises
+    ------
+    SpecError : the result has no flywheel scene with a finite peak force.
+    """
+    if r.scene is None or not math.isfinite(r.scene.least_peak_force):
+        raise SpecError("nothing to integrate: no finite peak force keeps the wheel turning")
+    sim = _fw.integrate_motion(r.scene)
+    agree = (sim.periodicity <= rtol and abs(sim.mean_speed - r.speed) <= rtol * r.speed
+             and sim.fluctuation <= r.speed_fluctuation * (1 + rtol))
+    return Verification(sim, rtol, bool(agree))
+
+
+# ----------------------------------------------------------------------------- speed sweep
 @dataclass(frozen=True)
 class SpeedSweep:
     """Least peak operator force against mean wheel speed for one design (flywheel model).
 
-    Arrays over ``speed`` [rad/s]: ``energy_band`` [J], ``required_peak_force`` [N], ``power`` [W],
-    ``passed`` (mean and required peak within the limit).
+    Arrays over ``speed`` [rad/s]: ``energy_band`` [J], ``least_peak_force`` [N], ``power`` [W],
+    ``passed`` (the verdict at each speed).  ``spec_speed_passed``: the verdict at the spec's own
+    speed (what ``pumplink force`` says).
     """
 
     design: Design
@@ -218,26 +295,25 @@ class SpeedSweep:
     speed_fluctuation: float
     force_limit: float
     mean_force: float
-    quasi_static_peak: float  # exact windowed peak outside the dead band (dead-band model) [N]
+    dead_band_peak_force: float  # exact windowed peak outside the dead band (dead-band model) [N]
     min_passing_speed: float  # [rad/s]; inf: no speed passes
     speed_deg_s: np.ndarray  # as given (echoed exactly in reports)
     speed: np.ndarray
     energy_band: np.ndarray
-    required_peak_force: np.ndarray
+    least_peak_force: np.ndarray
     power: np.ndarray
     passed: np.ndarray
+    spec_speed_passed: bool
 
 
 def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
-    """Required peak force at each mean wheel speed [deg/s] (Eq. (4) of ``pumplink.flywheel``).
+    """Least peak force at each mean wheel speed [deg/s] (docs/models.md §2, Eq. (4)).
 
     Raises
     ------
     SpecError : the spec gives no inertia (the quasi-static force does not depend on speed).
     InfeasibleDesign : no crank-rocker for this spec.
     """
-    from pumplink.errors import InfeasibleDesign, SpecError
-
     if spec.inertia is None:
         raise SpecError(f"{spec.name}: the speed study needs the wheel's inertia (the quasi-static force does not "
                         "depend on speed); add wheel.mass [kg] or wheel.inertia [kg m^2] to the spec")
@@ -245,22 +321,25 @@ def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
     if not d.feasible:
         raise InfeasibleDesign(f"{spec.name}: {d.error}")
     syn, op, mw, j = d.synthesis, spec.operator, spec.wheel_torque, spec.inertia
-    w = np.radians(np.asarray(speeds_deg_s, float))
+    given = np.asarray(speeds_deg_s, float)
+    w = np.radians(np.append(given, op.speed))  # the spec's own speed last
     lk = syn.linkage
-    rep = Linkage(*(np.full(w.size, float(v)) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker,
-                                                            lk.handle, lk.branch)))
+    rep = type(lk)(*(np.full(w.size, float(v)) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker,
+                                                         lk.handle, lk.branch)))
+    cond = Conditions(w, np.radians(op.dead_band), j, op.speed_fluctuation)
+    req = MODELS[FLYWHEEL].peak_force(rep, syn.dead_centre_extended, syn.dead_centre_folded, mw, cond)
     band = _fw.energy_band(j, w, op.speed_fluctuation)
-    req = _fw.required_peak_force(rep, syn.dead_centre_extended, syn.dead_centre_folded, mw, band)
-    mean = float(_force.mean_force(mw, spec.linkage.handle, syn.swing))
-    qs = _force.peak_force(lk, syn.dead_centre_extended, syn.dead_centre_folded, np.radians(op.dead_band), mw)[0]
+    mean = float(_qs.mean_force(mw, grip_stroke(spec.linkage.handle, syn.swing)))
+    qs = _qs.dead_band_peak_force(lk, syn.dead_centre_extended, syn.dead_centre_folded, np.radians(op.dead_band),
+                                  mw)[0]
     mps = float(_fw.min_passing_speed(lk, syn.dead_centre_extended, syn.dead_centre_folded, mw, op.force_limit, j,
                                       op.speed_fluctuation))
-    passed = (req <= op.force_limit) & (mean <= op.force_limit)
-    return SpeedSweep(d, j, op.speed_fluctuation, op.force_limit, mean, float(qs), mps,
-                      np.asarray(speeds_deg_s, float), w, band, req, mw * w, passed)
+    passed = assess(True, mean, req, op.force_limit).passed
+    return SpeedSweep(d, j, op.speed_fluctuation, op.force_limit, mean, float(qs), mps, given, w[:-1], band[:-1],
+                      req[:-1], mw * w[:-1], passed[:-1], bool(passed[-1]))
 
 
-# ----------------------------------------------------------------------------- model choice (issue #6)
+# ----------------------------------------------------------------------------- model choice
 @dataclass(frozen=True)
 class Effect:
     """One physical effect in the model-choice report: included or not, and its size."""
@@ -282,23 +361,21 @@ def _ratio(a: float, b: float) -> float:
 def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
     """Which effects the verdict's model includes, their size at this speed, and why it suffices.
 
-    The "model no more than the scene needs" rule made visible (issue #6): the returned sentence
-    says which model answered and whether the neglected effects are small enough.
+    The "model no more than the scene needs" rule made visible (docs/models.md §3): the returned
+    sentence says which model answered and whether the neglected effects are small enough.
     """
-    from pumplink import flywheel as fw
-
     spec = r.design.spec
     op, lk = spec.operator, spec.linkage
     nan = float("nan")
     w = r.speed
     work = 2 * np.pi * r.wheel_torque  # load work per revolution [J]
     arm = max(lk.handle, lk.rocker)
-    mpl = lk.mass_per_length or fw.LINK_MASS_PER_METRE
+    mpl = lk.mass_per_length or LINK_MASS_PER_METRE
     handle_mass = mpl * arm
-    lift = handle_mass * 9.81 * 0.5 * arm * (1 - np.cos(np.radians(lk.swing) / 2))  # weight of the handle's centre
+    lift = handle_mass * GRAVITY * 0.5 * arm * (1 - np.cos(np.radians(lk.swing) / 2))  # weight of the handle's centre
     effects = [Effect("load torque Mw = Fw rw (pump efficiency in Fw)", True, r.wheel_torque, "N·m", "", nan,
                       f"work per revolution 2π Mw = {work:.1f} J: what the operator supplies on average")]
-    qs = r.peak_force
+    qs = r.dead_band_peak_force
     effects.append(Effect(f"quasi-static force, peak outside ±{op.dead_band:g}° of the dead centres", True, qs, "N",
                           "the force limit", qs / r.force_limit,
                           "infinite at the dead centres themselves: something must carry the linkage through"))
@@ -317,19 +394,19 @@ def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
     effects.append(Effect("weight of the handle (lift over the swing)", False, lift, "J", ref_name, _ratio(lift, ref),
                           f"{handle_mass:.2f} kg; given back on the way down each stroke"))
     effects.append(Effect("operator power Mw ω̄", True, r.power, "W", "75 W sustained for hours", r.power / SUSTAINED_POWER_W,
-                          "a person gives 50-150 W for an hour (NOTES.md §4)"))
-    small = _ratio(r.link_energy, ref) <= fw.LINK_ENERGY_LIMIT and _ratio(lift, ref) <= fw.LINK_ENERGY_LIMIT
+                          "a person gives 50-150 W for an hour (docs/physics.md §5)"))
+    small = _ratio(r.link_energy, ref) <= LINK_ENERGY_LIMIT and _ratio(lift, ref) <= LINK_ENERGY_LIMIT
     if not r.flywheel:
         why = ("Quasi-static + dead band answered: the spec gives no inertia, so speed cannot enter and the dead band "
                f"±{op.dead_band:g}° stands in for the flywheel. Give wheel.mass or wheel.inertia to let the wheel's "
                "energy decide (the flywheel model); the links' energy is then compared with the energy band.")
     elif small:
         why = ("Flywheel answered: the quasi-static force is infinite at the dead centres, so the wheel's energy must "
-               f"enter; the neglected link energy and handle weight are at most {fw.LINK_ENERGY_LIMIT:.0%} of the band, "
+               f"enter; the neglected link energy and handle weight are at most {LINK_ENERGY_LIMIT:.0%} of the band, "
                "so link inertia (full dynamics) would not change the verdict materially.")
     else:
         why = ("Flywheel answered: the quasi-static force is infinite at the dead centres, so the wheel's energy must "
-               f"enter. But the neglected link energy or handle weight exceeds {fw.LINK_ENERGY_LIMIT:.0%} of the energy "
+               f"enter. But the neglected link energy or handle weight exceeds {LINK_ENERGY_LIMIT:.0%} of the energy "
                "band: this design is past what the flywheel scene covers. Full dynamics (link masses and weight, the "
                "operator's arms) would be needed for a firm answer, which pumplink does not model; treat the verdict "
                "as an estimate, or lighten the handle (linkage.mass_per_length) or add wheel mass.")

@@ -6,7 +6,7 @@ poliastro's propagators.  The point kinds a method may fail at are the constants
 ``NEAR_DEAD_CENTRE``, ``DEAD_CENTRE``, ``CRANK_PERPENDICULAR``, ``ROCKER_PERPENDICULAR``,
 ``CRANK_PARALLEL_ROCKER`` and ``CRANK_ALONG_FRAME``; :func:`danger_points` locates them.
 
-* ``vector`` - the production kernel :func:`pumplink.kinematics.evaluate` (closed-form loop
+* ``vector`` - the production kernel :func:`pumplink.mechanisms.fourbar.kinematic_state` (closed-form loop
   closure, analytic velocity ratio).  The default.
 * ``paper`` - the pump paper's instant-centre route, Eq. (4)-(6), literally: slopes tA, tB,
   the quadratic for B, distances IA, IB; in the seed's frame-aligned coordinates (x along the
@@ -27,8 +27,8 @@ from typing import Callable
 
 import numpy as np
 
-from pumplink.kinematics import SINGULAR_SIN, evaluate
-from pumplink.synthesis import Linkage
+from pumplink.mechanisms.fourbar import SINGULAR_SIN, kinematic_state
+from pumplink.mechanisms.fourbar import FourBar
 
 UNIFORM = "uniform sweep"
 NEAR_DEAD_CENTRE = "near a dead centre (down to 1e-6 deg)"
@@ -71,7 +71,7 @@ class MethodResult:
     failed: np.ndarray
 
 
-def _result(lk: Linkage, th, bx, by, rate, wheel_torque, singular, failed) -> MethodResult:
+def _result(lk: FourBar, th, bx, by, rate, wheel_torque, singular, failed) -> MethodResult:
     """Grip, handle rate and force from B and omega4/omega2; NaN wherever flagged."""
     scale = lk.handle / lk.rocker
     gx = lk.pivot_x + scale * (bx - lk.pivot_x)
@@ -86,8 +86,8 @@ def _result(lk: Linkage, th, bx, by, rate, wheel_torque, singular, failed) -> Me
 
 
 # ----------------------------------------------------------------------------- vector
-def vector(lk: Linkage, crank_angle, wheel_torque=1.0) -> MethodResult:
-    """The production route, :func:`pumplink.kinematics.evaluate` (closed-form loop closure).
+def vector(lk: FourBar, crank_angle, wheel_torque=1.0) -> MethodResult:
+    """The production route, :func:`pumplink.mechanisms.fourbar.kinematic_state` (closed-form loop closure).
 
     Parameters
     ----------
@@ -95,19 +95,19 @@ def vector(lk: Linkage, crank_angle, wheel_torque=1.0) -> MethodResult:
     crank_angle : crank angles t2 [rad].
     wheel_torque : Mw [N m].
     """
-    st = evaluate(lk, crank_angle, wheel_torque)
+    st = kinematic_state(lk, crank_angle, wheel_torque)
     failed = np.zeros(np.shape(st.force), bool)
     return _result(lk, st.crank_angle, st.coupler_x, st.coupler_y, st.rocker_rate, wheel_torque,
                    st.singular, failed | np.isnan(st.coupler_x))
 
 
 # ----------------------------------------------------------------------------- paper
-def seed_frame(lk: Linkage):
+def seed_frame(lk: FourBar):
     """The seed's frame-aligned axes in our coordinates: (l1, e_x, e_y).
 
     e_x points along the frame line from O2 to O4 (the seed puts O4 at (l1, 0)); e_y is the
     normal on the side where the rocker swings, so yB > 0 over the whole cycle of a feasible
-    crank-rocker (its rocker never crosses the frame line, ``pumplink.synthesis``) and the
+    crank-rocker (its rocker never crosses the frame line, ``pumplink.mechanisms.fourbar``) and the
     seed's positive square root for yB (Eq. 6) is the right one.
     """
     l1 = np.hypot(lk.pivot_x, lk.pivot_y)
@@ -154,7 +154,7 @@ def paper_seed_coordinates(l1, crank, coupler, rocker, seed_angle, root_sign):
     return xa, ya, xb, yb, xi, yi, ratio, disc, ta, tb
 
 
-def paper(lk: Linkage, crank_angle, wheel_torque=1.0) -> MethodResult:
+def paper(lk: FourBar, crank_angle, wheel_torque=1.0) -> MethodResult:
     """The pump paper's instant-centre route, Eq. (4)-(6), transformed to product coordinates.
 
     Steps: our crank angle -> the seed's (measured from the normal to the frame line, so
@@ -205,7 +205,7 @@ NUMERIC_STEP = 1e-5
 NUMERIC_AGREE = 1e-3
 
 
-def _solve_loop(lk: Linkage, theta: float, guess):
+def _solve_loop(lk: FourBar, theta: float, guess):
     """fsolve on the loop closure A + l3 u3 - O4 - l4 u4 = 0 for (t3, t4); None if it fails."""
     from scipy.optimize import fsolve
 
@@ -224,7 +224,7 @@ def _solve_loop(lk: Linkage, theta: float, guess):
     return sol
 
 
-def numeric(lk: Linkage, crank_angle, wheel_torque=1.0) -> MethodResult:
+def numeric(lk: FourBar, crank_angle, wheel_torque=1.0) -> MethodResult:
     """Root-finding plus numerical differentiation: a general route without this tool.
 
     At each crank angle (single design), ``scipy.optimize.fsolve`` solves the loop closure for
@@ -275,7 +275,7 @@ def numeric(lk: Linkage, crank_angle, wheel_torque=1.0) -> MethodResult:
 
 
 # ----------------------------------------------------------------------------- reference
-def reference(lk: Linkage, crank_angle, wheel_torque=1.0, digits: int = REFERENCE_DIGITS) -> MethodResult:
+def reference(lk: FourBar, crank_angle, wheel_torque=1.0, digits: int = REFERENCE_DIGITS) -> MethodResult:
     """Ground truth in mpmath at ``digits`` significant digits (single design, slow).
 
     An independent route: with d = A - O4, the rocker angle solves
@@ -377,7 +377,7 @@ METHODS: dict[str, Method] = {
 
 
 # ----------------------------------------------------------------------------- danger points
-def danger_points(lk: Linkage) -> dict[str, np.ndarray]:
+def danger_points(lk: FourBar) -> dict[str, np.ndarray]:
     """Crank angles [rad, in [0, 2 pi)] where some method's formulas break (single design).
 
     CRANK_PERPENDICULAR and CRANK_ALONG_FRAME in closed form from the frame direction;
@@ -394,7 +394,7 @@ def danger_points(lk: Linkage) -> dict[str, np.ndarray]:
            CRANK_ALONG_FRAME: np.mod(fdir + np.array([0.0, np.pi]), two_pi)}
 
     def rocker_angle(t):
-        st = evaluate(lk, t)
+        st = kinematic_state(lk, t)
         return st.rocker_angle
 
     rocker_pts = []
@@ -405,7 +405,7 @@ def danger_points(lk: Linkage) -> dict[str, np.ndarray]:
         if abs(cosv) <= 1:
             for s in (1, -1):
                 t = np.arctan2(by, bx) + s * np.arccos(cosv)
-                st = evaluate(lk, t)
+                st = kinematic_state(lk, t)
                 if np.hypot(st.coupler_x - bx, st.coupler_y - by) < 1e-9 * r:  # on our assembly branch
                     rocker_pts.append(np.mod(t, two_pi))
     out[ROCKER_PERPENDICULAR] = np.array(sorted(rocker_pts))

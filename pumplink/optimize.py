@@ -5,13 +5,13 @@ within :data:`DEFAULT_BOUNDS`; every other spec value stays fixed.  Objective: t
 the verdict (as ``pumplink force``) or the mean force pi Mw / (2 H sin(swing/2)) (NOTES.md §1).
 The peak of the verdict depends on the model (issue #6): when the spec gives inertia
 (``wheel.inertia``, ``wheel.mass`` or ``load.moving_mass``) it is the flywheel's least peak force
-at the spec's speed and speed fluctuation (``pumplink.flywheel.required_peak_force``, vectorised
+at the spec's speed and speed fluctuation (``pumplink.models.flywheel.least_peak_force``, vectorised
 over the population); otherwise the exact windowed peak outside the dead bands
-(``pumplink.force.peak_force``).  The pass flag is that verdict: mean and peak within the force
+(``pumplink.models.quasi_static.peak_force``).  The pass flag is that verdict: mean and peak within the force
 limit.  Constraints (all ``g >= 0``):
 
 * the dead-centre synthesis gives a crank-rocker with the exact swing: 0 < psi2 < psi1 < pi
-  (``pumplink.synthesis``);
+  (``pumplink.mechanisms.fourbar``);
 * transmission angle: min(gamma_min, 180 deg - gamma_max) >= 45 deg
   (``pumplink.analysis.MIN_TRANSMISSION_DEG``, NOTES.md §3, seed 003: [lambda_max] <= 45 deg for
   a rotating driven link);
@@ -37,12 +37,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from pumplink import flywheel as _fw
-from pumplink import force as _force
-from pumplink.analysis import FLYWHEEL, MIN_TRANSMISSION_DEG, QUASI_STATIC
+from pumplink.constants import MIN_TRANSMISSION_DEG
+from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC, Conditions
+from pumplink.models import quasi_static as _qs
+from pumplink.verdict import assess
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.spec import PumpSpec, parse_spec, spec_to_dict
-from pumplink.synthesis import CHANGE_POINT_MARGIN, synthesize
+from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_stroke, synthesize
 
 #: Keys that may vary (the [linkage] table of the spec), with their units.
 VARIABLE_UNITS = {"L1": "m", "D1": "m", "b": "m", "rocker": "m", "handle": "m", "swing": "deg"}
@@ -90,7 +91,7 @@ class Problem:
     @property
     def model(self) -> str:
         """The model whose peak force is the objective and decides the pass flag."""
-        return FLYWHEEL if self.flywheel else QUASI_STATIC
+        return MODELS[FLYWHEEL if self.flywheel else QUASI_STATIC].label
 
     def constraint_names(self) -> list[str]:
         """Names of the constraints in force (the last of :data:`CONSTRAINTS` only for the
@@ -106,24 +107,26 @@ class Problem:
 class Evaluation:
     """Batch evaluation (arrays over designs): objective, forces and constraint slacks g >= 0.
 
-    ``peak`` is the windowed peak outside the dead bands, ``required`` the flywheel's least peak
-    force (NaN unless the spec gives inertia); ``verdict_peak`` is the one that decides.
+    ``dead_band_peak_force`` is the windowed peak outside the dead bands, ``least_peak_force`` the
+    flywheel's (NaN unless the spec gives inertia); ``verdict_peak_force`` is the one that
+    decides, and ``passed`` the verdict of :func:`pumplink.verdict.assess` (as ``pumplink force``).
     """
 
     objective: np.ndarray
-    peak: np.ndarray
+    dead_band_peak_force: np.ndarray
     mean: np.ndarray
     slack: np.ndarray  # (constraints, designs) in the units of CONSTRAINTS (deg or m)
     transmission: np.ndarray  # [deg]
     grip_low: np.ndarray  # [m]
     grip_high: np.ndarray  # [m]
     stroke: np.ndarray  # [m]
-    required: np.ndarray  # [N]
+    least_peak_force: np.ndarray  # [N]
+    passed: np.ndarray  # the verdict: feasible, mean and verdict peak within the limit
     flywheel: bool = False
 
     @property
-    def verdict_peak(self) -> np.ndarray:
-        return self.required if self.flywheel else self.peak
+    def verdict_peak_force(self) -> np.ndarray:
+        return self.least_peak_force if self.flywheel else self.dead_band_peak_force
 
 
 @dataclass(frozen=True)
@@ -250,7 +253,7 @@ def _columns(problem: Problem, x: np.ndarray) -> dict[str, np.ndarray]:
     return cols
 
 
-def evaluate(problem: Problem, x) -> Evaluation:
+def evaluate_designs(problem: Problem, x) -> Evaluation:
     """Objective and constraint slacks for x of shape (variables, designs) (vectorised).
 
     Slacks are in degrees (angles) or metres (heights, stroke); a design satisfies every
@@ -272,7 +275,7 @@ def evaluate(problem: Problem, x) -> Evaluation:
     pivot_h = problem.axle_height - p["D1"]
     grip_low = pivot_h + h * np.cos(0.5 * sw)
     grip_high = pivot_h + h
-    stroke = 2.0 * h * np.sin(0.5 * sw)
+    stroke = grip_stroke(h, sw)
     plus = syn.stroke_plus_x
     win = np.where(ok, np.degrees(np.minimum(plus, 2 * np.pi - plus) - 2 * band), 0.0)
     slack = np.stack([np.degrees(margin), g_mu, grip_low - problem.grip_height[0],
@@ -281,29 +284,32 @@ def evaluate(problem: Problem, x) -> Evaluation:
     if problem.flywheel:
         slack = slack[:-1]  # the dead-band window: quasi-static model only
 
-    mean = _force.mean_force(mw, h, sw)
+    mean = _qs.mean_force(mw, grip_stroke(h, sw))
+    op = spec.operator
+    cond = Conditions(float(np.radians(float(op.speed))), band,
+                      np.nan if spec.inertia is None else spec.inertia, op.speed_fluctuation)
     peak = np.full(ok.shape, np.nan)
     live = ok & (win > 0)
+    lk = syn.linkage
     if live.any():
-        lk = syn.linkage
         sub = type(lk)(*(np.asarray(getattr(lk, f))[live] for f in ("pivot_x", "pivot_y", "crank", "coupler",
                                                                        "rocker", "handle", "branch")))
-        peak[live] = _force.peak_force(sub, syn.dead_centre_extended[live], syn.dead_centre_folded[live], band, mw)[0]
+        peak[live] = MODELS[QUASI_STATIC].peak_force(sub, syn.dead_centre_extended[live], syn.dead_centre_folded[live],
+                                                     mw, cond)
     required = np.full(ok.shape, np.nan)
     if problem.flywheel and ok.any():
-        # the flywheel's least peak force at the spec's speed, as force_analysis (pumplink.flywheel.scene)
-        op = spec.operator
-        energy = float(_fw.energy_band(spec.inertia, float(np.radians(float(op.speed))), op.speed_fluctuation))
-        lk = syn.linkage
+        # the flywheel's least peak force at the spec's speed, as pumplink force
         sub = type(lk)(*(np.asarray(getattr(lk, f))[ok] for f in ("pivot_x", "pivot_y", "crank", "coupler",
                                                                      "rocker", "handle", "branch")))
-        required[ok] = _fw.required_peak_force(sub, syn.dead_centre_extended[ok], syn.dead_centre_folded[ok], mw,
-                                               energy)  # Eq. (4) of pumplink.flywheel
+        required[ok] = MODELS[FLYWHEEL].peak_force(sub, syn.dead_centre_extended[ok], syn.dead_centre_folded[ok], mw,
+                                                   cond)
     verdict = required if problem.flywheel else peak
-    obj = verdict if problem.objective == "peak" else np.where(ok, mean, np.nan)
+    mean = np.where(ok, mean, np.nan)
+    passed = assess(ok, mean, verdict, op.force_limit).passed
+    obj = verdict if problem.objective == "peak" else mean
     obj = np.where(np.isfinite(obj), obj, INFEASIBLE_OBJECTIVE)
-    return Evaluation(obj, peak, np.where(ok, mean, np.nan), slack, np.where(ok, np.degrees(mu), np.nan),
-                      grip_low, grip_high, stroke, required, problem.flywheel)
+    return Evaluation(obj, peak, mean, slack, np.where(ok, np.degrees(mu), np.nan),
+                      grip_low, grip_high, stroke, required, np.asarray(passed), problem.flywheel)
 
 
 def _spec_with(problem: Problem, x) -> PumpSpec:
@@ -341,7 +347,7 @@ def optimize(problem: Problem, seed: int | None = 0, popsize: int = 20, maxiter:
         if key not in cache:
             if len(cache) > 4:
                 cache.clear()
-            cache[key] = evaluate(problem, x2)
+            cache[key] = evaluate_designs(problem, x2)
             count[0] += x2.shape[1]
         return cache[key]
 
@@ -351,7 +357,7 @@ def optimize(problem: Problem, seed: int | None = 0, popsize: int = 20, maxiter:
                                  constraints=con, vectorized=True, updating="deferred", rng=seed,
                                  popsize=popsize, maxiter=maxiter, tol=tol, polish=False, init="sobol")
     x = np.asarray(res.x, float)
-    e = evaluate(problem, x[:, None])
+    e = evaluate_designs(problem, x[:, None])
     if not _feasible(e):
         names = problem.constraint_names()
         if np.all(e.slack[:, 0] >= 0):  # constraints met, but the objective is not finite
@@ -383,11 +389,11 @@ def optimize(problem: Problem, seed: int | None = 0, popsize: int = 20, maxiter:
         xp = problem.lower + np.clip(loc.x, 0.0, 1.0) * scale
         cand = _pull_back(problem, x, xp)
         if cand is not None:
-            ec = evaluate(problem, cand[:, None])
+            ec = evaluate_designs(problem, cand[:, None])
             if _feasible(ec) and ec.objective[0] < e.objective[0]:
                 x, e, polished = cand, ec, True
     spec_x = np.array([float(getattr(problem.spec.linkage, k)) for k in problem.names])
-    at_spec = evaluate(problem, spec_x[:, None])
+    at_spec = evaluate_designs(problem, spec_x[:, None])
     names = problem.constraint_names()
     binding = tuple(nm for nm, s in zip(names, e.slack[:, 0]) if s <= BINDING_TOL)
     span = problem.upper - problem.lower
@@ -402,7 +408,7 @@ def _pull_back(problem: Problem, good: np.ndarray, cand: np.ndarray, steps: int 
     """``cand`` if feasible, else the feasible point nearest to it on the segment from ``good``."""
     t = np.linspace(1.0, 0.0, steps + 1)
     pts = good[:, None] + (cand - good)[:, None] * t[None, :]
-    e = evaluate(problem, pts)
+    e = evaluate_designs(problem, pts)
     ok = np.all(e.slack >= 0, axis=0) & (e.objective < INFEASIBLE_OBJECTIVE)
     if ok[0]:
         return cand
@@ -413,7 +419,7 @@ def _pull_back(problem: Problem, good: np.ndarray, cand: np.ndarray, steps: int 
     lo_t, hi_t = t[idx[0]], t[idx[0] - 1]
     for _ in range(50):
         mid = 0.5 * (lo_t + hi_t)
-        em = evaluate(problem, (good + (cand - good) * mid)[:, None])
+        em = evaluate_designs(problem, (good + (cand - good) * mid)[:, None])
         if _feasible(em):
             lo_t = mid
         else:

@@ -14,11 +14,64 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
+from pumplink.constants import (
+    DEFAULT_EFFICIENCY,
+    DEFAULT_SPEED_FLUCTUATION,
+    FORCE_LIMIT_N,
+    GRAVITY,
+    WATER_DENSITY,
+)
 from pumplink.errors import SpecError
 
-#: Density of water [kg/m^3] and gravity [m/s^2] for the head-based rope force (NOTES.md §4).
-WATER_DENSITY = 1000.0
-GRAVITY = 9.81
+
+# ----------------------------------------------------------------------------- spec physics
+# Pure functions of spec values, on floats or numpy arrays alike (a single run passes floats,
+# a batch passes one array per key), so one formula serves both and gives the same bits.
+def rope_force(rope_force=None, head=None, pipe_diameter=None, efficiency=None):
+    """Rope force at the wheel rim Fw [N] (docs/physics.md §5).
+
+    ``rope_force`` when given, else the water column's weight over the pump's efficiency,
+    rho g head (pi d^2 / 4) / efficiency, with :data:`~pumplink.constants.DEFAULT_EFFICIENCY`
+    when ``efficiency`` is None.
+
+    Parameters
+    ----------
+    rope_force : Fw [N] or None;  head : pumping head [m];  pipe_diameter : rising-main bore [m];
+    efficiency : [-] or None.
+    """
+    if rope_force is not None:
+        return rope_force
+    eff = DEFAULT_EFFICIENCY if efficiency is None else efficiency
+    return WATER_DENSITY * GRAVITY * head * math.pi * (pipe_diameter * pipe_diameter) / 4.0 / eff
+
+
+def moving_mass(moving_mass=None, head=None, pipe_diameter=None):
+    """Mass moving at rim speed [kg]: ``moving_mass``, else the water column in the rising main
+    rho head pi d^2 / 4 when ``head`` is given, else 0 (docs/models.md §2)."""
+    if moving_mass is not None:
+        return moving_mass
+    if head is not None:
+        return WATER_DENSITY * head * math.pi * (pipe_diameter * pipe_diameter) / 4.0
+    return 0.0
+
+
+def inertia(radius, wheel_inertia=None, wheel_mass=None, moving_mass_kg=0.0):
+    """Moment of inertia about the wheel axle J [kg m^2] (docs/models.md §2).
+
+    ``wheel_inertia``, or ``wheel_mass`` * radius^2 (a rim), or 0, plus the moving mass * radius^2.
+
+    Parameters
+    ----------
+    radius : wheel radius rw [m];  wheel_inertia : [kg m^2] or None;  wheel_mass : [kg] or None;
+    moving_mass_kg : rope and water moving with the rim [kg] (:func:`moving_mass`).
+    """
+    if wheel_inertia is not None:
+        wheel = wheel_inertia
+    elif wheel_mass is not None:
+        wheel = wheel_mass * radius * radius
+    else:
+        wheel = 0.0 * radius * radius
+    return wheel + moving_mass_kg * radius * radius
 
 
 class _Section(BaseModel):
@@ -92,25 +145,17 @@ class Load(_Section):
 
     @property
     def rope_force_N(self) -> float:
-        """Rope force at the rim [N]; from head: rho*g*head*(pi d^2/4)/efficiency (NOTES.md §4)."""
-        if self.rope_force is not None:
-            return self.rope_force
-        eff = 0.75 if self.efficiency is None else self.efficiency
-        return WATER_DENSITY * GRAVITY * self.head * math.pi * (self.pipe_diameter * self.pipe_diameter) / 4.0 / eff
+        """Rope force at the rim [N] (:func:`rope_force`)."""
+        return rope_force(self.rope_force, self.head, self.pipe_diameter, self.efficiency)
 
     @property
     def moving_mass_kg(self) -> float:
-        """Mass moving at rim speed [kg]: ``moving_mass``, else the water column in the rising
-        main, rho * head * pi d^2 / 4, when head and pipe_diameter are given, else 0."""
-        if self.moving_mass is not None:
-            return self.moving_mass
-        if self.head is not None:
-            return WATER_DENSITY * self.head * math.pi * (self.pipe_diameter * self.pipe_diameter) / 4.0
-        return 0.0
+        """Mass moving at rim speed [kg] (:func:`moving_mass`)."""
+        return moving_mass(self.moving_mass, self.head, self.pipe_diameter)
 
 
 class Operator(_Section):
-    force_limit: float = Field(default=100.0, ge=1, le=10_000, description="largest acceptable operator force [N]")
+    force_limit: float = Field(default=FORCE_LIMIT_N, ge=1, le=10_000, description="largest acceptable operator force [N]")
     speed: float = Field(default=360.0, gt=0, le=7200, description="wheel speed [deg/s]")
     dead_band: float = Field(
         default=20.0, ge=0, lt=90,
@@ -118,7 +163,7 @@ class Operator(_Section):
                     "(quasi-static model only)",
     )
     speed_fluctuation: float = Field(
-        default=0.2, gt=0, le=1,
+        default=DEFAULT_SPEED_FLUCTUATION, gt=0, le=1,
         description="largest coefficient of speed fluctuation (w_max - w_min) / w_mean [-] (flywheel model)",
     )
 
@@ -147,8 +192,7 @@ class PumpSpec(_Section):
         w = self.wheel
         if w.inertia is None and w.mass is None and self.load.moving_mass is None:
             return None
-        wheel = w.inertia if w.inertia is not None else (w.mass or 0.0) * w.radius * w.radius
-        return wheel + self.load.moving_mass_kg * w.radius * w.radius
+        return inertia(w.radius, w.inertia, w.mass, self.load.moving_mass_kg)
 
 
 #: The built-in default design (``pumplink force`` with no spec; ``pumplink init``).  It is the

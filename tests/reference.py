@@ -1,6 +1,6 @@
 """Independent high-precision reference for the pump linkage (test support, not product code).
 
-Derived from NOTES.md §1 only, on purpose by a different route from ``pumplink.kinematics``
+Derived from NOTES.md §1 only, on purpose by a different route from ``pumplink.mechanisms.fourbar``
 (which intersects two circles as a vector construction and differentiates by the rigid
 coupler): here the rocker angle theta4 is solved from the loop closure in Freudenstein form
 and its rate by implicit differentiation of that closure, all in mpmath with 50 digits.
@@ -277,7 +277,7 @@ def setup_design(inputs):
     """(pumplink synthesis, reference linkage, wheel torque); rejects infeasible or sub-micron cranks."""
     from hypothesis import assume
 
-    from pumplink.synthesis import synthesize
+    from pumplink.mechanisms.fourbar import synthesize
 
     (L1, D1, b, rocker, swing_deg), handle, mw = inputs
     syn = synthesize(L1, D1, b, rocker, math.radians(swing_deg), handle)

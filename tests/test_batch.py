@@ -26,11 +26,11 @@ import pytest
 import tomli_w
 
 from pumplink import batch as B
-from pumplink import force as F
+from pumplink.models import quasi_static as F
 from pumplink.analysis import force_analysis
 from pumplink.errors import SpecError
 from pumplink.spec import parse_spec
-from pumplink.synthesis import Linkage, synthesize
+from pumplink.mechanisms.fourbar import FourBar, synthesize
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = ROOT / "configs"
@@ -266,14 +266,14 @@ def test_cli_bad_input_exits_2_with_one_line(tmp_path, small, args, key):
 def _sampled_reference(lk, samples, mw, dce, dcf, band):
     """Independent route: every sample angle through ``evaluate`` (np.cos/np.sin, not the angle
     addition), masked with ``in_dead_band``, one design at a time."""
-    from pumplink.kinematics import evaluate
+    from pumplink.mechanisms.fourbar import kinematic_state
 
     th = np.arange(samples) * (2 * np.pi / samples)
     out = []
     for i in range(len(mw)):
-        one = Linkage(*(np.float64(np.asarray(getattr(lk, f))[i]) for f in
+        one = FourBar(*(np.float64(np.asarray(getattr(lk, f))[i]) for f in
                         ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
-        st = evaluate(one, th, float(mw[i]))
+        st = kinematic_state(one, th, float(mw[i]))
         keep = ~F.in_dead_band(th, dce[i], dcf[i], band[i]) & ~st.singular
         if not keep.any():
             out.append((np.nan, np.inf))
@@ -289,7 +289,7 @@ def _feasible_designs(n, seed):
     syn = synthesize(rng.uniform(0, 0.6, n), rng.uniform(-0.3, 0.4, n), np.full(n, 0.1), rng.uniform(0.1, 0.4, n),
                      np.radians(rng.uniform(10, 120, n)), np.full(n, 1.0))
     ok = np.asarray(syn.feasible)
-    lk = Linkage(*(np.asarray(getattr(syn.linkage, f))[ok] for f in
+    lk = FourBar(*(np.asarray(getattr(syn.linkage, f))[ok] for f in
                    ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
     return lk, syn.dead_centre_extended[ok], syn.dead_centre_folded[ok], int(ok.sum())
 
@@ -317,7 +317,7 @@ def _same(x, y) -> bool:
 
 def _assert_equals_force_analysis(b: B.Batch, c: B.Chunk, picks) -> None:
     """Row i of the chunk (variant c.start + i) equals force_analysis of its spec, exactly."""
-    from pumplink.analysis import FLYWHEEL
+    from pumplink.batch import FLYWHEEL_LABEL as FLYWHEEL
 
     nan = float("nan")
     for i in picks:
@@ -326,13 +326,13 @@ def _assert_equals_force_analysis(b: B.Batch, c: B.Chunk, picks) -> None:
         pairs = {"frame": (s.frame_length, c.frame_length[i]), "crank": (s.crank_length, c.crank_length[i]),
                  "coupler": (s.coupler_length, c.coupler_length[i]), "K": (s.time_ratio, c.time_ratio[i]),
                  "gmin": (s.transmission_min, c.transmission_min[i]), "gmax": (s.transmission_max, c.transmission_max[i]),
-                 "mean": (r.mean_force, c.mean_force[i]), "peak": (r.peak_force, c.peak_force[i]),
+                 "mean": (r.mean_force, c.mean_force[i]), "peak": (r.dead_band_peak_force, c.dead_band_peak_force[i]),
                  "sampled": (r.sampled_peak, c.sampled_peak[i]), "power": (r.power, c.power[i]),
                  # the flywheel scene (None in force_analysis: quasi-static, or not computed)
                  "inertia": (nan if r.inertia is None else r.inertia, c.inertia[i]),
                  "delta": (nan if r.speed_fluctuation is None else r.speed_fluctuation, c.speed_fluctuation[i]),
-                 "required": (nan if r.required_peak_force is None else r.required_peak_force,
-                              c.required_peak_force[i]),
+                 "required": (nan if r.least_peak_force is None else r.least_peak_force,
+                              c.least_peak_force[i]),
                  "min speed": (nan if r.min_passing_speed is None else r.min_passing_speed, c.min_passing_speed[i])}
         for what, (x, y) in pairs.items():
             assert _same(x, y), (i, what, x, y)
@@ -342,8 +342,8 @@ def _assert_equals_force_analysis(b: B.Batch, c: B.Chunk, picks) -> None:
 
 def test_random_variants_equal_force_analysis_exactly(qs_grid):
     b = B.load_batch(qs_grid)
-    c = B.evaluate(b, 0, b.size, 360)
-    assert not c.flywheel.any() and np.isnan(c.required_peak_force).all()  # this grid gives no inertia
+    c = B.evaluate_chunk(b, 0, b.size, 360)
+    assert not c.flywheel.any() and np.isnan(c.least_peak_force).all()  # this grid gives no inertia
     rng = random.Random(4)
     picks = rng.sample(range(b.size), 250)
     picks += [int(np.nonzero(~c.feasible)[0][0]), int(np.nonzero(c.feasible & ~c.passed)[0][0])]
@@ -357,12 +357,12 @@ def test_flywheel_variants_equal_force_analysis_exactly(fly_files):
     for f in fly_files:
         b = B.load_batch(f)
         assert b.flywheel
-        c = B.evaluate(b, 0, b.size, 360)
+        c = B.evaluate_chunk(b, 0, b.size, 360)
         assert c.flywheel.all()
         _assert_equals_force_analysis(b, c, range(b.size))
         # the verdict's peak is the flywheel one: dead-band peak and verdict disagree somewhere
         ok = c.feasible
-        outcomes |= {(bool(p), bool(q)) for p, q in zip(c.peak_force[ok] <= c.force_limit[ok], c.peak_ok[ok])}
+        outcomes |= {(bool(p), bool(q)) for p, q in zip(c.dead_band_peak_force[ok] <= c.force_limit[ok], c.peak_ok[ok])}
     assert outcomes == {(True, True), (True, False), (False, True), (False, False)}
 
 
@@ -371,7 +371,7 @@ def test_design_space_grid_slice_equals_force_analysis_exactly():
     start that is no chunk boundary, against force_analysis."""
     b = B.load_batch(GRID)
     start, stop = 5000, 5600
-    c = B.evaluate(b, start, stop, 360)
+    c = B.evaluate_chunk(b, start, stop, 360)
     assert c.flywheel.all() and (~c.feasible).any() and (c.feasible & ~c.passed).any() and c.passed.any()
     rng = random.Random(5)
     picks = rng.sample(range(stop - start), 60)
@@ -491,7 +491,7 @@ def test_fail_on_selects_exit_code_and_junit(tmp_path, small, fail_on, code, fai
 # (Mw * arc ~ 11 N m * 0.5 rad), so the least peak force is the mean force (W -> inf); for
 # J = 1e-6 kg m^2, W = 7.9e-6 J and the least peak force tends to the quasi-static maximum,
 # infinite at the dead centres (W -> 0): it is ~1e3 N already at J = 0.03 kg m^2 and grows like
-# 1/W, past the 1e4 x F_mean above which pumplink.flywheel reports it as infinite (null in JSON,
+# 1/W, past the 1e4 x F_mean above which pumplink.models.flywheel reports it as infinite (null in JSON,
 # as `pumplink force` does).  The dead-band peaks are those of SMALL: 85.8 N at 45 N, 152 N at
 # 80 N.  So the verdict is the opposite of the dead band's for two variants.
 FLY_SMALL = 'name = "flysmall"\n' + PROTO_INLINE + """\
@@ -546,7 +546,7 @@ def test_flywheel_table_shows_the_verdict_peak_and_the_model(tmp_path):
 
 def test_zero_inertia_fails_with_an_infinite_peak(tmp_path):
     """A moving mass of 0 kg and no wheel mass: J = 0, no energy band (W = 0), so the least peak
-    force is the quasi-static maximum, infinite (flywheel.required_peak_force: inf for band 0)."""
+    force is the quasi-static maximum, infinite (flywheel.least_peak_force: inf for band 0)."""
     p = tmp_path / "j0.toml"
     p.write_text(PROTO_INLINE + '[vary]\n"load.moving_mass" = [0.0, 40.0]\n')
     junit = tmp_path / "r.xml"
@@ -627,12 +627,12 @@ def _leftovers(folder: Path) -> list[str]:
 
 @pytest.mark.parametrize("exc", [KeyboardInterrupt, RuntimeError])
 def test_interrupted_stream_leaves_no_partial_file(tmp_path, monkeypatch, exc):
-    from pumplink import report_batch as rb
+    from pumplink.output import batchfiles as rb
 
     batches = B.load_inputs([GRID])
     out, junit = tmp_path / "rows.csv", tmp_path / "r.xml"
     junit.write_text("previous complete report\n")
-    real = B.evaluate
+    real = B.run_module.evaluate_chunk
     calls = []
 
     def flaky(*a, **k):
@@ -641,7 +641,7 @@ def test_interrupted_stream_leaves_no_partial_file(tmp_path, monkeypatch, exc):
             raise exc("injected mid-stream")
         return real(*a, **k)
 
-    monkeypatch.setattr(B, "evaluate", flaky)
+    monkeypatch.setattr(B.run_module, "evaluate_chunk", flaky)
     post = lambda b, c: rb.render_chunk(b, c, "csv", rb.varied_keys(batches), B.FAIL_CHECKS, True)  # noqa: E731
     with pytest.raises(exc):
         rb.write_stream(batches, B.run(batches, 30, post=post), 27216, "csv", out, junit, B.FAIL_CHECKS, 30)

@@ -741,7 +741,7 @@ def test_speed_decides_the_verdict_with_inertia():
     assert j360["required_peak_force_N"] > 100 > j540["required_peak_force_N"]
     assert j360["pass"] is False and j540["pass"] is True
     assert j540["power_W"] == pytest.approx(1.5 * j360["power_W"], rel=1e-12)
-    # The energy band scales as w^2: J w^2 delta (Eq. (2) of pumplink.flywheel).
+    # The energy band scales as w^2: J w^2 delta (Eq. (2) of pumplink.models.flywheel).
     assert j540["energy_band_J"] == pytest.approx(2.25 * j360["energy_band_J"], rel=1e-12)
     # The speed-blind dead-band model passes this design at both speeds: the flywheel answer differs.
     assert j360["peak_force_N"] < 100

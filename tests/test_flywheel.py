@@ -1,13 +1,13 @@
-"""The flywheel scene (``pumplink.flywheel``, issue #6): least peak operator force, its limits,
+"""The flywheel scene (``pumplink.models.flywheel``, issue #6): least peak operator force, its limits,
 scaling and consistency, the reported force profile and wheel speed, the solve_ivp cross-check.
 
 Expected values never come from the code under test.  They come from
 
 * a brute-force reservoir sweep (``_Reservoir``): the issue's "stay as full as possible"
   feasibility test done literally on a fine crank grid, using only grip positions from
-  ``pumplink.kinematics.evaluate`` and the 50-digit dead centres of ``tests/reference.py``,
+  ``pumplink.mechanisms.fourbar.kinematic_state`` and the 50-digit dead centres of ``tests/reference.py``,
   with bisection on the peak force and an a-priori bound on its own grid error;
-* closed forms: ``pumplink.force.mean_force`` (F_mean = pi Mw / (2 H sin(swing/2)), NOTES.md
+* closed forms: ``pumplink.models.quasi_static.mean_force`` (F_mean = pi Mw / (2 H sin(swing/2)), NOTES.md
   §1) and the dead-centre asymptote W Fp -> Mw^2 / kappa derived below, kappa from the 50-digit
   reference;
 * quadrature of the reported profile (Gauss-Legendre, split where the profile has kinks or
@@ -35,12 +35,12 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import reference as R
-from pumplink import flywheel as fw
+from pumplink.models import flywheel as fw
 from pumplink.analysis import design
-from pumplink.force import mean_force
-from pumplink.kinematics import evaluate
+from pumplink.models.quasi_static import mean_force
+from pumplink.mechanisms.fourbar import kinematic_state
 from pumplink.spec import default_spec, parse_spec
-from pumplink.synthesis import Linkage, synthesize
+from pumplink.mechanisms.fourbar import FourBar, grip_stroke, synthesize
 
 TWO_PI = 2.0 * math.pi
 DEG = math.pi / 180.0
@@ -72,14 +72,14 @@ class Case:
 
     @property
     def f_mean(self):
-        """F_mean from the closed form of pumplink.force (NOTES.md §1), not from flywheel."""
-        return float(mean_force(self.mw, self.syn.handle_length, self.syn.swing))
+        """F_mean from the closed form of pumplink.models.quasi_static (NOTES.md §1), not from flywheel."""
+        return float(mean_force(self.mw, grip_stroke(self.syn.handle_length, self.syn.swing)))
 
     def required(self, band):
         """Fp* [N] for one band, or (one vectorised call) for a list of bands [J]."""
         if np.ndim(band):
-            return fw.required_peak_force(*_repeat(self, len(band)), np.asarray(band, float))
-        return fw.required_peak_force(self.lk, *self.dcs, self.mw, band)
+            return fw.least_peak_force(*_repeat(self, len(band)), np.asarray(band, float))
+        return fw.least_peak_force(self.lk, *self.dcs, self.mw, band)
 
     def deficit(self, force):
         """D(Fp) [J] for one force, or (one vectorised call) for a list of forces [N]."""
@@ -167,7 +167,7 @@ class _Reservoir:
         th = np.concatenate([ext + plus * np.arange(n1) / n1,
                              ext + plus + (TWO_PI - plus) * np.arange(n2) / n2, [ext + TWO_PI]])
         lk = case.lk
-        state = evaluate(lk, th, 1.0)
+        state = kinematic_state(lk, th, 1.0)
         px = lk.pivot_x + lk.handle * np.cos(state.rocker_angle)
         travel = np.abs(np.diff(px))
         step = np.diff(th)
@@ -299,7 +299,7 @@ def _all_cases():
 
 def test_infinite_and_large_bands_give_the_mean_force():
     """W -> inf: an infinite flywheel, the operator pushes F_mean all the time.  Any band above
-    the deficit at F_mean gives F_mean too.  Reference: pumplink.force.mean_force (closed form
+    the deficit at F_mean gives F_mean too.  Reference: pumplink.models.quasi_static.mean_force (closed form
     pi Mw / (2 H sin(swing/2)), NOTES.md §1); flywheel computes the stroke from positions, so
     agreement is to rounding (measured <= 3.6e-15), not bitwise.  The deficit is taken at
     F_mean (1 + 1e-12): exactly at F_mean the cycle's work is done or not by rounding, and
@@ -395,7 +395,7 @@ def test_answer_depends_on_inertia_speed_and_fluctuation_only_through_the_band(j
     one = DEFAULT.scene(j, speed, delta)
     two = DEFAULT.scene(j / (a * a * b), a * speed, b * delta)
     assert two.energy_band == pytest.approx(one.energy_band, rel=1e-14)
-    assert two.peak_force == pytest.approx(one.peak_force, rel=1e-12)
+    assert two.least_peak_force == pytest.approx(one.least_peak_force, rel=1e-12)
     assert two.fluctuation / two.speed_fluctuation == pytest.approx(one.fluctuation / one.speed_fluctuation,
                                                                     rel=1e-10)
     # the speed needed to pass scales the same way: J w_min^2 delta is invariant
@@ -410,7 +410,7 @@ def test_answer_depends_on_inertia_speed_and_fluctuation_only_through_the_band(j
 
 
 def test_deficit_of_the_required_force_is_the_band():
-    """energy_deficit(required_peak_force(W)) = W wherever the answer is above F_mean
+    """energy_deficit(least_peak_force(W)) = W wherever the answer is above F_mean
     (Eq. (3) and (4) are inverse; measured agreement <= 1e-12 relative)."""
     for case, bands in [(DEFAULT, (0.1, 0.5, 2.0, 5.0, 9.0))] + list(OTHERS.values()):
         forces = case.required(bands)
@@ -439,7 +439,7 @@ def _spec_design(L1, D1, b, rocker, handle, swing_deg, rope_force):
 
 
 def spec_designs():
-    """Linkage inputs in the realistic ranges (inside the spec's limits) and a rope force [N]."""
+    """FourBar inputs in the realistic ranges (inside the spec's limits) and a rope force [N]."""
     return st.tuples(st.floats(0.0, 1.0), st.floats(-0.5, 0.8), st.floats(0.0, 0.3), st.floats(0.05, 0.6),
                      st.floats(0.3, 1.5), st.floats(10.0, 150.0), st.floats(5.0, 200.0))
 
@@ -454,7 +454,7 @@ def _repeat(case, k):
     """The same design k times, as arrays (a vectorised call over k bands)."""
     s = case.syn
     fields = ("pivot_x", "pivot_y", "crank_length", "coupler_length", "rocker_length", "handle_length", "branch")
-    lk = Linkage(*[np.full(k, float(getattr(s, f))) for f in fields])
+    lk = FourBar(*[np.full(k, float(getattr(s, f))) for f in fields])
     return lk, np.full(k, case.dcs[0]), np.full(k, case.dcs[1]), np.full(k, case.mw)
 
 
@@ -516,10 +516,10 @@ def test_reported_profile_and_wheel_speed(name):
     th = sc.top_angle + (np.arange(n) + 0.5) * (TWO_PI / n)
     force = fw.operator_force(sc, th)
     # |F| <= Fp* everywhere (rounding only: on the ceiling F = Mw / g <= Fp*)
-    assert np.max(np.abs(force)) <= sc.peak_force * (1 + 1e-12)
+    assert np.max(np.abs(force)) <= sc.least_peak_force * (1 + 1e-12)
 
     def work_rate(t):
-        return fw.operator_force(sc, t) * evaluate(lk, t, 1.0).handle_rate
+        return fw.operator_force(sc, t) * kinematic_state(lk, t, 1.0).handle_rate
 
     breaks = _breaks(case, sc, sc.top_angle, sc.top_angle + TWO_PI)
     # the profile does one revolution's work, 2 pi Mw (periodic motion)
@@ -541,12 +541,12 @@ def test_reported_profile_and_wheel_speed(name):
     assert top == pytest.approx(sc.max_speed, rel=1e-9)
     assert bottom == pytest.approx(sc.min_speed, rel=1e-9)
     assert 0.5 * (top + bottom) == pytest.approx(speed, rel=1e-9)
-    if sc.peak_force > sc.mean_force * (1 + 1e-9):
+    if sc.least_peak_force > sc.mean_force * (1 + 1e-9):
         assert (top - bottom) / speed == pytest.approx(delta, rel=1e-8)
         assert sc.fluctuation == pytest.approx(delta, rel=1e-12)
     else:
         assert (top - bottom) / speed <= delta
-        assert sc.peak_force == pytest.approx(case.f_mean, rel=1e-12)
+        assert sc.least_peak_force == pytest.approx(case.f_mean, rel=1e-12)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -565,7 +565,7 @@ def test_simulation_is_periodic_at_the_mean_speed_within_the_fluctuation(name):
     (max_step 0.02 s, tried outside this file) it is 1.3e-9."""
     case, inertia, speed, delta = SCENES[name]
     sc = case.scene(inertia, speed, delta)
-    sim = fw.simulate(sc)
+    sim = fw.integrate_motion(sc)
     assert sim.cycles == 4
     assert sim.periodicity < 1e-7
     assert abs(sim.mean_speed - speed) / speed < 1e-7
@@ -579,8 +579,8 @@ def test_simulation_with_one_percent_less_force_is_not_periodic(name):
     drifts out of the band, and the checks of the test above would fail."""
     case, inertia, speed, delta = SCENES[name]
     sc = case.scene(inertia, speed, delta)
-    weak = dataclasses.replace(sc, peak_force=0.99 * sc.peak_force)
-    sim = fw.simulate(weak)
+    weak = dataclasses.replace(sc, least_peak_force=0.99 * sc.least_peak_force)
+    sim = fw.integrate_motion(weak)
     assert sim.periodicity > 1e-3 or sim.fluctuation > delta * (1 + 1e-6)
     assert sim.speeds_at_start[-1] < sim.speeds_at_start[0] * (1 - 1e-3)  # it slows down
 
@@ -606,14 +606,14 @@ def test_simulation_follows_the_energy_balance_of_the_profile(speed_deg):
     """
     case, inertia, speed, delta = DEFAULT, 1.0, speed_deg * DEG, 0.2
     sc = case.scene(inertia, speed, delta)
-    weak = dataclasses.replace(sc, peak_force=0.99 * sc.peak_force)
+    weak = dataclasses.replace(sc, least_peak_force=0.99 * sc.least_peak_force)
 
     def work_rate(t):
-        return fw.operator_force(weak, t) * evaluate(case.lk, t, 1.0).handle_rate - case.mw
+        return fw.operator_force(weak, t) * kinematic_state(case.lk, t, 1.0).handle_rate - case.mw
 
     per_turn = _gauss(work_rate, _breaks(case, sc, sc.top_angle, sc.top_angle + TWO_PI))
     assert per_turn < -1e-2  # the control loses energy (0.11 J at 180, 0.50 J at 360 deg/s)
-    sim = fw.simulate(weak)
+    sim = fw.integrate_motion(weak)
     energy = 0.5 * inertia * sim.speeds_at_start ** 2
     expected = energy[0] + per_turn * np.arange(energy.size)
     assert np.max(np.abs(energy - expected)) <= 2e-7 * energy[0], (np.diff(energy), per_turn)
@@ -627,10 +627,10 @@ def test_infeasible_design_gives_nan_and_a_zero_band_gives_inf():
     syn = synthesize(0.0, 0.0, 0.0, 0.2, math.radians(60.0), 1.0)  # pivot on the axle
     assert not syn.feasible and np.isnan(syn.crank_length)
     args = (syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, 10.0)
-    assert np.isnan(fw.required_peak_force(*args, 2.0))
+    assert np.isnan(fw.least_peak_force(*args, 2.0))
     assert np.isnan(fw.energy_deficit(*args, 100.0))
     assert np.isnan(fw.min_passing_speed(*args, 100.0, 1.0, 0.2))
-    assert np.isnan(fw.scene(*args, 1.0, 6.0, 0.2).peak_force)
+    assert np.isnan(fw.scene(*args, 1.0, 6.0, 0.2).least_peak_force)
     assert DEFAULT.required(0.0) == np.inf
     assert DEFAULT.required(np.nan) != DEFAULT.required(np.nan)  # NaN in, NaN out
     # below F_mean the cycle's work cannot be done: no band is enough
@@ -648,11 +648,11 @@ def test_vectorised_calls_equal_per_design_calls(items):
     assume(any(c.syn.feasible for c in cases))
     bands[0] = 0.0  # and a zero band: inf
     fields = ("pivot_x", "pivot_y", "crank_length", "coupler_length", "rocker_length", "handle_length", "branch")
-    lk = Linkage(*[np.array([float(getattr(c.syn, f)) for c in cases]) for f in fields])
+    lk = FourBar(*[np.array([float(getattr(c.syn, f)) for c in cases]) for f in fields])
     dce = np.array([c.dcs[0] for c in cases])
     dcf = np.array([c.dcs[1] for c in cases])
     mw = np.array([c.mw for c in cases])
-    forces = fw.required_peak_force(lk, dce, dcf, mw, np.array(bands))
+    forces = fw.least_peak_force(lk, dce, dcf, mw, np.array(bands))
     limits = np.array([2.0 * c.f_mean if c.syn.feasible else 1.0 for c in cases])
     deficits = fw.energy_deficit(lk, dce, dcf, mw, limits)
     for i, c in enumerate(cases):

@@ -15,10 +15,10 @@ from mpmath import mp, mpf
 
 import reference as R
 from pumplink.analysis import force_analysis
-from pumplink.force import mean_force, peak_force, wheel_torque
-from pumplink.kinematics import evaluate
+from pumplink.models.quasi_static import dead_band_peak_force, mean_force, wheel_torque
+from pumplink.mechanisms.fourbar import kinematic_state
 from pumplink.spec import DEFAULT_SPEC, parse_spec
-from pumplink.synthesis import Linkage, synthesize
+from pumplink.mechanisms.fourbar import FourBar, grip_stroke, synthesize
 
 DEG = math.pi / 180
 MIN_CRANK = R.MIN_CRANK
@@ -35,13 +35,13 @@ def test_mean_force_hand_values():
     # Mw = 45 N * 0.25 m = 11.25 N m, H = 1 m, swing 60 deg: stroke S = 2 * 1 * sin 30 = 1 m,
     # F = 2 pi Mw / (2 S) = 11.25 pi N.
     assert wheel_torque(45.0, 0.25) == pytest.approx(11.25, rel=1e-15)
-    assert mean_force(11.25, 1.0, math.radians(60.0)) == pytest.approx(11.25 * math.pi, rel=1e-15)
+    assert mean_force(11.25, grip_stroke(1.0, math.radians(60.0))) == pytest.approx(11.25 * math.pi, rel=1e-15)
     # H = 1.2 m, swing 90 deg: S = 2.4 sin 45 = 1.2 sqrt(2) m; F = pi Mw / (1.2 sqrt 2).
-    assert mean_force(10.0, 1.2, math.radians(90.0)) == pytest.approx(
+    assert mean_force(10.0, grip_stroke(1.2, math.radians(90.0))) == pytest.approx(
         10.0 * math.pi / (1.2 * math.sqrt(2.0)), rel=1e-15)
     # broadcasts over designs
-    np.testing.assert_allclose(mean_force(np.array([11.25, 10.0]), np.array([1.0, 1.2]),
-                                          np.radians([60.0, 90.0])),
+    np.testing.assert_allclose(mean_force(np.array([11.25, 10.0]),
+                                          grip_stroke(np.array([1.0, 1.2]), np.radians([60.0, 90.0]))),
                                [11.25 * math.pi, 10.0 * math.pi / (1.2 * math.sqrt(2.0))], rtol=1e-15)
 
 
@@ -63,7 +63,7 @@ def test_mean_force_does_the_cycle_work(design):
         travel = mpmath.quad(speed, [ext, ext + plus]) + mpmath.quad(speed, [ext + plus, ext + 2 * mp.pi])
         stroke = 2 * mpf(float(syn.handle_length)) * mpmath.sin(mpf(float(syn.swing)) / 2)
         assert abs(travel / (2 * stroke) - 1) <= 1e-12  # the grip goes the stroke S twice
-        work = mean_force(mw, syn.handle_length, syn.swing) * travel
+        work = mean_force(mw, grip_stroke(syn.handle_length, syn.swing)) * travel
         assert abs(work / (2 * mp.pi * mw) - 1) <= 1e-12
 
 
@@ -81,7 +81,7 @@ def _brute_peak(syn, lk, band, mw, per_window=200_000):
         if length < 0:
             continue
         th = start + length * np.linspace(0.0, 1.0, per_window)
-        f = np.abs(evaluate(syn.linkage, th, mw).force)
+        f = np.abs(kinematic_state(syn.linkage, th, mw).force)
         j = int(np.argmax(f))
         if f[j] > best:
             best, where = float(f[j]), float(th[j])
@@ -93,7 +93,7 @@ def _brute_peak(syn, lk, band, mw, per_window=200_000):
 def test_peak_force_against_brute_force_and_reference(design, band_deg):
     syn, lk, mw = _setup(design)
     band = math.radians(band_deg)
-    peak, angle = peak_force(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, band, mw)
+    peak, angle = dead_band_peak_force(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, band, mw)
     brute, _, ext, fold = _brute_peak(syn, lk, band, mw)
     assert np.isfinite(peak) and 0 <= angle < 2 * math.pi
     # The reported angle is allowed (outside both dead bands) ...
@@ -114,7 +114,7 @@ def test_peak_at_the_window_end_is_the_force_exactly_dead_band_from_the_dead_cen
     ext, fold = R.dead_centres(lk)
     for band_deg in (20.0, 10.0, 5.0, 1.0):
         band = math.radians(band_deg)
-        peak, angle = peak_force(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, band, mw)
+        peak, angle = dead_band_peak_force(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, band, mw)
         with mp.workdps(R.DPS):
             ends = [dc + s * mpf(band) for dc in (ext, fold) for s in (-1, 1)]
             forces = [abs(R.force(lk, e, mw)) for e in ends]
@@ -144,12 +144,12 @@ def test_peak_near_dead_centre_is_missed_by_sampling_but_decides_the_verdict():
     assert sampled < 0.95 * float(exact)  # the sweep misses the spike by > 5 %
 
     res = force_analysis(spec, samples=360)
-    assert abs(res.peak_force / exact - 1) <= 1e-10
+    assert abs(res.dead_band_peak_force / exact - 1) <= 1e-10
     assert abs(res.sampled_peak / sampled - 1) <= 1e-10
     limit = 0.5 * (sampled + float(exact))
     below = parse_spec({**spec_d, "operator": {**spec_d["operator"], "force_limit": limit}})
     res = force_analysis(below, samples=360)
-    assert res.mean_force < limit and res.sampled_peak < limit < res.peak_force
+    assert res.mean_force < limit and res.sampled_peak < limit < res.dead_band_peak_force
     assert res.passed is False
     above = parse_spec({**spec_d, "operator": {**spec_d["operator"], "force_limit": 1.01 * float(exact)}})
     assert force_analysis(above, samples=360).passed is True
@@ -167,15 +167,15 @@ def test_vectorised_peak_force_equals_per_design_calls(items):
     assume(len(rows) >= 2)
     fields = ("pivot_x", "pivot_y", "crank_length", "coupler_length", "rocker_length",
               "handle_length", "branch")
-    lk = Linkage(*[np.array([float(getattr(s, f)) for s, _, _ in rows]) for f in fields])
+    lk = FourBar(*[np.array([float(getattr(s, f)) for s, _, _ in rows]) for f in fields])
     dce = np.array([s.dead_centre_extended for s, _, _ in rows])
     dcf = np.array([s.dead_centre_folded for s, _, _ in rows])
     band = np.array([r[2] for r in rows])
     mw = np.array([r[1] for r in rows])
-    peaks, angles = peak_force(lk, dce, dcf, band, mw)
+    peaks, angles = dead_band_peak_force(lk, dce, dcf, band, mw)
     assert peaks.shape == angles.shape == (len(rows),)
     for i, (syn, m, bd) in enumerate(rows):
-        p1, a1 = peak_force(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, bd, m)
+        p1, a1 = dead_band_peak_force(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, bd, m)
         assert peaks[i] == pytest.approx(p1, rel=1e-12)
         assert _gap(angles[i], a1) <= 1e-9
 

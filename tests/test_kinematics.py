@@ -10,8 +10,9 @@ from hypothesis import strategies as st
 from mpmath import mpf
 
 import reference as R
-from pumplink.kinematics import crank_grid, evaluate, force_kernel, grid_directions
-from pumplink.synthesis import Linkage, synthesize
+from pumplink.mechanisms.angles import crank_grid, grid_directions
+from pumplink.mechanisms.fourbar import kinematic_state, force_kernel
+from pumplink.mechanisms.fourbar import FourBar, synthesize
 
 DEG = math.pi / 180
 MIN_CRANK = R.MIN_CRANK
@@ -28,7 +29,7 @@ def test_evaluate_matches_50_digit_reference(design, angles):
     th = np.array(angles)
     th = th[(_gap(th, ext) >= 1 * DEG) & (_gap(th, fold) >= 1 * DEG)]
     assume(th.size > 0)
-    s = evaluate(syn.linkage, th, mw)
+    s = kinematic_state(syn.linkage, th, mw)
     assert s.force.shape == th.shape
     assert not s.singular.any()
     for i, t in enumerate(th):
@@ -60,11 +61,11 @@ def test_reference_rate_is_the_derivative_of_its_positions():
 def test_singular_exactly_at_dead_centres(design):
     syn, lk, mw = _setup(design)
     for dc in R.dead_centres(lk):
-        at = evaluate(syn.linkage, float(dc), mw)
+        at = kinematic_state(syn.linkage, float(dc), mw)
         assert bool(at.singular) and np.isnan(at.force)  # NaN, never a huge finite number
         # 1e-6 deg away: regular, finite, and right to 1e-6 (rounding grows like eps / angle).
         off = float(dc) + np.array([-1e-6, 1e-6]) * DEG
-        s = evaluate(syn.linkage, off, mw)
+        s = kinematic_state(syn.linkage, off, mw)
         assert not s.singular.any() and np.isfinite(s.force).all()
         for i, t in enumerate(off):
             assert abs(s.force[i] / R.force(lk, t, mw) - 1) <= 1e-6
@@ -73,7 +74,7 @@ def test_singular_exactly_at_dead_centres(design):
         # it is right next to the threshold: test_force_accuracy_just_outside_singular_threshold.)
         delta = np.concatenate([-np.logspace(-14, -2, 25), np.logspace(-14, -2, 25)])
         near = float(dc) + delta
-        s = evaluate(syn.linkage, near, mw)
+        s = kinematic_state(syn.linkage, near, mw)
         np.testing.assert_array_equal(np.isnan(s.force), s.singular)
         for i in np.flatnonzero(~s.singular):
             assert abs(s.force[i] / R.force(lk, near[i], mw) - 1) <= 1e-2
@@ -90,7 +91,7 @@ def test_force_accuracy_just_outside_singular_threshold():
     for dc in R.dead_centres(lk):
         for d in (-1e-9, 1e-9):
             t = float(dc) + d
-            s = evaluate(syn.linkage, t, 1.0)
+            s = kinematic_state(syn.linkage, t, 1.0)
             assert not s.singular
             assert abs(s.force / R.force(lk, t, 1.0) - 1) <= 1e-5
 
@@ -107,10 +108,10 @@ def test_power_balance_against_finite_difference_of_grip(design, t):
     assume(min(_gap(t, ext), _gap(t, fold)) >= 1 * DEG)
     h = 1e-3
     grid = t + h * np.array([-2, -1, 1, 2])
-    s = evaluate(syn.linkage, grid, mw)
+    s = kinematic_state(syn.linkage, grid, mw)
     px = syn.pivot_x + (syn.handle_length / syn.rocker_length) * (s.coupler_x - syn.pivot_x)
     dpx = (px[0] - 8 * px[1] + 8 * px[2] - px[3]) / (12 * h)
-    f = evaluate(syn.linkage, t, mw).force
+    f = kinematic_state(syn.linkage, t, mw).force
     assert abs(f * dpx / mw - 1) <= 1e-8
 
 
@@ -128,15 +129,15 @@ def test_kernel_and_broadcasting_match_per_design_evaluate(design_list):
     fields = ("pivot_x", "pivot_y", "crank_length", "coupler_length", "rocker_length",
               "handle_length", "branch")
     cols = [np.array([float(getattr(s, f)) for s in syns])[:, None] for f in fields]
-    lk = Linkage(*cols)
+    lk = FourBar(*cols)
     th = crank_grid(97, 0.01)
     # include the exact dead centres so the NaN handling is compared too
     th = np.concatenate([th, [syns[0].dead_centre_extended, syns[0].dead_centre_folded]])
-    many = evaluate(lk, th, mw[:, None])
+    many = kinematic_state(lk, th, mw[:, None])
     bx, by, fk = force_kernel(lk, np.cos(th), np.sin(th), mw[:, None])
     assert many.force.shape == (len(syns), th.size) == fk.shape
     for i, syn in enumerate(syns):
-        one = evaluate(syn.linkage, th, mw[i])
+        one = kinematic_state(syn.linkage, th, mw[i])
         for name in ("coupler_x", "coupler_y", "rocker_angle", "rocker_rate", "handle_rate",
                      "transmission_angle", "force"):
             np.testing.assert_allclose(getattr(many, name)[i], getattr(one, name), rtol=1e-14, atol=0)

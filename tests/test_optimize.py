@@ -14,10 +14,11 @@ import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 from scipy.optimize import minimize_scalar
 
-from pumplink.analysis import MIN_TRANSMISSION_DEG, force_analysis
+from pumplink.analysis import force_analysis
+from pumplink.constants import MIN_TRANSMISSION_DEG
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.optimize import (
-    DEFAULT_BOUNDS, evaluate, make_problem, optimize, parse_bounds,
+    DEFAULT_BOUNDS, evaluate_designs, make_problem, optimize, parse_bounds,
 )
 from pumplink.spec import default_spec, parse_spec, spec_to_dict
 
@@ -42,7 +43,7 @@ def strictly_feasible(spec, problem) -> bool:
     high = pivot + lk.handle
     stroke = 2 * lk.handle * math.sin(math.radians(lk.swing) / 2)
     return (mu >= MIN_TRANSMISSION_DEG and problem.grip_height[0] <= low and high <= problem.grip_height[1]
-            and problem.stroke[0] <= stroke <= problem.stroke[1] and math.isfinite(r.peak_force))
+            and problem.stroke[0] <= stroke <= problem.stroke[1] and math.isfinite(r.dead_band_peak_force))
 
 
 def test_known_interior_optimum_from_several_seeds():
@@ -50,10 +51,10 @@ def test_known_interior_optimum_from_several_seeds():
     spec = spec_with(L1=1.5)
     problem = make_problem(spec, {"D1": (-0.5, 0.8)}, **RELAXED)
     grid = np.linspace(-0.5, 0.8, 2601)
-    e = evaluate(problem, grid[None, :])
+    e = evaluate_designs(problem, grid[None, :])
     ok = np.all(e.slack >= 0, axis=0)
     j = int(np.argmin(np.where(ok, e.objective, np.inf)))
-    ref = minimize_scalar(lambda d: float(evaluate(problem, np.array([[d]])).objective[0]),
+    ref = minimize_scalar(lambda d: float(evaluate_designs(problem, np.array([[d]])).objective[0]),
                           bounds=(grid[j - 1], grid[j + 1]), method="bounded", options=dict(xatol=1e-10))
     assert 0.0 < ref.x < 0.7 and ref.fun < e.objective[j] + 1e-12  # interior, away from both bounds
     for seed in (0, 1, 2, 3):
@@ -151,10 +152,10 @@ def _scan_minimum(problem, peak_of):
     """Independent of differential evolution: a dense scan of the single variable, then scipy's
     bounded Brent minimiser around the best feasible grid point."""
     grid = np.linspace(problem.lower[0], problem.upper[0], 2601)
-    e = evaluate(problem, grid[None, :])
+    e = evaluate_designs(problem, grid[None, :])
     ok = np.all(e.slack >= 0, axis=0)
     j = int(np.argmin(np.where(ok, peak_of(e), np.inf)))
-    ref = minimize_scalar(lambda d: float(peak_of(evaluate(problem, np.array([[d]])))[0]),
+    ref = minimize_scalar(lambda d: float(peak_of(evaluate_designs(problem, np.array([[d]])))[0]),
                           bounds=(grid[j - 1], grid[j + 1]), method="bounded", options=dict(xatol=1e-10))
     assert grid[0] < ref.x < grid[-1]  # interior
     return ref
@@ -164,24 +165,24 @@ def test_inertia_spec_optimises_on_the_flywheel_peak():
     """An 8 kg rim wheel (J = 0.5 kg m^2): the objective is the flywheel's least peak force, whose
     minimiser over D1 is not the dead-band peak's; the optimum's peak equals force_analysis of the
     optimum spec (the per-design scene) exactly."""
-    from pumplink.analysis import FLYWHEEL
+    from pumplink.models import FLYWHEEL, MODELS
 
     spec = fly_spec(8.0, L1=1.5)
     problem = make_problem(spec, {"D1": (-0.5, 0.8)}, **RELAXED)
     assert problem.model == FLYWHEEL
     assert len(problem.constraint_names()) == 6  # no dead-band window: the flywheel's peak needs none
-    fly = _scan_minimum(problem, lambda e: e.required)
-    dead_band = _scan_minimum(problem, lambda e: e.peak)
+    fly = _scan_minimum(problem, lambda e: e.least_peak_force)
+    dead_band = _scan_minimum(problem, lambda e: e.dead_band_peak_force)
     assert abs(fly.x - dead_band.x) > 0.01  # the two models prefer different designs
     res = optimize(problem, seed=0)
     # The flywheel's minimum is a kink (the two dead-centre arcs' ratios of Eq. (4) cross there), where
     # Brent's parabolic steps do not help: the reference may stop a little above the true minimum, so
     # the optimiser must find the same point and be no worse, not equal to the last digit.
     assert abs(res.x[0] - fly.x) < 1e-5 and res.at_best.objective[0] <= fly.fun * (1 + 1e-12)
-    assert res.at_best.objective[0] == res.at_best.required[0] == res.at_best.verdict_peak[0]
+    assert res.at_best.objective[0] == res.at_best.least_peak_force[0] == res.at_best.verdict_peak_force[0]
     r = force_analysis(res.best, keep_samples=False)
-    assert r.model == FLYWHEEL and r.required_peak_force == res.at_best.required[0]
-    assert r.peak_force == res.at_best.peak[0]  # the dead-band peak, reported for information
+    assert r.model == MODELS[FLYWHEEL].label and r.least_peak_force == res.at_best.least_peak_force[0]
+    assert r.dead_band_peak_force == res.at_best.dead_band_peak_force[0]  # the dead-band peak, reported for information
 
 
 @pytest.mark.parametrize("mass,code", [(8.0, 0), (3.0, 1)])

@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 
 from pumplink.analysis import design, force_analysis
 from pumplink.errors import SpecError
-from pumplink.report import render_designs, render_force
+from pumplink.output.tables import render_designs, render_force
 from pumplink.spec import PumpSpec, load_spec, parse_spec
 
 KEYS = ["name", "wheel", "linkage", "load", "operator", "radius", "axle_height", "L1", "D1", "b", "rocker",

@@ -17,7 +17,7 @@ from mpmath import mp, mpf
 from scipy.optimize import minimize_scalar
 
 import reference as R
-from pumplink.synthesis import (
+from pumplink.mechanisms.fourbar import (
     CHANGE_POINT_MARGIN,
     FEASIBLE,
     PIVOT_ON_AXLE,

@@ -2,7 +2,7 @@
 
 Reference values come from independent routes: a 40-digit mpmath golden-section search on the
 design circle in the classic centre/angle parametrisation (not the law-of-sines form of
-pumplink.transmission), and mpmath evaluations of seed 001 Eq. (4)-(6) for the seed's designs.
+pumplink.mechanisms.crank_rocker), and mpmath evaluations of seed 001 Eq. (4)-(6) for the seed's designs.
 """
 
 import json
@@ -17,9 +17,9 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from pumplink.errors import SpecError
-from pumplink.synthesis import Linkage
-from pumplink.transmission import (
-    crank_rocker_on_circle, extreme_included_angle, optimal_crank_rocker, optimum_linkage, simulate,
+from pumplink.mechanisms.fourbar import FourBar
+from pumplink.mechanisms.crank_rocker import (
+    crank_rocker_on_circle, extreme_included_angle, optimal_crank_rocker, optimum_linkage, measure_motion,
 )
 
 SEED_K, SEED_PHI, SEED_ROCKER = 1.1818, 40.0, 50.0
@@ -120,7 +120,7 @@ def test_seed_example_beats_the_seeds_published_designs(seed_opt, seed_ref):
 
 
 def test_optimum_simulates_to_the_requested_swing_and_time_ratio(seed_opt):
-    sim = simulate(optimum_linkage(seed_opt))
+    sim = measure_motion(optimum_linkage(seed_opt))
     assert sim.assembles
     assert abs(math.degrees(sim.swing) - SEED_PHI) < 1e-9
     assert abs(sim.time_ratio - SEED_K) < 1e-9
@@ -130,7 +130,7 @@ def test_optimum_simulates_to_the_requested_swing_and_time_ratio(seed_opt):
 def test_seed_computer_design_does_not_meet_its_own_k_and_swing():
     # Independent fact reported in the output: simulated with the crank pivot at the origin.
     c, k, r, f = SEED_COMPUTER
-    sim = simulate(Linkage(f, 0.0, c, k, r, r, 1.0))
+    sim = measure_motion(FourBar(f, 0.0, c, k, r, r, 1.0))
     assert abs(math.degrees(sim.swing) - 40.0) > 0.05
     assert abs(sim.time_ratio - SEED_K) > 1e-3
 
@@ -143,7 +143,7 @@ def test_inadmissible_arc_gives_a_different_linkage():
     c, k, f, ax, ay, ok = crank_rocker_on_circle(s, th, phi, r, -1.0)
     i = int(np.nonzero(~ok)[0][len(np.nonzero(~ok)[0]) // 2])
     cross = (-ax[i]) * (r * math.cos(phi / 2) - ay[i]) - (-ay[i]) * (r * math.sin(phi / 2) - ax[i])
-    sim = simulate(Linkage(-ax[i], -ay[i], c[i], k[i], r, r, 1.0 if cross > 0 else -1.0))
+    sim = measure_motion(FourBar(-ax[i], -ay[i], c[i], k[i], r, r, 1.0 if cross > 0 else -1.0))
     assert abs(sim.swing - phi) > 1e-3
 
 
@@ -171,7 +171,7 @@ def test_optimum_beats_dense_brute_force_and_simulates_exactly(K, phi):
         best = max(best, float(mu.max()))
     assert opt.transmission >= best - 1e-12
     assert opt.transmission - best < 1e-5  # the brute force is within its grid step of the optimum
-    sim = simulate(optimum_linkage(opt))
+    sim = measure_motion(optimum_linkage(opt))
     assert abs(sim.swing - math.radians(phi)) < 1e-8
     assert abs(sim.time_ratio - K) < 1e-8 * K
     assert abs(sim.transmission - opt.transmission) < 1e-9
@@ -203,7 +203,7 @@ def test_cli_seed_example_json():
     assert p.returncode == 0, p.stderr
     d = json.loads(p.stdout)
     assert abs(d["simulated"]["swing_deg"] - 40) < 1e-9 and abs(d["simulated"]["time_ratio"] - 1.1818) < 1e-9
-    assert [c["design"] for c in d["compare"]] == ["seed 001 diagram read-off", "seed 001 computer result"]
+    assert [c["design"] for c in d["compare"]] == ["paper's diagram read-off", "paper's computer result"]
     assert all(c["ours_better_by_deg"] > 0.4 for c in d["compare"])
 
 

@@ -34,7 +34,7 @@ mirror image of C1 in A-D, and the swing and K it produces differ from the ones 
 the boundary (A, D and C1 or C2 collinear) a transmission angle is 0 or 180 deg.  With the
 triangle inequalities of A-D-C1 and A-D-C2 (frame + crank <= coupler + rocker,
 frame - crank >= |coupler - rocker|) every admissible point gives a crank-rocker.
-:func:`simulate` checks all of this by running the linkage through ``pumplink.kinematics``.
+:func:`measure_motion` checks all of this by running the linkage through ``pumplink.mechanisms.fourbar``.
 
 Transmission angle (NOTES.md §2, seed 001 Eq. 4-6): its extremes occur with crank and frame
 collinear, cos gamma = (coupler^2 + rocker^2 - (frame -+ crank)^2)/(2 coupler rocker); the
@@ -52,7 +52,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pumplink.errors import SpecError
-from pumplink.synthesis import Linkage, transmission_range
+from pumplink.mechanisms.fourbar import FourBar, transmission_range
 
 #: Scan points per design-circle arc before the bracketing refinement.
 SCAN_POINTS = 2049
@@ -99,7 +99,7 @@ class OptimalCrankRocker:
 
 
 @dataclass(frozen=True)
-class Simulation:
+class MeasuredMotion:
     """What a crank-rocker really does, from the kinematics (angles in radians).
 
     Attributes
@@ -269,8 +269,8 @@ def optimal_crank_rocker(time_ratio, swing, rocker=1.0, samples: int = SCAN_POIN
     )
 
 
-def optimum_linkage(opt: OptimalCrankRocker) -> Linkage:
-    """The optimum as a :class:`~pumplink.synthesis.Linkage` (crank pivot at the origin).
+def optimum_linkage(opt: OptimalCrankRocker) -> FourBar:
+    """The optimum as a :class:`~pumplink.mechanisms.fourbar.FourBar` (crank pivot at the origin).
 
     Rocker pivot D - A = -A; branch = sign of cross(D - A, C2 - A), the side of the line A-D
     on which the extended extreme C2 lies (module docstring), for the kinematics' convention
@@ -280,15 +280,15 @@ def optimum_linkage(opt: OptimalCrankRocker) -> Linkage:
     r, phi = float(opt.rocker), float(opt.swing)
     c2x, c2y = r * np.sin(0.5 * phi), r * np.cos(0.5 * phi)
     cross = (-ax) * (c2y - ay) - (-ay) * (c2x - ax)
-    return Linkage(pivot_x=-ax, pivot_y=-ay, crank=float(opt.crank), coupler=float(opt.coupler),
+    return FourBar(pivot_x=-ax, pivot_y=-ay, crank=float(opt.crank), coupler=float(opt.coupler),
                    rocker=r, handle=r, branch=1.0 if cross > 0 else -1.0)
 
 
-def simulate(lk: Linkage, samples: int = 4096) -> Simulation:
+def measure_motion(lk: FourBar, samples: int = 4096) -> MeasuredMotion:
     """Run a crank-rocker through a full crank turn and measure its swing, K and transmission.
 
     Independent of the design formulas: positions and the rocker rate d(theta4)/d(theta2) come
-    from ``pumplink.kinematics.evaluate``.  The rocker extremes are the two sign changes of the
+    from ``pumplink.mechanisms.fourbar.kinematic_state``.  The rocker extremes are the two sign changes of the
     rocker rate on ``samples`` crank angles, located exactly with a bracketing root finder; the
     smallest transmission deviation min(gamma, pi - gamma) is refined with a bracketing minimiser.
 
@@ -299,31 +299,90 @@ def simulate(lk: Linkage, samples: int = 4096) -> Simulation:
     """
     from scipy.optimize.elementwise import find_minimum, find_root
 
-    from pumplink.kinematics import evaluate
+    from pumplink.mechanisms.fourbar import kinematic_state
 
     two_pi = 2.0 * np.pi
     th = np.arange(samples + 1) * (two_pi / samples)
-    st = evaluate(lk, th)
+    st = kinematic_state(lk, th)
     assembles = bool(np.all(np.isfinite(st.coupler_x)))
     rate = st.rocker_rate
     flips = np.nonzero(np.sign(rate[:-1]) != np.sign(rate[1:]))[0]
     nan = float("nan")
     if not assembles or flips.size != 2:
-        return Simulation(nan, nan, nan, assembles)
-    roots = find_root(lambda x: evaluate(lk, x).rocker_rate, (th[flips], th[flips + 1]),
+        return MeasuredMotion(nan, nan, nan, assembles)
+    roots = find_root(lambda x: kinematic_state(lk, x).rocker_rate, (th[flips], th[flips + 1]),
                       tolerances=dict(xatol=1e-15, xrtol=1e-16)).x
-    ends = evaluate(lk, roots)
+    ends = kinematic_state(lk, roots)
     ang = np.arctan2(ends.coupler_y - lk.pivot_y, ends.coupler_x - lk.pivot_x)
     swing = abs(float(np.angle(np.exp(1j * (ang[1] - ang[0])))))
     arc = float(np.mod(roots[1] - roots[0], two_pi))
     ratio = max(arc, two_pi - arc) / min(arc, two_pi - arc)
 
     def dev(x):
-        g = evaluate(lk, x).transmission_angle
+        g = kinematic_state(lk, x).transmission_angle
         return np.minimum(g, np.pi - g)
 
     dv = dev(th)
     j = int(np.clip(np.argmin(dv), 1, samples - 1))
     res = find_minimum(dev, (th[j - 1], th[j], th[j + 1]), tolerances=dict(xatol=1e-14, xrtol=1e-15))
     tmin = min(float(res.f_x), float(dv[j]))
-    return Simulation(swing=swing, time_ratio=ratio, transmission=tmin, assembles=assembles)
+    return MeasuredMotion(swing=swing, time_ratio=ratio, transmission=tmin, assembles=assembles)
+
+
+# ----------------------------------------------------------------------------- the paper's example
+#: The optimal-transmission paper's worked example (K = 1.1818, phi = 40 deg, rocker 50 mm).
+PUBLISHED_EXAMPLE = {"time_ratio": 1.1818, "swing_deg": 40.0, "rocker": 50.0}
+#: Its designs as printed: the diagram read-off and the "computer" result (crank, coupler, rocker,
+#: frame in mm; docs/crank-rocker.md).
+PUBLISHED_DESIGNS = {
+    "paper's diagram read-off": (16.0, 46.0, 50.0, 53.76),
+    "paper's computer result": (16.2227, 44.5093, 50.0, 53.8986),
+}
+#: The minimum transmission angle the paper prints for its diagram design [deg].
+PUBLISHED_GAMMA_MIN_DEG = 46.3698
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """A published design measured as pumplink measures its own optimum."""
+
+    label: str
+    lengths: tuple[float, float, float, float]  # crank, coupler, rocker, frame
+    transmission: float  # effective minimum transmission angle [rad] (Eq. 4-6)
+    motion: MeasuredMotion
+
+
+def is_published_example(time_ratio: float, swing_deg: float, rocker: float) -> bool:
+    """True when the inputs are exactly the paper's worked example."""
+    ex = PUBLISHED_EXAMPLE
+    return (time_ratio, swing_deg, rocker) == (ex["time_ratio"], ex["swing_deg"], ex["rocker"])
+
+
+def published_comparisons() -> list[Comparison]:
+    """The paper's designs, each placed with the crank pivot at the origin and the frame along +x,
+    with its transmission angle and its simulated swing and time ratio."""
+    out = []
+    for label, (c, k, r, f) in PUBLISHED_DESIGNS.items():
+        mu = float(effective_transmission(c, k, r, f)[0])
+        out.append(Comparison(label, (c, k, r, f), mu, measure_motion(FourBar(f, 0.0, c, k, r, r, 1.0))))
+    return out
+
+
+@dataclass(frozen=True)
+class DesignChart:
+    """The paper's design diagram, solved exactly on a grid (degrees for the axes)."""
+
+    theta_deg: np.ndarray  # extreme included angle, rows
+    swing_deg: np.ndarray  # rocker swing, columns
+    optimum: OptimalCrankRocker  # over the (theta, swing) grid
+    example_swing_deg: float
+    example_theta_deg: float
+
+
+def design_chart() -> DesignChart:
+    """Optimal crank-rockers over theta = 1..40 deg (1 deg steps) and phi = 10..120 deg (2 deg)."""
+    th = np.linspace(1.0, 40.0, 40)
+    ph = np.linspace(10.0, 120.0, 56)
+    opt = optimal_crank_rocker(time_ratio_from_angle(np.radians(th))[:, None], np.radians(ph)[None, :])
+    ex = PUBLISHED_EXAMPLE
+    return DesignChart(th, ph, opt, ex["swing_deg"], float(np.degrees(extreme_included_angle(ex["time_ratio"]))))

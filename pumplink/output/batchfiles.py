@@ -21,13 +21,14 @@ from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
-from pumplink.analysis import FLYWHEEL, QUASI_STATIC
+from pumplink.batch import FLYWHEEL_LABEL as FLYWHEEL
+from pumplink.batch import QUASI_STATIC_LABEL as QUASI_STATIC
 from pumplink.batch import Batch, Chunk, variant_name, variant_names
 from pumplink.errors import SpecError
 
 #: Per-variant columns after the name, the source and the varied keys (CSV order).  The
 #: flywheel scene's columns are named as in ``pumplink force --format json``
-#: (``pumplink.report.force_summary``); empty (null) for quasi-static variants.
+#: (``pumplink.output.tables.force_summary``); empty (null) for quasi-static variants.
 SCENE_COLUMNS = ("model", "inertia_kg_m2", "speed_fluctuation", "required_peak_force_N", "min_passing_speed_deg_s")
 FIXED_COLUMNS = (
     "frame_length", "crank_length", "coupler_length", "feasible", "reason", "time_ratio",
@@ -80,14 +81,14 @@ def chunk_columns(batch: Batch, c: Chunk) -> dict[str, list]:
         "transmission_min_deg": _floats(np.degrees(c.transmission_min)),
         "transmission_max_deg": _floats(np.degrees(c.transmission_max)),
         "mean_force_N": _floats(c.mean_force),
-        "peak_force_N": _floats(c.peak_force),
+        "peak_force_N": _floats(c.dead_band_peak_force),
         "sampled_peak_force_N": _floats(c.sampled_peak),
         "power_W": _floats(c.power),
         "force_limit_N": _floats(c.force_limit),
         "model": _models(c),
         "inertia_kg_m2": _floats(c.inertia),
         "speed_fluctuation": _floats(c.speed_fluctuation),
-        "required_peak_force_N": _floats(c.required_peak_force),
+        "required_peak_force_N": _floats(c.least_peak_force),
         "min_passing_speed_deg_s": _floats(np.degrees(c.min_passing_speed)),
         "pass": c.passed.tolist(),
         "failed": _failed_text(c),
@@ -145,11 +146,11 @@ def csv_text(batch: Batch, c: Chunk, vkeys: Sequence[str]) -> str:
     cols += [_csv_floats(c.frame_length), _csv_floats(c.crank_length), _csv_floats(c.coupler_length),
              [bools[x] for x in c.feasible.tolist()], reason, _csv_floats(c.time_ratio),
              _csv_floats(np.degrees(c.transmission_min)), _csv_floats(np.degrees(c.transmission_max)),
-             _csv_floats(c.mean_force), _csv_floats(c.peak_force), _csv_floats(c.sampled_peak),
+             _csv_floats(c.mean_force), _csv_floats(c.dead_band_peak_force), _csv_floats(c.sampled_peak),
              _csv_floats(c.power), _csv_floats(c.force_limit)]
     if c.flywheel.any():
         cols += [[_csv_cell(m) for m in _models(c)], _csv_floats(c.inertia), _csv_floats(c.speed_fluctuation),
-                 _csv_floats(c.required_peak_force), _csv_floats(np.degrees(c.min_passing_speed))]
+                 _csv_floats(c.least_peak_force), _csv_floats(np.degrees(c.min_passing_speed))]
     else:  # quasi-static only: no scene columns to format
         cols += [[_csv_cell(QUASI_STATIC)] * n] + [[""] * n] * 4
     cols += [[bools[x] for x in c.passed.tolist()], _failed_text(c)]
@@ -163,7 +164,7 @@ def json_text(batch: Batch, c: Chunk) -> str:
 
 def junit_text(batch: Batch, c: Chunk, fail_on: Sequence[str]) -> tuple[str, int, int]:
     """The chunk's JUnit testcases, with the number of failures and skipped."""
-    cols = {"mean_force_N": _floats(c.mean_force), "peak_force_N": _floats(c.peak_force),
+    cols = {"mean_force_N": _floats(c.mean_force), "peak_force_N": _floats(c.dead_band_peak_force),
             "force_limit_N": _floats(c.force_limit)}
     cls = f"pumplink.batch.{Path(batch.source).stem}"
     parts, failures, skipped = [], 0, 0
@@ -239,7 +240,7 @@ def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequ
             bad.append(f"mean force {cols['mean_force_N'][i]:.2f} N > limit {lim[i]:g} N")
         if "peak" in fail_on and not c.peak_ok[i]:
             if c.flywheel[i]:
-                pk = float(c.required_peak_force[i])
+                pk = float(c.least_peak_force[i])
                 what = f"peak force with the flywheel (δ ≤ {float(c.speed_fluctuation[i]):g})"
                 if pk == math.inf:
                     bad.append(f"{what} infinite (the energy band J ω² δ is too small to carry the linkage through "
@@ -267,7 +268,7 @@ def _update_summary(s: dict, batch: Batch, c: Chunk, fail_on) -> None:
     s["infeasible"] += int((~c.feasible).sum())
     s["fail"] += int((c.feasible & ~c.passed).sum())
     s["failed_selected"] += int(c.failed(fail_on).sum())
-    verdict = c.verdict_peak
+    verdict = c.verdict_peak_force
     peak = np.where(np.isfinite(verdict), verdict, np.inf)
     if peak.size:
         i = int(np.argmin(peak))  # first of equal peaks: the lowest variant index wins ties
@@ -369,7 +370,8 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
     """``--format table``: the rows (or the failures of a large run) and the summary."""
     from rich.table import Table
 
-    from pumplink.report import _f, console
+    from pumplink.output.formats import console
+    from pumplink.output.formats import fmt as _f
 
     out = out or sys.stdout
     c = console(out)

@@ -9,10 +9,10 @@ import functools
 
 import numpy as np
 
-from pumplink.kinematics import force_kernel, kernel_work, offset_table, shifted_directions
-from pumplink.synthesis import Linkage
+from pumplink.mechanisms.angles import TWO_PI, angular_distance, offset_table, shifted_directions
+from pumplink.mechanisms.fourbar import force_kernel, kernel_work
+from pumplink.mechanisms.fourbar import FourBar
 
-TWO_PI = 2.0 * np.pi
 
 #: Points per dead-band window on which the exact peak search starts (independent of the
 #: user's --samples); the best interior point is then refined by a bracketing minimiser.
@@ -27,24 +27,18 @@ def wheel_torque(rope_force, wheel_radius):
     return np.asarray(rope_force, float) * wheel_radius
 
 
-def mean_force(wheel_torque, handle, swing):
-    """Constant push/pull magnitude that does one cycle's work [N] (NOTES.md §1).
+def mean_force(wheel_torque, stroke):
+    """Constant push/pull magnitude that does one cycle's work [N] (docs/physics.md §4).
 
-    The grip's horizontal stroke is S = 2 H sin(swing/2), travelled twice per revolution, so
-    F_mean = 2 pi Mw / (2 S) = pi Mw / (2 H sin(swing/2)): a lower bound on any operator's
-    peak force.
+    The grip travels its horizontal stroke S twice per revolution, so F_mean = 2 pi Mw / (2 S)
+    = pi Mw / S: a lower bound on any operator's peak force.  For the symmetric swing
+    S = 2 H sin(swing/2) (:func:`pumplink.mechanisms.fourbar.grip_stroke`).
 
     Parameters
     ----------
-    wheel_torque : Mw [N m];  handle : H [m];  swing : total handle swing [rad].
+    wheel_torque : Mw [N m];  stroke : S [m].
     """
-    return np.pi * wheel_torque / (2.0 * handle * np.sin(0.5 * swing))  # NOTES.md §1
-
-
-def angular_distance(a, b):
-    """Smallest absolute difference of two angles [rad], in [0, pi]."""
-    d = np.mod(np.asarray(a) - b, TWO_PI)
-    return np.minimum(d, TWO_PI - d)
+    return np.pi * np.asarray(wheel_torque, float) / stroke  # docs/physics.md §4
 
 
 def in_dead_band(crank_angle, dead_centre_extended, dead_centre_folded, dead_band):
@@ -62,11 +56,11 @@ def _windows(dc_ext, dc_fold, band):
 
 
 def _abs_force(theta, px, py, c, k, r, h, br, mw):
-    lk = Linkage(px, py, c, k, r, h, br)
+    lk = FourBar(px, py, c, k, r, h, br)
     return np.abs(force_kernel(lk, np.cos(theta), np.sin(theta), mw)[2])
 
 
-def peak_force(lk: Linkage, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque):
+def dead_band_peak_force(lk: FourBar, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque):
     """Largest |operator force| at crank angles farther than ``dead_band`` from both dead centres.
 
     Exact to solver tolerance whatever the sweep sampling: each of the two windows is scanned on
@@ -145,14 +139,14 @@ def _offset_table(n: int):
     return offset_table(TWO_PI / n, SWEEP_BLOCK)
 
 
-def sampled_peak(lk: Linkage, n: int, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band,
+def sampled_peak(lk: FourBar, n: int, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band,
                  progress=None):
     """Largest |force| over a uniform sweep of ``n`` crank angles strictly outside the dead bands.
 
     This is what a sampled sweep reports (it can step over the rise toward a dead centre);
     the verdict uses :func:`peak_force` instead.  Only the samples inside the two windows
     between the dead bands are evaluated, a few hundred thousand at a time, so memory stays
-    bounded for any ``n``; directions by angle addition (:func:`pumplink.kinematics.offset_table`).
+    bounded for any ``n``; directions by angle addition (:func:`pumplink.mechanisms.fourbar.offset_table`).
 
     Parameters
     ----------
@@ -195,7 +189,7 @@ def sampled_peak(lk: Linkage, n: int, wheel_torque, dead_centre_extended, dead_c
         cs, sn = shifted_directions((j0 + (m0 - e0)) * step, table, e0, size)  # (D, 2, size)
         if work is None or work.shape[1:] != cs.shape:
             work = kernel_work(cs.shape)  # scratch reused across passes
-        f = np.abs(force_kernel(Linkage(*g3[:7]), cs, sn, g3[7], work)[2])
+        f = np.abs(force_kernel(FourBar(*g3[:7]), cs, sn, g3[7], work)[2])
         f[(off >= count[..., None]) | np.isnan(f)] = -np.inf  # beyond the window; a dead centre
         np.maximum(best, f.max(axis=(1, 2)), out=best)
         if progress is not None:

@@ -1,4 +1,4 @@
-"""Batch runs: a base spec plus axes to vary, evaluated as one vectorised Cartesian product.
+"""Batch files: a base spec plus axes to vary; parsing, validation and variant naming.
 
 A batch file (TOML) names a base spec and the spec keys to vary (issue #4)::
 
@@ -17,7 +17,7 @@ example ``rocker-study#07[rocker=0.25 swing=45]``.  Names depend only on the bat
 The verdict is that of ``pumplink force`` (issue #6).  A variant whose spec gives inertia
 (``wheel.inertia``, ``wheel.mass`` or ``load.moving_mass``, in the base or on an axis) is decided by
 the flywheel model: it passes iff it is feasible, the mean force is within the limit and the least
-peak force with the flywheel (:func:`pumplink.flywheel.required_peak_force` at the variant's speed and
+peak force with the flywheel (:func:`pumplink.models.flywheel.least_peak_force` at the variant's speed and
 speed fluctuation) is within the limit; the windowed peak outside the dead bands (``peak_force_N``) is
 then reported for information only.  Any other variant is decided by the quasi-static model with the
 dead band, as before.  The ``peak`` check of ``--fail-on`` is the verdict's peak: the flywheel one
@@ -36,42 +36,35 @@ import difflib
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable, Iterator, Sequence
+from typing import Any, Sequence
 
 import numpy as np
 
-from pumplink import flywheel as _fw
-from pumplink import force as _force
 from pumplink.errors import SpecError
-from pumplink.spec import (GRAVITY, WATER_DENSITY, PumpSpec, load_spec, parse_spec, read_toml,
-                           spec_from_file_data, spec_to_dict)
-from pumplink.synthesis import Linkage, infeasibility_reason, synthesize
+from pumplink.spec import PumpSpec, load_spec, parse_spec, read_toml, spec_from_file_data, spec_to_dict
 
 #: Checks ``--fail-on`` can select (the default selects all three, as ``pumplink force`` does).
 #: ``peak`` is the verdict's peak: the flywheel's least peak force where the variant gives
 #: inertia, else the windowed peak outside the dead bands.
 FAIL_CHECKS = ("mean", "peak", "infeasible")
+
+
 #: Spec keys that give the inertia and so turn on the flywheel model (``PumpSpec.inertia``).
 INERTIA_KEYS = ("wheel.inertia", "wheel.mass", "load.moving_mass")
+
+
 #: Largest number of values on one axis (each axis is held in memory and sent to every worker).
 MAX_AXIS_VALUES = 1_000_000
+
+
 #: Largest number of variants in one run (indices stay exact in float64 and int64).
 MAX_VARIANTS = 10**15
-#: Most designs per chunk (rows handed to the writer at once, one task for a worker process).
-CHUNK_DESIGNS = 8192
-#: Crank samples per chunk: fewer designs per chunk at large --samples, so a task stays short
-#: (an interrupted run waits for the running tasks) and its rows arrive steadily.
-TASK_SAMPLES = 3_000_000
-#: Designs swept together inside a chunk for the sampled peak: small enough that the kernel's
-#: temporaries (designs x 360 samples) stay in the CPU cache.
-SUB_DESIGNS = 128
-#: Most designs per chunk, and per call of the flywheel kernel, for variants that give inertia:
-#: the least peak force costs ~0.5 ms per design (a chunk ~0.5 s) and its temporaries are
-#: (designs x ~430 nodes) arrays.
-FLYWHEEL_DESIGNS = 1024
+
+
 #: Significant digits kept for linspace values, so {start=0.2, stop=0.3, num=3} gives 0.25
 #: exactly (what a user would type), not 0.25000000000000006.
 LINSPACE_DIGITS = 12
+
 
 _TOP_KEYS = ("name", "base", "vary")
 
@@ -140,64 +133,7 @@ class Batch:
         return any(self.given(k) for k in INERTIA_KEYS)
 
 
-@dataclass(frozen=True)
-class Chunk:
-    """Results for variants ``start..stop-1`` of one batch (arrays over those variants, SI units).
-
-    ``reason`` holds the infeasibility sentence (None when feasible); the checks follow
-    :func:`pumplink.analysis.force_analysis`: ``mean_ok`` = mean <= limit, ``peak_ok`` =
-    verdict peak <= limit (False when it is NaN), ``passed`` = feasible and both.  The verdict
-    peak (:attr:`verdict_peak`) is ``required_peak_force`` where ``flywheel`` (the variant gives
-    inertia), else ``peak_force``.  The flywheel columns are NaN for quasi-static variants, and
-    ``required_peak_force`` / ``min_passing_speed`` also for infeasible ones.
-    """
-
-    batch: int  # index of the batch in the run
-    start: int
-    stop: int
-    values: np.ndarray  # (n, axes) varied values
-    frame_length: np.ndarray
-    crank_length: np.ndarray
-    coupler_length: np.ndarray
-    feasible: np.ndarray
-    reason: list
-    time_ratio: np.ndarray
-    transmission_min: np.ndarray  # [rad]
-    transmission_max: np.ndarray  # [rad]
-    mean_force: np.ndarray  # [N]
-    peak_force: np.ndarray  # exact windowed peak [N]
-    sampled_peak: np.ndarray  # peak over the uniform --samples sweep outside the dead bands [N]
-    power: np.ndarray  # [W]
-    force_limit: np.ndarray  # [N]
-    mean_ok: np.ndarray
-    peak_ok: np.ndarray
-    passed: np.ndarray
-    flywheel: np.ndarray  # True: the variant gives inertia, the flywheel model decides
-    inertia: np.ndarray  # J [kg m^2]
-    speed_fluctuation: np.ndarray  # delta_allow [-]
-    required_peak_force: np.ndarray  # least peak force with the flywheel [N] (inf: no energy band)
-    min_passing_speed: np.ndarray  # [rad/s] (inf: no speed passes)
-
-    @property
-    def verdict_peak(self) -> np.ndarray:
-        """The peak force that decides the verdict [N]: flywheel or windowed dead-band peak."""
-        return np.where(self.flywheel, self.required_peak_force, self.peak_force)
-
-    def __len__(self) -> int:
-        return self.stop - self.start
-
-    def failed(self, fail_on: Sequence[str]) -> np.ndarray:
-        """True where a variant fails one of the checks selected by ``--fail-on``."""
-        out = np.zeros(len(self), bool)
-        if "infeasible" in fail_on:
-            out |= ~self.feasible
-        if "mean" in fail_on:
-            out |= self.feasible & ~self.mean_ok
-        if "peak" in fail_on:
-            out |= self.feasible & ~self.peak_ok
-        return out
-
-
+# ----------------------------------------------------------------------------- parsing
 # ----------------------------------------------------------------------------- parsing
 def _is_number(v: Any) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool)
@@ -408,6 +344,7 @@ def parse_chunk(text: str | None) -> tuple[int, int]:
 
 
 # ----------------------------------------------------------------------------- variants
+# ----------------------------------------------------------------------------- variants
 def axis_indices(batch: Batch, start: int, stop: int) -> np.ndarray:
     """Per-axis value indices of variants start..stop-1, shape (n, axes); last axis fastest."""
     idx = np.arange(start, stop, dtype=np.int64)
@@ -454,235 +391,3 @@ def variant_spec(batch: Batch, index: int) -> dict[str, Any]:
         data = _set(data, a.key, float(a.values[j]))
     data["name"] = variant_name(batch, index)
     return data
-
-
-def _field(batch: Batch, cols: dict[str, np.ndarray], key: str, n: int):
-    if key in cols:
-        return cols[key]
-    section, name = key.split(".")
-    return np.full(n, getattr(getattr(batch.spec, section), name), dtype=float)
-
-
-def rope_force(batch: Batch, cols: dict[str, np.ndarray], n: int) -> np.ndarray:
-    """Rope force at the rim per variant [N]: as ``Load.rope_force_N`` (NOTES.md §4), same
-    operation order so the numbers are identical."""
-    load = batch.spec.load
-    if load.rope_force is not None or "load.rope_force" in cols:
-        return _field(batch, cols, "load.rope_force", n)
-    head = _field(batch, cols, "load.head", n)
-    d = _field(batch, cols, "load.pipe_diameter", n)
-    if load.efficiency is None and "load.efficiency" not in cols:
-        eff = np.full(n, 0.75)
-    else:
-        eff = _field(batch, cols, "load.efficiency", n)
-    return WATER_DENSITY * GRAVITY * head * np.pi * (d * d) / 4.0 / eff  # NOTES.md §4
-
-
-def moving_mass(batch: Batch, cols: dict[str, np.ndarray], n: int) -> np.ndarray:
-    """Mass moving at rim speed per variant [kg]: as ``Load.moving_mass_kg`` (the water column
-    rho * head * pi d^2 / 4 by default with head and pipe_diameter, NOTES.md §4), same operation
-    order so the numbers are identical."""
-    if batch.given("load.moving_mass"):
-        return _field(batch, cols, "load.moving_mass", n)
-    if batch.given("load.head"):
-        head = _field(batch, cols, "load.head", n)
-        d = _field(batch, cols, "load.pipe_diameter", n)
-        return WATER_DENSITY * head * np.pi * (d * d) / 4.0  # NOTES.md §4
-    return np.zeros(n)
-
-
-def inertia(batch: Batch, cols: dict[str, np.ndarray], n: int) -> np.ndarray:
-    """Moment of inertia about the axle per variant [kg m^2], NaN where the variant gives none.
-
-    As ``PumpSpec.inertia`` (issue #6): wheel.inertia, or wheel.mass * radius^2 (a rim), plus
-    the moving mass * radius^2; same operation order so the numbers are identical.
-    """
-    if not batch.flywheel:
-        return np.full(n, np.nan)
-    r = _field(batch, cols, "wheel.radius", n)
-    if batch.given("wheel.inertia"):
-        wheel = _field(batch, cols, "wheel.inertia", n)
-    elif batch.given("wheel.mass"):
-        wheel = _field(batch, cols, "wheel.mass", n) * r * r
-    else:
-        wheel = 0.0 * r * r
-    return wheel + moving_mass(batch, cols, n) * r * r
-
-
-def _take(lk: Linkage, idx) -> Linkage:
-    return Linkage(*(np.asarray(getattr(lk, f))[idx] for f in
-                     ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
-
-
-def evaluate(batch: Batch, start: int, stop: int, samples: int = 360, batch_index: int = 0) -> Chunk:
-    """Synthesis, force checks and verdict for variants ``start..stop-1`` of a batch.
-
-    Vectorised over the variants; the numbers equal :func:`pumplink.analysis.force_analysis`
-    (``keep_samples=False``) on each variant's spec exactly, the flywheel scene included where
-    the variant gives inertia (the verdict then uses its least peak force).
-
-    Parameters
-    ----------
-    samples : uniform crank samples per revolution for the sampled-peak column (0: skip it).
-        The peak force itself is exact whatever the sampling (:func:`pumplink.force.peak_force`).
-    """
-    n = stop - start
-    if batch.axes:
-        ij = axis_indices(batch, start, stop)
-        values = np.stack([a.values[ij[:, j]] for j, a in enumerate(batch.axes)], axis=1)
-    else:
-        values = np.empty((n, 0))
-    cols = {a.key: values[:, j] for j, a in enumerate(batch.axes)}
-
-    def get(key):
-        return _field(batch, cols, key, n)
-
-    swing = np.radians(get("linkage.swing"))
-    L1, D1, b = get("linkage.L1"), get("linkage.D1"), get("linkage.b")
-    handle = get("linkage.handle")
-    syn = synthesize(L1, D1, b, get("linkage.rocker"), swing, handle)
-    feasible = np.asarray(syn.feasible, bool)
-    mw = rope_force(batch, cols, n) * get("wheel.radius")  # Mw = Fw rw, Eq. (3)
-    speed = np.radians(get("operator.speed"))
-    band = np.radians(get("operator.dead_band"))
-    limit = get("operator.force_limit")
-    power = mw * speed
-
-    mean = np.full(n, np.nan)
-    peak = np.full(n, np.nan)
-    sampled = np.full(n, np.nan)
-    lk = syn.linkage
-    ok = np.nonzero(feasible)[0]
-    if ok.size:
-        sub = Linkage(*(np.asarray(getattr(lk, f))[ok] for f in
-                        ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
-        dce, dcf = syn.dead_centre_extended[ok], syn.dead_centre_folded[ok]
-        mean[ok] = _force.mean_force(mw[ok], handle[ok], syn.swing[ok])
-        # one call per chunk: the refinement (scipy find_minimum) costs ~10 ms per call
-        peak[ok] = _force.peak_force(sub, dce, dcf, band[ok], mw[ok])[0]
-        for s0 in range(0, ok.size, SUB_DESIGNS):  # cache-sized blocks of designs
-            s = slice(s0, s0 + SUB_DESIGNS)
-            part = Linkage(*(getattr(sub, f)[s] for f in
-                             ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
-            sampled[ok[s]] = _force.sampled_peak(part, samples, mw[ok][s], dce[s], dcf[s], band[ok][s])
-    # The flywheel scene (issue #6), only for the variants that give inertia.
-    j = inertia(batch, cols, n)
-    fly = ~np.isnan(j)
-    delta = np.where(fly, get("operator.speed_fluctuation"), np.nan)
-    required = np.full(n, np.nan)
-    passing = np.full(n, np.nan)
-    rows = np.nonzero(fly & feasible)[0]
-    for s0 in range(0, rows.size, FLYWHEEL_DESIGNS):  # bounded temporaries
-        r = rows[s0:s0 + FLYWHEEL_DESIGNS]
-        part = _take(lk, r)
-        dce, dcf = syn.dead_centre_extended[r], syn.dead_centre_folded[r]
-        energy = _fw.energy_band(j[r], speed[r], delta[r])  # W = J w^2 delta, Eq. (2) of pumplink.flywheel
-        required[r] = _fw.required_peak_force(part, dce, dcf, mw[r], energy)  # Eq. (4) there
-        passing[r] = _fw.min_passing_speed(part, dce, dcf, mw[r], limit[r], j[r], delta[r])
-    mean_ok = feasible & (mean <= limit)
-    peak_ok = feasible & (np.where(fly, required, peak) <= limit)
-
-    reasons: list = [None] * n
-    bad = np.nonzero(~feasible)[0]
-    if bad.size:
-        cache: dict = {}
-        codes = np.asarray(syn.reason)
-        for i in bad.tolist():
-            k = (int(codes[i]), float(L1[i]), float(D1[i]), float(b[i]), float(swing[i]))
-            if k not in cache:
-                cache[k] = infeasibility_reason(*k)
-            reasons[i] = cache[k]
-    return Chunk(batch_index, start, stop, values, np.asarray(syn.frame_length), np.asarray(syn.crank_length),
-                 np.asarray(syn.coupler_length), feasible, reasons, np.asarray(syn.time_ratio),
-                 np.asarray(syn.transmission_min), np.asarray(syn.transmission_max), mean, peak, sampled,
-                 power, limit, mean_ok, peak_ok, mean_ok & peak_ok, flywheel=fly, inertia=j,
-                 speed_fluctuation=delta, required_peak_force=required, min_passing_speed=passing)
-
-
-# ----------------------------------------------------------------------------- scheduling
-def plan(batches: Sequence[Batch], chunk: tuple[int, int] = (1, 1),
-         designs: int = CHUNK_DESIGNS) -> list[tuple[int, int, int]]:
-    """Tasks ``(batch, start, stop)`` for slice K of N of the run, in order.
-
-    The run is all variants of all batches, concatenated; slice K (1-based) of N is the
-    contiguous range ``[(K-1) T // N, K T // N)`` of that sequence, so the N slices partition it
-    and every variant keeps its name.  A task has at most ``designs`` variants, and at most
-    :data:`FLYWHEEL_DESIGNS` for a batch that gives inertia (its variants cost far more).
-    """
-    k, n = chunk
-    total = sum(b.size for b in batches)
-    lo, hi = (k - 1) * total // n, k * total // n
-    tasks, offset = [], 0
-    for i, b in enumerate(batches):
-        s, e = max(lo, offset) - offset, min(hi, offset + b.size) - offset
-        step = min(designs, FLYWHEEL_DESIGNS) if b.flywheel else designs
-        for a in range(s, e, step):
-            tasks.append((i, a, min(e, a + step)))
-        offset += b.size
-    return tasks
-
-
-_worker_batches: Sequence[Batch] = ()
-
-
-def _init_worker(batches: Sequence[Batch]) -> None:
-    import signal
-
-    global _worker_batches
-    _worker_batches = batches
-    # The parent handles Ctrl-C and SIGTERM (sent to the whole process group by a terminal or a
-    # CI runner): it cancels the queued chunks and the workers exit after their current one.
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_IGN)
-
-
-def _evaluate_one(batches: Sequence[Batch], task: tuple[int, int, int], samples: int, post):
-    i, start, stop = task
-    c = evaluate(batches[i], start, stop, samples, i)
-    return c, (post(batches[i], c) if post is not None else None)
-
-
-def _task(task: tuple[int, int, int], samples: int, post):
-    return _evaluate_one(_worker_batches, task, samples, post)
-
-
-def run(batches: Sequence[Batch], samples: int = 360, chunk: tuple[int, int] = (1, 1), workers: int = 1,
-        designs: int | None = None, post: Callable[[Batch, Chunk], Any] | None = None) -> Iterator[tuple[Chunk, Any]]:
-    """Evaluate slice ``chunk`` of the run, yielding ``(Chunk, post(batch, chunk))`` in variant order.
-
-    With ``workers`` > 1 the chunks are evaluated by that many processes
-    (``concurrent.futures.ProcessPoolExecutor``), at most 2 per worker in flight, so memory stays
-    bounded whatever the grid size.  ``post`` (a picklable module-level function, e.g. the row
-    formatting) runs in the worker too, so it is parallel as well.
-    """
-    if designs is None:  # about TASK_SAMPLES crank samples per task, whatever --samples is
-        designs = max(64, min(CHUNK_DESIGNS, TASK_SAMPLES // max(samples, 1)))
-    tasks = plan(batches, chunk, designs)
-    if workers <= 1 or len(tasks) <= 1:
-        for t in tasks:
-            yield _evaluate_one(batches, t, samples, post)
-        return
-    from collections import deque
-    from concurrent.futures import ProcessPoolExecutor
-
-    import scipy.optimize.elementwise  # noqa: F401  imported once here, inherited by forked workers
-
-    pool = ProcessPoolExecutor(max_workers=workers, initializer=_init_worker, initargs=(tuple(batches),))
-    try:
-        pending: deque = deque()
-        it = iter(tasks)
-        for t in it:
-            pending.append(pool.submit(_task, t, samples, post))
-            if len(pending) >= 2 * workers:
-                break
-        while pending:
-            result = pending.popleft().result()
-            nxt = next(it, None)
-            if nxt is not None:
-                pending.append(pool.submit(_task, nxt, samples, post))
-            yield result
-    finally:
-        # Ctrl-C, SIGTERM or an error: drop the queued chunks and let the running ones finish
-        # (tasks are sized to take well under a second at ordinary --samples).  Killing a worker
-        # instead can cut a result message in half and leave the pool's reader thread blocked.
-        pool.shutdown(wait=True, cancel_futures=True)

@@ -1,6 +1,6 @@
 """The flywheel scene: the wheel's inertia carries the linkage through the dead centres.
 
-The quasi-static force (``pumplink.kinematics``) is infinite at both dead centres, and speed
+The quasi-static force (``pumplink.mechanisms.fourbar``) is infinite at both dead centres, and speed
 cancels out of it.  In the pump the upper wheel and the moving rope and water are a flywheel.
 This module answers the question the quasi-static model cannot: *what is the least peak
 force an operator needs to keep the wheel turning at a mean speed with a bounded speed
@@ -70,10 +70,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pumplink.kinematics import _loop, evaluate
-from pumplink.synthesis import Linkage
+from pumplink.constants import DEFAULT_SPEED_FLUCTUATION, LINK_ENERGY_LIMIT, LINK_MASS_PER_METRE  # noqa: F401  (re-exported)
+from pumplink.mechanisms.angles import TWO_PI
+from pumplink.mechanisms.fourbar import FourBar, kinematic_state, loop_closure
+from pumplink.models import quasi_static as _qs
 
-TWO_PI = 2.0 * np.pi
 
 #: Uniform grid points per revolution on which the extrema of U are located before refinement.
 GRID = 256
@@ -90,19 +91,6 @@ RTOL = 1e-13
 #: rounding of U (~eps Fp S) grows past ~1e-6 of the band (tests/test_flywheel.py).
 FORCE_CAP_RATIO = 1e4
 
-#: Coefficient of speed fluctuation the product uses unless the spec says otherwise: 0.2, the
-#: loosest class of the machine-design tables (crushers, hammers, punch presses; e.g.
-#: Shigley's "Mechanical Engineering Design", Table 16-6, and the Machinery's Handbook table of
-#: Cf).  A hand-driven rope pump has no machine to protect from speed ripple; what limits delta
-#: is that the operator must follow the handle.
-DEFAULT_SPEED_FLUCTUATION = 0.2
-
-#: Mass per metre [kg/m] of the steel tube the link-energy estimate assumes: 3/4" medium steel
-#: tube (EN 10255, 26.9 x 2.6 mm), 7850 kg/m^3 * pi/4 (26.9^2 - 21.7^2) mm^2.
-LINK_MASS_PER_METRE = 7850.0 * np.pi / 4.0 * (26.9e-3 ** 2 - 21.7e-3 ** 2)
-#: Link kinetic energy, as a fraction of the energy band, above which the flywheel scene stops
-#: being enough (the links then exchange energy comparable with the band: full dynamics).
-LINK_ENERGY_LIMIT = 0.1
 
 
 def energy_band(inertia, mean_speed, speed_fluctuation):
@@ -117,39 +105,40 @@ def energy_band(inertia, mean_speed, speed_fluctuation):
 
 
 # ----------------------------------------------------------------------------- grip travel G
-def _grip_x(theta, px, py, c, k, r, h, br):
+def _grip_x(theta, px, py, crank, coupler, rocker, handle, branch):
     """Horizontal grip position Px [m] at crank angles theta (vector loop closure)."""
     cs, sn = np.cos(theta), np.sin(theta)
-    lk = Linkage(px, py, c, k, r, h, br)
-    _p1, _p2, _e2, t, q = _loop(lk, cs, sn)
-    dx, dy = px - c * cs, py - c * sn
-    bx = c * cs + t * dx - q * dy  # Eq. (6) as a vector (pumplink.kinematics)
-    return px + (h / r) * (bx - px)
+    lk = FourBar(px, py, crank, coupler, rocker, handle, branch)
+    _p1, _p2, _e2, t, q = loop_closure(lk, cs, sn)
+    dx, dy = px - crank * cs, py - crank * sn
+    bx = crank * cs + t * dx - q * dy  # Eq. (6) as a vector (pumplink.mechanisms.fourbar)
+    return px + (handle / rocker) * (bx - px)
 
 
 #: Within this crank angle [rad] of a dead centre the grip travel is integrated (Gauss-Legendre on
 #: |dPx/dt2|) instead of taken from position differences, which cancel there: the deficit arc
 #: around a dead centre has travel ~ kappa a^2 / 2, far below the rounding of positions for small bands.
-NEAR_DEAD_CENTRE = 0.02
+TRAVEL_INTEGRATION_ARC = 0.02
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(12)
 
 
-def _grip_rate(theta, px, py, c, k, r, h, br):
-    """dPx/dt2 [m/rad] (the kinematics of ``pumplink.kinematics``, no cancellation at a dead centre)."""
+def _grip_rate(theta, px, py, crank, coupler, rocker, handle, branch):
+    """dPx/dt2 [m/rad] (the kinematics of ``pumplink.mechanisms.fourbar``, no cancellation at a dead centre)."""
     cs, sn = np.cos(theta), np.sin(theta)
-    p1, p2, e2, t, q = _loop(Linkage(px, py, c, k, r, h, br), cs, sn)
-    dx, dy = px - c * cs, py - c * sn
-    ry = c * sn + t * dy + q * dx - py
-    w = t * p2 + q * (p1 - c)
-    return (h / r) * ry * c * w / (q * e2)  # -(H/r) Ry omega4/omega2, omega4/omega2 = -c w / (q e^2)
+    p1, p2, e2, t, q = loop_closure(FourBar(px, py, crank, coupler, rocker, handle, branch), cs, sn)
+    dx, dy = px - crank * cs, py - crank * sn
+    ry = crank * sn + t * dy + q * dx - py
+    w = t * p2 + q * (p1 - crank)
+    # -(H/rocker) Ry omega4/omega2, with omega4/omega2 = -crank w / (q e^2)
+    return (handle / rocker) * ry * crank * w / (q * e2)
 
 
-def _travel_parts(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke):
+def _travel_parts(phi, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke):
     """Grip travel G = base + local [m] from the extended dead centre to crank angle dce + phi.
 
     ``base`` is G at the nearest dead centre (0, S or 2S, plus 2S per full turn of the unrolled
     phi); ``local`` the signed travel from it.  Px is monotone between the dead centres, so away
-    from them local comes from positions; within NEAR_DEAD_CENTRE it is integrated from the rate.
+    from them local comes from positions; within TRAVEL_INTEGRATION_ARC it is integrated from the rate.
     Differences of G near one dead centre are then (local - local): no cancellation.
     """
     turns = np.floor(phi / TWO_PI)
@@ -159,12 +148,12 @@ def _travel_parts(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke):
     at_fold = np.abs(to_fold) <= np.minimum(p, TWO_PI - p)
     s = np.where(at_fold, to_fold, np.where(p <= TWO_PI - p, p, p - TWO_PI))  # signed offset from it
     base = np.where(at_fold, stroke, np.where(s >= 0, 0.0, 2.0 * stroke)) + 2.0 * stroke * turns
-    x = _grip_x(dce + p, px, py, c, k, r, h, br)
+    x = _grip_x(dce + p, px, py, crank, coupler, rocker, handle, branch)
     ref = np.where(at_fold, xf, xe)
     local = np.sign(s) * np.abs(x - ref)
-    near = np.abs(s) < NEAR_DEAD_CENTRE
+    near = np.abs(s) < TRAVEL_INTEGRATION_ARC
     if np.any(near):
-        geom = [np.broadcast_to(v, s.shape)[near] for v in (px, py, c, k, r, h, br)]
+        geom = [np.broadcast_to(v, s.shape)[near] for v in (px, py, crank, coupler, rocker, handle, branch)]
         dc = np.broadcast_to(np.where(at_fold, dce + plus, dce), s.shape)[near]
         sn = s[near]
         t = 0.5 * sn[..., None] * (1.0 + _GL_X)  # nodes on (0, s)
@@ -196,7 +185,7 @@ def _nodes(dce, dcf):
 
 @dataclass(frozen=True)
 class _Prepared:
-    geom: tuple  # px, py, c, k, r, h, br as (D,) arrays
+    geom: tuple  # px, py, crank, coupler, rocker, handle, branch as (D,) arrays
     dce: np.ndarray
     plus: np.ndarray
     xe: np.ndarray
@@ -212,7 +201,7 @@ class _Prepared:
         return g + (self.dce[idx], self.plus[idx], self.xe[idx], self.xf[idx], self.stroke[idx])
 
 
-def _prepare(lk: Linkage, dce, dcf, wheel_torque):
+def _prepare(lk: FourBar, dce, dcf, wheel_torque):
     params = np.broadcast_arrays(*(np.asarray(v, float) for v in (
         lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch,
         dce, dcf, wheel_torque)))
@@ -229,14 +218,14 @@ def _prepare(lk: Linkage, dce, dcf, wheel_torque):
     return _Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local), scalar
 
 
-def _u_integral(phi, force, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke, mw):
+def _u_integral(phi, force, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke, mw):
     """U(phi) = Fp G(phi) - Mw phi [J]: the largest energy the operator can have added [Eq. (3)]."""
-    return force * _travel(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke) - mw * phi
+    return force * _travel(phi, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke) - mw * phi
 
 
-def _u_relative(phi, force, ref_base, ref_x, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke, mw):
+def _u_relative(phi, force, ref_base, ref_x, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke, mw):
     """U(phi) - (Fp ref_base - Mw ref_x) [J], computed without the large constant (for the refinement)."""
-    base, local = _travel_parts(phi, px, py, c, k, r, h, br, dce, plus, xe, xf, stroke)
+    base, local = _travel_parts(phi, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke)
     return force * ((base - ref_base) + local) - mw * (phi - ref_x)
 
 
@@ -309,12 +298,7 @@ def _drawdown(x, u, base, local, a, stroke):
     return drop, x2[idx, j] - x2[idx, i], travel
 
 
-def mean_operator_force(wheel_torque, stroke):
-    """F_mean = 2 pi Mw / (2 S) [N]: the constant push/pull doing one cycle's work (NOTES.md §1)."""
-    return np.pi * np.asarray(wheel_torque, float) / stroke  # NOTES.md §1
-
-
-def energy_deficit(lk: Linkage, dead_centre_extended, dead_centre_folded, wheel_torque, peak_force):
+def energy_deficit(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, peak_force):
     """Least energy band W [J] an operator limited to ``peak_force`` needs: D(Fp) of Eq. (3).
 
     The flywheel must be able to give up this much kinetic energy on the arcs where the
@@ -332,7 +316,7 @@ def energy_deficit(lk: Linkage, dead_centre_extended, dead_centre_folded, wheel_
     out = np.full(prep.dce.shape, np.nan)
     with np.errstate(all="ignore"):
         ok = np.isfinite(prep.stroke) & np.isfinite(fp)
-        low = ok & (fp < mean_operator_force(prep.mw, prep.stroke) * (1 - 1e-15))
+        low = ok & (fp < _qs.mean_force(prep.mw, prep.stroke) * (1 - 1e-15))
         out[low] = np.inf
         rows = np.nonzero(ok & ~low)[0]
         if rows.size:
@@ -341,7 +325,7 @@ def energy_deficit(lk: Linkage, dead_centre_extended, dead_centre_folded, wheel_
     return float(out[0]) if scalar else out
 
 
-def required_peak_force(lk: Linkage, dead_centre_extended, dead_centre_folded, wheel_torque, energy_band):
+def least_peak_force(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, energy_band):
     """Least peak operator force [N] for a periodic motion inside the energy band, Eq. (4).
 
     Exact to solver tolerance (Dinkelbach's iteration on Eq. (3), every extremum refined).
@@ -366,7 +350,7 @@ def required_peak_force(lk: Linkage, dead_centre_extended, dead_centre_folded, w
     out = np.full(n, np.nan)
     with np.errstate(all="ignore"):
         ok = np.isfinite(prep.stroke) & (prep.stroke > 0) & ~np.isnan(band)
-        f_mean = mean_operator_force(prep.mw, prep.stroke)
+        f_mean = _qs.mean_force(prep.mw, prep.stroke)
         out[ok & (band <= 0)] = np.inf
         out[ok & (band == np.inf)] = f_mean[ok & (band == np.inf)]
         finite = ok & (band > 0) & np.isfinite(band)
@@ -398,7 +382,7 @@ def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool, cap):
     return lam
 
 
-def min_passing_speed(lk: Linkage, dead_centre_extended, dead_centre_folded, wheel_torque, force_limit,
+def min_passing_speed(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, force_limit,
                       inertia, speed_fluctuation):
     """Least mean wheel speed [rad/s] at which ``force_limit`` suffices: w = sqrt(D(F_limit) / (J delta)).
 
@@ -419,7 +403,7 @@ class Scene:
     ----------
     inertia : J [kg m^2];  mean_speed : w_bar [rad/s];  speed_fluctuation : delta_allow [-].
     energy_band : W = J w_bar^2 delta_allow [J].
-    peak_force : Fp*, least peak operator force [N].
+    least_peak_force : Fp*, least peak operator force [N].
     mean_force : F_mean [N].
     fluctuation : delta of the reported motion [-] (= delta_allow unless Fp* = F_mean).
     max_speed, min_speed : w_max, w_min of the reported motion [rad/s].
@@ -434,14 +418,14 @@ class Scene:
     mean_speed: float
     speed_fluctuation: float
     energy_band: float
-    peak_force: float
+    least_peak_force: float
     mean_force: float
     fluctuation: float
     max_speed: float
     min_speed: float
     ceiling: np.ndarray
     top_angle: float
-    linkage: Linkage
+    linkage: FourBar
     wheel_torque: float
     dead_centre_extended: float
     dead_centre_folded: float
@@ -457,8 +441,9 @@ def _local_maxima(x, u, a0):
     return np.nonzero((u >= u_prev) & (u > u_next))[0]
 
 
-def scene(lk: Linkage, dead_centre_extended: float, dead_centre_folded: float, wheel_torque: float,
-          inertia: float, mean_speed: float, speed_fluctuation: float) -> Scene:
+def scene(lk: FourBar, dead_centre_extended: float, dead_centre_folded: float, wheel_torque: float,
+          inertia: float, mean_speed: float, speed_fluctuation: float,
+          solved: float | None = None) -> Scene:
     """Solve the flywheel scene of one design: Fp*, the operator's force profile and w(t).
 
     The reported motion is the "as full as possible" one of the module docstring at Fp*: the
@@ -468,9 +453,11 @@ def scene(lk: Linkage, dead_centre_extended: float, dead_centre_folded: float, w
     from scipy.optimize.elementwise import find_root
 
     band = float(energy_band(inertia, mean_speed, speed_fluctuation))
-    fp = required_peak_force(lk, dead_centre_extended, dead_centre_folded, wheel_torque, band)
+    if solved is None:  # Fp* of this scene, unless the caller has it already
+        solved = least_peak_force(lk, dead_centre_extended, dead_centre_folded, wheel_torque, band)
+    fp = solved
     prep, _ = _prepare(lk, dead_centre_extended, dead_centre_folded, wheel_torque)
-    f_mean = float(mean_operator_force(wheel_torque, prep.stroke[0]))
+    f_mean = float(_qs.mean_force(wheel_torque, prep.stroke[0]))
     nan = float("nan")
     if not np.isfinite(fp):
         return Scene(inertia, mean_speed, speed_fluctuation, band, fp, f_mean, nan, nan, nan,
@@ -527,8 +514,8 @@ def operator_force(sc: Scene, crank_angle):
     dead centre (grip at rest) the push reverses and the force is reported as 0.
     """
     th = np.asarray(crank_angle, float)
-    st = evaluate(sc.linkage, th, sc.wheel_torque)
-    push = sc.peak_force * np.sign(st.handle_rate)
+    st = kinematic_state(sc.linkage, th, sc.wheel_torque)
+    push = sc.least_peak_force * np.sign(st.handle_rate)
     return np.where(on_ceiling(sc, th) & ~st.singular, st.force, push)
 
 
@@ -538,7 +525,7 @@ def wheel_speed(sc: Scene, crank_angle):
     prep, _ = _prepare(sc.linkage, sc.dead_centre_extended, sc.dead_centre_folded, sc.wheel_torque)
     xm, um, a0 = sc.peaks_phi, sc.peaks_u, sc.drift
     phi = np.mod(th - sc.dead_centre_extended, TWO_PI)
-    uphi = _u_integral(phi, sc.peak_force, *prep.args(slice(0, 1)), prep.mw[:1])
+    uphi = _u_integral(phi, sc.least_peak_force, *prep.args(slice(0, 1)), prep.mw[:1])
     # running maximum of U over (phi - 2 pi, phi]: U(phi) itself or a local maximum in the window
     cand_x = np.concatenate([xm, xm - TWO_PI])
     cand_u = np.concatenate([um, um - a0])
@@ -551,7 +538,7 @@ def wheel_speed(sc: Scene, crank_angle):
 
 # ----------------------------------------------------------------------------- cross-check
 @dataclass(frozen=True)
-class Simulation:
+class TimeIntegration:
     """Equation of motion integrated in time under the scene's force profile (scipy ``solve_ivp``).
 
     Attributes
@@ -576,7 +563,7 @@ class Simulation:
     fluctuation: float
 
 
-def simulate(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> Simulation:
+def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> TimeIntegration:
     """Integrate J dw/dt = (F(t) g(t) - Mw) (Eq. (1) in time) from the reported top speed.
 
     The force is the reported profile F(t) as a function of the crank angle alone (open loop):
@@ -588,7 +575,7 @@ def simulate(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> Simulation:
 
     def rhs(_t, y):
         th = y[0]
-        g = evaluate(sc.linkage, th, 1.0).handle_rate
+        g = kinematic_state(sc.linkage, th, 1.0).handle_rate
         return [y[1], (float(operator_force(sc, th)) * float(g) - mw) / j]  # Eq. (1): J w dw/dt = (F g - Mw) w
 
     def turn(_t, y):
@@ -608,12 +595,12 @@ def simulate(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> Simulation:
     w = sol.sol(np.linspace(last0, last1, 40001))[1]
     wmax, wmin = float(w.max()), float(w.min())
     mean = 0.5 * (wmax + wmin)
-    return Simulation(int(times.size), speeds, float(np.max(np.abs(speeds - speeds[0])) / speeds[0]), wmax, wmin,
+    return TimeIntegration(int(times.size), speeds, float(np.max(np.abs(speeds - speeds[0])) / speeds[0]), wmax, wmin,
                       mean, TWO_PI / (last1 - last0), (wmax - wmin) / mean)
 
 
 # ----------------------------------------------------------------------------- neglected effects
-def link_energy(lk: Linkage, crank_angle, mean_speed, mass_per_length=LINK_MASS_PER_METRE):
+def link_energy(lk: FourBar, crank_angle, mean_speed, mass_per_length=LINK_MASS_PER_METRE):
     """Kinetic energy [J] of the coupler and the handle at crank angles, turning at ``mean_speed``.
 
     Both are taken as uniform bars of ``mass_per_length`` [kg/m] (the handle from the rocker pivot
@@ -621,7 +608,7 @@ def link_energy(lk: Linkage, crank_angle, mean_speed, mass_per_length=LINK_MASS_
     T = m (vA^2 + vA.vB + vB^2) / 6.  The crank is part of the wheel.
     """
     th = np.asarray(crank_angle, float)
-    st = evaluate(lk, th, 1.0)
+    st = kinematic_state(lk, th, 1.0)
     w = mean_speed
     c = lk.crank
     vax, vay = -w * c * np.sin(th), w * c * np.cos(th)

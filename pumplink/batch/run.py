@@ -1,0 +1,316 @@
+"""Batch evaluation: variants in chunks, vectorised over designs, through the one verdict.
+
+Chunks are planned in variant order and evaluated in this process or on any
+``concurrent.futures.Executor`` of worker processes; the rows come back in order.  The numbers
+per variant are bit-for-bit those of :func:`pumplink.analysis.force_analysis` (``pumplink force
+--summary``) on the same variant: the same kernels, vectorised over designs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable, Iterator, Sequence
+
+import numpy as np
+
+from pumplink import spec
+from pumplink.batch.files import Batch, axis_indices
+from pumplink.mechanisms.fourbar import FourBar, grip_stroke, infeasibility_reason, synthesize
+from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC, Conditions
+from pumplink.models import flywheel as _fw
+from pumplink.models import quasi_static as _qs
+from pumplink.verdict import assess
+
+#: The ``model`` column's words for the two models a batch variant can be decided by.
+FLYWHEEL_LABEL = MODELS[FLYWHEEL].label
+QUASI_STATIC_LABEL = MODELS[QUASI_STATIC].label
+#: Most designs per chunk (rows handed to the writer at once, one task for a worker process).
+CHUNK_DESIGNS = 8192
+
+
+#: Crank samples per chunk: fewer designs per chunk at large --samples, so a task stays short
+#: (an interrupted run waits for the running tasks) and its rows arrive steadily.
+TASK_SAMPLES = 3_000_000
+
+
+#: Designs swept together inside a chunk for the sampled peak: small enough that the kernel's
+#: temporaries (designs x 360 samples) stay in the CPU cache.
+SUB_DESIGNS = 128
+
+
+#: Most designs per chunk, and per call of the flywheel kernel, for variants that give inertia:
+#: the least peak force costs ~0.5 ms per design (a chunk ~0.5 s) and its temporaries are
+#: (designs x ~430 nodes) arrays.
+FLYWHEEL_DESIGNS = 1024
+
+
+@dataclass(frozen=True)
+class Chunk:
+    """Results for variants ``start..stop-1`` of one batch (arrays over those variants, SI units).
+
+    ``reason`` holds the infeasibility sentence (None when feasible); the checks follow
+    :func:`pumplink.verdict.assess`, as for ``pumplink force``: ``mean_ok`` = mean <= limit,
+    ``peak_ok`` = verdict peak <= limit (False when it is NaN), ``passed`` = feasible and both.
+    The verdict peak (:attr:`verdict_peak_force`) is ``least_peak_force`` where ``flywheel`` (the
+    variant gives inertia), else ``dead_band_peak_force``.  The flywheel columns are NaN for
+    quasi-static variants, and ``least_peak_force`` / ``min_passing_speed`` also for infeasible ones.
+    """
+
+    batch: int  # index of the batch in the run
+    start: int
+    stop: int
+    values: np.ndarray  # (n, axes) varied values
+    frame_length: np.ndarray
+    crank_length: np.ndarray
+    coupler_length: np.ndarray
+    feasible: np.ndarray
+    reason: list
+    time_ratio: np.ndarray
+    transmission_min: np.ndarray  # [rad]
+    transmission_max: np.ndarray  # [rad]
+    mean_force: np.ndarray  # [N]
+    dead_band_peak_force: np.ndarray  # exact windowed peak [N]
+    sampled_peak: np.ndarray  # peak over the uniform --samples sweep outside the dead bands [N]
+    power: np.ndarray  # [W]
+    force_limit: np.ndarray  # [N]
+    mean_ok: np.ndarray
+    peak_ok: np.ndarray
+    passed: np.ndarray
+    flywheel: np.ndarray  # True: the variant gives inertia, the flywheel model decides
+    inertia: np.ndarray  # J [kg m^2]
+    speed_fluctuation: np.ndarray  # delta_allow [-]
+    least_peak_force: np.ndarray  # least peak force with the flywheel [N] (inf: no energy band)
+    min_passing_speed: np.ndarray  # [rad/s] (inf: no speed passes)
+
+    @property
+    def verdict_peak_force(self) -> np.ndarray:
+        """The peak force that decides the verdict [N]: flywheel or windowed dead-band peak."""
+        return np.where(self.flywheel, self.least_peak_force, self.dead_band_peak_force)
+
+    def __len__(self) -> int:
+        return self.stop - self.start
+
+    def failed(self, fail_on: Sequence[str]) -> np.ndarray:
+        """True where a variant fails one of the checks selected by ``--fail-on``."""
+        out = np.zeros(len(self), bool)
+        if "infeasible" in fail_on:
+            out |= ~self.feasible
+        if "mean" in fail_on:
+            out |= self.feasible & ~self.mean_ok
+        if "peak" in fail_on:
+            out |= self.feasible & ~self.peak_ok
+        return out
+
+
+def _field(batch: Batch, cols: dict[str, np.ndarray], key: str, n: int):
+    if key in cols:
+        return cols[key]
+    section, name = key.split(".")
+    return np.full(n, getattr(getattr(batch.spec, section), name), dtype=float)
+
+
+def _given(batch: Batch, cols: dict[str, np.ndarray], key: str, n: int):
+    """Per-variant values of a spec key, or None where the variants do not set it."""
+    return _field(batch, cols, key, n) if batch.given(key) else None
+
+
+def spec_physics(batch: Batch, cols: dict[str, np.ndarray], n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Rope force Fw [N] and inertia J [kg m^2] per variant, by the spec's own functions
+    (:func:`pumplink.spec.rope_force`, :func:`~pumplink.spec.inertia`); J is NaN where the
+    variants give no inertia (the quasi-static model decides them)."""
+
+    def get(key):
+        return _given(batch, cols, key, n)
+
+    fw = spec.rope_force(get("load.rope_force"), get("load.head"), get("load.pipe_diameter"), get("load.efficiency"))
+    fw = np.broadcast_to(fw, (n,))
+    if not batch.flywheel:
+        return fw, np.full(n, np.nan)
+    mass = spec.moving_mass(get("load.moving_mass"), get("load.head"), get("load.pipe_diameter"))
+    j = spec.inertia(_field(batch, cols, "wheel.radius", n), get("wheel.inertia"), get("wheel.mass"), mass)
+    return fw, np.broadcast_to(j, (n,))
+
+
+def _rows(cond: Conditions, idx) -> Conditions:
+    """The conditions of the designs ``idx``."""
+    return Conditions(*(np.asarray(v)[idx] for v in (cond.speed, cond.dead_band, cond.inertia,
+                                                      cond.speed_fluctuation)))
+
+
+def _take(lk: FourBar, idx) -> FourBar:
+    return FourBar(*(np.asarray(getattr(lk, f))[idx] for f in
+                     ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
+
+
+def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batch_index: int = 0) -> Chunk:
+    """Synthesis, force checks and verdict for variants ``start..stop-1`` of a batch.
+
+    Vectorised over the variants; the numbers equal :func:`pumplink.analysis.force_analysis`
+    (``keep_samples=False``) on each variant's spec exactly, the flywheel scene included where
+    the variant gives inertia (the verdict then uses its least peak force).
+
+    Parameters
+    ----------
+    samples : uniform crank samples per revolution for the sampled-peak column (0: skip it).
+        The peak force itself is exact whatever the sampling
+        (:func:`pumplink.models.quasi_static.dead_band_peak_force`).
+    """
+    n = stop - start
+    if batch.axes:
+        ij = axis_indices(batch, start, stop)
+        values = np.stack([a.values[ij[:, j]] for j, a in enumerate(batch.axes)], axis=1)
+    else:
+        values = np.empty((n, 0))
+    cols = {a.key: values[:, j] for j, a in enumerate(batch.axes)}
+
+    def get(key):
+        return _field(batch, cols, key, n)
+
+    swing = np.radians(get("linkage.swing"))
+    L1, D1, b = get("linkage.L1"), get("linkage.D1"), get("linkage.b")
+    handle = get("linkage.handle")
+    syn = synthesize(L1, D1, b, get("linkage.rocker"), swing, handle)
+    feasible = np.asarray(syn.feasible, bool)
+    fw, j = spec_physics(batch, cols, n)
+    mw = fw * get("wheel.radius")  # Mw = Fw rw, Eq. (3) of the pump paper
+    speed = np.radians(get("operator.speed"))
+    band = np.radians(get("operator.dead_band"))
+    limit = get("operator.force_limit")
+    power = mw * speed
+
+    mean = np.full(n, np.nan)
+    peak = np.full(n, np.nan)
+    sampled = np.full(n, np.nan)
+    lk = syn.linkage
+    cond = Conditions(speed, band, j, np.where(np.isnan(j), np.nan, get("operator.speed_fluctuation")))
+    ok = np.nonzero(feasible)[0]
+    if ok.size:
+        sub = _take(lk, ok)
+        dce, dcf = syn.dead_centre_extended[ok], syn.dead_centre_folded[ok]
+        mean[ok] = _qs.mean_force(mw[ok], grip_stroke(handle[ok], syn.swing[ok]))
+        # one call per chunk: the refinement (scipy find_minimum) costs ~10 ms per call
+        peak[ok] = MODELS[QUASI_STATIC].peak_force(sub, dce, dcf, mw[ok], _rows(cond, ok))
+        for s0 in range(0, ok.size, SUB_DESIGNS):  # cache-sized blocks of designs
+            s = slice(s0, s0 + SUB_DESIGNS)
+            part = _take(sub, s)
+            sampled[ok[s]] = _qs.sampled_peak(part, samples, mw[ok][s], dce[s], dcf[s], band[ok][s])
+    # The flywheel model, only for the variants that give inertia.
+    fly = ~np.isnan(j)
+    delta = cond.speed_fluctuation
+    required = np.full(n, np.nan)
+    passing = np.full(n, np.nan)
+    rows = np.nonzero(fly & feasible)[0]
+    for s0 in range(0, rows.size, FLYWHEEL_DESIGNS):  # bounded temporaries
+        r = rows[s0:s0 + FLYWHEEL_DESIGNS]
+        part = _take(lk, r)
+        dce, dcf = syn.dead_centre_extended[r], syn.dead_centre_folded[r]
+        required[r] = MODELS[FLYWHEEL].peak_force(part, dce, dcf, mw[r], _rows(cond, r))
+        passing[r] = _fw.min_passing_speed(part, dce, dcf, mw[r], limit[r], j[r], delta[r])
+    verdict = assess(feasible, mean, np.where(fly, required, peak), limit)
+    mean_ok, peak_ok = verdict["mean_force"].passed, verdict["peak_force"].passed
+
+    reasons: list = [None] * n
+    bad = np.nonzero(~feasible)[0]
+    if bad.size:
+        cache: dict = {}
+        codes = np.asarray(syn.reason)
+        for i in bad.tolist():
+            k = (int(codes[i]), float(L1[i]), float(D1[i]), float(b[i]), float(swing[i]))
+            if k not in cache:
+                cache[k] = infeasibility_reason(*k)
+            reasons[i] = cache[k]
+    return Chunk(batch_index, start, stop, values, np.asarray(syn.frame_length), np.asarray(syn.crank_length),
+                 np.asarray(syn.coupler_length), feasible, reasons, np.asarray(syn.time_ratio),
+                 np.asarray(syn.transmission_min), np.asarray(syn.transmission_max), mean, peak, sampled,
+                 power, limit, mean_ok, peak_ok, verdict.passed, flywheel=fly, inertia=j,
+                 speed_fluctuation=delta, least_peak_force=required, min_passing_speed=passing)
+
+
+# ----------------------------------------------------------------------------- scheduling
+# ----------------------------------------------------------------------------- scheduling
+def plan(batches: Sequence[Batch], chunk: tuple[int, int] = (1, 1),
+         designs: int = CHUNK_DESIGNS) -> list[tuple[int, int, int]]:
+    """Tasks ``(batch, start, stop)`` for slice K of N of the run, in order.
+
+    The run is all variants of all batches, concatenated; slice K (1-based) of N is the
+    contiguous range ``[(K-1) T // N, K T // N)`` of that sequence, so the N slices partition it
+    and every variant keeps its name.  A task has at most ``designs`` variants, and at most
+    :data:`FLYWHEEL_DESIGNS` for a batch that gives inertia (its variants cost far more).
+    """
+    k, n = chunk
+    total = sum(b.size for b in batches)
+    lo, hi = (k - 1) * total // n, k * total // n
+    tasks, offset = [], 0
+    for i, b in enumerate(batches):
+        s, e = max(lo, offset) - offset, min(hi, offset + b.size) - offset
+        step = min(designs, FLYWHEEL_DESIGNS) if b.flywheel else designs
+        for a in range(s, e, step):
+            tasks.append((i, a, min(e, a + step)))
+        offset += b.size
+    return tasks
+
+
+_worker_batches: Sequence[Batch] = ()
+
+
+def _init_worker(batches: Sequence[Batch]) -> None:
+    import signal
+
+    global _worker_batches
+    _worker_batches = batches
+    # The parent handles Ctrl-C and SIGTERM (sent to the whole process group by a terminal or a
+    # CI runner): it cancels the queued chunks and the workers exit after their current one.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+
+
+def _evaluate_one(batches: Sequence[Batch], task: tuple[int, int, int], samples: int, post):
+    i, start, stop = task
+    c = evaluate_chunk(batches[i], start, stop, samples, i)
+    return c, (post(batches[i], c) if post is not None else None)
+
+
+def _task(task: tuple[int, int, int], samples: int, post):
+    return _evaluate_one(_worker_batches, task, samples, post)
+
+
+def run(batches: Sequence[Batch], samples: int = 360, chunk: tuple[int, int] = (1, 1), workers: int = 1,
+        designs: int | None = None, post: Callable[[Batch, Chunk], Any] | None = None) -> Iterator[tuple[Chunk, Any]]:
+    """Evaluate slice ``chunk`` of the run, yielding ``(Chunk, post(batch, chunk))`` in variant order.
+
+    With ``workers`` > 1 the chunks are evaluated by that many processes
+    (``concurrent.futures.ProcessPoolExecutor``), at most 2 per worker in flight, so memory stays
+    bounded whatever the grid size.  ``post`` (a picklable module-level function, e.g. the row
+    formatting) runs in the worker too, so it is parallel as well.
+    """
+    if designs is None:  # about TASK_SAMPLES crank samples per task, whatever --samples is
+        designs = max(64, min(CHUNK_DESIGNS, TASK_SAMPLES // max(samples, 1)))
+    tasks = plan(batches, chunk, designs)
+    if workers <= 1 or len(tasks) <= 1:
+        for t in tasks:
+            yield _evaluate_one(batches, t, samples, post)
+        return
+    from collections import deque
+    from concurrent.futures import ProcessPoolExecutor
+
+    import scipy.optimize.elementwise  # noqa: F401  imported once here, inherited by forked workers
+
+    pool = ProcessPoolExecutor(max_workers=workers, initializer=_init_worker, initargs=(tuple(batches),))
+    try:
+        pending: deque = deque()
+        it = iter(tasks)
+        for t in it:
+            pending.append(pool.submit(_task, t, samples, post))
+            if len(pending) >= 2 * workers:
+                break
+        while pending:
+            result = pending.popleft().result()
+            nxt = next(it, None)
+            if nxt is not None:
+                pending.append(pool.submit(_task, nxt, samples, post))
+            yield result
+    finally:
+        # Ctrl-C, SIGTERM or an error: drop the queued chunks and let the running ones finish
+        # (tasks are sized to take well under a second at ordinary --samples).  Killing a worker
+        # instead can cut a result message in half and leave the pool's reader thread blocked.
+        pool.shutdown(wait=True, cancel_futures=True)

@@ -1,0 +1,99 @@
+"""`pumplink batch`: many variants at once, for CI and design-space runs."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+
+from pumplink.cli.common import Format, app
+from pumplink.errors import SpecError
+
+
+@app.command()
+def batch(
+    inputs: Annotated[list[Path], typer.Argument(help="Batch files, spec files or folders of them (*.toml).",
+                                                 show_default=False)],
+    samples: Annotated[int, typer.Option(help="Uniform crank samples per variant for the sampled-peak column "
+                                              "(0: skip it); peak_force_N is exact whatever this is.",
+                                         min=0, max=1_000_000)] = 360,
+    fmt: Annotated[Format, typer.Option("--format", "-f", help="Rows as csv or json; table: the summary "
+                                                               "(and the rows, or the failures of a large run).")] = Format.table,
+    out: Annotated[Optional[Path], typer.Option("--out", "-o", help="Write the rows to this file (atomically) "
+                                                                    "instead of stdout.", show_default=False)] = None,
+    junit: Annotated[Optional[Path], typer.Option("--junit", help="Also write JUnit XML, one testcase per variant "
+                                                                  "(atomically).", show_default=False)] = None,
+    workers: Annotated[int, typer.Option(help="Worker processes (0: one per CPU).", min=0, max=256)] = 1,
+    fail_on: Annotated[str, typer.Option("--fail-on", help="Checks that make the run fail (exit 1): any of "
+                                                           "mean,peak,infeasible; or all, or none. peak is the "
+                                                           "verdict's peak: the least peak force with the flywheel "
+                                                           "where the variant gives inertia (wheel.mass, "
+                                                           "wheel.inertia or load.moving_mass), else the peak "
+                                                           "outside the dead bands.")] = "mean,peak,infeasible",
+    chunk: Annotated[Optional[str], typer.Option("--chunk", help="Evaluate only slice K of N (1-based) of all "
+                                                                 "variants, e.g. 3/8; names stay those of the full run.",
+                                                 show_default=False)] = None,
+) -> None:
+    """Evaluate many variants at once: a base spec plus axes to vary (Cartesian product).
+
+    A batch file is TOML: base = "pump.toml" (or the spec inline as \\[base]) and a \\[vary] table of
+    "section.key" = \\[values] or { start, stop, num }.  Plain spec files count as one variant;
+    a folder means its *.toml files (not sub-folders).
+
+    One row per variant (lengths, feasibility, forces, verdict) and a summary (counts, lowest
+    peak force).  The verdict is that of pumplink force: the flywheel model where the variant
+    gives inertia, else quasi-static with the dead band (the model column says which).  Exit 0 if
+    no variant fails a --fail-on check, 1 if one does, 2 for bad input.
+
+    Example: [bold]pumplink batch configs/ --junit report.xml[/]
+    """
+    import functools
+    import os
+    import signal
+    import time
+    from concurrent.futures.process import BrokenProcessPool
+
+    from pumplink import batch as _batch
+    from pumplink.output import batchfiles as rb
+    from pumplink.output.formats import progress
+
+    t0 = time.perf_counter()
+    sel = _batch.parse_fail_on(fail_on)
+    k_n = _batch.parse_chunk(chunk)
+    if fmt.value == "table" and out is not None:
+        raise SpecError("--out writes rows: give --format csv or --format json with it")
+    for opt, path in (("--out", out), ("--junit", junit)):  # before any work: fail fast, exit 2
+        if path is not None and (path.is_dir() or not path.parent.is_dir()):
+            raise SpecError(f"{opt} {path}: " + ("is a folder; give a file name" if path.is_dir() else
+                                                 f"folder {path.parent} does not exist"))
+    batches = _batch.load_inputs(inputs)
+    tasks = _batch.plan(batches, k_n)
+    total = sum(e - s for _, s, e in tasks)
+    n_workers = workers or os.cpu_count() or 1
+
+    def _terminate(signum, frame):  # SIGTERM: unwind like Ctrl-C so no temp file is left behind
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGTERM, _terminate)
+    try:
+        with progress(total, "batch") as advance:
+            post = functools.partial(rb.render_chunk, fmt=fmt.value, vkeys=rb.varied_keys(batches), fail_on=sel,
+                                     junit=junit is not None)  # runs in the workers
+            results = _batch.run(batches, samples, k_n, n_workers, post=post)
+            summary, rows = rb.write_stream(batches, results, total, fmt.value, out, junit, sel, samples, k_n, advance)
+    except KeyboardInterrupt:
+        sys.stderr.write("interrupted; no output file written\n")
+        raise typer.Exit(130) from None
+    except BrokenProcessPool:  # a worker was killed (SIGKILL, out of memory)
+        sys.stderr.write("interrupted: a worker process was killed (out of memory?); no output file written\n")
+        raise typer.Exit(130) from None
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+    if fmt.value == "table":
+        rb.render_table(summary, rows)
+    else:
+        wrote = [p for p in (out, junit) if p is not None]
+        sys.stderr.write(rb.summary_line(summary, time.perf_counter() - t0, wrote) + "\n")
+    raise typer.Exit(1 if summary["failed_selected"] else 0)

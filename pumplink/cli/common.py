@@ -1,0 +1,59 @@
+"""The Typer app, the options every command shares, and spec loading for the commands."""
+
+from __future__ import annotations
+
+from enum import Enum
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+
+app = typer.Typer(
+    name="pumplink",
+    help="Design the four-bar linkage that lets a standing operator drive a rope pump by hand.\n\n"
+         "Example: [bold]pumplink init pump.toml && pumplink force pump.toml --speed 360[/]",
+    no_args_is_help=True,
+    rich_markup_mode="rich",
+    pretty_exceptions_enable=False,
+    context_settings={"help_option_names": ["-h", "--help"]},
+    add_completion=False,
+)
+
+
+#: Options of the top-level callback that the entry point needs (``--debug``).
+settings = {"debug": False}
+
+
+class Format(str, Enum):
+    table = "table"
+    json = "json"
+    csv = "csv"
+
+
+FormatOpt = Annotated[Format, typer.Option("--format", "-f", help="Output: table (Rich), json or csv.")]
+
+
+SAMPLE_LIMIT_KEPT = 1_000_000
+
+
+def _version(value: bool) -> None:
+    if value:
+        from importlib.metadata import version
+
+        typer.echo(f"pumplink {version('pumplink')}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _main(
+    debug: Annotated[bool, typer.Option("--debug", help="Show the full traceback on errors.")] = False,
+    version: Annotated[Optional[bool], typer.Option("--version", callback=_version, is_eager=True,
+                                                    help="Print the version and exit.")] = None,
+) -> None:
+    settings["debug"] = debug
+
+
+def load_specs(paths: list[Path]):
+    from pumplink.spec import load_spec
+
+    return [load_spec(p) for p in paths]

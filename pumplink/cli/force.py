@@ -1,0 +1,114 @@
+"""`pumplink force`: the operator force over the crank cycle, the checks and the verdict."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+
+from pumplink.cli.common import SAMPLE_LIMIT_KEPT, Format, FormatOpt, app
+from pumplink.errors import SpecError
+
+
+@app.command()
+def force(
+    spec: Annotated[Optional[Path], typer.Argument(help="TOML pump spec; omit for the built-in default design.",
+                                                   show_default=False)] = None,
+    speed: Annotated[Optional[float], typer.Option(help="Wheel speed \\[deg/s] (default: the spec's operator.speed).",
+                                                   min=1e-9, max=7200)] = None,
+    samples: Annotated[int, typer.Option(help="Uniform crank samples over one revolution.", min=1, max=1_000_000_000)] = 360,
+    at: Annotated[Optional[list[float]], typer.Option("--at", help="Evaluate exactly this crank angle \\[deg] (repeatable).",
+                                                      show_default=False)] = None,
+    summary: Annotated[bool, typer.Option("--summary", help="Only the checks and verdict (no per-sample rows).")] = False,
+    plot: Annotated[Optional[Path], typer.Option(help="Also write the force curve to this .png/.svg/.pdf "
+                                                      "(needs the plot extra: pip install 'pumplink\\[plot]').",
+                                                 show_default=False)] = None,
+    explain: Annotated[bool, typer.Option("--explain", help="Also report which effects the model includes, their "
+                                                            "size at this speed, and why the model is enough.")] = False,
+    verify: Annotated[bool, typer.Option("--verify", help="Flywheel model: integrate the equation of motion "
+                                                          "(scipy solve_ivp) under the reported force profile and "
+                                                          "check it is periodic with the mean speed and δ.")] = False,
+    fmt: FormatOpt = Format.table,
+) -> None:
+    """Operator force over the crank cycle, the checks and the 100 N verdict.
+
+    Two models decide the verdict.  With the wheel's inertia in the spec
+    (wheel.mass or wheel.inertia; the rope and water are added) the
+    [bold]flywheel[/] model finds the least peak force that keeps the wheel at
+    the mean --speed with a speed fluctuation within
+    operator.speed_fluctuation: the speed changes the answer.  Without it the
+    force is [bold]quasi-static[/] (Eq. 3 of the pump paper), infinite at the
+    two dead centres, so the peak is taken outside ±operator.dead_band of
+    them, exactly, whatever --samples. Exit 0 if the design passes, 1 if it
+    fails, is infeasible or --verify disagrees.
+
+    Example: [bold]pumplink force pump.toml --speed 360 --at 90 --at 270 --format json[/]
+
+    Example: [bold]pumplink force examples/well-12m-flywheel.toml --speed 540 --explain --verify[/]
+    """
+    import math
+
+    from pumplink.analysis import force_analysis
+    from pumplink.output.tables import render_force
+    from pumplink.spec import default_spec, load_spec
+
+    if at and any(not math.isfinite(a) for a in at):
+        raise SpecError(f"--at {next(a for a in at if not math.isfinite(a))!r} is not a finite angle; give degrees such as --at 90")
+    if not summary and not at and samples > SAMPLE_LIMIT_KEPT:
+        raise SpecError(f"--samples {samples} keeps too many rows (at most {SAMPLE_LIMIT_KEPT:,}); add --summary to stream them")
+    if plot is not None:
+        from pumplink.output.charts import check_path, pyplot
+
+        check_path(plot)
+        pyplot()  # fail early (exit 2) when matplotlib is missing
+    from pumplink.output.formats import progress
+
+    s = load_spec(spec) if spec is not None else default_spec()
+    if verify and s.inertia is None:
+        raise SpecError(f"--verify checks the flywheel model, but {s.name} gives no inertia; add wheel.mass [kg] "
+                        "or wheel.inertia [kg m^2] to the spec")
+    with progress(1000, "force sweep") as advance:  # drawn on a terminal for sweeps over a second
+        done = [0]
+
+        def tick(fraction: float) -> None:
+            k = int(fraction * 1000)
+            advance(k - done[0])
+            done[0] = k
+
+        result = force_analysis(s, speed, samples, at_deg=at or None, keep_samples=not summary, progress=tick)
+    extra, agrees = {}, True
+    if explain and result.design.feasible:
+        from pumplink.analysis import explain as explain_model
+        from pumplink.output.tables import explain_rows
+
+        effects, why = explain_model(result)
+        extra["explain"] = {"model": result.model, "effects": explain_rows(effects), "why": why}
+    scene_ok = result.scene is not None and math.isfinite(result.scene.least_peak_force)
+    if verify and scene_ok:
+        from pumplink.analysis import verify as verify_motion
+        from pumplink.output.tables import verify_row
+
+        check = verify_motion(result)
+        extra["verify"] = verify_row(check)
+        agrees = check.agrees
+    elif verify and result.design.feasible:  # an infinite least peak force: no periodic motion exists
+        sys.stderr.write(f"verify: nothing to integrate; no finite peak force keeps the wheel turning "
+                         f"(energy band J·ω̄²·δ = {result.energy_band:.3g} J)\n")
+    render_force(result, fmt.value, summary=summary, extra=extra)
+    if fmt.value != "json":  # the reports follow the table; with CSV on stdout they go to stderr
+        from pumplink.output.tables import render_explain, render_verify
+
+        side = sys.stdout if fmt.value == "table" else sys.stderr
+        if "explain" in extra:
+            render_explain(effects, why, out=side)
+        if "verify" in extra:
+            render_verify(extra["verify"], out=side)
+    if plot is not None and result.design.feasible:
+        from pumplink.analysis import force_curve as curve
+        from pumplink.output.charts import force_curve
+
+        force_curve(result, curve(result), plot)
+        sys.stderr.write(f"wrote {plot}\n")
+    raise typer.Exit(0 if result.passed and agrees else 1)

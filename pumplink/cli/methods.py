@@ -1,0 +1,114 @@
+"""`pumplink methods`: speed against accuracy of the force methods."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+
+from pumplink.cli.common import Format, FormatOpt, app
+from pumplink.errors import SpecError
+
+
+# ----------------------------------------------------------------------------- methods (issue #3)
+def _seconds_per_position(fn, args, n: int, repeats: int, budget: float = 1.0) -> float:
+    """Median wall time of ``fn(*args)`` per position [s] over ``repeats`` runs (fewer if slow)."""
+    import statistics
+    import time
+
+    times = []
+    start = time.perf_counter()
+    for _ in range(max(1, repeats)):
+        t0 = time.perf_counter()
+        fn(*args)
+        times.append(time.perf_counter() - t0)
+        if time.perf_counter() - start > budget and len(times) >= 1:
+            break
+    return statistics.median(times) / n
+
+
+@app.command()
+def methods(
+    spec: Annotated[Optional[Path], typer.Argument(help="TOML pump spec; omit for the built-in default design.",
+                                                   show_default=False)] = None,
+    samples: Annotated[int, typer.Option(help="Uniform crank samples of the accuracy sweep.", min=4, max=100_000)] = 360,
+    method: Annotated[Optional[list[str]], typer.Option("--method", "-m", help="Only this method (repeatable): "
+                                                        "vector, paper, numeric, reference.", show_default=False)] = None,
+    repeats: Annotated[int, typer.Option(help="Timing repeats per method and sampling (median).", min=1, max=1000)] = 7,
+    plot: Annotated[Optional[Path], typer.Option("--plot", help="Write log error vs log time per position "
+                                                 "(.png, .svg or .pdf).", show_default=False)] = None,
+    samples_plot: Annotated[Optional[Path], typer.Option("--samples-plot", help="Write sampled vs exact peak and "
+                                                         "mean force for N = 12..3600 (.png, .svg or .pdf).",
+                                                         show_default=False)] = None,
+    fmt: FormatOpt = Format.table,
+) -> None:
+    """Speed against accuracy of the force methods, where each one fails, and how many samples a sweep needs.
+
+    Every method (vector: production; paper: the seed's instant centre, Eq. 4-6; numeric: scipy
+    root finding + finite difference; reference: mpmath, 50 digits) is timed (median of
+    --repeats) and compared with the reference on a uniform sweep, next to the dead centres
+    (1 to 1e-6 deg) and at the danger points (crank or rocker perpendicular to the frame line,
+    crank parallel to the rocker, crank along the frame line).  Exit 0 if no method returns a
+    silently wrong value, 1 otherwise.
+
+    Example: [bold]pumplink methods --plot docs/methods.png --samples-plot sampling.svg --format json[/]
+    """
+    import numpy as np
+
+    from pumplink import accuracy
+    from pumplink.analysis import design
+    from pumplink.errors import InfeasibleDesign
+    from pumplink.methods import METHODS, UNIFORM, NEAR_DEAD_CENTRE
+    from pumplink.output.charts import check_path, plot_methods, plot_sampling, pyplot
+    from pumplink.output.tables import render_methods
+    from pumplink.spec import default_spec, load_spec
+
+    names = method or list(METHODS)
+    unknown = [m for m in names if m not in METHODS]
+    if unknown:
+        raise SpecError(f"--method {unknown[0]!r} is not a method; choose from {', '.join(METHODS)}")
+    for path in (plot, samples_plot):
+        if path is not None:
+            check_path(path)
+    if plot is not None or samples_plot is not None:
+        pyplot()  # fail early (exit 2) when matplotlib is missing
+    try:
+        import mpmath  # noqa: F401
+    except ImportError:
+        raise SpecError("the 50-digit reference needs mpmath; install it with: pip install mpmath") from None
+
+    s = load_spec(spec) if spec is not None else default_spec()
+    d = design(s)
+    if not d.feasible:
+        raise InfeasibleDesign(f"{s.name}: {d.error}")
+    syn, mw = d.synthesis, s.wheel_torque
+    lk = syn.linkage
+    sets = accuracy.sample_sets(lk, syn.dead_centre_extended, syn.dead_centre_folded, samples)
+    refs = {k: METHODS["reference"].function(lk, a, mw) for k, a in sets.items()}
+    rows = []
+    for name in names:
+        m = METHODS[name]
+        per_set = {}
+        for kind, angles in sets.items():
+            tol = m.tolerance.get(kind, max(m.tolerance[k] for k in m.tolerance))
+            stats = accuracy.error_stats(m.function(lk, angles, mw), refs[kind], tol)
+            stats["seconds_per_position"] = _seconds_per_position(m.function, (lk, angles, mw), angles.size,
+                                                                  repeats)
+            per_set[kind] = stats
+        rows.append({"name": name, "summary": m.summary, "cannot_handle": m.cannot,
+                     "seconds_per_position": per_set[UNIFORM]["seconds_per_position"],
+                     "max_rel_error_uniform": per_set[UNIFORM]["max_rel_error"],
+                     "max_rel_error_near_dead_centre": per_set[NEAR_DEAD_CENTRE]["max_rel_error"],
+                     "failures": accuracy.failures(per_set), "samplings": per_set})
+    study = accuracy.sampling_study(lk, syn.dead_centre_extended, syn.dead_centre_folded,
+                                    float(np.radians(s.operator.dead_band)), mw, syn.swing)
+    render_methods(s.name, rows, study, fmt.value, dead_band_deg=s.operator.dead_band)
+    if plot is not None:
+        plot_methods(rows, plot, title=s.name)
+        typer.echo(f"wrote {plot}", err=True)
+    if samples_plot is not None:
+        plot_sampling(study, samples_plot, title=s.name, dead_band_deg=s.operator.dead_band)
+        typer.echo(f"wrote {samples_plot}", err=True)
+    silent = any(st["wrong"] or st["missed_singular"] for r in rows for st in r["samplings"].values())
+    raise typer.Exit(1 if silent else 0)

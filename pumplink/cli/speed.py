@@ -1,0 +1,61 @@
+"""`pumplink speed`: the least peak force against the mean wheel speed."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+
+from pumplink.cli.common import Format, FormatOpt, app, load_specs
+from pumplink.errors import SpecError
+
+
+@app.command()
+def speed(
+    spec: Annotated[Path, typer.Argument(help="TOML pump spec with the wheel's inertia (wheel.mass or wheel.inertia).",
+                                         show_default=False)],
+    lo: Annotated[float, typer.Option("--from", help="Lowest mean wheel speed \\[deg/s].", min=1e-6, max=7200)] = 120.0,
+    hi: Annotated[float, typer.Option("--to", help="Highest mean wheel speed \\[deg/s].", min=1e-6, max=7200)] = 720.0,
+    step: Annotated[float, typer.Option(help="Speed step \\[deg/s].", min=1e-3, max=7200)] = 30.0,
+    plot: Annotated[Optional[Path], typer.Option(help="Write the chart (peak force against speed) to this "
+                                                      ".png/.svg/.pdf (needs pumplink\\[plot]).", show_default=False)] = None,
+    fmt: FormatOpt = Format.table,
+) -> None:
+    """Least peak operator force against mean wheel speed, and the slowest speed
+    that passes.
+
+    The flywheel model (see [bold]pumplink force --help[/]): a faster wheel
+    stores more energy (J·ω̄²·δ) to carry the linkage through the dead
+    centres, so the operator's peak force falls toward the mean force, while
+    the power Mw·ω̄ rises.  Exit 0 if the spec's own speed passes, 1 if not, 2
+    if the spec gives no inertia.
+
+    Example: [bold]pumplink speed examples/well-12m-flywheel.toml --plot speed.png[/]
+    """
+    import numpy as np
+
+    from pumplink.analysis import speed_sweep
+    from pumplink.output.tables import render_speed
+
+    if hi < lo:
+        raise SpecError(f"--to {hi:g} is below --from {lo:g}; give --from LOW --to HIGH in deg/s")
+    n = int(np.floor((hi - lo) / step + 1e-9)) + 1
+    if n > 10_000:
+        raise SpecError(f"--from {lo:g} --to {hi:g} --step {step:g} gives {n} speeds; at most 10,000 (raise --step)")
+    if plot is not None:
+        from pumplink.output.charts import check_path, pyplot
+
+        check_path(plot)
+        pyplot()
+    s = load_specs([spec])[0]
+    speeds = [float(f"{v:.12g}") for v in lo + step * np.arange(n)]  # 420, not 420.00000000000006
+    sw = speed_sweep(s, speeds)
+    render_speed(sw, fmt.value)
+    if plot is not None:
+        from pumplink.output.charts import speed_chart
+
+        speed_chart(sw, plot)
+        sys.stderr.write(f"wrote {plot}\n")
+    raise typer.Exit(0 if sw.spec_speed_passed else 1)

@@ -1,0 +1,29 @@
+"""`pumplink synth`: the dead-centre synthesis table of one or more specs."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from pumplink.cli.common import Format, FormatOpt, app, load_specs
+
+
+@app.command()
+def synth(
+    specs: Annotated[list[Path], typer.Argument(help="One or more TOML pump specs.", show_default=False)],
+    fmt: FormatOpt = Format.table,
+) -> None:
+    """Dead-centre synthesis: link lengths, dead centres, time ratio, transmission range.
+
+    One row per spec (Table 1 of the pump paper).  Exit 1 if any design is infeasible.
+
+    Example: [bold]pumplink synth configs/prototype.toml configs/*.toml --format json[/]
+    """
+    from pumplink.analysis import design
+    from pumplink.output.tables import render_designs
+
+    designs = [design(s) for s in load_specs(specs)]
+    render_designs(designs, fmt.value)
+    raise typer.Exit(0 if all(d.feasible for d in designs) else 1)

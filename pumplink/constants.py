@@ -1,0 +1,40 @@
+"""Physical constants, product defaults and the verdict's limits, each with its source.
+
+Sources are named in docs/references.md; the physics that uses them is in docs/physics.md and
+docs/models.md.
+"""
+
+from __future__ import annotations
+
+import math
+
+#: Gravity [m/s^2].
+GRAVITY = 9.81
+#: Density of water [kg/m^3] (docs/physics.md §5).
+WATER_DENSITY = 1000.0
+#: Rope-pump efficiency used with load.head and load.pipe_diameter when the spec gives none [-]
+#: (about 65-75 % in the field: docs/physics.md §5).
+DEFAULT_EFFICIENCY = 0.75
+
+#: Largest acceptable operator force [N]: UK HSE push/pull guidance, about 100 N for men to keep
+#: a load moving (docs/models.md §4).
+FORCE_LIMIT_N = 100.0
+#: Sustained human power for hours [W] (human-power literature, docs/physics.md §5).
+SUSTAINED_POWER_W = 75.0
+#: Smallest transmission angle [deg]: the lever-mechanism textbook's permissible pressure angle of
+#: 40-45 deg for a rotating driven link (the crank), i.e. transmission within 45..135 deg.
+MIN_TRANSMISSION_DEG = 45.0
+#: Wheel-axle height range of the pump paper [m] (axle 40-70 cm above the ground).
+AXLE_HEIGHT_RANGE_M = (0.40, 0.70)
+
+#: Coefficient of speed fluctuation used unless the spec says otherwise: 0.2, the loosest class of
+#: the machine-design tables (crushers, hammers, punch presses: Shigley's "Mechanical Engineering
+#: Design", Table 16-6; Machinery's Handbook, Cf).  A hand-driven rope pump has no machine to
+#: protect from speed ripple; what limits delta is that the operator must follow the handle.
+DEFAULT_SPEED_FLUCTUATION = 0.2
+#: Mass per metre [kg/m] of the steel tube the link-energy estimate assumes: 3/4" medium steel
+#: tube (EN 10255, 26.9 x 2.6 mm), 7850 kg/m^3 * pi/4 (26.9^2 - 21.7^2) mm^2.
+LINK_MASS_PER_METRE = 7850.0 * math.pi / 4.0 * (26.9e-3**2 - 21.7e-3**2)
+#: Link kinetic energy (or handle weight), as a fraction of the energy band, above which the
+#: flywheel model stops being enough (docs/models.md §3).
+LINK_ENERGY_LIMIT = 0.1
