@@ -78,7 +78,7 @@ def turns_fully(crank_length, rod_length, offset):
     Returns
     -------
     bool or bool array.  Source: the lever-mechanism textbook, §3 (condition for the
-    existence of a crank); docs/mechanisms.md §1.3.
+    existence of a crank); docs/mechanisms.md §1.
     """
     r, rod, e = _arrays(crank_length, rod_length, offset)
     with np.errstate(invalid="ignore"):
@@ -105,7 +105,7 @@ def slider_position(crank_length, rod_length, offset, crank_angle):
     Returns
     -------
     s [length]: s = r cos t + sqrt(l^2 - (e - r sin t)^2) (Eq. 1.1); NaN where the linkage
-    cannot be assembled at this angle.  Source: docs/mechanisms.md §1.1.
+    cannot be assembled at this angle.  Source: docs/mechanisms.md §1.
     """
     r, rod, e, t = _arrays(crank_length, rod_length, offset, crank_angle)
     _, run = _rod_run(r, rod, e, t)
@@ -124,7 +124,7 @@ def velocity_ratio(crank_length, rod_length, offset, crank_angle):
     -------
     ds/dt = -r sin t + r cos t (e - r sin t) / sqrt(l^2 - (e - r sin t)^2) (Eq. 1.2); NaN where
     the linkage cannot be assembled or the rod stands perpendicular to the guide.
-    Source: docs/mechanisms.md §1.1.
+    Source: docs/mechanisms.md §1.
     """
     r, rod, e, t = _arrays(crank_length, rod_length, offset, crank_angle)
     rise, run = _rod_run(r, rod, e, t)
@@ -179,7 +179,7 @@ def dead_centres(crank_length, rod_length, offset):
     farthest, |OB| = l + r) is atan2(e, sqrt((l + r)^2 - e^2)) in (-pi/2, pi/2); ``folded``
     (rod folded back over the crank, slider nearest, |OB| = l - r) is
     pi + atan2(e, sqrt((l - r)^2 - e^2)) in (pi/2, 3 pi/2) (Eq. 1.4).  NaN where the crank does
-    not turn fully.  Source: docs/mechanisms.md §1.2.
+    not turn fully.  Source: docs/mechanisms.md §1.
     """
     r, rod, e = _arrays(crank_length, rod_length, offset)
     full = np.asarray(turns_fully(r, rod, e))
@@ -198,7 +198,7 @@ def stroke(crank_length, rod_length, offset):
     -------
     H = sqrt((l + r)^2 - e^2) - sqrt((l - r)^2 - e^2) (Eq. 1.5); NaN where the crank does not
     turn fully.  Source: the lever-mechanism textbook, §2.4 (definition of the stroke);
-    docs/mechanisms.md §1.2.
+    docs/mechanisms.md §1.
     """
     r, rod, e = _arrays(crank_length, rod_length, offset)
     full = np.asarray(turns_fully(r, rod, e))
@@ -215,7 +215,7 @@ def extreme_rod_angle(crank_length, rod_length, offset):
     -------
     theta = |asin(e / (l - r)) - asin(e / (l + r))| in [0, pi/2) (Eq. 1.6); the crank turns
     pi + theta on one stroke and pi - theta on the other.  NaN where the crank does not turn
-    fully.  Source: docs/mechanisms.md §1.2.
+    fully.  Source: docs/mechanisms.md §1.
     """
     r, rod, e = _arrays(crank_length, rod_length, offset)
     full = np.asarray(turns_fully(r, rod, e))
@@ -246,7 +246,7 @@ def largest_pressure_angle(crank_length, rod_length, offset):
     lambda_max = asin((r + |e|) / l) (Eq. 1.9), reached where the crank is perpendicular to the
     guide, on the side away from the guide (sin t = -sign(e)); NaN where the crank does not turn
     fully.  The textbook prints asin((1 + nu)/L), which holds for nu = e/r >= 0 only.
-    Source: the lever-mechanism textbook, §3 (Fig. 3.3); docs/mechanisms.md §1.2.
+    Source: the lever-mechanism textbook, §3 (Fig. 3.3); docs/mechanisms.md §1.
     """
     r, rod, e = _arrays(crank_length, rod_length, offset)
     full = np.asarray(turns_fully(r, rod, e))
@@ -268,7 +268,7 @@ def largest_time_ratio(rod_ratio):
     K_max = (pi + theta*) / (pi - theta*) with theta* = 2 atan(1/sqrt(L)), i.e.
     cos theta* = (L - 1)/(L + 1) (Eq. 1.12).  It is approached as the offset grows to
     e = l - r and is not reached by any crank that turns fully.  NaN for L <= 1.
-    Source: docs/mechanisms.md §1.3.
+    Source: docs/mechanisms.md §1.
     """
     L = np.asarray(rod_ratio, dtype=float)
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -341,7 +341,7 @@ def synthesize_from_stroke(stroke, rod_ratio, offset_ratio=0.0):
     -------
     CrankSliderDesign with r = H/h, h = sqrt((L + 1)^2 - nu^2) - sqrt((L - 1)^2 - nu^2)
     (Eq. 1.10; h = 2 for nu = 0), l = L r, e = nu r; realisable iff L > 1 + |nu|.
-    Source: the lever-mechanism textbook, §3, Task 1; docs/mechanisms.md §1.3.
+    Source: the lever-mechanism textbook, §3, Task 1; docs/mechanisms.md §1.
     """
     H, L, nu = _arrays(stroke, rod_ratio, offset_ratio)
     reason = np.full(H.shape, OK)
@@ -376,7 +376,7 @@ def synthesize_from_time_ratio(stroke, time_ratio, rod_ratio):
     give lengths, but the triangle O B1 B2 they solve is not the dead-centre triangle of any
     crank-slider (its angle at B2 is acute), so NaN and ``TIME_RATIO_TOO_LARGE`` are returned.
     Source: the lever-mechanism textbook, §3, Task 2 (printed formulas scrambled; see
-    docs/mechanisms.md §1.3).
+    docs/mechanisms.md §1).
     """
     H, K, L = _arrays(stroke, time_ratio, rod_ratio)
     reason = np.full(H.shape, OK)

@@ -65,7 +65,7 @@ def _out(x):
 
 
 def oscillates(crank_length, frame_length):
-    """True where 0 < r < d: the lever oscillates (docs/mechanisms.md §2.3, Eq. 2.6).
+    """True where 0 < r < d: the lever oscillates (docs/mechanisms.md §2, Eq. 2.6).
 
     Parameters
     ----------
@@ -92,7 +92,7 @@ def lever_angle(crank_length, frame_length, crank_angle):
     Returns
     -------
     phi = atan2(d + r sin t, r cos t) in (0, pi) (Eq. 2.1); NaN unless 0 < r < d.
-    Source: docs/mechanisms.md §2.1.
+    Source: docs/mechanisms.md §2.
     """
     r, d, t = _valid(*_arrays(crank_length, frame_length, crank_angle))
     return _out(np.arctan2(d + r * np.sin(t), r * np.cos(t)))  # Eq. (2.1)
@@ -116,7 +116,7 @@ def lever_rate(crank_length, frame_length, crank_angle):
     -------
     dphi/dt = r (r + d sin t) / (r^2 + d^2 + 2 d r sin t) (Eq. 2.3); zero at the extremes
     (r + d sin t = 0, crank perpendicular to the lever); NaN unless 0 < r < d.
-    Source: docs/mechanisms.md §2.1.
+    Source: docs/mechanisms.md §2.
     """
     r, d, t = _valid(*_arrays(crank_length, frame_length, crank_angle))
     s = np.sin(t)
@@ -137,7 +137,7 @@ def extremes(crank_length, frame_length):
     right, left : t_right = -asin(r/d) (lever at pi/2 - psi/2) and t_left = pi + asin(r/d) (lever
     at pi/2 + psi/2) (Eq. 2.5).  Turning counter-clockwise from right to left the crank sweeps
     pi + psi (the slow stroke, lever turning counter-clockwise); back, pi - psi.  NaN unless
-    0 < r < d.  Source: docs/mechanisms.md §2.2.
+    0 < r < d.  Source: docs/mechanisms.md §2.
     """
     r, d = _valid(*_arrays(crank_length, frame_length))
     half = np.arcsin(r / d)
@@ -147,7 +147,7 @@ def extremes(crank_length, frame_length):
 def time_ratio(crank_length, frame_length):
     """Time ratio K = (pi + psi)/(pi - psi) >= 1 (Eq. 2.7); NaN unless 0 < r < d.
 
-    Source: the lever-mechanism textbook, §3.1 and §3 (rocker mechanism); docs/mechanisms.md §2.2.
+    Source: the lever-mechanism textbook, §3.1 and §3 (rocker mechanism); docs/mechanisms.md §2.
     """
     psi = np.asarray(swing_angle(crank_length, frame_length))
     return _out((np.pi + psi) / (np.pi - psi))  # Eq. (2.7)
@@ -224,7 +224,7 @@ def synthesize_from_time_ratio(time_ratio, stroke, frame_length=None):
     SlottedLeverDesign with psi = pi (K - 1)/(K + 1) (Eq. 2.7), l = H / (2 sin(psi/2)) (Eq. 2.8),
     r = d sin(psi/2) (Eq. 2.4); realisable iff K > 1 (then r < d holds) and l >= d + r
     (Eq. 2.9: the block's farthest reach lies on the lever).  With ``frame_length=None``,
-    d = l / (1 + sin(psi/2)).  Source: the lever-mechanism textbook, §3; docs/mechanisms.md §2.3.
+    d = l / (1 + sin(psi/2)).  Source: the lever-mechanism textbook, §3; docs/mechanisms.md §2.
     """
     if frame_length is None:
         K, H = _arrays(time_ratio, stroke)

@@ -211,7 +211,7 @@ def _restrict(joints, present):
 def pair_counts(links, frame, joints):
     """(n, p1, p2): moving links, lower pairs and higher pairs (a k-link joint counts k - 1).
 
-    Source: the lever-mechanism textbook, §2.2 (Chebyshev's formula); docs/mechanisms.md §3.1.
+    Source: the lever-mechanism textbook, §2.2 (Chebyshev's formula); docs/mechanisms.md §3.
     """
     names, frame, js = _mechanism(links, frame, joints)
     p1 = sum(j.pairs for j in js if j.lower)
@@ -230,7 +230,7 @@ def mobility(links, frame, joints) -> int:
     -------
     W (int).  It counts constraints only: a mechanism with redundant (passive) constraints can
     move although W <= 0; see :func:`analyse_structure` with ``passive_links``.
-    Source: the lever-mechanism textbook, §2.2; docs/mechanisms.md §3.1.
+    Source: the lever-mechanism textbook, §2.2; docs/mechanisms.md §3.
     """
     n, p1, p2 = pair_counts(links, frame, joints)
     return 3 * n - 2 * p1 - p2  # Eq. (3.1)
@@ -249,7 +249,7 @@ def redundant_constraints(formula_mobility: int, mobility: int, local_mobilities
     -------
     q >= 0.  The printed textbook has q = W0 + Wm + W with a plus sign before the formula
     mobility; a four-bar (W0 = 1, Wm = 0, W = 1, q = 0) shows the sign must be minus.
-    Source: the lever-mechanism textbook, §2.2; docs/mechanisms.md §3.2.
+    Source: the lever-mechanism textbook, §2.2; docs/mechanisms.md §3.
     """
     for label, value in (("formula_mobility", formula_mobility), ("mobility", mobility),
                          ("local_mobilities", local_mobilities)):
@@ -444,7 +444,7 @@ def assur_groups(links, frame, joints, drivers):
     Raises
     ------
     ValueError : invalid input, or no decomposition with these drivers (the message says why).
-    Source: the lever-mechanism textbook, §2.3 and its six-link example; docs/mechanisms.md §3.3.
+    Source: the lever-mechanism textbook, §2.3 and its six-link example; docs/mechanisms.md §3.
     """
     names, frame, js = _mechanism(links, frame, joints)
     drivers = _check_drivers(drivers, names, frame)
@@ -466,7 +466,7 @@ def driving_links(links, frame, joints, passive_links=(), local_mobilities=0):
     Returns
     -------
     tuple of link names (empty when no choice decomposes or W <= 0).  The textbook numbers
-    links from the driver, so list the intended driver first.  Source: docs/mechanisms.md §3.3.
+    links from the driver, so list the intended driver first.  Source: docs/mechanisms.md §3.
     """
     return analyse_structure(links, frame, joints, None, passive_links, local_mobilities).drivers
 

@@ -99,8 +99,8 @@ def jacobian(mech, points, axes, unknown=None):
     return np.array(rows).reshape(-1, 3 * len(moving))
 
 
-def random_geometry(mech, seed):
-    rng = np.random.default_rng(seed)
+def random_geometry(mech, random_state):
+    rng = np.random.default_rng(random_state)
     points = {j[0]: rng.normal(size=2) for j in mech["joints"]}
     axes = {}
     for j in mech["joints"]:
@@ -109,20 +109,20 @@ def random_geometry(mech, seed):
     return points, axes
 
 
-def numeric_mobility(mech, seed=1, points=None, axes=None):
+def numeric_mobility(mech, random_state=1, points=None, axes=None):
     if points is None:
-        points, axes = random_geometry(mech, seed)
+        points, axes = random_geometry(mech, random_state)
     J = jacobian(mech, points, axes)
     return J.shape[1] - np.linalg.matrix_rank(J, tol=1e-9)
 
 
-def group_is_rigid(mech, group_links, present, seed=1):
+def group_is_rigid(mech, group_links, present, random_state=1):
     """The group cannot move with every other present link held (and links not present removed)."""
     sub = dict(mech)
     sub["joints"] = [(n, k, tuple(x for x in ls if x in present or x == mech["frame"]))
                      for n, k, ls in mech["joints"]]
     sub["joints"] = [j for j in sub["joints"] if len(j[2]) >= 2]
-    points, axes = random_geometry(mech, seed)
+    points, axes = random_geometry(mech, random_state)
     J = jacobian(sub, points, axes, unknown=group_links)
     return J.shape[1] == 0 or np.linalg.matrix_rank(J, tol=1e-9) == J.shape[1]
 
