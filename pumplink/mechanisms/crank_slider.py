@@ -309,15 +309,14 @@ class CrankSliderDesign:
         return _out(np.asarray(self.reason) == OK)
 
 
-def _design(r, rod, e, reason, too_large=None):
+def _design(r, rod, e, reason, too_large):
     good = reason == OK
-    if too_large is not None:
-        # on the boundary rounding may leave l - r - e <= 0: refuse rather than return NaN indicators
-        with np.errstate(invalid="ignore"):
-            fits = np.asarray(turns_fully(np.where(good, r, 1.0), np.where(good, rod, 3.0),
-                                          np.where(good, e, 0.0)))
-        reason = np.where(good & ~fits, too_large, reason)
-        good = reason == OK
+    # on the boundary rounding may leave l - r - |e| <= 0: refuse rather than return NaN indicators
+    with np.errstate(invalid="ignore"):
+        fits = np.asarray(turns_fully(np.where(good, r, 1.0), np.where(good, rod, 3.0),
+                                      np.where(good, e, 0.0)))
+    reason = np.where(good & ~fits, too_large, reason)
+    good = reason == OK
     r, rod, e = (np.where(good, x, np.nan) for x in (r, rod, e))
     return CrankSliderDesign(
         crank_length=_out(r), rod_length=_out(rod), offset=_out(e),
@@ -355,7 +354,7 @@ def synthesize_from_stroke(stroke, rod_ratio, offset_ratio=0.0):
         Lg, nug = np.where(good, L, 2.0), np.where(good, nu, 0.0)
         h = np.sqrt((Lg + 1) ** 2 - nug * nug) - np.sqrt((Lg - 1) ** 2 - nug * nug)  # Eq. (1.10)
         r = np.where(good, H, 1.0) / h
-    return _design(r, Lg * r, nug * r, reason)
+    return _design(r, Lg * r, nug * r, reason, OFFSET_TOO_LARGE)
 
 
 def synthesize_from_time_ratio(stroke, time_ratio, rod_ratio):
