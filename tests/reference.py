@@ -1,11 +1,11 @@
 """Independent high-precision reference for the pump linkage (test support, not product code).
 
-Derived from NOTES.md §1 only, on purpose by a different route from ``pumplink.mechanisms.fourbar``
+Derived from docs/physics.md only, on purpose by a different route from ``pumplink.mechanisms.fourbar``
 (which intersects two circles as a vector construction and differentiates by the rigid
 coupler): here the rocker angle theta4 is solved from the loop closure in Freudenstein form
 and its rate by implicit differentiation of that closure, all in mpmath with 50 digits.
 
-Coordinates (NOTES.md §1): origin at the wheel axle O2, x horizontal, y up, angles CCW from +x;
+Coordinates (docs/physics.md): origin at the wheel axle O2, x horizontal, y up, angles CCW from +x;
 rocker pivot O4 = (-(L1 + b/2), -D1); crank end A = crank (cos t2, sin t2);
 coupler-rocker joint B = O4 + rocker (cos t4, sin t4); grip P = O4 + handle (cos t4, sin t4).
 
@@ -26,9 +26,9 @@ dt4/dt2 = ((B - A) . A') / ((B - A) . B'),  A' = crank (-sin t2, cos t2),
 B' = rocker (-sin t4, cos t4).  It vanishes exactly where B - A is parallel to the crank: the
 dead centres.  Grip: Px = O4x + handle cos t4, dPx/dt2 = -handle sin t4 dt4/dt2.
 
-Force by virtual work (NOTES.md §1): Fh = Mw / (dPx/dt2).
+Force by virtual work (docs/physics.md): Fh = Mw / (dPx/dt2).
 
-Synthesis (Eq. 2 of the pump paper as restated in NOTES.md §1): alpha = atan2(D1, L1 + b/2) is
+Synthesis (Eq. 2 of the pump paper as restated in docs/physics.md): alpha = atan2(D1, L1 + b/2) is
 the direction of the frame line O4->O2, psi1 = 90 deg + swing/2 - alpha (rocker at
 90 + swing/2), psi2 = 90 deg - swing/2 - alpha; d_i^2 = frame^2 + rocker^2 -
 2 frame rocker cos psi_i (computed directly: at 50 digits the cancellation is harmless);
@@ -43,9 +43,8 @@ digits would be too slow; it is still independent of pumplink's code.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import math
+from dataclasses import dataclass
 
 import mpmath
 import numpy as np
@@ -100,7 +99,9 @@ def make_linkage(L1, D1, b, rocker, handle, crank, coupler, sigma=None) -> RefLi
         if 0 < psi < mp.pi:
             good.append(cand)
     if len(good) != 1:
-        raise ValueError(f"no unique assembly branch with the rocker CCW of the frame line ({len(good)} found)")
+        raise ValueError(
+            f"no unique assembly branch with the rocker CCW of the frame line ({len(good)} found)"
+        )
     return good[0]
 
 
@@ -122,14 +123,22 @@ def synthesis(L1, D1, b, rocker, swing):
     """
     L1, D1, b, rocker, swing = map(_mpf, (L1, D1, b, rocker, swing))
     reach = L1 + b / 2
-    frame = mpmath.sqrt(reach**2 + D1**2)  # Eq. (1) as read in NOTES.md §1
+    frame = mpmath.sqrt(reach**2 + D1**2)  # Eq. (1) as read in docs/physics.md
     alpha = mpmath.atan2(D1, reach)
     psi1 = mp.pi / 2 + swing / 2 - alpha
     psi2 = mp.pi / 2 - swing / 2 - alpha
     d1 = mpmath.sqrt(frame**2 + rocker**2 - 2 * frame * rocker * mpmath.cos(psi1))
     d2 = mpmath.sqrt(frame**2 + rocker**2 - 2 * frame * rocker * mpmath.cos(psi2))
-    return dict(frame=frame, alpha=alpha, psi1=psi1, psi2=psi2, d1=d1, d2=d2,
-                crank=(d1 - d2) / 2, coupler=(d1 + d2) / 2)
+    return dict(
+        frame=frame,
+        alpha=alpha,
+        psi1=psi1,
+        psi2=psi2,
+        d1=d1,
+        d2=d2,
+        crank=(d1 - d2) / 2,
+        coupler=(d1 + d2) / 2,
+    )
 
 
 def _crank_point(lk, t2):
@@ -166,8 +175,13 @@ def state(lk: RefLinkage, t2, wheel_torque=1):
     # Transmission angle: the angle at B between B->A and B->O4.
     cosg = ((ax - bx) * (lk.ox - bx) + (ay - by) * (lk.oy - by)) / (lk.coupler * lk.rocker)
     return dict(
-        rocker_angle=t4, bx=bx, by=by, rate=rate, rate_numerator=num,
-        grip_x=lk.ox + lk.handle * mpmath.cos(t4), grip_rate=grip_rate,
+        rocker_angle=t4,
+        bx=bx,
+        by=by,
+        rate=rate,
+        rate_numerator=num,
+        grip_x=lk.ox + lk.handle * mpmath.cos(t4),
+        grip_rate=grip_rate,
         force=_mpf(wheel_torque) / grip_rate if grip_rate != 0 else mp.nan,  # NaN exactly at a dead centre
         transmission=mpmath.acos(max(-1, min(1, cosg))),
     )
@@ -185,6 +199,7 @@ def dead_centres(lk: RefLinkage, scan: int = 96):
     ``mpmath.findroot`` (Anderson's bracketing solver).  The extended dead centre is the root
     with the larger rocker angle.  Raises if the scan does not find exactly two roots.
     """
+
     def num(t):
         return state(lk, t)["rate_numerator"]
 
@@ -205,16 +220,20 @@ def dead_centres(lk: RefLinkage, scan: int = 96):
 
 def from_synthesis(syn, i=None, sigma=None) -> RefLinkage:
     """Reference linkage from pumplink's synthesised float lengths (design i of an array)."""
+
     def g(name):
         v = getattr(syn, name)
         return float(v if i is None else np.asarray(v)[i])
+
     L1, D1 = -g("pivot_x"), -g("pivot_y")  # b folded into L1: only L1 + b/2 matters
-    return make_linkage(L1, D1, 0.0, g("rocker_length"), g("handle_length"), g("crank_length"),
-                        g("coupler_length"), sigma)
+    return make_linkage(
+        L1, D1, 0.0, g("rocker_length"), g("handle_length"), g("crank_length"), g("coupler_length"), sigma
+    )
 
 
 # ---------------------------------------------------------------------------------------------
 # float64 twin for dense sweeps (same formulas, numpy; still independent of pumplink)
+
 
 def sweep_rocker(lk: RefLinkage, t2, sigma=None):
     """Rocker angle t4, rate dt4/dt2 and transmission angle on float crank angles t2.
@@ -242,13 +261,17 @@ def sweep_rocker(lk: RefLinkage, t2, sigma=None):
 
 
 # ---------------------------------------------------------------------------------------------
-# Random inputs in the realistic ranges of issue #2's test plan
+# Random inputs in the realistic ranges of the product's test plan
+
 
 def linkage_inputs():
     """Spec-level linkage inputs: L1, D1, b, rocker [m], swing [deg]."""
     return st.tuples(
-        st.floats(0.0, 1.0), st.floats(-0.5, 0.8), st.floats(0.0, 0.3),
-        st.floats(0.05, 0.6), st.floats(10.0, 150.0),
+        st.floats(0.0, 1.0),
+        st.floats(-0.5, 0.8),
+        st.floats(0.0, 0.3),
+        st.floats(0.05, 0.6),
+        st.floats(10.0, 150.0),
     )
 
 

@@ -21,16 +21,26 @@ GOLDEN = Path(__file__).with_name("golden")
 CASES = {
     "force_prototype_summary.txt": ["force", "configs/prototype.toml", "--summary"],
     "force_prototype_sweep.txt": ["force", "configs/prototype.toml"],
-    "synth_configs.txt": ["synth", "configs/prototype.toml", "configs/village-10m.toml",
-                          "configs/women-operators-6m.toml"],
+    "synth_configs.txt": [
+        "synth",
+        "configs/prototype.toml",
+        "configs/village-10m.toml",
+        "configs/women-operators-6m.toml",
+    ],
 }
 
 
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_rendered_table_matches_golden(name):
     env = {**os.environ, "NO_COLOR": "1", "COLUMNS": "200"}
-    out = subprocess.run([sys.executable, "-m", "pumplink", *CASES[name]], cwd=ROOT, env=env,
-                         capture_output=True, text=True, check=False)
+    out = subprocess.run(
+        [sys.executable, "-m", "pumplink", *CASES[name]],
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert out.returncode == 0, out.stderr
     assert "\x1b[" not in out.stdout  # no ANSI escapes when piped / NO_COLOR
     path = GOLDEN / name

@@ -1,4 +1,4 @@
-"""Stability and accuracy of the force methods (issue #3 items 4-5), and the `methods` command.
+"""Stability and accuracy of the force methods (methods comparison), and the `methods` command.
 
 Ground truth is ``pumplink.methods.reference``: a different route from every method under test
 (rocker angle from d . u4 = (l4^2 + |d|^2 - l3^2) / (2 l4) and the textbook velocity ratio
@@ -20,14 +20,28 @@ from hypothesis import strategies as st
 
 from pumplink import accuracy
 from pumplink.analysis import design
-from pumplink.methods import (CRANK_ALONG_FRAME, CRANK_PARALLEL_ROCKER, CRANK_PERPENDICULAR, DANGER_KINDS,
-                              DEAD_CENTRE, METHODS, NEAR_DEAD_CENTRE, ROCKER_PERPENDICULAR, danger_points,
-                              paper, paper_seed_coordinates, reference, seed_frame, vector)
-from pumplink.spec import default_spec
 from pumplink.mechanisms.fourbar import synthesize
+from pumplink.methods import (
+    CRANK_ALONG_FRAME,
+    CRANK_PARALLEL_ROCKER,
+    CRANK_PERPENDICULAR,
+    DANGER_KINDS,
+    DEAD_CENTRE,
+    METHODS,
+    NEAR_DEAD_CENTRE,
+    ROCKER_PERPENDICULAR,
+    danger_points,
+    paper,
+    paper_seed_coordinates,
+    reference,
+    seed_frame,
+    vector,
+)
+from pumplink.spec import default_spec
 
-SETTINGS = settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
-                                                                            HealthCheck.too_slow])
+SETTINGS = settings(
+    max_examples=12, deadline=None, suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow]
+)
 
 
 @st.composite
@@ -63,14 +77,18 @@ def test_reference_matches_hand_derivation_at_a_dead_centre_neighbour():
     assert abs(np.hypot(r0.coupler_x[0] - ax, r0.coupler_y[0] - ay) - lk.coupler) < 1e-15
     assert abs(np.hypot(r0.coupler_x[0] - lk.pivot_x, r0.coupler_y[0] - lk.pivot_y) - lk.rocker) < 1e-15
     with mp.workdps(50):
+
         def rocker(th):
-            px, py, c, k, r = (mp.mpf(float(v)) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker))
+            px, py, c, k, r = (
+                mp.mpf(float(v)) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker)
+            )
             dx, dy = c * mp.cos(th) - px, c * mp.sin(th) - py
             d = mp.sqrt(dx * dx + dy * dy)
             base, off = mp.atan2(dy, dx), mp.acos((r * r + d * d - k * k) / (2 * r * d))
             cands = [base + off, base - off]
             tip = mp.atan2(mp.mpf(r0.coupler_y[0]) - py, mp.mpf(r0.coupler_x[0]) - px)
             return min(cands, key=lambda a: abs(mp.sin((a - tip) / 2)))
+
         h = mp.mpf("1e-20")
         rate = (rocker(mp.mpf(t) + h) - rocker(mp.mpf(t) - h)) / (2 * h)
         grip_rate = -float(mp.mpf(lk.handle) * mp.sin(rocker(mp.mpf(t))) * rate)
@@ -122,9 +140,20 @@ def _danger_angles(draw, syn, kind):
 
 
 @pytest.mark.parametrize("name", ["vector", "paper", "numeric"])
-@pytest.mark.parametrize("kind", [NEAR_DEAD_CENTRE, DEAD_CENTRE, CRANK_PERPENDICULAR, ROCKER_PERPENDICULAR,
-                                  CRANK_PARALLEL_ROCKER, CRANK_ALONG_FRAME])
-@settings(max_examples=4, deadline=None, suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
+@pytest.mark.parametrize(
+    "kind",
+    [
+        NEAR_DEAD_CENTRE,
+        DEAD_CENTRE,
+        CRANK_PERPENDICULAR,
+        ROCKER_PERPENDICULAR,
+        CRANK_PARALLEL_ROCKER,
+        CRANK_ALONG_FRAME,
+    ],
+)
+@settings(
+    max_examples=4, deadline=None, suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow]
+)
 @given(data=st.data())
 def test_registered_capabilities_hold_at_danger_points(name, kind, data):
     """Each method does what its registry entry says at its danger points: where it declares
@@ -189,8 +218,14 @@ def test_seed_plus_root_is_the_assembly_branch_for_half_the_cycle_only():
 def test_sampling_study_converges_and_never_overshoots():
     s = default_spec()
     syn = design(s).synthesis
-    rows = accuracy.sampling_study(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded,
-                                   np.radians(s.operator.dead_band), s.wheel_torque, syn.swing)
+    rows = accuracy.sampling_study(
+        syn.linkage,
+        syn.dead_centre_extended,
+        syn.dead_centre_folded,
+        np.radians(s.operator.dead_band),
+        s.wheel_torque,
+        syn.swing,
+    )
     for r in rows:
         assert r["sampled_peak"] <= r["exact_peak"] * (1 + 1e-12)  # samples are points of the window
         assert r["sampled_max"] >= r["sampled_peak"]
@@ -206,15 +241,31 @@ def _run(*args, pre=""):
 
 def test_methods_command_json_and_charts(tmp_path):
     png, svg = tmp_path / "m.png", tmp_path / "s.svg"
-    r = _run("methods", "--format", "json", "--repeats", "1", "--samples", "72", "--plot", str(png),
-             "--samples-plot", str(svg))
+    r = _run(
+        "methods",
+        "--format",
+        "json",
+        "--repeats",
+        "1",
+        "--samples",
+        "72",
+        "--plot",
+        str(png),
+        "--samples-plot",
+        str(svg),
+    )
     assert r.returncode == 0, r.stderr
     obj = json.loads(r.stdout)
     names = [m["name"] for m in obj["methods"]]
     assert names == ["vector", "paper", "numeric", "reference"]
     for m in obj["methods"]:
-        assert {"name", "seconds_per_position", "max_rel_error_uniform", "max_rel_error_near_dead_centre",
-                "failures"} <= set(m)
+        assert {
+            "name",
+            "seconds_per_position",
+            "max_rel_error_uniform",
+            "max_rel_error_near_dead_centre",
+            "failures",
+        } <= set(m)
         assert m["seconds_per_position"] > 0
     vec = obj["methods"][0]
     assert vec["max_rel_error_near_dead_centre"] <= 1e-6 and vec["failures"] == []
@@ -228,6 +279,8 @@ def test_methods_command_errors(tmp_path):
     assert r.returncode == 2 and r.stderr.startswith("error: ") and ".png, .svg or .pdf" in r.stderr
     r = _run("methods", "--method", "magic")
     assert r.returncode == 2 and "magic" in r.stderr
-    r = _run("methods", "--plot", str(tmp_path / "x.png"), pre="import sys; sys.modules['matplotlib'] = None; ")
+    r = _run(
+        "methods", "--plot", str(tmp_path / "x.png"), pre="import sys; sys.modules['matplotlib'] = None; "
+    )
     assert r.returncode == 2 and "pip install 'pumplink[plot]'" in r.stderr
     assert not (tmp_path / "x.png").exists()

@@ -11,14 +11,19 @@ import sys
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from scipy.optimize import minimize_scalar
 
 from pumplink.analysis import force_analysis
 from pumplink.constants import MIN_TRANSMISSION_DEG
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.optimize import (
-    DEFAULT_BOUNDS, evaluate_designs, make_problem, optimize, parse_bounds,
+    DEFAULT_BOUNDS,
+    evaluate_designs,
+    make_problem,
+    optimize,
+    parse_bounds,
 )
 from pumplink.spec import default_spec, parse_spec, spec_to_dict
 
@@ -42,8 +47,13 @@ def strictly_feasible(spec, problem) -> bool:
     low = pivot + lk.handle * math.cos(math.radians(lk.swing) / 2)
     high = pivot + lk.handle
     stroke = 2 * lk.handle * math.sin(math.radians(lk.swing) / 2)
-    return (mu >= MIN_TRANSMISSION_DEG and problem.grip_height[0] <= low and high <= problem.grip_height[1]
-            and problem.stroke[0] <= stroke <= problem.stroke[1] and math.isfinite(r.dead_band_peak_force))
+    return (
+        mu >= MIN_TRANSMISSION_DEG
+        and problem.grip_height[0] <= low
+        and high <= problem.grip_height[1]
+        and problem.stroke[0] <= stroke <= problem.stroke[1]
+        and math.isfinite(r.dead_band_peak_force)
+    )
 
 
 def test_known_interior_optimum_from_several_seeds():
@@ -54,8 +64,12 @@ def test_known_interior_optimum_from_several_seeds():
     e = evaluate_designs(problem, grid[None, :])
     ok = np.all(e.slack >= 0, axis=0)
     j = int(np.argmin(np.where(ok, e.objective, np.inf)))
-    ref = minimize_scalar(lambda d: float(evaluate_designs(problem, np.array([[d]])).objective[0]),
-                          bounds=(grid[j - 1], grid[j + 1]), method="bounded", options=dict(xatol=1e-10))
+    ref = minimize_scalar(
+        lambda d: float(evaluate_designs(problem, np.array([[d]])).objective[0]),
+        bounds=(grid[j - 1], grid[j + 1]),
+        method="bounded",
+        options=dict(xatol=1e-10),
+    )
     assert 0.0 < ref.x < 0.7 and ref.fun < e.objective[j] + 1e-12  # interior, away from both bounds
     for seed in (0, 1, 2, 3):
         res = optimize(problem, seed=seed)
@@ -75,14 +89,21 @@ bound = st.tuples(st.floats(0.0, 1.0), st.floats(0.05, 1.0))
 
 
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(rocker=st.tuples(st.floats(0.05, 0.5), st.floats(0.01, 0.5)),
-       l1=st.tuples(st.floats(0.0, 1.5), st.floats(0.01, 1.0)),
-       d1=st.tuples(st.floats(-0.8, 1.2), st.floats(0.01, 1.0)),
-       swing=st.tuples(st.floats(10.0, 150.0), st.floats(1.0, 60.0)),
-       axle=st.floats(0.3, 0.8), seed=st.integers(0, 2**16))
+@given(
+    rocker=st.tuples(st.floats(0.05, 0.5), st.floats(0.01, 0.5)),
+    l1=st.tuples(st.floats(0.0, 1.5), st.floats(0.01, 1.0)),
+    d1=st.tuples(st.floats(-0.8, 1.2), st.floats(0.01, 1.0)),
+    swing=st.tuples(st.floats(10.0, 150.0), st.floats(1.0, 60.0)),
+    axle=st.floats(0.3, 0.8),
+    seed=st.integers(0, 2**16),
+)
 def test_optimizer_never_returns_an_infeasible_design(rocker, l1, d1, swing, axle, seed):
-    bounds = {"rocker": (rocker[0], rocker[0] + rocker[1]), "L1": (l1[0], l1[0] + l1[1]),
-              "D1": (d1[0], d1[0] + d1[1]), "swing": (swing[0], min(179.0, swing[0] + swing[1]))}
+    bounds = {
+        "rocker": (rocker[0], rocker[0] + rocker[1]),
+        "L1": (l1[0], l1[0] + l1[1]),
+        "D1": (d1[0], d1[0] + d1[1]),
+        "swing": (swing[0], min(179.0, swing[0] + swing[1])),
+    }
     problem = make_problem(default_spec(), bounds, axle_height=axle)
     try:
         res = optimize(problem, seed=seed, popsize=8, maxiter=30)
@@ -99,11 +120,20 @@ def test_nothing_feasible_is_explained():
         optimize(problem, seed=0, popsize=8, maxiter=30)
 
 
-@pytest.mark.parametrize("items,key", [
-    (["wheel=0:1"], "'wheel'"), (["rocker=0.4:0.1"], "rocker"), (["L1=a:b"], "L1"),
-    (["D1=0.2"], "D1"), (["swing=10:200"], "swing"), (["rocker=0.1:0.2", "rocker=0.2:0.3"], "rocker"),
-    (["L1=-1:0.5"], "L1"), (["D1=nan:1"], "D1"), (["rocker"], "rocker"),
-])
+@pytest.mark.parametrize(
+    "items,key",
+    [
+        (["wheel=0:1"], "'wheel'"),
+        (["rocker=0.4:0.1"], "rocker"),
+        (["L1=a:b"], "L1"),
+        (["D1=0.2"], "D1"),
+        (["swing=10:200"], "swing"),
+        (["rocker=0.1:0.2", "rocker=0.2:0.3"], "rocker"),
+        (["L1=-1:0.5"], "L1"),
+        (["D1=nan:1"], "D1"),
+        (["rocker"], "rocker"),
+    ],
+)
 def test_bad_vary_names_the_key(items, key):
     with pytest.raises(SpecError, match=key):
         parse_bounds(items)
@@ -113,11 +143,17 @@ def run(*args):
     return subprocess.run([sys.executable, "-m", "pumplink", *args], capture_output=True, text=True)
 
 
-@pytest.mark.parametrize("args,key", [
-    (["--vary", "handel=0.5:1"], "handel"), (["--vary", "swing=90:30"], "swing"),
-    (["--vary", "D1=x:1"], "D1"), (["--grip-height", "0.9:0.5"], "grip-height"),
-    (["--stroke", "one"], "stroke"), (["--axle-height", "-1"], "axle-height"),
-])
+@pytest.mark.parametrize(
+    "args,key",
+    [
+        (["--vary", "handel=0.5:1"], "handel"),
+        (["--vary", "swing=90:30"], "swing"),
+        (["--vary", "D1=x:1"], "D1"),
+        (["--grip-height", "0.9:0.5"], "grip-height"),
+        (["--stroke", "one"], "stroke"),
+        (["--axle-height", "-1"], "axle-height"),
+    ],
+)
 def test_cli_bad_input_exits_2_naming_the_key(args, key):
     p = run("optimize", "configs/prototype.toml", *args)
     assert p.returncode == 2 and key in p.stderr and "Traceback" not in p.stderr
@@ -140,7 +176,7 @@ def test_cli_write_gives_the_same_numbers_through_force(tmp_path):
     assert g["model"] == d["model"]
 
 
-# ----------------------------------------------------------------------------- flywheel (issue #6)
+# ----------------------------------------------------------------------------- flywheel
 def fly_spec(mass, **linkage):
     d = spec_to_dict(default_spec())
     d["linkage"].update(linkage)
@@ -155,8 +191,12 @@ def _scan_minimum(problem, peak_of):
     e = evaluate_designs(problem, grid[None, :])
     ok = np.all(e.slack >= 0, axis=0)
     j = int(np.argmin(np.where(ok, peak_of(e), np.inf)))
-    ref = minimize_scalar(lambda d: float(peak_of(evaluate_designs(problem, np.array([[d]])))[0]),
-                          bounds=(grid[j - 1], grid[j + 1]), method="bounded", options=dict(xatol=1e-10))
+    ref = minimize_scalar(
+        lambda d: float(peak_of(evaluate_designs(problem, np.array([[d]])))[0]),
+        bounds=(grid[j - 1], grid[j + 1]),
+        method="bounded",
+        options=dict(xatol=1e-10),
+    )
     assert grid[0] < ref.x < grid[-1]  # interior
     return ref
 
@@ -182,7 +222,9 @@ def test_inertia_spec_optimises_on_the_flywheel_peak():
     assert res.at_best.objective[0] == res.at_best.least_peak_force[0] == res.at_best.verdict_peak_force[0]
     r = force_analysis(res.best, keep_samples=False)
     assert r.model == MODELS[FLYWHEEL].label and r.least_peak_force == res.at_best.least_peak_force[0]
-    assert r.dead_band_peak_force == res.at_best.dead_band_peak_force[0]  # the dead-band peak, reported for information
+    assert (
+        r.dead_band_peak_force == res.at_best.dead_band_peak_force[0]
+    )  # the dead-band peak, reported for information
 
 
 @pytest.mark.parametrize("mass,code", [(8.0, 0), (3.0, 1)])
@@ -195,11 +237,23 @@ def test_cli_flywheel_verdict_through_force(tmp_path, mass, code):
 
     spec.write_text(tomli_w.dumps(spec_to_dict(fly_spec(mass, L1=1.5))))
     out = tmp_path / "best.toml"
-    p = run("optimize", str(spec), "--vary", "D1=-0.5:0.8", "--grip-height", "0:5", "--stroke", "0:5",
-            "--format", "json", "--write", str(out))
+    p = run(
+        "optimize",
+        str(spec),
+        "--vary",
+        "D1=-0.5:0.8",
+        "--grip-height",
+        "0:5",
+        "--stroke",
+        "0:5",
+        "--format",
+        "json",
+        "--write",
+        str(out),
+    )
     assert p.returncode == code, p.stderr
     d = json.loads(p.stdout)
-    assert d["model"] == "flywheel" and d["inertia_kg_m2"] == mass * 0.25 ** 2 and d["speed_fluctuation"] == 0.2
+    assert d["model"] == "flywheel" and d["inertia_kg_m2"] == mass * 0.25**2 and d["speed_fluctuation"] == 0.2
     f = run("force", str(out), "--summary", "--format", "json")
     assert f.returncode == code, f.stderr
     g = json.loads(f.stdout)
@@ -210,7 +264,10 @@ def test_cli_flywheel_verdict_through_force(tmp_path, mass, code):
     if code:  # the table says which model decided, and fails on the flywheel's peak
         t = run("optimize", str(spec), "--vary", "D1=-0.5:0.8", "--grip-height", "0:5", "--stroke", "0:5")
         assert t.returncode == 1 and "model: flywheel, J = 0.1875 kg·m², δ ≤ 0.2, at 360 deg/s" in t.stdout
-        assert f"FAIL: optimum peak with the flywheel {d['optimum']['required_peak_force_N']:.2f} N vs limit 100 N" in t.stdout
+        assert (
+            f"FAIL: optimum peak with the flywheel {d['optimum']['required_peak_force_N']:.2f} N vs limit 100 N"
+            in t.stdout
+        )
 
 
 def test_zero_inertia_cannot_optimise_the_peak():

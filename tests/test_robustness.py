@@ -23,18 +23,48 @@ from pumplink.errors import SpecError
 from pumplink.output.tables import render_designs, render_force
 from pumplink.spec import PumpSpec, load_spec, parse_spec
 
-KEYS = ["name", "wheel", "linkage", "load", "operator", "radius", "axle_height", "L1", "D1", "b", "rocker",
-        "handle", "swing", "rope_force", "head", "pipe_diameter", "efficiency", "force_limit", "speed",
-        "dead_band", "rockr", "Swing", "extra"]
-SCALARS = st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(-10**6, 10**6), st.booleans(),
-                    st.text(max_size=8), st.none())
+KEYS = [
+    "name",
+    "wheel",
+    "linkage",
+    "load",
+    "operator",
+    "radius",
+    "axle_height",
+    "L1",
+    "D1",
+    "b",
+    "rocker",
+    "handle",
+    "swing",
+    "rope_force",
+    "head",
+    "pipe_diameter",
+    "efficiency",
+    "force_limit",
+    "speed",
+    "dead_band",
+    "rockr",
+    "Swing",
+    "extra",
+]
+SCALARS = st.one_of(
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.integers(-(10**6), 10**6),
+    st.booleans(),
+    st.text(max_size=8),
+    st.none(),
+)
 
 
 def toml_values():
-    return st.recursive(SCALARS.filter(lambda v: v is not None),
-                        lambda inner: st.one_of(st.lists(inner, max_size=3),
-                                                st.dictionaries(st.sampled_from(KEYS), inner, max_size=6)),
-                        max_leaves=12)
+    return st.recursive(
+        SCALARS.filter(lambda v: v is not None),
+        lambda inner: st.one_of(
+            st.lists(inner, max_size=3), st.dictionaries(st.sampled_from(KEYS), inner, max_size=6)
+        ),
+        max_leaves=12,
+    )
 
 
 @settings(max_examples=150, deadline=None)
@@ -61,20 +91,37 @@ def _in(lo, hi, **kw):
     return st.floats(lo, hi, allow_nan=False, allow_infinity=False, **kw)
 
 
-valid_specs = st.fixed_dictionaries({
-    "name": st.text(min_size=1, max_size=20),
-    "wheel": st.fixed_dictionaries({"radius": _in(0.001, 5)}, optional={"axle_height": _in(1e-9, 5)}),
-    "linkage": st.fixed_dictionaries({
-        "L1": _in(0, 10), "D1": _in(-10, 10), "b": _in(0, 10), "rocker": _in(0.001, 10),
-        "handle": _in(0.001, 20), "swing": _in(1, 180, exclude_max=True)}),
-    "load": st.one_of(
-        st.fixed_dictionaries({"rope_force": _in(0, 10_000, exclude_min=True)}),
-        st.fixed_dictionaries({"head": _in(0, 200, exclude_min=True), "pipe_diameter": _in(0.001, 0.5)},
-                              optional={"efficiency": _in(0.05, 1)})),
-    "operator": st.fixed_dictionaries({}, optional={
-        "force_limit": _in(1, 10_000), "speed": _in(0, 7200, exclude_min=True),
-        "dead_band": _in(0, 90, exclude_max=True)}),
-})
+valid_specs = st.fixed_dictionaries(
+    {
+        "name": st.text(min_size=1, max_size=20),
+        "wheel": st.fixed_dictionaries({"radius": _in(0.001, 5)}, optional={"axle_height": _in(1e-9, 5)}),
+        "linkage": st.fixed_dictionaries(
+            {
+                "L1": _in(0, 10),
+                "D1": _in(-10, 10),
+                "b": _in(0, 10),
+                "rocker": _in(0.001, 10),
+                "handle": _in(0.001, 20),
+                "swing": _in(1, 180, exclude_max=True),
+            }
+        ),
+        "load": st.one_of(
+            st.fixed_dictionaries({"rope_force": _in(0, 10_000, exclude_min=True)}),
+            st.fixed_dictionaries(
+                {"head": _in(0, 200, exclude_min=True), "pipe_diameter": _in(0.001, 0.5)},
+                optional={"efficiency": _in(0.05, 1)},
+            ),
+        ),
+        "operator": st.fixed_dictionaries(
+            {},
+            optional={
+                "force_limit": _in(1, 10_000),
+                "speed": _in(0, 7200, exclude_min=True),
+                "dead_band": _in(0, 90, exclude_max=True),
+            },
+        ),
+    }
+)
 
 
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -99,17 +146,42 @@ def test_every_valid_spec_is_analysed_without_crash_or_warning(data, samples):
     assert parse_spec(tomllib.loads(tomli_w.dumps(spec.model_dump(exclude_none=True))), "again") == spec
 
 
-BATCH_KEYS = ["base", "vary", "name", "start", "stop", "num", "linkage.swing", "linkage.rocker", "load.rope_force",
-              "wheel.radius", "operator.dead_band", "linkage", "nope.key", "linkage.rockr", "load.head"]
+BATCH_KEYS = [
+    "base",
+    "vary",
+    "name",
+    "start",
+    "stop",
+    "num",
+    "linkage.swing",
+    "linkage.rocker",
+    "load.rope_force",
+    "wheel.radius",
+    "operator.dead_band",
+    "linkage",
+    "nope.key",
+    "linkage.rockr",
+    "load.head",
+]
 
 
 @settings(max_examples=300, deadline=None)
-@given(st.dictionaries(st.sampled_from(BATCH_KEYS), toml_values(), max_size=4),
-       st.dictionaries(st.sampled_from(BATCH_KEYS), st.one_of(
-           st.lists(SCALARS.filter(lambda v: v is not None), max_size=4),
-           st.dictionaries(st.sampled_from(["start", "stop", "num", "step"]), SCALARS.filter(lambda v: v is not None),
-                           max_size=4),
-           SCALARS.filter(lambda v: v is not None)), max_size=3))
+@given(
+    st.dictionaries(st.sampled_from(BATCH_KEYS), toml_values(), max_size=4),
+    st.dictionaries(
+        st.sampled_from(BATCH_KEYS),
+        st.one_of(
+            st.lists(SCALARS.filter(lambda v: v is not None), max_size=4),
+            st.dictionaries(
+                st.sampled_from(["start", "stop", "num", "step"]),
+                SCALARS.filter(lambda v: v is not None),
+                max_size=4,
+            ),
+            SCALARS.filter(lambda v: v is not None),
+        ),
+        max_size=3,
+    ),
+)
 def test_arbitrary_batch_files_give_a_batch_or_a_spec_error(top, vary):
     from pumplink.batch import parse_batch
     from pumplink.spec import DEFAULT_SPEC

@@ -2,7 +2,7 @@
 TOML round trip (spec_to_dict -> tomli_w -> load_spec).
 
 The allowed ranges are read from the model's declared constraints (the contract the messages must
-state); expected physical values come from the formula of NOTES.md §4 written out here.
+state); expected physical values come from the formula of docs/physics.md §5 written out here.
 """
 
 from __future__ import annotations
@@ -27,15 +27,21 @@ ROPE = {
     "linkage": {"L1": 0.40, "D1": 0.20, "b": 0.10, "rocker": 0.20, "handle": 1.00, "swing": 60.0},
     "load": {"rope_force": 45.0},
 }
-HEAD = {**ROPE, "wheel": {"radius": 0.25, "axle_height": 0.55},
-        "load": {"head": 10.0, "pipe_diameter": 0.023, "efficiency": 0.75},
-        "operator": {"force_limit": 100.0, "speed": 360.0, "dead_band": 20.0}}
+HEAD = {
+    **ROPE,
+    "wheel": {"radius": 0.25, "axle_height": 0.55},
+    "load": {"head": 10.0, "pipe_diameter": 0.023, "efficiency": 0.75},
+    "operator": {"force_limit": 100.0, "speed": 360.0, "dead_band": 20.0},
+}
 
 # every numeric key of the contract, with a base spec in which it is present
-NUMERIC_KEYS = [(ROPE, "wheel", "radius"), (HEAD, "wheel", "axle_height")] + \
-    [(ROPE, "linkage", k) for k in ("L1", "D1", "b", "rocker", "handle", "swing")] + \
-    [(ROPE, "load", "rope_force")] + [(HEAD, "load", k) for k in ("head", "pipe_diameter", "efficiency")] + \
-    [(HEAD, "operator", k) for k in ("force_limit", "speed", "dead_band")]
+NUMERIC_KEYS = (
+    [(ROPE, "wheel", "radius"), (HEAD, "wheel", "axle_height")]
+    + [(ROPE, "linkage", k) for k in ("L1", "D1", "b", "rocker", "handle", "swing")]
+    + [(ROPE, "load", "rope_force")]
+    + [(HEAD, "load", k) for k in ("head", "pipe_diameter", "efficiency")]
+    + [(HEAD, "operator", k) for k in ("force_limit", "speed", "dead_band")]
+)
 
 
 def constraints(section: str, key: str) -> dict[str, float]:
@@ -55,7 +61,9 @@ def with_value(base: dict, section: str, key: str, value) -> dict:
 
 
 def names_key(msg: str, section: str, key: str) -> bool:
-    return f"{section}.{key}" in msg or (f"[{section}]" in msg and re.search(rf"\b{re.escape(key)}\b", msg) is not None)
+    return f"{section}.{key}" in msg or (
+        f"[{section}]" in msg and re.search(rf"\b{re.escape(key)}\b", msg) is not None
+    )
 
 
 def test_every_numeric_key_has_a_finite_range():
@@ -77,11 +85,15 @@ def out_of_range(draw):
     if "gt" in c:
         options.append(st.floats(max_value=c["gt"], allow_nan=False, allow_infinity=False))
     if "ge" in c:
-        options.append(st.floats(max_value=c["ge"], allow_nan=False, allow_infinity=False).filter(lambda v: v < c["ge"]))
+        options.append(
+            st.floats(max_value=c["ge"], allow_nan=False, allow_infinity=False).filter(lambda v: v < c["ge"])
+        )
     if "lt" in c:
         options.append(st.floats(min_value=c["lt"], allow_nan=False, allow_infinity=False))
     if "le" in c:
-        options.append(st.floats(min_value=c["le"], allow_nan=False, allow_infinity=False).filter(lambda v: v > c["le"]))
+        options.append(
+            st.floats(min_value=c["le"], allow_nan=False, allow_infinity=False).filter(lambda v: v > c["le"])
+        )
     value = draw(st.one_of(options))
     return base, section, key, value, c
 
@@ -193,10 +205,12 @@ def test_spec_error_maps_to_exit_2():
 
 
 # ----------------------------------------------------------------------------- load physics
-@pytest.mark.parametrize("head,d,eff", [(10.0, 0.023, 0.75), (10.0, 0.023, None), (6.0, 0.019, 0.6), (35.0, 0.012, 1.0)])
+@pytest.mark.parametrize(
+    "head,d,eff", [(10.0, 0.023, 0.75), (10.0, 0.023, None), (6.0, 0.019, 0.6), (35.0, 0.012, 1.0)]
+)
 def test_head_based_rope_force(head, d, eff):
     """Fw = rho g head (pi d^2 / 4) / efficiency, rho = 1000 kg/m^3, g = 9.81 m/s^2, efficiency 0.75
-    by default (NOTES.md §4: 10 m, 23 mm, 0.75 -> about 54 N)."""
+    by default (docs/physics.md §5: 10 m, 23 mm, 0.75 -> about 54 N)."""
     load = {"head": head, "pipe_diameter": d} | ({} if eff is None else {"efficiency": eff})
     s = parse_spec({**copy.deepcopy(ROPE), "load": load})
     want = 1000.0 * 9.81 * head * math.pi * d**2 / 4.0 / (0.75 if eff is None else eff)
@@ -207,7 +221,7 @@ def test_head_based_rope_force(head, d, eff):
 def test_notes_example_is_about_54_newtons():
     s = parse_spec({**copy.deepcopy(ROPE), "load": {"head": 10.0, "pipe_diameter": 0.023}})
     assert 53.5 < s.load.rope_force_N < 55.0
-    assert s.wheel_torque == pytest.approx(13.6, abs=0.05)  # NOTES.md §4: Mw ~ 13.6 N m at rw = 0.25 m
+    assert s.wheel_torque == pytest.approx(13.6, abs=0.05)  # docs/physics.md §5: Mw ~ 13.6 N m at rw = 0.25 m
 
 
 def test_wheel_torque_from_rope_force():
@@ -246,7 +260,7 @@ def test_load_spec_file_errors(tmp_path):
     cases = {
         "missing.toml": None,
         "folder.toml": "dir",
-        "binary.toml": b"name = \"\xff\"\n",
+        "binary.toml": b'name = "\xff"\n',
         "syntax.toml": b"[wheel\nradius = 1\n",
         "empty.toml": b"",
     }
@@ -272,8 +286,10 @@ def valid_specs(draw):
         "name": draw(st.text(min_size=1, max_size=40)),
         "wheel": {"radius": draw(st.floats(0.001, 5, **finite))},
         "linkage": {
-            "L1": draw(st.floats(0, 10, **finite)), "D1": draw(st.floats(-10, 10, **finite)),
-            "b": draw(st.floats(0, 10, **finite)), "rocker": draw(st.floats(0.001, 10, **finite)),
+            "L1": draw(st.floats(0, 10, **finite)),
+            "D1": draw(st.floats(-10, 10, **finite)),
+            "b": draw(st.floats(0, 10, **finite)),
+            "rocker": draw(st.floats(0.001, 10, **finite)),
             "handle": draw(st.floats(0.001, 20, **finite)),
             "swing": draw(st.floats(1, 180, exclude_max=True, **finite)),
         },
@@ -283,7 +299,10 @@ def valid_specs(draw):
     if draw(st.booleans()):
         d["load"] = {"rope_force": draw(st.floats(0.01, 10_000, **finite))}
     else:
-        d["load"] = {"head": draw(st.floats(0.01, 200, **finite)), "pipe_diameter": draw(st.floats(0.001, 0.5, **finite))}
+        d["load"] = {
+            "head": draw(st.floats(0.01, 200, **finite)),
+            "pipe_diameter": draw(st.floats(0.001, 0.5, **finite)),
+        }
         if draw(st.booleans()):
             d["load"]["efficiency"] = draw(st.floats(0.05, 1, **finite))
     op = {}
@@ -314,7 +333,7 @@ def test_spec_to_dict_round_trips_through_toml(tmp_path, data):
 
 def test_example_configs_round_trip(tmp_path):
     configs = sorted((Path(__file__).parents[1] / "configs").glob("*.toml"))
-    # batch files (a top-level base/vary, issue #4) live there too; tests/test_batch.py covers them
+    # batch files (a top-level base/vary) live there too; tests/test_batch.py covers them
     configs = [c for c in configs if not {"base", "vary"} & set(tomllib.loads(c.read_text(encoding="utf-8")))]
     assert configs
     for c in configs:
@@ -324,7 +343,7 @@ def test_example_configs_round_trip(tmp_path):
         assert load_spec(p) == spec
 
 
-# ----------------------------------------------------------------------------- flywheel keys (issue #6)
+# ----------------------------------------------------------------------------- flywheel keys
 def _fly(**wheel):
     d = copy.deepcopy(default_spec().model_dump(exclude_none=True))
     d["wheel"].update(wheel)
@@ -332,7 +351,7 @@ def _fly(**wheel):
 
 
 def test_inertia_is_none_without_inertia_keys():
-    """No wheel.inertia / wheel.mass / load.moving_mass: the quasi-static model (as before issue #6)."""
+    """No wheel.inertia / wheel.mass / load.moving_mass: the quasi-static model (the default)."""
     assert default_spec().inertia is None
     d = _fly()
     d["load"] = {"head": 10.0, "pipe_diameter": 0.023}  # a water column alone does not switch the model
@@ -343,8 +362,8 @@ def test_inertia_from_mass_and_water_column():
     """Hand derivation: J = m rw^2 + rho head (pi d^2/4) rw^2 (a rim plus the water moving with it)."""
     d = _fly(mass=4.0)
     d["load"] = {"head": 10.0, "pipe_diameter": 0.023}
-    water = 1000.0 * 10.0 * math.pi * 0.023 ** 2 / 4  # 4.1548 kg
-    assert parse_spec(d).inertia == pytest.approx(4.0 * 0.25 ** 2 + water * 0.25 ** 2, rel=1e-14)
+    water = 1000.0 * 10.0 * math.pi * 0.023**2 / 4  # 4.1548 kg
+    assert parse_spec(d).inertia == pytest.approx(4.0 * 0.25**2 + water * 0.25**2, rel=1e-14)
     d["load"]["moving_mass"] = 1.5  # an explicit moving mass replaces the water-column estimate
     assert parse_spec(d).inertia == pytest.approx((4.0 + 1.5) * 0.0625, rel=1e-14)
     assert parse_spec(_fly(inertia=0.3)).inertia == 0.3

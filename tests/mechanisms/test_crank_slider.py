@@ -75,8 +75,14 @@ def simulate(r, rod, e, samples=4001):
     rise = np.abs(fe - fr * np.sin(grid))
     t_lam = _refine(lambda t: (e - r * mp.sin(t)) * mp.cos(t), grid, int(np.argmax(rise)))
     lam = mp.asin(abs(e - r * mp.sin(t_lam)) / rod)
-    return {"stroke": stroke, "swept_stroke": s.max() - s.min(), "time_ratio": ratio,
-            "far": t_far % (2 * mp.pi), "near": t_near % (2 * mp.pi), "lam": lam}
+    return {
+        "stroke": stroke,
+        "swept_stroke": s.max() - s.min(),
+        "time_ratio": ratio,
+        "far": t_far % (2 * mp.pi),
+        "near": t_near % (2 * mp.pi),
+        "lam": lam,
+    }
 
 
 def _close(a, b, rel=1e-9):
@@ -341,12 +347,24 @@ def test_printed_offset_formula_is_only_first_order():
 
 
 def test_task2_reason_codes():
-    d = cs.synthesize_from_time_ratio([math.nan, -1.0, 1.0, 1.0, 1.0], [1.2, 1.2, 0.9, 1.2, 1.2],
-                                      [3.0, 3.0, 3.0, 1.0, 3.0])
-    assert list(d.reason) == [cs.INPUT_NOT_FINITE, cs.STROKE_NOT_POSITIVE, cs.TIME_RATIO_BELOW_ONE,
-                              cs.ROD_RATIO_NOT_ABOVE_ONE, cs.OK]
+    d = cs.synthesize_from_time_ratio(
+        [math.nan, -1.0, 1.0, 1.0, 1.0], [1.2, 1.2, 0.9, 1.2, 1.2], [3.0, 3.0, 3.0, 1.0, 3.0]
+    )
+    assert list(d.reason) == [
+        cs.INPUT_NOT_FINITE,
+        cs.STROKE_NOT_POSITIVE,
+        cs.TIME_RATIO_BELOW_ONE,
+        cs.ROD_RATIO_NOT_ABOVE_ONE,
+        cs.OK,
+    ]
     assert list(d.ok) == [False, False, False, False, True]
     assert np.isnan(d.stroke[:4]).all() and np.isfinite(d.stroke[4])
-    assert set(cs.REASONS) == {cs.OK, cs.INPUT_NOT_FINITE, cs.STROKE_NOT_POSITIVE,
-                               cs.ROD_RATIO_NOT_ABOVE_ONE, cs.OFFSET_TOO_LARGE,
-                               cs.TIME_RATIO_BELOW_ONE, cs.TIME_RATIO_TOO_LARGE}
+    assert set(cs.REASONS) == {
+        cs.OK,
+        cs.INPUT_NOT_FINITE,
+        cs.STROKE_NOT_POSITIVE,
+        cs.ROD_RATIO_NOT_ABOVE_ONE,
+        cs.OFFSET_TOO_LARGE,
+        cs.TIME_RATIO_BELOW_ONE,
+        cs.TIME_RATIO_TOO_LARGE,
+    }

@@ -54,8 +54,15 @@ def simulate(r, d, lever, samples=4001):
     arc = (t_hi - t_lo) % (2 * mp.pi)
     ratio = max(arc, 2 * mp.pi - arc) / min(arc, 2 * mp.pi - arc)
     reach = max(np.sqrt(float(r) ** 2 + float(d) ** 2 + 2 * float(r) * float(d) * np.sin(grid)))
-    return {"swing": p_hi - p_lo, "stroke": chord, "time_ratio": ratio, "t_lo": t_lo % (2 * mp.pi),
-            "t_hi": t_hi % (2 * mp.pi), "slow_arc": arc, "reach": reach}
+    return {
+        "swing": p_hi - p_lo,
+        "stroke": chord,
+        "time_ratio": ratio,
+        "t_lo": t_lo % (2 * mp.pi),
+        "t_hi": t_hi % (2 * mp.pi),
+        "slow_arc": arc,
+        "reach": reach,
+    }
 
 
 def _close(a, b, rel=1e-9):

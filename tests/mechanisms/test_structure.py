@@ -31,30 +31,76 @@ def P(name, *links):
     return (name, "prismatic", links)
 
 
-FOUR_BAR = dict(links=["0", "1", "2", "3"], frame="0",
-                joints=[R("A", "0", "1"), R("B", "1", "2"), R("C", "2", "3"), R("D", "3", "0")])
-SLIDER_CRANK = dict(links=["0", "1", "2", "3"], frame="0",
-                    joints=[R("A", "0", "1"), R("B", "1", "2"), R("C", "2", "3"), P("D", "3", "0")])
-FIVE_BAR = dict(links=["0", "1", "2", "3", "4"], frame="0",
-                joints=[R("A", "0", "1"), R("B", "1", "2"), R("C", "2", "3"), R("D", "3", "4"),
-                        R("E", "4", "0")])
+FOUR_BAR = dict(
+    links=["0", "1", "2", "3"],
+    frame="0",
+    joints=[R("A", "0", "1"), R("B", "1", "2"), R("C", "2", "3"), R("D", "3", "0")],
+)
+SLIDER_CRANK = dict(
+    links=["0", "1", "2", "3"],
+    frame="0",
+    joints=[R("A", "0", "1"), R("B", "1", "2"), R("C", "2", "3"), P("D", "3", "0")],
+)
+FIVE_BAR = dict(
+    links=["0", "1", "2", "3", "4"],
+    frame="0",
+    joints=[R("A", "0", "1"), R("B", "1", "2"), R("C", "2", "3"), R("D", "3", "4"), R("E", "4", "0")],
+)
 # Watt chain: the two ternary links (frame 0 and rocker 3) are joined directly (joint D)
-WATT = dict(links=["0", "1", "2", "3", "4", "5"], frame="0",
-            joints=[R("A", "0", "1"), R("B", "1", "2"), R("C", "2", "3"), R("D", "0", "3"),
-                    R("E", "3", "4"), R("G", "4", "5"), R("F", "5", "0")])
+WATT = dict(
+    links=["0", "1", "2", "3", "4", "5"],
+    frame="0",
+    joints=[
+        R("A", "0", "1"),
+        R("B", "1", "2"),
+        R("C", "2", "3"),
+        R("D", "0", "3"),
+        R("E", "3", "4"),
+        R("G", "4", "5"),
+        R("F", "5", "0"),
+    ],
+)
 # Stephenson chain: the ternary links (frame 0 and coupler 2) are not joined to each other
-STEPHENSON = dict(links=["0", "1", "2", "3", "4", "5"], frame="0",
-                  joints=[R("A", "0", "1"), R("B", "1", "2"), R("C", "2", "3"), R("D", "3", "0"),
-                          R("E", "2", "4"), R("G", "4", "5"), R("F", "5", "0")])
+STEPHENSON = dict(
+    links=["0", "1", "2", "3", "4", "5"],
+    frame="0",
+    joints=[
+        R("A", "0", "1"),
+        R("B", "1", "2"),
+        R("C", "2", "3"),
+        R("D", "3", "0"),
+        R("E", "2", "4"),
+        R("G", "4", "5"),
+        R("F", "5", "0"),
+    ],
+)
 # the textbook's six-link example: crank 1, rods 2 and 4, rocker 3, slider 5; hinge C joins 2, 3, 4
-TEXTBOOK_SIX = dict(links=["0", "1", "2", "3", "4", "5"], frame="0",
-                    joints=[R("A", "0", "1"), R("B", "1", "2"), R("C", "2", "3", "4"),
-                            R("D", "0", "3"), R("E", "4", "5"), P("F", "5", "0")])
+TEXTBOOK_SIX = dict(
+    links=["0", "1", "2", "3", "4", "5"],
+    frame="0",
+    joints=[
+        R("A", "0", "1"),
+        R("B", "1", "2"),
+        R("C", "2", "3", "4"),
+        R("D", "0", "3"),
+        R("E", "4", "5"),
+        P("F", "5", "0"),
+    ],
+)
 # double parallelogram (textbook Fig. 1.12): cranks 1 (OA, carrying D) and 4 (CB, carrying E),
 # coupler 3 (AB) and the passive rod 2 (DE)
-DOUBLE_PARALLELOGRAM = dict(links=["0", "1", "2", "3", "4"], frame="0",
-                            joints=[R("O", "0", "1"), R("C", "0", "4"), R("A", "1", "3"),
-                                    R("B", "3", "4"), R("D", "1", "2"), R("E", "2", "4")])
+DOUBLE_PARALLELOGRAM = dict(
+    links=["0", "1", "2", "3", "4"],
+    frame="0",
+    joints=[
+        R("O", "0", "1"),
+        R("C", "0", "4"),
+        R("A", "1", "3"),
+        R("B", "3", "4"),
+        R("D", "1", "2"),
+        R("E", "2", "4"),
+    ],
+)
 
 
 # --------------------------------------------------------------------------- instantaneous kinematics
@@ -119,8 +165,9 @@ def numeric_mobility(mech, random_state=1, points=None, axes=None):
 def group_is_rigid(mech, group_links, present, random_state=1):
     """The group cannot move with every other present link held (and links not present removed)."""
     sub = dict(mech)
-    sub["joints"] = [(n, k, tuple(x for x in ls if x in present or x == mech["frame"]))
-                     for n, k, ls in mech["joints"]]
+    sub["joints"] = [
+        (n, k, tuple(x for x in ls if x in present or x == mech["frame"])) for n, k, ls in mech["joints"]
+    ]
     sub["joints"] = [j for j in sub["joints"] if len(j[2]) >= 2]
     points, axes = random_geometry(mech, random_state)
     J = jacobian(sub, points, axes, unknown=group_links)
@@ -128,8 +175,10 @@ def group_is_rigid(mech, group_links, present, random_state=1):
 
 
 # --------------------------------------------------------------------------- named mechanisms
-@pytest.mark.parametrize("mech, w", [(FOUR_BAR, 1), (SLIDER_CRANK, 1), (FIVE_BAR, 2), (WATT, 1),
-                                     (STEPHENSON, 1), (TEXTBOOK_SIX, 1)])
+@pytest.mark.parametrize(
+    "mech, w",
+    [(FOUR_BAR, 1), (SLIDER_CRANK, 1), (FIVE_BAR, 2), (WATT, 1), (STEPHENSON, 1), (TEXTBOOK_SIX, 1)],
+)
 def test_mobility_matches_instantaneous_kinematics(mech, w):
     assert S.mobility(**mech) == w
     assert numeric_mobility(mech) == w
@@ -161,10 +210,13 @@ def test_watt_chain_two_class_two_groups():
     assert all(g.group_class == 2 and g.order == 2 for g in a.groups)
 
 
-@pytest.mark.parametrize("driver, expected", [
-    ("1", [(("2", "3"), 2, 2), (("4", "5"), 2, 2)]),
-    ("5", [(("1", "2", "3", "4"), 3, 3)]),
-])
+@pytest.mark.parametrize(
+    "driver, expected",
+    [
+        ("1", [(("2", "3"), 2, 2), (("4", "5"), 2, 2)]),
+        ("5", [(("1", "2", "3", "4"), 3, 3)]),
+    ],
+)
 def test_stephenson_chain_depends_on_the_driver(driver, expected):
     a = S.analyse_structure(**STEPHENSON, drivers=driver)
     assert a.decomposed
@@ -241,9 +293,16 @@ def test_redundant_constraint_sign():
 
 
 def test_cam_with_roller_local_mobility():
-    cam = dict(links=["0", "cam", "roller", "follower"], frame="0",
-               joints=[R("O", "0", "cam"), ("K", "higher", ("cam", "roller")),
-                       R("Q", "roller", "follower"), P("G", "follower", "0")])
+    cam = dict(
+        links=["0", "cam", "roller", "follower"],
+        frame="0",
+        joints=[
+            R("O", "0", "cam"),
+            ("K", "higher", ("cam", "roller")),
+            R("Q", "roller", "follower"),
+            P("G", "follower", "0"),
+        ],
+    )
     assert S.mobility(**cam) == 2 == numeric_mobility(cam)  # the roller's spin is one of them
     a = S.analyse_structure(**cam, local_mobilities=1)
     assert a.higher_pairs == 1 and a.mobility == 1 and a.redundant_constraints == 0
@@ -253,10 +312,22 @@ def test_cam_with_roller_local_mobility():
 def test_groups_come_off_farthest_first_and_attach_in_link_order():
     """Dyads (2, 3) and (6, 7) hang on the crank, (4, 5) on rocker 3: (4, 5) is farthest and comes
     off first; (2, 3) and (6, 7) are equally near, so they attach in the order they are numbered."""
-    mech = dict(links=[str(i) for i in range(8)], frame="0",
-                joints=[R("A", "0", "1"), R("B", "1", "2"), R("C", "2", "3"), R("D", "3", "0"),
-                        R("E", "3", "4"), R("F", "4", "5"), R("G", "5", "0"),
-                        R("H", "1", "6"), R("I", "6", "7"), R("K", "7", "0")])
+    mech = dict(
+        links=[str(i) for i in range(8)],
+        frame="0",
+        joints=[
+            R("A", "0", "1"),
+            R("B", "1", "2"),
+            R("C", "2", "3"),
+            R("D", "3", "0"),
+            R("E", "3", "4"),
+            R("F", "4", "5"),
+            R("G", "5", "0"),
+            R("H", "1", "6"),
+            R("I", "6", "7"),
+            R("K", "7", "0"),
+        ],
+    )
     a = S.analyse_structure(**mech)
     assert [g.links for g in a.groups] == [("2", "3"), ("6", "7"), ("4", "5")]
 
@@ -264,8 +335,11 @@ def test_groups_come_off_farthest_first_and_attach_in_link_order():
 def test_zero_count_with_a_loose_part_is_not_a_group():
     """Link x pinned to the frame twice (over-constrained) carries link y on one pin (free to
     spin): {x, y} counts 3*2 - 2*3 = 0 but is no Assur group; the kinematics shows W = 2."""
-    mech = dict(links=["0", "1", "2", "3", "x", "y"], frame="0",
-                joints=FOUR_BAR["joints"] + [R("X1", "0", "x"), R("X2", "x", "0"), R("Y", "x", "y")])
+    mech = dict(
+        links=["0", "1", "2", "3", "x", "y"],
+        frame="0",
+        joints=FOUR_BAR["joints"] + [R("X1", "0", "x"), R("X2", "x", "0"), R("Y", "x", "y")],
+    )
     assert S.mobility(**mech) == 1 and numeric_mobility(mech) == 2
     a = S.analyse_structure(**mech)
     assert not a.decomposed and "x" in a.reason and "y" in a.reason
@@ -290,8 +364,11 @@ def dyad_chains(draw):
         to_b = draw(st.sampled_from(links))
         links += [a, b]
         names = {"R": "revolute", "P": "prismatic"}
-        joints += [(f"L{k}a", names[kinds[0]], (to_a, a)), (f"I{k}", names[kinds[1]], (a, b)),
-                   (f"L{k}b", names[kinds[2]], (b, to_b))]
+        joints += [
+            (f"L{k}a", names[kinds[0]], (to_a, a)),
+            (f"I{k}", names[kinds[1]], (a, b)),
+            (f"L{k}b", names[kinds[2]], (b, to_b)),
+        ]
         groups.append((a, b))
     # drivers first in the input, as the textbook numbers them; shuffle nothing else
     return {"links": links, "frame": "0", "joints": joints}, groups, drivers
@@ -322,18 +399,21 @@ def test_decomposition_recovers_the_dyads_it_was_built_from(built):
 
 
 # --------------------------------------------------------------------------- validation
-@pytest.mark.parametrize("kwargs, words", [
-    (dict(links=["0", "1", "1"], frame="0", joints=[]), "more than once"),
-    (dict(links=["0", "1"], frame="9", joints=[R("A", "0", "1")]), "frame"),
-    (dict(links=["0", "1"], frame="0", joints=[("A", "spherical", ("0", "1"))]), "kind"),
-    (dict(links=["0", "1"], frame="0", joints=[R("A", "0")]), "at least two"),
-    (dict(links=["0", "1"], frame="0", joints=[R("A", "0", "7")]), "unknown link"),
-    (dict(links=["0", "1"], frame="0", joints=[R("A", "0", "0")]), "twice"),
-    (dict(links=["0", "1", "2"], frame="0", joints=[R("A", "0", "1")]), "not connected"),
-    (dict(links=["0", "1"], frame="0", joints=[R("A", "0", "1"), R("A", "0", "1")]), "more than once"),
-    (dict(links=["0", "1"], frame="0", joints=["A"]), "joint"),
-    (dict(links=["0", "1"], frame="0", joints=[{"name": "A", "links": ["0", "1"]}]), "kind"),
-])
+@pytest.mark.parametrize(
+    "kwargs, words",
+    [
+        (dict(links=["0", "1", "1"], frame="0", joints=[]), "more than once"),
+        (dict(links=["0", "1"], frame="9", joints=[R("A", "0", "1")]), "frame"),
+        (dict(links=["0", "1"], frame="0", joints=[("A", "spherical", ("0", "1"))]), "kind"),
+        (dict(links=["0", "1"], frame="0", joints=[R("A", "0")]), "at least two"),
+        (dict(links=["0", "1"], frame="0", joints=[R("A", "0", "7")]), "unknown link"),
+        (dict(links=["0", "1"], frame="0", joints=[R("A", "0", "0")]), "twice"),
+        (dict(links=["0", "1", "2"], frame="0", joints=[R("A", "0", "1")]), "not connected"),
+        (dict(links=["0", "1"], frame="0", joints=[R("A", "0", "1"), R("A", "0", "1")]), "more than once"),
+        (dict(links=["0", "1"], frame="0", joints=["A"]), "joint"),
+        (dict(links=["0", "1"], frame="0", joints=[{"name": "A", "links": ["0", "1"]}]), "kind"),
+    ],
+)
 def test_invalid_input_raises_one_sentence(kwargs, words):
     with pytest.raises(ValueError) as err:
         S.mobility(**kwargs)
@@ -355,6 +435,9 @@ def test_joint_inputs_are_interchangeable():
     as_tuples = S.analyse_structure(**SLIDER_CRANK)
     maps = [{"name": n, "kind": k, "links": ls} for n, k, ls in SLIDER_CRANK["joints"]]
     as_maps = S.analyse_structure(links=SLIDER_CRANK["links"], frame="0", joints=maps)
-    as_joints = S.analyse_structure(links=SLIDER_CRANK["links"], frame="0",
-                                    joints=[S.Joint(n, k, ls) for n, k, ls in SLIDER_CRANK["joints"]])
+    as_joints = S.analyse_structure(
+        links=SLIDER_CRANK["links"],
+        frame="0",
+        joints=[S.Joint(n, k, ls) for n, k, ls in SLIDER_CRANK["joints"]],
+    )
     assert as_tuples == as_maps == as_joints

@@ -1,4 +1,4 @@
-"""Batch runs (issue #4): batch files, the vectorised evaluation, `pumplink batch` end to end.
+"""Batch runs: batch files, the vectorised evaluation, `pumplink batch` end to end.
 
 The numbers of a batch are checked against `pumplink force --summary --format json` (and
 ``force_analysis`` in-process) on the same variant, exactly: the per-design route is the
@@ -26,13 +26,13 @@ import pytest
 import tomli_w
 
 from pumplink import batch as B
-from pumplink.models import quasi_static as F
 from pumplink.analysis import force_analysis
 from pumplink.errors import SpecError
-from pumplink.spec import parse_spec
 from pumplink.mechanisms.fourbar import FourBar, synthesize
+from pumplink.models import quasi_static as F
+from pumplink.spec import parse_spec
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 CONFIGS = ROOT / "configs"
 GRID = CONFIGS / "grids" / "design-space.toml"
 PROTOTYPE = (CONFIGS / "prototype.toml").as_posix()
@@ -40,8 +40,14 @@ VILLAGE = (CONFIGS / "village-10m.toml").as_posix()
 
 
 def pumplink(*args, cwd=ROOT, **kw) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "pumplink", *map(str, args)], cwd=cwd, capture_output=True,
-                          text=True, timeout=120, **kw)
+    return subprocess.run(
+        [sys.executable, "-m", "pumplink", *map(str, args)],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        **kw,
+    )
 
 
 def read_csv(text: str) -> list[dict[str, str]]:
@@ -50,9 +56,9 @@ def read_csv(text: str) -> list[dict[str, str]]:
 
 # A small batch whose outcome follows from a hand derivation: the prototype (L1 = 0.4) passes
 # with peak 85.8 N at 45 N rope force; the force is linear in the wheel torque (F = Mw / (dPx/dθ2),
-# NOTES.md §1), so at 80 N the peak is 85.8 * 80/45 = 152 N > 100 N while the mean
+# docs/physics.md), so at 80 N the peak is 85.8 * 80/45 = 152 N > 100 N while the mean
 # (35.3 N * 80/45 = 62.8 N) stays below; with L1 = 0 the frame line rises at
-# atan(0.2/0.05) = 76° > 90° - 30°, so psi2 < 0: no crank-rocker (NOTES.md §1).
+# atan(0.2/0.05) = 76° > 90° - 30°, so psi2 < 0: no crank-rocker (docs/physics.md).
 SMALL = f"""\
 name = "small"
 base = "{PROTOTYPE}"
@@ -62,7 +68,7 @@ base = "{PROTOTYPE}"
 """
 
 
-# Batches that give inertia (issue #6): the flywheel model decides their verdict.  They cover every
+# Batches that give inertia: the flywheel model decides their verdict.  They cover every
 # route to J of PumpSpec.inertia: wheel.mass plus the water column from head and pipe_diameter (the
 # village base, also with head and bore on axes), wheel.inertia plus an explicit load.moving_mass on
 # a rope-force base, and a moving mass alone; speed, speed fluctuation and force limit on axes; and
@@ -97,14 +103,17 @@ base = "{VILLAGE}"
 "load.pipe_diameter" = [0.02, 0.023]
 "operator.speed" = [300, 420]
 """,
-    "fly-inertia": 'name = "fly-inertia"\n' + PROTO_INLINE + """\
+    "fly-inertia": 'name = "fly-inertia"\n'
+    + PROTO_INLINE
+    + """\
 [vary]
 "wheel.inertia" = [0.05, 0.5]
 "load.moving_mass" = [0.0, 10.0]
 "operator.force_limit" = [60, 100]
 "linkage.swing" = [60, 70]
 """,
-    "fly-moving": PROTO_INLINE + """\
+    "fly-moving": PROTO_INLINE
+    + """\
 [vary]
 "load.moving_mass" = [5.0, 40.0]
 "operator.speed" = [360, 720]
@@ -162,15 +171,22 @@ def grid_csv(qs_grid) -> list[dict[str, str]]:
 # ----------------------------------------------------------------------------- batch files
 def test_linspace_values_and_variant_names(tmp_path):
     p = tmp_path / "t.toml"
-    p.write_text(f'base = "{PROTOTYPE}"\n[vary]\n"linkage.rocker" = {{ start = 0.2, stop = 0.3, num = 3 }}\n'
-                 f'"linkage.swing" = [40, 50]\n')
+    p.write_text(
+        f'base = "{PROTOTYPE}"\n[vary]\n"linkage.rocker" = {{ start = 0.2, stop = 0.3, num = 3 }}\n'
+        f'"linkage.swing" = [40, 50]\n'
+    )
     b = B.load_batch(p)
     assert b.axes[0].values.tolist() == [0.2, 0.25, 0.3]  # what a user types, not 0.25000000000000006
     assert b.size == 6
     # itertools.product order, last axis fastest; names as documented in pumplink/batch.py
     assert B.variant_names(b, 0, 6) == [
-        "t#0[rocker=0.2 swing=40]", "t#1[rocker=0.2 swing=50]", "t#2[rocker=0.25 swing=40]",
-        "t#3[rocker=0.25 swing=50]", "t#4[rocker=0.3 swing=40]", "t#5[rocker=0.3 swing=50]"]
+        "t#0[rocker=0.2 swing=40]",
+        "t#1[rocker=0.2 swing=50]",
+        "t#2[rocker=0.25 swing=40]",
+        "t#3[rocker=0.25 swing=50]",
+        "t#4[rocker=0.3 swing=40]",
+        "t#5[rocker=0.3 swing=50]",
+    ]
     assert [B.variant_name(b, i) for i in range(6)] == B.variant_names(b, 0, 6)
     spec = B.variant_spec(b, 3)
     assert spec["linkage"]["rocker"] == 0.25 and spec["linkage"]["swing"] == 50.0
@@ -180,8 +196,11 @@ def test_linspace_values_and_variant_names(tmp_path):
 def test_inline_base_and_ambiguous_short_keys(tmp_path):
     p = tmp_path / "inline.toml"
     base = tomllib.loads(Path(PROTOTYPE).read_text())
-    p.write_text(tomli_w.dumps({"name": "inl", "base": base,
-                                "vary": {"wheel.radius": [0.2, 0.25], "linkage.handle": [1.0]}}))
+    p.write_text(
+        tomli_w.dumps(
+            {"name": "inl", "base": base, "vary": {"wheel.radius": [0.2, 0.25], "linkage.handle": [1.0]}}
+        )
+    )
     b = B.load_batch(p)
     assert B.variant_names(b, 0, 2) == ["inl#0[radius=0.2 handle=1]", "inl#1[radius=0.25 handle=1]"]
 
@@ -221,13 +240,16 @@ def test_bad_batch_files_name_the_key_in_one_line(tmp_path, body, key):
     assert "\n" not in msg and key in msg and str(p) in msg
 
 
-@pytest.mark.parametrize("text,key", [
-    ('base = "nope.toml"\n[vary]\n"linkage.rocker" = [0.2]\n', "nope.toml"),
-    ('[vary]\n"linkage.rocker" = [0.2]\n', "'base'"),
-    ('base = 3\n[vary]\n"linkage.rocker" = [0.2]\n', "'base'"),
-    (f'base = "{PROTOTYPE}"\n', "[vary]"),
-    ('[base]\nname = "x"\n[vary]\n"linkage.rocker" = [0.2]\n', "wheel"),
-])
+@pytest.mark.parametrize(
+    "text,key",
+    [
+        ('base = "nope.toml"\n[vary]\n"linkage.rocker" = [0.2]\n', "nope.toml"),
+        ('[vary]\n"linkage.rocker" = [0.2]\n', "'base'"),
+        ('base = 3\n[vary]\n"linkage.rocker" = [0.2]\n', "'base'"),
+        (f'base = "{PROTOTYPE}"\n', "[vary]"),
+        ('[base]\nname = "x"\n[vary]\n"linkage.rocker" = [0.2]\n', "wheel"),
+    ],
+)
 def test_bad_base_names_the_key(tmp_path, text, key):
     p = tmp_path / "bad.toml"
     p.write_text(text)
@@ -236,25 +258,33 @@ def test_bad_base_names_the_key(tmp_path, text, key):
     assert key in str(exc.value) and "\n" not in str(exc.value)
 
 
-@pytest.mark.parametrize("args,key", [
-    (["BAD"], "linkage.rockr"),  # unknown spec path, through the real entry point
-    (["MISSING"], "nope.toml"),  # missing base file
-    (["EMPTYAXIS"], "linkage.rocker"),
-    (["SMALL", "--chunk", "0/3"], "--chunk"),
-    (["SMALL", "--chunk", "two/3"], "--chunk"),
-    (["SMALL", "--fail-on", "peak,bogus"], "bogus"),
-    (["SMALL", "--out", "x.csv"], "--out"),  # table output is not written to files
-    (["EMPTYDIR"], "no .toml"),
-    (["SMALL", "--format", "csv", "--out", "no-such-folder/x.csv"], "no-such-folder"),
-    (["SMALL", "--junit", "EMPTYDIR"], "is a folder"),
-])
+@pytest.mark.parametrize(
+    "args,key",
+    [
+        (["BAD"], "linkage.rockr"),  # unknown spec path, through the real entry point
+        (["MISSING"], "nope.toml"),  # missing base file
+        (["EMPTYAXIS"], "linkage.rocker"),
+        (["SMALL", "--chunk", "0/3"], "--chunk"),
+        (["SMALL", "--chunk", "two/3"], "--chunk"),
+        (["SMALL", "--fail-on", "peak,bogus"], "bogus"),
+        (["SMALL", "--out", "x.csv"], "--out"),  # table output is not written to files
+        (["EMPTYDIR"], "no .toml"),
+        (["SMALL", "--format", "csv", "--out", "no-such-folder/x.csv"], "no-such-folder"),
+        (["SMALL", "--junit", "EMPTYDIR"], "is a folder"),
+    ],
+)
 def test_cli_bad_input_exits_2_with_one_line(tmp_path, small, args, key):
     (tmp_path / "bad.toml").write_text(f'base = "{PROTOTYPE}"\n[vary]\n"linkage.rockr" = [0.2]\n')
     (tmp_path / "missing.toml").write_text('base = "nope.toml"\n[vary]\n"linkage.rocker" = [0.2]\n')
     (tmp_path / "empty.toml").write_text(f'base = "{PROTOTYPE}"\n[vary]\n"linkage.rocker" = []\n')
     (tmp_path / "emptydir").mkdir()
-    subst = {"BAD": tmp_path / "bad.toml", "MISSING": tmp_path / "missing.toml", "EMPTYAXIS": tmp_path / "empty.toml",
-             "SMALL": small, "EMPTYDIR": tmp_path / "emptydir"}
+    subst = {
+        "BAD": tmp_path / "bad.toml",
+        "MISSING": tmp_path / "missing.toml",
+        "EMPTYAXIS": tmp_path / "empty.toml",
+        "SMALL": small,
+        "EMPTYDIR": tmp_path / "emptydir",
+    }
     r = pumplink("batch", *[subst.get(a, a) for a in args], cwd=tmp_path)
     assert r.returncode == 2, r.stderr
     lines = r.stderr.strip().splitlines()
@@ -271,8 +301,12 @@ def _sampled_reference(lk, samples, mw, dce, dcf, band):
     th = np.arange(samples) * (2 * np.pi / samples)
     out = []
     for i in range(len(mw)):
-        one = FourBar(*(np.float64(np.asarray(getattr(lk, f))[i]) for f in
-                        ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
+        one = FourBar(
+            *(
+                np.float64(np.asarray(getattr(lk, f))[i])
+                for f in ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")
+            )
+        )
         st = kinematic_state(one, th, float(mw[i]))
         keep = ~F.in_dead_band(th, dce[i], dcf[i], band[i]) & ~st.singular
         if not keep.any():
@@ -286,11 +320,21 @@ def _sampled_reference(lk, samples, mw, dce, dcf, band):
 
 def _feasible_designs(n, seed):
     rng = np.random.default_rng(seed)
-    syn = synthesize(rng.uniform(0, 0.6, n), rng.uniform(-0.3, 0.4, n), np.full(n, 0.1), rng.uniform(0.1, 0.4, n),
-                     np.radians(rng.uniform(10, 120, n)), np.full(n, 1.0))
+    syn = synthesize(
+        rng.uniform(0, 0.6, n),
+        rng.uniform(-0.3, 0.4, n),
+        np.full(n, 0.1),
+        rng.uniform(0.1, 0.4, n),
+        np.radians(rng.uniform(10, 120, n)),
+        np.full(n, 1.0),
+    )
     ok = np.asarray(syn.feasible)
-    lk = FourBar(*(np.asarray(getattr(syn.linkage, f))[ok] for f in
-                   ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
+    lk = FourBar(
+        *(
+            np.asarray(getattr(syn.linkage, f))[ok]
+            for f in ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")
+        )
+    )
     return lk, syn.dead_centre_extended[ok], syn.dead_centre_folded[ok], int(ok.sum())
 
 
@@ -323,21 +367,32 @@ def _assert_equals_force_analysis(b: B.Batch, c: B.Chunk, picks) -> None:
     for i in picks:
         r = force_analysis(parse_spec(B.variant_spec(b, c.start + i)), samples=360, keep_samples=False)
         s = r.design.synthesis
-        pairs = {"frame": (s.frame_length, c.frame_length[i]), "crank": (s.crank_length, c.crank_length[i]),
-                 "coupler": (s.coupler_length, c.coupler_length[i]), "K": (s.time_ratio, c.time_ratio[i]),
-                 "gmin": (s.transmission_min, c.transmission_min[i]), "gmax": (s.transmission_max, c.transmission_max[i]),
-                 "mean": (r.mean_force, c.mean_force[i]), "peak": (r.dead_band_peak_force, c.dead_band_peak_force[i]),
-                 "sampled": (r.sampled_peak, c.sampled_peak[i]), "power": (r.power, c.power[i]),
-                 # the flywheel scene (None in force_analysis: quasi-static, or not computed)
-                 "inertia": (nan if r.inertia is None else r.inertia, c.inertia[i]),
-                 "delta": (nan if r.speed_fluctuation is None else r.speed_fluctuation, c.speed_fluctuation[i]),
-                 "required": (nan if r.least_peak_force is None else r.least_peak_force,
-                              c.least_peak_force[i]),
-                 "min speed": (nan if r.min_passing_speed is None else r.min_passing_speed, c.min_passing_speed[i])}
+        pairs = {
+            "frame": (s.frame_length, c.frame_length[i]),
+            "crank": (s.crank_length, c.crank_length[i]),
+            "coupler": (s.coupler_length, c.coupler_length[i]),
+            "K": (s.time_ratio, c.time_ratio[i]),
+            "gmin": (s.transmission_min, c.transmission_min[i]),
+            "gmax": (s.transmission_max, c.transmission_max[i]),
+            "mean": (r.mean_force, c.mean_force[i]),
+            "peak": (r.dead_band_peak_force, c.dead_band_peak_force[i]),
+            "sampled": (r.sampled_peak, c.sampled_peak[i]),
+            "power": (r.power, c.power[i]),
+            # the flywheel scene (None in force_analysis: quasi-static, or not computed)
+            "inertia": (nan if r.inertia is None else r.inertia, c.inertia[i]),
+            "delta": (nan if r.speed_fluctuation is None else r.speed_fluctuation, c.speed_fluctuation[i]),
+            "required": (nan if r.least_peak_force is None else r.least_peak_force, c.least_peak_force[i]),
+            "min speed": (
+                nan if r.min_passing_speed is None else r.min_passing_speed,
+                c.min_passing_speed[i],
+            ),
+        }
         for what, (x, y) in pairs.items():
             assert _same(x, y), (i, what, x, y)
         assert (r.model == FLYWHEEL) == c.flywheel[i]
-        assert r.passed == c.passed[i] and r.design.error == c.reason[i] and r.design.feasible == c.feasible[i]
+        assert (
+            r.passed == c.passed[i] and r.design.error == c.reason[i] and r.design.feasible == c.feasible[i]
+        )
 
 
 def test_random_variants_equal_force_analysis_exactly(qs_grid):
@@ -362,7 +417,9 @@ def test_flywheel_variants_equal_force_analysis_exactly(fly_files):
         _assert_equals_force_analysis(b, c, range(b.size))
         # the verdict's peak is the flywheel one: dead-band peak and verdict disagree somewhere
         ok = c.feasible
-        outcomes |= {(bool(p), bool(q)) for p, q in zip(c.dead_band_peak_force[ok] <= c.force_limit[ok], c.peak_ok[ok])}
+        outcomes |= {
+            (bool(p), bool(q)) for p, q in zip(c.dead_band_peak_force[ok] <= c.force_limit[ok], c.peak_ok[ok])
+        }
     assert outcomes == {(True, True), (True, False), (False, True), (False, False)}
 
 
@@ -394,13 +451,28 @@ def _assert_rows_equal_force_json(tmp_path, b: B.Batch, rows: dict, picks) -> No
         got = json.loads(r.stdout)
         assert got["name"] == row["name"]
         assert str(got["feasible"]) == row["feasible"] and (got["error"] or "") == row["reason"]
-        for key in ("frame_length", "crank_length", "coupler_length", "time_ratio", "mean_force_N", "peak_force_N",
-                    "sampled_peak_force_N", "power_W", "force_limit_N", "inertia_kg_m2", "speed_fluctuation",
-                    "required_peak_force_N", "min_passing_speed_deg_s"):
+        for key in (
+            "frame_length",
+            "crank_length",
+            "coupler_length",
+            "time_ratio",
+            "mean_force_N",
+            "peak_force_N",
+            "sampled_peak_force_N",
+            "power_W",
+            "force_limit_N",
+            "inertia_kg_m2",
+            "speed_fluctuation",
+            "required_peak_force_N",
+            "min_passing_speed_deg_s",
+        ):
             assert got[key] == _val(row[key]), (i, key)
         assert got["model"] == row["model"]
         tr = got["transmission_angle_deg"]
-        assert (tr["min"], tr["max"]) == (_val(row["transmission_min_deg"]), _val(row["transmission_max_deg"]))
+        assert (tr["min"], tr["max"]) == (
+            _val(row["transmission_min_deg"]),
+            _val(row["transmission_max_deg"]),
+        )
         assert str(got["pass"]) == row["pass"]
 
 
@@ -425,19 +497,23 @@ def test_flywheel_rows_equal_pumplink_force_json(tmp_path, fly_files):
     b = B.load_batch(fly_files[0])
     rows = [x for x in all_rows if x["source"] == str(fly_files[0])]
     assert len(rows) == b.size and {x["model"] for x in all_rows} == {"flywheel"}
-    picks = [next(i for i, x in enumerate(rows) if x["pass"] == "True"),
-             next(i for i, x in enumerate(rows) if x["failed"] == "peak"),
-             next(i for i, x in enumerate(rows) if x["feasible"] == "False")]
+    picks = [
+        next(i for i, x in enumerate(rows) if x["pass"] == "True"),
+        next(i for i, x in enumerate(rows) if x["failed"] == "peak"),
+        next(i for i, x in enumerate(rows) if x["feasible"] == "False"),
+    ]
     _assert_rows_equal_force_json(tmp_path, b, {x["name"]: x for x in rows}, picks)
     # the JUnit failure names the flywheel's peak, as the row has it
     fail = rows[picks[1]]
     (case,) = [t for t in ET.parse(junit).getroot().iter("testcase") if t.get("name") == fail["name"]]
     assert case.find("failure").get("message") == (
         f"peak force with the flywheel (δ ≤ {float(fail['speed_fluctuation']):g}) "
-        f"{float(fail['required_peak_force_N']):.2f} N > limit {float(fail['force_limit_N']):g} N")
+        f"{float(fail['required_peak_force_N']):.2f} N > limit {float(fail['force_limit_N']):g} N"
+    )
     moving = B.load_batch(fly_files[3])
-    _assert_rows_equal_force_json(tmp_path, moving, {x["name"]: x for x in all_rows if x["source"] == str(fly_files[3])},
-                                  [1])
+    _assert_rows_equal_force_json(
+        tmp_path, moving, {x["name"]: x for x in all_rows if x["source"] == str(fly_files[3])}, [1]
+    )
 
 
 # ----------------------------------------------------------------------------- CLI
@@ -450,8 +526,11 @@ def test_configs_folder_passes_as_in_ci(tmp_path):
     expected = 0
     for f in sorted(CONFIGS.glob("*.toml")):
         data = tomllib.loads(f.read_text())
-        expected += math.prod(len(v) if isinstance(v, list) else v["num"] for v in data["vary"].values()) \
-            if "vary" in data else 1
+        expected += (
+            math.prod(len(v) if isinstance(v, list) else v["num"] for v in data["vary"].values())
+            if "vary" in data
+            else 1
+        )
     root = ET.parse(junit).getroot()
     cases = root.findall(".//testcase")
     assert len(cases) == expected >= 4
@@ -461,31 +540,40 @@ def test_configs_folder_passes_as_in_ci(tmp_path):
     assert f"{expected} variants: {expected} pass" in r.stdout
 
 
-@pytest.mark.parametrize("fail_on,code,failures,skipped", [
-    ("mean,peak,infeasible", 1, 3, 0),
-    ("none", 0, 0, 2),
-    ("mean", 0, 0, 2),
-    ("peak", 1, 1, 2),
-    ("infeasible", 1, 2, 0),
-])
+@pytest.mark.parametrize(
+    "fail_on,code,failures,skipped",
+    [
+        ("mean,peak,infeasible", 1, 3, 0),
+        ("none", 0, 0, 2),
+        ("mean", 0, 0, 2),
+        ("peak", 1, 1, 2),
+        ("infeasible", 1, 2, 0),
+    ],
+)
 def test_fail_on_selects_exit_code_and_junit(tmp_path, small, fail_on, code, failures, skipped):
     junit = tmp_path / "r.xml"
     r = pumplink("batch", small, "--fail-on", fail_on, "--format", "csv", "--junit", junit)
     assert r.returncode == code, r.stderr
     rows = read_csv(r.stdout)
-    assert [x["name"] for x in rows] == ["small#0[L1=0.4 rope_force=45]", "small#1[L1=0.4 rope_force=80]",
-                                         "small#2[L1=0 rope_force=45]", "small#3[L1=0 rope_force=80]"]
+    assert [x["name"] for x in rows] == [
+        "small#0[L1=0.4 rope_force=45]",
+        "small#1[L1=0.4 rope_force=80]",
+        "small#2[L1=0 rope_force=45]",
+        "small#3[L1=0 rope_force=80]",
+    ]
     assert [x["pass"] for x in rows] == ["True", "False", "False", "False"]
     assert [x["failed"] for x in rows] == ["", "peak", "infeasible", "infeasible"]
     assert [x["feasible"] for x in rows] == ["True", "True", "False", "False"]
     assert "psi2" in rows[2]["reason"]
-    assert float(rows[1]["peak_force_N"]) == pytest.approx(float(rows[0]["peak_force_N"]) * 80 / 45, rel=1e-12)
+    assert float(rows[1]["peak_force_N"]) == pytest.approx(
+        float(rows[0]["peak_force_N"]) * 80 / 45, rel=1e-12
+    )
     root = ET.parse(junit).getroot()
     assert len(root.findall(".//failure")) == failures and len(root.findall(".//skipped")) == skipped
     assert "1 pass, 1 fail, 2 infeasible" in r.stderr
 
 
-# The flywheel decides the peak check (issue #6), with outcomes that follow from the limits of the
+# The flywheel decides the peak check, with outcomes that follow from the limits of the
 # scene (pumplink/flywheel.py): the energy band W = J w^2 delta is 7.9e3 J for J = 1000 kg m^2 at
 # 360 deg/s and delta = 0.2, far above the few joules the load can draw down near a dead centre
 # (Mw * arc ~ 11 N m * 0.5 rad), so the least peak force is the mean force (W -> inf); for
@@ -494,14 +582,20 @@ def test_fail_on_selects_exit_code_and_junit(tmp_path, small, fail_on, code, fai
 # 1/W, past the 1e4 x F_mean above which pumplink.models.flywheel reports it as infinite (null in JSON,
 # as `pumplink force` does).  The dead-band peaks are those of SMALL: 85.8 N at 45 N, 152 N at
 # 80 N.  So the verdict is the opposite of the dead band's for two variants.
-FLY_SMALL = 'name = "flysmall"\n' + PROTO_INLINE + """\
+FLY_SMALL = (
+    'name = "flysmall"\n'
+    + PROTO_INLINE
+    + """\
 [vary]
 "wheel.inertia" = [1e-6, 1000.0]
 "load.rope_force" = [45, 80]
 """
+)
 
 
-@pytest.mark.parametrize("fail_on,code,failures", [("mean,peak,infeasible", 1, 2), ("peak", 1, 2), ("mean", 0, 0)])
+@pytest.mark.parametrize(
+    "fail_on,code,failures", [("mean,peak,infeasible", 1, 2), ("peak", 1, 2), ("mean", 0, 0)]
+)
 def test_fail_on_peak_is_the_flywheel_peak(tmp_path, fail_on, code, failures):
     p = tmp_path / "flysmall.toml"
     p.write_text(FLY_SMALL)
@@ -510,14 +604,25 @@ def test_fail_on_peak_is_the_flywheel_peak(tmp_path, fail_on, code, failures):
     assert r.returncode == code, r.stderr
     d = json.loads(r.stdout)
     v = d["variants"]
-    assert [x["name"] for x in v] == ["flysmall#0[inertia=1e-06 rope_force=45]", "flysmall#1[inertia=1e-06 rope_force=80]",
-                                      "flysmall#2[inertia=1000 rope_force=45]", "flysmall#3[inertia=1000 rope_force=80]"]
-    assert [x["model"] for x in v] == ["flywheel"] * 4 and [x["inertia_kg_m2"] for x in v] == [1e-6, 1e-6, 1000.0, 1000.0]
+    assert [x["name"] for x in v] == [
+        "flysmall#0[inertia=1e-06 rope_force=45]",
+        "flysmall#1[inertia=1e-06 rope_force=80]",
+        "flysmall#2[inertia=1000 rope_force=45]",
+        "flysmall#3[inertia=1000 rope_force=80]",
+    ]
+    assert [x["model"] for x in v] == ["flywheel"] * 4 and [x["inertia_kg_m2"] for x in v] == [
+        1e-6,
+        1e-6,
+        1000.0,
+        1000.0,
+    ]
     assert [x["peak_force_N"] <= 100 for x in v] == [True, False, True, False]  # the dead band's verdict
     assert [x["pass"] for x in v] == [False, False, True, True]  # the flywheel's
     assert [x["failed"] for x in v] == ["peak", "peak", "", ""]
     assert [x["required_peak_force_N"] for x in v[:2]] == [None, None]  # infinite
-    for x in v[2:]:  # W -> inf: the mean force (NOTES.md §1, a different formula: pi Mw / (2 H sin(swing/2)))
+    for x in v[
+        2:
+    ]:  # W -> inf: the mean force (docs/physics.md, a different formula: pi Mw / (2 H sin(swing/2)))
         assert x["required_peak_force_N"] == pytest.approx(x["mean_force_N"], rel=1e-12)
         assert x["min_passing_speed_deg_s"] < 360
     s = d["summary"]
@@ -525,8 +630,9 @@ def test_fail_on_peak_is_the_flywheel_peak(tmp_path, fail_on, code, failures):
     assert s["best"]["name"] == v[2]["name"] and s["best"]["model"] == "flywheel"
     assert s["best"]["peak_force_N"] == v[2]["required_peak_force_N"]
     msgs = [f.get("message") for f in ET.parse(junit).getroot().iter("failure")]
-    assert len(msgs) == failures and all("peak force with the flywheel (δ ≤ 0.2) infinite" in m and "J = 1e-06" in m
-                                         for m in msgs)
+    assert len(msgs) == failures and all(
+        "peak force with the flywheel (δ ≤ 0.2) infinite" in m and "J = 1e-06" in m for m in msgs
+    )
     assert "lowest peak (flywheel) 35.3 N: flysmall#2" in r.stderr
 
 
@@ -535,8 +641,11 @@ def test_flywheel_table_shows_the_verdict_peak_and_the_model(tmp_path):
     p.write_text(FLY_SMALL)
     r = pumplink("batch", p, PROTOTYPE, "--fail-on", "none", env={**os.environ, "COLUMNS": "250"})
     assert r.returncode == 0, r.stderr
-    lines = {ln.split("│")[1].strip(): [c.strip() for c in ln.split("│")[2:-1]] for ln in r.stdout.splitlines()
-             if ln.startswith("│")}
+    lines = {
+        ln.split("│")[1].strip(): [c.strip() for c in ln.split("│")[2:-1]]
+        for ln in r.stdout.splitlines()
+        if ln.startswith("│")
+    }
     # peak [N] and model columns (7th and 8th): the flywheel's least peak (the mean, 62.8 N at 80 N rope
     # force) where inertia is given, the dead-band peak of the quasi-static prototype (85.8 N)
     assert lines["flysmall#3[inertia=1000 rope_force=80]"][5:7] == ["62.8", "flywheel"]
@@ -554,7 +663,11 @@ def test_zero_inertia_fails_with_an_infinite_peak(tmp_path):
     assert r.returncode == 1, r.stderr
     rows = read_csv(r.stdout)
     assert [x["inertia_kg_m2"] for x in rows] == ["0.0", "2.5"]  # 40 kg * 0.25^2 m^2
-    assert (rows[0]["required_peak_force_N"], rows[0]["min_passing_speed_deg_s"], rows[0]["pass"]) == ("", "", "False")
+    assert (rows[0]["required_peak_force_N"], rows[0]["min_passing_speed_deg_s"], rows[0]["pass"]) == (
+        "",
+        "",
+        "False",
+    )
     assert rows[1]["pass"] == "True" and float(rows[1]["required_peak_force_N"]) <= 100
     (msg,) = [f.get("message") for f in ET.parse(junit).getroot().iter("failure")]
     assert "infinite" in msg and "J = 0" in msg
@@ -581,18 +694,37 @@ def test_chunks_partition_the_run(qs_grid):
         seen = [(i, j) for i, s, e in got for j in range(s, e)]
         assert seen == [(i, j) for i, b in enumerate(batches) for j in range(b.size)] and len(seen) == total
         # tasks of a batch that gives inertia (the real grid) are cut smaller: the flywheel costs more
-        size = {b.flywheel: max(e - s for i, s, e in got if batches[i].flywheel == b.flywheel) for b in batches[-2:]}
+        size = {
+            b.flywheel: max(e - s for i, s, e in got if batches[i].flywheel == b.flywheel)
+            for b in batches[-2:]
+        }
         assert size[True] <= B.FLYWHEEL_DESIGNS < size[False] <= 5000
 
 
 def test_chunk_union_equals_full_run(tmp_path, qs_grid, fly_files):
-    full = pumplink("batch", "configs/", qs_grid, *fly_files, "--fail-on", "none", "--format", "csv", "--samples", 90)
+    full = pumplink(
+        "batch", "configs/", qs_grid, *fly_files, "--fail-on", "none", "--format", "csv", "--samples", 90
+    )
     assert full.returncode == 0, full.stderr
     parts = []
     for k in (1, 2, 3):
         out = tmp_path / f"part{k}.csv"
-        r = pumplink("batch", "configs/", qs_grid, *fly_files, "--fail-on", "none", "--format", "csv", "--samples", 90,
-                     "--chunk", f"{k}/3", "--out", out)
+        r = pumplink(
+            "batch",
+            "configs/",
+            qs_grid,
+            *fly_files,
+            "--fail-on",
+            "none",
+            "--format",
+            "csv",
+            "--samples",
+            90,
+            "--chunk",
+            f"{k}/3",
+            "--out",
+            out,
+        )
         assert r.returncode == 0, r.stderr
         assert f"(slice {k}/3)" in r.stderr
         parts.append(out.read_text().splitlines())
@@ -607,8 +739,21 @@ def test_workers_give_the_same_rows(tmp_path, qs_grid, fly_files):
     n_fly = sum(B.load_batch(f).size for f in fly_files)
     for w in (1, 2):
         out = tmp_path / f"w{w}.csv"
-        r = pumplink("batch", qs_grid, *fly_files, "--fail-on", "none", "--format", "csv", "--out", out, "--workers", w,
-                     "--samples", 60)
+        r = pumplink(
+            "batch",
+            qs_grid,
+            *fly_files,
+            "--fail-on",
+            "none",
+            "--format",
+            "csv",
+            "--out",
+            out,
+            "--workers",
+            w,
+            "--samples",
+            60,
+        )
         assert r.returncode == 0, r.stderr
         outs.append(out.read_bytes())
     assert outs[0] == outs[1] and outs[0].count(b"\n") == 27216 + n_fly + 1
@@ -651,19 +796,48 @@ def test_interrupted_stream_leaves_no_partial_file(tmp_path, monkeypatch, exc):
     assert _leftovers(tmp_path) == []
 
 
-@pytest.mark.parametrize("sig,workers,group", [(signal.SIGINT, 1, False), (signal.SIGTERM, 2, False),
-                                               (signal.SIGINT, 2, True), (signal.SIGTERM, 2, True)])
+@pytest.mark.parametrize(
+    "sig,workers,group",
+    [
+        (signal.SIGINT, 1, False),
+        (signal.SIGTERM, 2, False),
+        (signal.SIGINT, 2, True),
+        (signal.SIGTERM, 2, True),
+    ],
+)
 def test_killed_run_leaves_no_partial_file(tmp_path, sig, workers, group):
     """Ctrl-C (SIGINT to the process group) or a CI runner's SIGTERM (to the process, or the
     group with the workers) mid-stream: exit 130, no output file and no temp file."""
     grid = tmp_path / "big.toml"
-    grid.write_text(f'base = "{PROTOTYPE}"\n[vary]\n"linkage.rocker" = {{ start = 0.15, stop = 0.3, num = 100 }}\n'
-                    f'"linkage.swing" = {{ start = 40, stop = 80, num = 100 }}\n"load.rope_force" = [30, 40, 50, 60, 70, 80]\n')
+    grid.write_text(
+        f'base = "{PROTOTYPE}"\n[vary]\n"linkage.rocker" = {{ start = 0.15, stop = 0.3, num = 100 }}\n'
+        f'"linkage.swing" = {{ start = 40, stop = 80, num = 100 }}\n"load.rope_force" = [30, 40, 50, 60, 70, 80]\n'
+    )
     out = tmp_path / "rows.csv"
-    p = subprocess.Popen([sys.executable, "-m", "pumplink", "batch", grid, "--format", "csv", "--out", out,
-                          "--junit", tmp_path / "r.xml", "--samples", "4000", "--workers", str(workers)],
-                         cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                         start_new_session=group)
+    p = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "pumplink",
+            "batch",
+            grid,
+            "--format",
+            "csv",
+            "--out",
+            out,
+            "--junit",
+            tmp_path / "r.xml",
+            "--samples",
+            "4000",
+            "--workers",
+            str(workers),
+        ],
+        cwd=ROOT,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=group,
+    )
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline:  # wait until rows are being written to the temp file
         tmp = [f for f in tmp_path.iterdir() if f.name.startswith(".rows.csv.") and f.stat().st_size > 20_000]
@@ -684,24 +858,52 @@ def test_killed_run_leaves_no_partial_file(tmp_path, sig, workers, group):
 
 def test_csv_and_json_carry_the_same_rows(qs_grid, fly_files):
     """Standard designs (both models), the quasi-static grid and the flywheel batches in one run."""
-    rc = pumplink("batch", "configs/", qs_grid, *fly_files, "--format", "csv", "--fail-on", "none", "--samples", 30)
-    rj = pumplink("batch", "configs/", qs_grid, *fly_files, "--format", "json", "--fail-on", "none", "--samples", 30)
+    rc = pumplink(
+        "batch", "configs/", qs_grid, *fly_files, "--format", "csv", "--fail-on", "none", "--samples", 30
+    )
+    rj = pumplink(
+        "batch", "configs/", qs_grid, *fly_files, "--format", "json", "--fail-on", "none", "--samples", 30
+    )
     assert rc.returncode == rj.returncode == 0
     rows, variants = read_csv(rc.stdout), json.loads(rj.stdout)["variants"]
     n_fly = sum(B.load_batch(f).size for f in fly_files)
     assert len(rows) == len(variants) == 27216 + 11 + n_fly
-    assert {r["model"] for r in rows[:11]} == {"flywheel", "quasi-static + dead band"}  # configs/ mixes the models
-    spread = list(range(12)) + list(range(12, len(rows) - n_fly, 997)) + list(range(len(rows) - n_fly, len(rows), 7))
+    assert {r["model"] for r in rows[:11]} == {
+        "flywheel",
+        "quasi-static + dead band",
+    }  # configs/ mixes the models
+    spread = (
+        list(range(12))
+        + list(range(12, len(rows) - n_fly, 997))
+        + list(range(len(rows) - n_fly, len(rows), 7))
+    )
     for i in spread:  # every standard design, a spread of the grid and of the flywheel batches
         r, v = rows[i], variants[i]
         assert (r["name"], r["source"]) == (v["name"], v["source"])  # names with commas are quoted
         assert {k: float(x) for k, x in r.items() if "." in k and x} == v["vary"]
-        for k in ("frame_length", "crank_length", "mean_force_N", "peak_force_N", "sampled_peak_force_N", "power_W",
-                  "transmission_min_deg", "time_ratio", "force_limit_N", "inertia_kg_m2", "speed_fluctuation",
-                  "required_peak_force_N", "min_passing_speed_deg_s"):
+        for k in (
+            "frame_length",
+            "crank_length",
+            "mean_force_N",
+            "peak_force_N",
+            "sampled_peak_force_N",
+            "power_W",
+            "transmission_min_deg",
+            "time_ratio",
+            "force_limit_N",
+            "inertia_kg_m2",
+            "speed_fluctuation",
+            "required_peak_force_N",
+            "min_passing_speed_deg_s",
+        ):
             assert (None if r[k] == "" else float(r[k])) == v[k], (i, k)
         assert (r["feasible"], r["pass"], r["reason"], r["failed"], r["model"]) == (
-            str(v["feasible"]), str(v["pass"]), v["reason"] or "", v["failed"], v["model"])
+            str(v["feasible"]),
+            str(v["pass"]),
+            v["reason"] or "",
+            v["failed"],
+            v["model"],
+        )
         fly = r["model"] == "flywheel"
         assert (r["inertia_kg_m2"] != "") == fly and (r["speed_fluctuation"] != "") == fly
 
@@ -710,9 +912,26 @@ def test_progress_bar_on_a_terminal_for_long_runs(tmp_path, qs_grid):
     """stderr on a pseudo-terminal: a run longer than a second draws the Rich progress bar."""
     from terminal import run_on_terminal
 
-    code, text, _ = run_on_terminal([sys.executable, "-m", "pumplink", "batch", qs_grid, "--fail-on", "none", "--samples",
-                                     "1500", "--format", "csv", "--out", tmp_path / "g.csv"], timeout=120, cwd=ROOT,
-                                    stdout=subprocess.DEVNULL)
+    code, text, _ = run_on_terminal(
+        [
+            sys.executable,
+            "-m",
+            "pumplink",
+            "batch",
+            qs_grid,
+            "--fail-on",
+            "none",
+            "--samples",
+            "1500",
+            "--format",
+            "csv",
+            "--out",
+            tmp_path / "g.csv",
+        ],
+        timeout=120,
+        cwd=ROOT,
+        stdout=subprocess.DEVNULL,
+    )
     assert code == 0
     assert "━" in text and "/27216" in text  # the bar and its count
     assert "batch: 27216 variants" in text  # then the summary line

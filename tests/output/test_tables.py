@@ -17,8 +17,17 @@ import numpy as np
 import pytest
 
 from pumplink.analysis import design, force_analysis
-from pumplink.output.tables import (console, deg, design_row, force_summary, num, render_designs, render_force,
-                             sample_rows, write_csv)
+from pumplink.output.tables import (
+    console,
+    deg,
+    design_row,
+    force_summary,
+    num,
+    render_designs,
+    render_force,
+    sample_rows,
+    write_csv,
+)
 from pumplink.spec import parse_spec
 
 BASE = {
@@ -27,7 +36,7 @@ BASE = {
     "linkage": {"L1": 0.40, "D1": 0.20, "b": 0.10, "rocker": 0.20, "handle": 1.00, "swing": 60.0},
     "load": {"rope_force": 45.0},
 }
-# D1 = 3 m: psi2 < 0, no crank-rocker (NOTES.md §1) -> NaN lengths inside
+# D1 = 3 m: psi2 < 0, no crank-rocker (docs/physics.md) -> NaN lengths inside
 INFEASIBLE = {**BASE, "name": "Deep", "linkage": {**BASE["linkage"], "D1": 3.0}}
 
 
@@ -41,8 +50,19 @@ def strict_json(text: str):
 
 
 # ----------------------------------------------------------------------------- num / deg
-@pytest.mark.parametrize("x,want", [(1.5, 1.5), (np.float64(2.25), 2.25), (np.int64(3), 3.0), (0, 0.0),
-                                    (math.nan, None), (np.nan, None), (math.inf, None), (-math.inf, None)])
+@pytest.mark.parametrize(
+    "x,want",
+    [
+        (1.5, 1.5),
+        (np.float64(2.25), 2.25),
+        (np.int64(3), 3.0),
+        (0, 0.0),
+        (math.nan, None),
+        (np.nan, None),
+        (math.inf, None),
+        (-math.inf, None),
+    ],
+)
 def test_num(x, want):
     got = num(x)
     assert got == want and (got is None or type(got) is float)
@@ -61,17 +81,42 @@ def read_csv(text: str) -> list[dict]:
 
 def test_write_csv_flattens_nested_keys():
     rows = [
-        {"name": "a", "x": 1.5, "rocker_pivot": [-0.45, -0.2], "dead_centres_deg": {"extended": 182.5, "folded": None},
-         "outer": {"inner": {"deep": 7}}, "checks": [{"name": "c", "pass": True}], "flag": True, "err": None},
-        {"name": "b, with comma", "x": 2.0, "rocker_pivot": [0.1, 0.2], "dead_centres_deg": {"extended": 1.0, "folded": 2.0},
-         "outer": {"inner": {"deep": 8}}, "checks": [], "flag": False, "err": "why \"quoted\""},
+        {
+            "name": "a",
+            "x": 1.5,
+            "rocker_pivot": [-0.45, -0.2],
+            "dead_centres_deg": {"extended": 182.5, "folded": None},
+            "outer": {"inner": {"deep": 7}},
+            "checks": [{"name": "c", "pass": True}],
+            "flag": True,
+            "err": None,
+        },
+        {
+            "name": "b, with comma",
+            "x": 2.0,
+            "rocker_pivot": [0.1, 0.2],
+            "dead_centres_deg": {"extended": 1.0, "folded": 2.0},
+            "outer": {"inner": {"deep": 8}},
+            "checks": [],
+            "flag": False,
+            "err": 'why "quoted"',
+        },
     ]
     out = io.StringIO()
     write_csv(rows, out)
     text = out.getvalue()
     header = text.splitlines()[0].split(",")
-    assert header == ["name", "x", "rocker_pivot_x", "rocker_pivot_y", "dead_centres_deg_extended",
-                      "dead_centres_deg_folded", "outer_inner_deep", "flag", "err"]
+    assert header == [
+        "name",
+        "x",
+        "rocker_pivot_x",
+        "rocker_pivot_y",
+        "dead_centres_deg_extended",
+        "dead_centres_deg_folded",
+        "outer_inner_deep",
+        "flag",
+        "err",
+    ]
     got = read_csv(text)
     assert len(got) == 2
     assert got[0]["rocker_pivot_x"] == "-0.45" and got[0]["rocker_pivot_y"] == "-0.2"
@@ -171,8 +216,14 @@ def test_synth_table_number_formatting():
     assert "\x1b" not in text
     row = design_row(good)
     # rounded, not raw floats: lengths to 4 decimals, K to 4, dead centres to 2
-    for v, nd in ((row["frame_length"], 4), (row["crank_length"], 4), (row["coupler_length"], 4),
-                  (row["time_ratio"], 4), (row["dead_centres_deg"]["extended"], 2), (row["dead_centres_deg"]["folded"], 2)):
+    for v, nd in (
+        (row["frame_length"], 4),
+        (row["crank_length"], 4),
+        (row["coupler_length"], 4),
+        (row["time_ratio"], 4),
+        (row["dead_centres_deg"]["extended"], 2),
+        (row["dead_centres_deg"]["folded"], 2),
+    ):
         assert f"{v:.{nd}f}" in text, (v, nd)
         assert repr(v) not in text
     # the infeasible row: placeholders, never "nan"; its reason is printed (whitespace-normalised)

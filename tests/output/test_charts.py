@@ -6,7 +6,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def run(*args, pre=""):
@@ -23,7 +23,9 @@ def test_force_plot_png_and_svg(tmp_path):
 
 
 def test_plot_without_matplotlib_says_how_to_install_and_exits_2(tmp_path):
-    out = run("force", "--plot", str(tmp_path / "f.png"), pre="import sys; sys.modules['matplotlib'] = None; ")
+    out = run(
+        "force", "--plot", str(tmp_path / "f.png"), pre="import sys; sys.modules['matplotlib'] = None; "
+    )
     assert out.returncode == 2
     assert "pip install 'pumplink[plot]'" in out.stderr
     assert "Traceback" not in out.stderr and out.stdout == ""

@@ -1,4 +1,4 @@
-"""Operator-force quantities (NOTES.md §1): mean force, exact windowed peak, the verdict.
+"""Operator-force quantities (docs/physics.md): mean force, exact windowed peak, the verdict.
 
 Expected values come from hand formulas, the 50-digit reference (``tests/reference.py``) and
 brute-force dense evaluation; never from the function under test.
@@ -9,16 +9,15 @@ import math
 import mpmath
 import numpy as np
 import pytest
+import reference as R
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from mpmath import mp, mpf
 
-import reference as R
 from pumplink.analysis import force_analysis
+from pumplink.mechanisms.fourbar import FourBar, grip_stroke, kinematic_state, synthesize
 from pumplink.models.quasi_static import dead_band_peak_force, mean_force, wheel_torque
-from pumplink.mechanisms.fourbar import kinematic_state
 from pumplink.spec import DEFAULT_SPEC, parse_spec
-from pumplink.mechanisms.fourbar import FourBar, grip_stroke, synthesize
 
 DEG = math.pi / 180
 MIN_CRANK = R.MIN_CRANK
@@ -35,14 +34,19 @@ def test_mean_force_hand_values():
     # Mw = 45 N * 0.25 m = 11.25 N m, H = 1 m, swing 60 deg: stroke S = 2 * 1 * sin 30 = 1 m,
     # F = 2 pi Mw / (2 S) = 11.25 pi N.
     assert wheel_torque(45.0, 0.25) == pytest.approx(11.25, rel=1e-15)
-    assert mean_force(11.25, grip_stroke(1.0, math.radians(60.0))) == pytest.approx(11.25 * math.pi, rel=1e-15)
+    assert mean_force(11.25, grip_stroke(1.0, math.radians(60.0))) == pytest.approx(
+        11.25 * math.pi, rel=1e-15
+    )
     # H = 1.2 m, swing 90 deg: S = 2.4 sin 45 = 1.2 sqrt(2) m; F = pi Mw / (1.2 sqrt 2).
     assert mean_force(10.0, grip_stroke(1.2, math.radians(90.0))) == pytest.approx(
-        10.0 * math.pi / (1.2 * math.sqrt(2.0)), rel=1e-15)
+        10.0 * math.pi / (1.2 * math.sqrt(2.0)), rel=1e-15
+    )
     # broadcasts over designs
-    np.testing.assert_allclose(mean_force(np.array([11.25, 10.0]),
-                                          grip_stroke(np.array([1.0, 1.2]), np.radians([60.0, 90.0]))),
-                               [11.25 * math.pi, 10.0 * math.pi / (1.2 * math.sqrt(2.0))], rtol=1e-15)
+    np.testing.assert_allclose(
+        mean_force(np.array([11.25, 10.0]), grip_stroke(np.array([1.0, 1.2]), np.radians([60.0, 90.0]))),
+        [11.25 * math.pi, 10.0 * math.pi / (1.2 * math.sqrt(2.0))],
+        rtol=1e-15,
+    )
 
 
 @settings(max_examples=6)
@@ -93,7 +97,9 @@ def _brute_peak(syn, lk, band, mw, per_window=200_000):
 def test_peak_force_against_brute_force_and_reference(design, band_deg):
     syn, lk, mw = _setup(design)
     band = math.radians(band_deg)
-    peak, angle = dead_band_peak_force(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, band, mw)
+    peak, angle = dead_band_peak_force(
+        syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, band, mw
+    )
     brute, _, ext, fold = _brute_peak(syn, lk, band, mw)
     assert np.isfinite(peak) and 0 <= angle < 2 * math.pi
     # The reported angle is allowed (outside both dead bands) ...
@@ -114,7 +120,9 @@ def test_peak_at_the_window_end_is_the_force_exactly_dead_band_from_the_dead_cen
     ext, fold = R.dead_centres(lk)
     for band_deg in (20.0, 10.0, 5.0, 1.0):
         band = math.radians(band_deg)
-        peak, angle = dead_band_peak_force(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, band, mw)
+        peak, angle = dead_band_peak_force(
+            syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, band, mw
+        )
         with mp.workdps(R.DPS):
             ends = [dc + s * mpf(band) for dc in (ext, fold) for s in (-1, 1)]
             forces = [abs(R.force(lk, e, mw)) for e in ends]
@@ -165,8 +173,15 @@ def test_vectorised_peak_force_equals_per_design_calls(items):
         if syn.feasible and syn.crank_length >= MIN_CRANK:
             rows.append((syn, mw, math.radians(band_deg)))
     assume(len(rows) >= 2)
-    fields = ("pivot_x", "pivot_y", "crank_length", "coupler_length", "rocker_length",
-              "handle_length", "branch")
+    fields = (
+        "pivot_x",
+        "pivot_y",
+        "crank_length",
+        "coupler_length",
+        "rocker_length",
+        "handle_length",
+        "branch",
+    )
     lk = FourBar(*[np.array([float(getattr(s, f)) for s, _, _ in rows]) for f in fields])
     dce = np.array([s.dead_centre_extended for s, _, _ in rows])
     dcf = np.array([s.dead_centre_folded for s, _, _ in rows])

@@ -1,8 +1,8 @@
-"""Optimal-transmission crank-rocker (seed 001): exactness, one-branch arc, kinematic verification.
+"""Optimal-transmission crank-rocker (the optimal-transmission paper): exactness, one-branch arc, kinematic verification.
 
 Reference values come from independent routes: a 40-digit mpmath golden-section search on the
 design circle in the classic centre/angle parametrisation (not the law-of-sines form of
-pumplink.mechanisms.crank_rocker), and mpmath evaluations of seed 001 Eq. (4)-(6) for the seed's designs.
+pumplink.mechanisms.crank_rocker), and mpmath evaluations of Eq. (4)-(6) of the optimal-transmission paper for the paper's designs.
 """
 
 import json
@@ -14,22 +14,27 @@ import sys
 import mpmath as mp
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from pumplink.errors import SpecError
-from pumplink.mechanisms.fourbar import FourBar
 from pumplink.mechanisms.crank_rocker import (
-    crank_rocker_on_circle, extreme_included_angle, optimal_crank_rocker, optimum_linkage, measure_motion,
+    crank_rocker_on_circle,
+    extreme_included_angle,
+    measure_motion,
+    optimal_crank_rocker,
+    optimum_linkage,
 )
+from pumplink.mechanisms.fourbar import FourBar
 
 SEED_K, SEED_PHI, SEED_ROCKER = 1.1818, 40.0, 50.0
-# Seed 001 §3 (crank, coupler, rocker, frame) [mm].
+# The optimal-transmission paper §3 (crank, coupler, rocker, frame) [mm].
 SEED_DIAGRAM = (16.0, 46.0, 50.0, 53.76)
 SEED_COMPUTER = (16.2227, 44.5093, 50.0, 53.8986)
 
 
 def mp_mu(c, k, r, f):
-    """min(gamma_min, 180 - gamma_max) [deg] in mpmath, seed 001 Eq. (4)-(6)."""
+    """min(gamma_min, 180 - gamma_max) [deg] in mpmath, Eq. (4)-(6) of the optimal-transmission paper."""
     c, k, r, f = (mp.mpf(v) for v in (c, k, r, f))
     gmin = mp.acos((k * k + r * r - (f - c) ** 2) / (2 * k * r))
     gmax = mp.acos((k * k + r * r - (f + c) ** 2) / (2 * k * r))
@@ -115,7 +120,7 @@ def test_seed_example_beats_the_seeds_published_designs(seed_opt, seed_ref):
         assert margin > 0
         # The margin to 1e-6 deg: ours against the mpmath optimum minus the mpmath seed value.
         assert abs(margin - float(seed_ref[0] - mp_mu(*design))) < 1e-9
-    # Seed 001 reads l3/l4 = 0.93 off its diagram; the exact optimum rounds to 0.92.
+    # The optimal-transmission paper reads l3/l4 = 0.93 off its diagram; the exact optimum rounds to 0.92.
     assert 0.92 < seed_opt.rocker_to_frame < 0.93
 
 
@@ -207,8 +212,15 @@ def test_cli_seed_example_json():
     assert all(c["ours_better_by_deg"] > 0.4 for c in d["compare"])
 
 
-@pytest.mark.parametrize("args,key", [(["--time-ratio", "1"], "K = 1"), (["--swing", "190"], "swing"),
-                                      (["--rocker", "-2"], "rocker length"), (["--time-ratio", "nan"], "time-ratio")])
+@pytest.mark.parametrize(
+    "args,key",
+    [
+        (["--time-ratio", "1"], "K = 1"),
+        (["--swing", "190"], "swing"),
+        (["--rocker", "-2"], "rocker length"),
+        (["--time-ratio", "nan"], "time-ratio"),
+    ],
+)
 def test_cli_bad_input_exits_2(args, key):
     p = run("transmission", *args)
     assert p.returncode == 2 and key in p.stderr and "Traceback" not in p.stderr

@@ -1,4 +1,4 @@
-"""Dead-centre synthesis (Eq. 1-2 of the pump paper, NOTES.md §1) checked by simulating the linkage.
+"""Dead-centre synthesis (Eq. 1-2 of the pump paper, docs/physics.md) checked by simulating the linkage.
 
 Every expected number here comes from ``tests/reference.py``: a 50-digit mpmath loop-closure
 solution and synthesis written independently of ``pumplink`` (see its docstring), or from a
@@ -11,12 +11,12 @@ import re
 import mpmath
 import numpy as np
 import pytest
+import reference as R
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from mpmath import mp, mpf
 from scipy.optimize import minimize_scalar
 
-import reference as R
 from pumplink.mechanisms.fourbar import (
     CHANGE_POINT_MARGIN,
     FEASIBLE,
@@ -50,9 +50,11 @@ def _expected_code(L1, D1, b, rocker, swing_rad):
 
 def _near_threshold(ref):
     """True within 1e-12 rad of a reason threshold (float and mpf may round either way there)."""
-    return (abs(ref["psi2"] - CHANGE_POINT_MARGIN) < 1e-12
-            or abs(ref["psi1"] - (mp.pi - CHANGE_POINT_MARGIN)) < 1e-12
-            or abs(ref["frame"] - mpf("1e-9")) < 1e-15)
+    return (
+        abs(ref["psi2"] - CHANGE_POINT_MARGIN) < 1e-12
+        or abs(ref["psi1"] - (mp.pi - CHANGE_POINT_MARGIN)) < 1e-12
+        or abs(ref["frame"] - mpf("1e-9")) < 1e-15
+    )
 
 
 #: Shortest crank [m] for which the exact-swing claims are asserted to 1e-9 deg.  Eq. (2) is
@@ -133,9 +135,12 @@ def test_transmission_range_matches_a_dense_sweep(inputs):
     def extreme(sign):
         """sign = +1: the minimum, -1: the maximum (grid point, then a bounded refinement)."""
         j = int(np.argmin(sign * gamma))
-        res = minimize_scalar(lambda t: sign * R.sweep_rocker(lk, t)[2], method="bounded",
-                              bounds=(grid[j] - 2 * math.pi / n, grid[j] + 2 * math.pi / n),
-                              options=dict(xatol=1e-12))
+        res = minimize_scalar(
+            lambda t: sign * R.sweep_rocker(lk, t)[2],
+            method="bounded",
+            bounds=(grid[j] - 2 * math.pi / n, grid[j] + 2 * math.pi / n),
+            options=dict(xatol=1e-12),
+        )
         return sign * min(sign * gamma[j], res.fun)
 
     assert abs(extreme(1.0) - syn.transmission_min) <= 1e-9
@@ -185,19 +190,35 @@ def test_reason_code_is_exactly_the_psi_condition(inputs):
     assert bool(syn.feasible) == (code == FEASIBLE)
     if code == FEASIBLE:
         assert infeasibility_reason(syn.reason, L1, D1, b, swing) is None
-        assert np.isfinite([syn.crank_length, syn.coupler_length, syn.dead_centre_extended,
-                            syn.dead_centre_folded, syn.time_ratio]).all()
+        assert np.isfinite(
+            [
+                syn.crank_length,
+                syn.coupler_length,
+                syn.dead_centre_extended,
+                syn.dead_centre_folded,
+                syn.time_ratio,
+            ]
+        ).all()
         return
     # Infeasible: NaN lengths (never a made-up value) and one sentence naming the value.
-    assert np.isnan([syn.crank_length, syn.coupler_length, syn.dead_centre_extended,
-                     syn.dead_centre_folded, syn.time_ratio, syn.transmission_min]).all()
+    assert np.isnan(
+        [
+            syn.crank_length,
+            syn.coupler_length,
+            syn.dead_centre_extended,
+            syn.dead_centre_folded,
+            syn.time_ratio,
+            syn.transmission_min,
+        ]
+    ).all()
     text = infeasibility_reason(syn.reason, L1, D1, b, swing)
     assert isinstance(text, str) and text and "\n" not in text
     if code == PIVOT_ON_AXLE:
         assert "axle" in text
         return
-    name, psi, limit = (("psi2", ref["psi2"], "> 0") if code == SWING_CROSSES_FRAME_LINE
-                        else ("psi1", ref["psi1"], "< 180"))
+    name, psi, limit = (
+        ("psi2", ref["psi2"], "> 0") if code == SWING_CROSSES_FRAME_LINE else ("psi1", ref["psi1"], "< 180")
+    )
     m = re.search(re.escape(name) + r" = (-?\d+\.\d+) deg", text)
     assert m, text
     assert abs(float(m.group(1)) - float(mpmath.degrees(psi))) <= 0.006  # printed with 2 decimals
@@ -227,8 +248,13 @@ def test_suggested_fixes_are_right(inputs):
 
 
 @settings(max_examples=25)
-@given(st.floats(1e-3, 1.0), st.floats(-0.5, 0.8), st.floats(0.0, 0.3), st.floats(0.05, 0.6),
-       st.floats(10.0, 150.0))
+@given(
+    st.floats(1e-3, 1.0),
+    st.floats(-0.5, 0.8),
+    st.floats(0.0, 0.3),
+    st.floats(0.05, 0.6),
+    st.floats(10.0, 150.0),
+)
 def test_rejected_closed_form_really_swings_differently(L1, D1, b, rocker, swing_deg):
     """For rejected inputs, the Eq. (2) lengths (computed anyway, at 50 digits) do not make a
     rocker swinging 90 +- swing/2: cos is even, so they are the lengths of the design with psi
@@ -275,6 +301,13 @@ def test_synthesis_broadcasts_over_designs():
     syn = synthesize(L1, D1, 0.1, 0.2, math.radians(60.0), 1.0)
     for i in range(L1.size):
         one = synthesize(L1[i], D1[i], 0.1, 0.2, math.radians(60.0), 1.0)
-        for field in ("crank_length", "coupler_length", "dead_centre_extended",
-                      "dead_centre_folded", "time_ratio", "transmission_min", "reason"):
+        for field in (
+            "crank_length",
+            "coupler_length",
+            "dead_centre_extended",
+            "dead_centre_folded",
+            "time_ratio",
+            "transmission_min",
+            "reason",
+        ):
             np.testing.assert_array_equal(np.asarray(getattr(syn, field))[i], getattr(one, field))

@@ -1,9 +1,9 @@
 """CLI tests through the real entry point (the installed ``pumplink`` console script in a subprocess).
 
-What is checked here is the contract of issue #2 as a user or another tool sees it: exit codes,
+What is checked here is the contract as a user or another tool sees it: exit codes,
 the JSON keys and their values, CSV headers and row counts, one-line error messages on stderr
 (naming the key, the value and the allowed range) and readable tables when piped or with
-NO_COLOR.  Expected numbers come from hand derivations written out in this file (NOTES.md §1:
+NO_COLOR.  Expected numbers come from hand derivations written out in this file (docs/physics.md:
 frame Eq. (1), dead-centre geometry, law of cosines for the transmission angle, an independent
 circle-intersection position analysis differentiated numerically for the force), never from the
 code under test.
@@ -36,8 +36,11 @@ ANY_ESC = "\x1b"
 
 
 def _env(extra: dict | None = None) -> dict:
-    env = {k: v for k, v in os.environ.items()
-           if k not in ("FORCE_COLOR", "NO_COLOR", "COLUMNS", "LINES", "TTY_COMPATIBLE", "TTY_INTERACTIVE")}
+    env = {
+        k: v
+        for k, v in os.environ.items()
+        if k not in ("FORCE_COLOR", "NO_COLOR", "COLUMNS", "LINES", "TTY_COMPATIBLE", "TTY_INTERACTIVE")
+    }
     env["PYTHONIOENCODING"] = "utf-8"  # the encoding bug has its own test below
     env.update(extra or {})
     return env
@@ -46,14 +49,23 @@ def _env(extra: dict | None = None) -> dict:
 _CACHE: dict = {}
 
 
-def run(*args, env: dict | None = None, cwd=None, cmd=None, cache: bool = False) -> subprocess.CompletedProcess:
+def run(
+    *args, env: dict | None = None, cwd=None, cmd=None, cache: bool = False
+) -> subprocess.CompletedProcess:
     """Run the CLI; ``cache=True`` reuses the result of an identical earlier call (the CLI is
     deterministic and each start-up costs ~0.5-1.5 s here; spec files must not change in between)."""
     key = (tuple(map(str, args)), tuple(sorted((env or {}).items())), str(cwd), tuple(cmd or CMD))
     if cache and key in _CACHE:
         return _CACHE[key]
-    p = subprocess.run([*(cmd or CMD), *map(str, args)], capture_output=True, env=_env(env), cwd=cwd,
-                       timeout=120, encoding="utf-8", errors="replace")
+    p = subprocess.run(
+        [*(cmd or CMD), *map(str, args)],
+        capture_output=True,
+        env=_env(env),
+        cwd=cwd,
+        timeout=120,
+        encoding="utf-8",
+        errors="replace",
+    )
     if cache:
         _CACHE[key] = p
     return p
@@ -131,7 +143,7 @@ def _no_nan(tok):
 
 # ----------------------------------------------------------------------------- hand computations
 def hand_design(lk: dict) -> dict:
-    """NOTES.md §1: frame Eq. (1), beta, psi1/2, Eq. (2) by the law of cosines, and the dead-centre
+    """docs/physics.md: frame Eq. (1), beta, psi1/2, Eq. (2) by the law of cosines, and the dead-centre
     crank angles from the geometry (crank and coupler collinear with O2B at the rocker extremes)."""
     L1, D1, b, l4, s = lk["L1"], lk["D1"], lk["b"], lk["rocker"], lk["swing"]
     ox, oy = -(L1 + b / 2), -D1
@@ -153,9 +165,22 @@ def hand_design(lk: dict) -> dict:
     # transmission angle extremes: crank along the frame line, |AO4| = l1 -+ l2 (law of cosines)
     gmin = math.degrees(math.acos((l3**2 + l4**2 - (l1 - l2) ** 2) / (2 * l3 * l4)))
     gmax = math.degrees(math.acos((l3**2 + l4**2 - (l1 + l2) ** 2) / (2 * l3 * l4)))
-    return dict(frame_length=l1, beta_deg=beta, psi1_deg=psi1, psi2_deg=psi2, crank_length=l2,
-                coupler_length=l3, rocker_length=l4, handle_length=lk["handle"], rocker_pivot=[ox, oy],
-                ext=ext, fold=fold, time_ratio=max(arc, 360 - arc) / min(arc, 360 - arc), gmin=gmin, gmax=gmax)
+    return dict(
+        frame_length=l1,
+        beta_deg=beta,
+        psi1_deg=psi1,
+        psi2_deg=psi2,
+        crank_length=l2,
+        coupler_length=l3,
+        rocker_length=l4,
+        handle_length=lk["handle"],
+        rocker_pivot=[ox, oy],
+        ext=ext,
+        fold=fold,
+        time_ratio=max(arc, 360 - arc) / min(arc, 360 - arc),
+        gmin=gmin,
+        gmax=gmax,
+    )
 
 
 def rocker_angle(h: dict, theta_rad, branch: float) -> np.ndarray:
@@ -176,13 +201,17 @@ def branch_of(h: dict, swing: float) -> float:
     """The assembly branch whose rocker stays inside 90 +- swing/2 (checked on a grid)."""
     grid = np.radians(np.arange(0.0, 360.0, 0.5))
     lo, hi = math.radians(90 - swing / 2) - 1e-9, math.radians(90 + swing / 2) + 1e-9
-    ok = [br for br in (1.0, -1.0) if np.all((rocker_angle(h, grid, br) >= lo) & (rocker_angle(h, grid, br) <= hi))]
+    ok = [
+        br
+        for br in (1.0, -1.0)
+        if np.all((rocker_angle(h, grid, br) >= lo) & (rocker_angle(h, grid, br) <= hi))
+    ]
     assert len(ok) == 1, ok
     return ok[0]
 
 
 def hand_force(h: dict, branch: float, theta_deg, Mw: float, H: float, step: float = 1e-6):
-    """Fh = Mw / (dPx/dtheta2) (virtual work, NOTES.md §1), Px = O4x + H cos(theta4), by a central
+    """Fh = Mw / (dPx/dtheta2) (virtual work, docs/physics.md), Px = O4x + H cos(theta4), by a central
     difference of the independent position analysis; also |dtheta4/dtheta2|."""
     t = np.radians(np.asarray(theta_deg, float))
     r_p, r_m = rocker_angle(h, t + step, branch), rocker_angle(h, t - step, branch)
@@ -210,7 +239,7 @@ def test_force_help_states_units():
     """Units in the option help ("[deg/s]", "[deg]") must survive Rich markup."""
     out = run("force", "--help").stdout
     assert "deg/s" in out
-    at_help = out[out.index("Evaluate"):]  # the --at option's help text, up to the next option
+    at_help = out[out.index("Evaluate") :]  # the --at option's help text, up to the next option
     assert "deg" in at_help.split("--summary")[0], at_help
 
 
@@ -224,11 +253,34 @@ def test_version_console_script_and_module():
 
 
 # ----------------------------------------------------------------------------- JSON contract
-DESIGN_KEYS = {"name", "feasible", "error", "frame_length", "beta_deg", "psi1_deg", "psi2_deg", "crank_length",
-               "coupler_length", "rocker_length", "handle_length", "rocker_pivot", "dead_centres_deg", "time_ratio",
-               "transmission_angle_deg"}
-FORCE_KEYS = DESIGN_KEYS | {"speed_deg_s", "wheel_torque_Nm", "power_W", "force_limit_N", "dead_band_deg",
-                            "mean_force_N", "peak_force_N", "pass", "checks"}
+DESIGN_KEYS = {
+    "name",
+    "feasible",
+    "error",
+    "frame_length",
+    "beta_deg",
+    "psi1_deg",
+    "psi2_deg",
+    "crank_length",
+    "coupler_length",
+    "rocker_length",
+    "handle_length",
+    "rocker_pivot",
+    "dead_centres_deg",
+    "time_ratio",
+    "transmission_angle_deg",
+}
+FORCE_KEYS = DESIGN_KEYS | {
+    "speed_deg_s",
+    "wheel_torque_Nm",
+    "power_W",
+    "force_limit_N",
+    "dead_band_deg",
+    "mean_force_N",
+    "peak_force_N",
+    "pass",
+    "checks",
+}
 SAMPLE_KEYS = {"crank_deg", "force_N", "handle_speed_m_s", "phi_deg", "rocker_deg", "transmission_deg"}
 
 
@@ -236,8 +288,17 @@ def check_design_fields(row: dict, spec: dict) -> None:
     h = hand_design(spec["linkage"])
     assert DESIGN_KEYS <= row.keys(), DESIGN_KEYS - row.keys()
     assert row["name"] == spec["name"] and row["feasible"] is True and row["error"] is None
-    for k in ("frame_length", "beta_deg", "psi1_deg", "psi2_deg", "crank_length", "coupler_length",
-              "rocker_length", "handle_length", "time_ratio"):
+    for k in (
+        "frame_length",
+        "beta_deg",
+        "psi1_deg",
+        "psi2_deg",
+        "crank_length",
+        "coupler_length",
+        "rocker_length",
+        "handle_length",
+        "time_ratio",
+    ):
         assert row[k] == pytest.approx(h[k], rel=1e-12, abs=1e-12), k
     assert row["rocker_pivot"] == pytest.approx(h["rocker_pivot"], abs=1e-15)
     dc = row["dead_centres_deg"]
@@ -281,16 +342,22 @@ def test_force_json_contract_against_hand_computation(spec_path):
     h = hand_design(lk)
     br = branch_of(h, lk["swing"])
     band = op["dead_band"]
-    grid = np.concatenate([np.linspace(0, 360, 200_001),
-                           [(h["ext"] + s * band) % 360 for s in (-1, 1)] + [(h["fold"] + s * band) % 360 for s in (-1, 1)]])
+    grid = np.concatenate(
+        [
+            np.linspace(0, 360, 200_001),
+            [(h["ext"] + s * band) % 360 for s in (-1, 1)] + [(h["fold"] + s * band) % 360 for s in (-1, 1)],
+        ]
+    )
 
     def dist(a, b):
         return np.abs((a - b + 180) % 360 - 180)
 
     grid = grid[(dist(grid, h["ext"]) >= band - 1e-12) & (dist(grid, h["fold"]) >= band - 1e-12)]
     f_grid, _ = hand_force(h, br, grid, Mw, lk["handle"])
-    assert out["peak_force_N"] == pytest.approx(np.max(np.abs(f_grid)), rel=1e-3)  # issue #2: 0.1 %
-    assert out["pass"] is (out["mean_force_N"] <= op["force_limit"] and out["peak_force_N"] <= op["force_limit"])
+    assert out["peak_force_N"] == pytest.approx(np.max(np.abs(f_grid)), rel=1e-3)  # within 0.1 %
+    assert out["pass"] is (
+        out["mean_force_N"] <= op["force_limit"] and out["peak_force_N"] <= op["force_limit"]
+    )
 
     checks = out["checks"]
     assert checks and all({"name", "value", "limit", "pass"} <= c.keys() for c in checks)
@@ -310,21 +377,29 @@ def test_force_json_contract_against_hand_computation(spec_path):
     f_hand, rate = hand_force(h, br, th, Mw, lk["handle"])
     assert np.array([s["force_N"] for s in finite]) == pytest.approx(f_hand, rel=1e-6)
     assert np.array([s["rocker_deg"] for s in finite]) == pytest.approx(
-        np.degrees(rocker_angle(h, np.radians(th), br)), abs=1e-9)
+        np.degrees(rocker_angle(h, np.radians(th), br)), abs=1e-9
+    )
     assert np.array([s["phi_deg"] for s in finite]) == pytest.approx(
-        np.array([s["rocker_deg"] for s in finite]) - 90, abs=1e-9)
-    assert np.array([s["handle_speed_m_s"] for s in finite]) == pytest.approx(rate * omega * lk["handle"], rel=1e-6)
+        np.array([s["rocker_deg"] for s in finite]) - 90, abs=1e-9
+    )
+    assert np.array([s["handle_speed_m_s"] for s in finite]) == pytest.approx(
+        rate * omega * lk["handle"], rel=1e-6
+    )
     tr = out["transmission_angle_deg"]
     assert all(tr["min"] - 1e-9 <= s["transmission_deg"] <= tr["max"] + 1e-9 for s in finite)
 
 
 def test_head_based_load_in_force_json(tmp_path):
-    """Rope force from the head: rho g head (pi d^2/4) / efficiency (NOTES.md §4), 0.75 by default
+    """Rope force from the head: rho g head (pi d^2/4) / efficiency (docs/physics.md §5), 0.75 by default
     (an explicit efficiency is covered in test_spec.py)."""
-    out = jrun("force", write(tmp_path, variant(load={"head": 10.0, "pipe_diameter": 0.023})), "--summary",
-               expect=None)
+    out = jrun(
+        "force",
+        write(tmp_path, variant(load={"head": 10.0, "pipe_diameter": 0.023})),
+        "--summary",
+        expect=None,
+    )
     fw = 1000 * 9.81 * 10.0 * math.pi * 0.023**2 / 4 / 0.75
-    assert fw == pytest.approx(54.4, abs=0.1)  # NOTES.md §4: "about 54 N"
+    assert fw == pytest.approx(54.4, abs=0.1)  # docs/physics.md §5: "about 54 N"
     assert out["wheel_torque_Nm"] == pytest.approx(fw * SPEC["wheel"]["radius"], rel=1e-12)
 
 
@@ -355,7 +430,9 @@ def test_speed_changes_power_and_handle_speed_not_forces(spec_path):
     a = jrun("force", spec_path, "--samples", N_SAMPLES, cache=True)  # the spec's speed, 300 deg/s
     b = jrun("force", spec_path, "--samples", N_SAMPLES, "--speed", "720")
     ratio = 720 / SPEC["operator"]["speed"]
-    assert a["speed_deg_s"] == pytest.approx(SPEC["operator"]["speed"]) and b["speed_deg_s"] == pytest.approx(720)
+    assert a["speed_deg_s"] == pytest.approx(SPEC["operator"]["speed"]) and b["speed_deg_s"] == pytest.approx(
+        720
+    )
     assert b["power_W"] == pytest.approx(ratio * a["power_W"], rel=1e-12)
     assert b["power_W"] == pytest.approx(b["wheel_torque_Nm"] * math.radians(720), rel=1e-12)
     assert len(a["samples"]) == len(b["samples"]) == N_SAMPLES
@@ -374,8 +451,17 @@ def test_csv_formats(tmp_path, spec_path):
     assert p.returncode == 0, p.stderr
     rows = list(csv.DictReader(io.StringIO(p.stdout)))
     assert len(rows) == 2 and [r["name"] for r in rows] == ["Test pump", "B"]
-    for k in ("feasible", "frame_length", "crank_length", "rocker_pivot_x", "rocker_pivot_y",
-              "dead_centres_deg_extended", "dead_centres_deg_folded", "transmission_angle_deg_min", "time_ratio"):
+    for k in (
+        "feasible",
+        "frame_length",
+        "crank_length",
+        "rocker_pivot_x",
+        "rocker_pivot_y",
+        "dead_centres_deg_extended",
+        "dead_centres_deg_folded",
+        "transmission_angle_deg_min",
+        "time_ratio",
+    ):
         assert k in rows[0], k
     h = hand_design(SPEC["linkage"])
     assert float(rows[0]["frame_length"]) == pytest.approx(h["frame_length"], rel=1e-12)
@@ -407,7 +493,7 @@ def test_default_design_runs_and_states_its_verdict():
     assert f"VERDICT: {verdict}" in p.stdout or (verdict in p.stdout and "VERDICT" in p.stdout.upper())
     out = jrun("force", "--summary", expect=p.returncode)
     assert out["pass"] is (p.returncode == 0)
-    # the default is the issue #2 prototype: Mw = 45 N * 0.25 m, mean = pi Mw / (2 * 1 m * sin 30 deg)
+    # the default is the prototype: Mw = 45 N * 0.25 m, mean = pi Mw / (2 * 1 m * sin 30 deg)
     assert out["wheel_torque_Nm"] == pytest.approx(45 * 0.25)
     assert out["mean_force_N"] == pytest.approx(math.pi * 45 * 0.25 / (2 * 1.0 * 0.5), rel=1e-12)
 
@@ -426,14 +512,18 @@ def test_force_limit_decides_the_verdict(tmp_path, spec_path):
     base = jrun("force", spec_path, "--summary", cache=True)
     peak = base["peak_force_N"]
     assert base["mean_force_N"] < peak
-    hi = jrun("force", write(tmp_path, variant(operator={"force_limit": peak * 1.001})), "--summary", expect=0)
-    lo = jrun("force", write(tmp_path, variant(operator={"force_limit": peak * 0.999})), "--summary", expect=1)
+    hi = jrun(
+        "force", write(tmp_path, variant(operator={"force_limit": peak * 1.001})), "--summary", expect=0
+    )
+    lo = jrun(
+        "force", write(tmp_path, variant(operator={"force_limit": peak * 0.999})), "--summary", expect=1
+    )
     assert hi["pass"] is True and lo["pass"] is False
 
 
 def test_infeasible_design_exit_1(tmp_path):
     """D1 = 3 m: the frame line rises at atan2(3, 0.41) = 82 deg, steeper than the forward extreme of the
-    swing (90 - 32 = 58 deg), so psi2 < 0: no crank-rocker (NOTES.md §1)."""
+    swing (90 - 32 = 58 deg), so psi2 < 0: no crank-rocker (docs/physics.md)."""
     bad = write(tmp_path, variant(name="Deep", linkage={"D1": 3.0}), "bad.toml")
     good = write(tmp_path, SPEC, "good.toml")
     assert hand_design(variant(linkage={"D1": 3.0})["linkage"])["psi2_deg"] < 0
@@ -466,7 +556,7 @@ def test_force_table_piped_and_no_color(tmp_path):
 
 
 def test_synth_table_piped(spec_path):
-    p = run("synth", spec_path, Path(__file__).parents[1] / "configs" / "prototype.toml")
+    p = run("synth", spec_path, Path(__file__).parents[2] / "configs" / "prototype.toml")
     assert p.returncode == 0, p.stderr
     assert ANY_ESC not in p.stdout
     assert "Test pump" in p.stdout and "Prototype" in p.stdout
@@ -506,7 +596,9 @@ def test_no_color_on_a_terminal():
     """On a terminal colours are on (so the check below can fail); NO_COLOR=1 removes every colour code."""
     rc, out = _run_on_tty(["force", "--summary"], {"TERM": "xterm-256color", "COLUMNS": "200"})
     assert rc == 0 and COLOUR_SGR.search(out), repr(out[:200])
-    rc, out = _run_on_tty(["force", "--summary"], {"TERM": "xterm-256color", "COLUMNS": "200", "NO_COLOR": "1"})
+    rc, out = _run_on_tty(
+        ["force", "--summary"], {"TERM": "xterm-256color", "COLUMNS": "200", "NO_COLOR": "1"}
+    )
     assert rc == 0
     assert not COLOUR_SGR.search(out), set(COLOUR_SGR.findall(out))
     assert "PASS" in re.sub(r"\x1b\[[0-9;]*m", "", out)
@@ -560,26 +652,58 @@ BAD_FILES = [
     ("string-for-number", _sub("handle = 1.00", 'handle = "1.0"'), ["handle", "1.0"], ("linkage", "handle")),
     ("boolean-for-number", _sub("handle = 1.00", "handle = true"), ["handle", "true"], ("linkage", "handle")),
     ("array-for-number", _sub("handle = 1.00", "handle = [1.0]"), ["handle"], None),
-    ("section-not-table", 'linkage = 5\n' + BASE_TOML.replace("name", "nom", 0).split("[linkage]")[0]
-     + BASE_TOML.split("swing = 60.0")[1], ["linkage"], None),
+    (
+        "section-not-table",
+        "linkage = 5\n"
+        + BASE_TOML.replace("name", "nom", 0).split("[linkage]")[0]
+        + BASE_TOML.split("swing = 60.0")[1],
+        ["linkage"],
+        None,
+    ),
     ("name-not-text", _sub('name = "t"', "name = 3"), ["name"], None),
-    ("dead-band-90", BASE_TOML + "[operator]\ndead_band = 90.0\n", ["dead_band", "90"], ("operator", "dead_band")),
+    (
+        "dead-band-90",
+        BASE_TOML + "[operator]\ndead_band = 90.0\n",
+        ["dead_band", "90"],
+        ("operator", "dead_band"),
+    ),
     ("zero-speed", BASE_TOML + "[operator]\nspeed = 0\n", ["speed"], ("operator", "speed")),
-    ("both-loads", _sub("rope_force = 45.0", "rope_force = 45.0\nhead = 10.0\npipe_diameter = 0.023"),
-     ["rope_force", "head"], None),
+    (
+        "both-loads",
+        _sub("rope_force = 45.0", "rope_force = 45.0\nhead = 10.0\npipe_diameter = 0.023"),
+        ["rope_force", "head"],
+        None,
+    ),
     ("head-without-pipe", _sub("rope_force = 45.0", "head = 10.0"), ["pipe_diameter"], None),
-    ("efficiency-without-head", _sub("rope_force = 45.0", "rope_force = 45.0\nefficiency = 0.7"), ["efficiency"], None),
-    ("efficiency-above-1", _sub("rope_force = 45.0", "head = 10.0\npipe_diameter = 0.023\nefficiency = 1.5"),
-     ["efficiency", "1.5"], ("load", "efficiency")),
+    (
+        "efficiency-without-head",
+        _sub("rope_force = 45.0", "rope_force = 45.0\nefficiency = 0.7"),
+        ["efficiency"],
+        None,
+    ),
+    (
+        "efficiency-above-1",
+        _sub("rope_force = 45.0", "head = 10.0\npipe_diameter = 0.023\nefficiency = 1.5"),
+        ["efficiency", "1.5"],
+        ("load", "efficiency"),
+    ),
     ("empty-file", "", [], None),
     ("comment-only", "# nothing here\n\n", [], None),
-    ("non-utf8", b"name = \"\xff\xfe\"\n[wheel]\nradius = 0.25\n", ["UTF-8"], None),
+    ("non-utf8", b'name = "\xff\xfe"\n[wheel]\nradius = 0.25\n', ["UTF-8"], None),
 ]
 
 
 # `force` reads specs through the same load_spec as `synth`; it is run on a representative subset
 # (each subprocess costs ~0.5 s here) and `synth` on all of them.
-FORCE_TOO = {"toml-syntax", "unknown-key", "negative-length", "nan", "string-for-number", "empty-file", "non-utf8"}
+FORCE_TOO = {
+    "toml-syntax",
+    "unknown-key",
+    "negative-length",
+    "nan",
+    "string-for-number",
+    "empty-file",
+    "non-utf8",
+}
 
 
 @pytest.fixture(scope="module")
@@ -633,21 +757,24 @@ def test_first_bad_spec_in_a_batch_stops_synth(tmp_path):
     assert "bad.toml" in line and "rockr" in line
 
 
-@pytest.mark.parametrize("args,option", [
-    (["force", "--samples", "0"], "--samples"),
-    (["force", "--speed", "-1"], "--speed"),
-    (["force", "--speed", "0"], "--speed"),
-    (["force", "--format", "xml"], "--format"),
-    (["synth", "--format", "xml", "configs/prototype.toml"], "--format"),
-    (["force", "--at", "nan"], "--at"),
-    (["force", "--at", "inf"], "--at"),
-    (["force", "--at", "ninety"], "--at"),
-    (["force", "--samples", "2000000"], "--samples"),
-    (["force", "--bogus"], "--bogus"),
-    (["synth"], "spec"),
-])
+@pytest.mark.parametrize(
+    "args,option",
+    [
+        (["force", "--samples", "0"], "--samples"),
+        (["force", "--speed", "-1"], "--speed"),
+        (["force", "--speed", "0"], "--speed"),
+        (["force", "--format", "xml"], "--format"),
+        (["synth", "--format", "xml", "configs/prototype.toml"], "--format"),
+        (["force", "--at", "nan"], "--at"),
+        (["force", "--at", "inf"], "--at"),
+        (["force", "--at", "ninety"], "--at"),
+        (["force", "--samples", "2000000"], "--samples"),
+        (["force", "--bogus"], "--bogus"),
+        (["synth"], "spec"),
+    ],
+)
 def test_bad_options_exit_2(args, option):
-    p = run(*args, cwd=Path(__file__).parents[1])
+    p = run(*args, cwd=Path(__file__).parents[2])
     assert p.returncode == 2, (p.returncode, p.stdout, p.stderr)
     assert p.stdout == "" and "Traceback" not in p.stderr
     assert option.lower() in p.stderr.lower(), p.stderr
@@ -691,11 +818,19 @@ def test_init_writes_a_spec_that_loads_and_passes(tmp_path):
 
 def test_bracketed_units_and_extras_survive_rich_markup_in_help():
     """Rich eats lowercase [tags]: units like [deg] and the extra [plot] must be escaped."""
-    wants = {"force": ["[deg/s]", "[deg]", "pumplink[plot]"], "transmission": ["[deg]", "pumplink[plot]"],
-             "optimize": ["[m]", "[deg]"]}
+    wants = {
+        "force": ["[deg/s]", "[deg]", "pumplink[plot]"],
+        "transmission": ["[deg]", "pumplink[plot]"],
+        "optimize": ["[m]", "[deg]"],
+    }
     for cmd, needles in wants.items():
-        out = subprocess.run([sys.executable, "-m", "pumplink", cmd, "--help"], capture_output=True, text=True,
-                             env={**os.environ, "COLUMNS": "250"}, check=False).stdout
+        out = subprocess.run(
+            [sys.executable, "-m", "pumplink", cmd, "--help"],
+            capture_output=True,
+            text=True,
+            env={**os.environ, "COLUMNS": "250"},
+            check=False,
+        ).stdout
         for n in needles:
             assert n in out, (cmd, n)
 
@@ -714,8 +849,8 @@ def test_long_force_sweep_draws_a_progress_bar_on_a_terminal_only(tmp_path):
     assert json.loads(piped.stdout)["sampled_peak_force_N"] == json.loads(out)["sampled_peak_force_N"]
 
 
-# ----------------------------------------------------------------------------- flywheel model (issue #6)
-FLY = Path(__file__).parents[1] / "examples" / "well-12m-flywheel.toml"
+# ----------------------------------------------------------------------------- flywheel model
+FLY = Path(__file__).parents[2] / "examples" / "well-12m-flywheel.toml"
 
 
 def _force_json(*args):
@@ -724,7 +859,7 @@ def _force_json(*args):
 
 
 def test_speed_decides_the_verdict_with_inertia():
-    """Done-when of issue #6: with inertia in the spec, --speed 360 and --speed 540 give different
+    """The flywheel model's promise: with inertia in the spec, --speed 360 and --speed 540 give different
     verdicts, each cross-checked by integrating the equation of motion (--verify).
 
     Physically right: a faster wheel stores J w^2 / 2, so the least peak force falls (from above the
@@ -769,7 +904,9 @@ def test_samples_carry_the_operator_profile_and_wheel_speed():
     assert max(abs(o) for o in ops) == pytest.approx(fp, rel=1e-12)  # the operator does push Fp somewhere
     lo, hi = j["wheel_speed_range_deg_s"]["min"], j["wheel_speed_range_deg_s"]["max"]
     assert all(lo * (1 - 1e-9) <= w <= hi * (1 + 1e-9) for w in ws)
-    assert (hi + lo) / 2 == pytest.approx(360.0, rel=1e-12) and (hi - lo) / 360.0 == pytest.approx(0.2, rel=1e-9)
+    assert (hi + lo) / 2 == pytest.approx(360.0, rel=1e-12) and (hi - lo) / 360.0 == pytest.approx(
+        0.2, rel=1e-9
+    )
     # Quasi-static specs keep the same columns: the quasi-static force at a constant speed.
     q = json.loads(run("force", "--samples", "8", "--format", "json", cache=True).stdout)
     assert q["model"] == "quasi-static + dead band" and q["required_peak_force_N"] is None
@@ -790,7 +927,9 @@ def test_explain_reports_effects_and_reason():
     names = [e["effect"] for e in ex["effects"]]
     assert any("coupler + handle" in n for n in names) and any("power" in n for n in names)
     link = next(e for e in ex["effects"] if "coupler + handle" in e["effect"])
-    assert link["included"] is False and link["ratio"] == pytest.approx(link["value"] / j["energy_band_J"], rel=1e-12)
+    assert link["included"] is False and link["ratio"] == pytest.approx(
+        link["value"] / j["energy_band_J"], rel=1e-12
+    )
     # a 1.2 m steel handle at 360 deg/s carries more energy than the band: the reason says so
     assert link["ratio"] > 1 and "Full dynamics" in ex["why"]
     q = run("force", "--summary", "--explain", cache=True).stdout
@@ -816,7 +955,7 @@ def test_speed_command(tmp_path):
     png = tmp_path / "s.png"
     t = run("speed", FLY, "--plot", png)
     assert png.stat().st_size > 10_000 and "passes the 100 N limit from a mean" in t.stdout
-    q = run("speed", "configs/prototype.toml", cwd=Path(__file__).parents[1])
+    q = run("speed", "configs/prototype.toml", cwd=Path(__file__).parents[2])
     assert q.returncode == 2 and q.stderr.count("\n") == 1 and "wheel.mass" in q.stderr
     bad = run("speed", FLY, "--from", "500", "--to", "100")
     assert bad.returncode == 2 and "--to" in bad.stderr
@@ -826,7 +965,7 @@ def test_zero_inertia_fails_cleanly(tmp_path):
     """load.moving_mass = 0 and no wheel mass: a flywheel with J = 0 has no energy band, so no finite
     peak force keeps the wheel turning (the limit W -> 0).  Found by review: it used to raise
     ZeroDivisionError in the link-energy share and in --explain."""
-    d = tomllib.loads((Path(__file__).parents[1] / "configs" / "prototype.toml").read_text(encoding="utf-8"))
+    d = tomllib.loads((Path(__file__).parents[2] / "configs" / "prototype.toml").read_text(encoding="utf-8"))
     d["load"]["moving_mass"] = 0.0
     spec = tmp_path / "j0.toml"
     spec.write_text(tomli_w.dumps(d), encoding="utf-8")

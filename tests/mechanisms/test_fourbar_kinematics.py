@@ -1,18 +1,17 @@
-"""Kinematics and quasi-static force (NOTES.md §1, Eq. 3-6 by virtual work) against the
+"""Kinematics and quasi-static force (docs/physics.md, Eq. 3-6 by virtual work) against the
 independent 50-digit reference in ``tests/reference.py``."""
 
 import math
 
 import mpmath
 import numpy as np
+import reference as R
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from mpmath import mpf
 
-import reference as R
 from pumplink.mechanisms.angles import crank_grid, grid_directions
-from pumplink.mechanisms.fourbar import kinematic_state, force_kernel
-from pumplink.mechanisms.fourbar import FourBar, synthesize
+from pumplink.mechanisms.fourbar import FourBar, force_kernel, kinematic_state, synthesize
 
 DEG = math.pi / 180
 MIN_CRANK = R.MIN_CRANK
@@ -85,8 +84,9 @@ def test_force_accuracy_just_outside_singular_threshold():
     error is below ~1e-6.  Checked (with a 10x allowance, 1e-5) at 1e-9 rad from both dead
     centres of a design with a 40 mm crank, a 1.18 m coupler and a 50 mm rocker (a design found
     by hypothesis; measured 2.4e-5 and 3.1e-5 at the extended dead centre)."""
-    syn = synthesize(0.99999, -0.4582216611135291, 0.15326738912249308, 0.05,
-                     math.radians(122.96307608597965), 1.1)
+    syn = synthesize(
+        0.99999, -0.4582216611135291, 0.15326738912249308, 0.05, math.radians(122.96307608597965), 1.1
+    )
     lk = R.from_synthesis(syn)
     for dc in R.dead_centres(lk):
         for d in (-1e-9, 1e-9):
@@ -119,15 +119,22 @@ def test_power_balance_against_finite_difference_of_grip(design, t):
 @given(st.lists(designs(), min_size=2, max_size=5))
 def test_kernel_and_broadcasting_match_per_design_evaluate(design_list):
     syns = []
-    for (inputs, handle, _mw) in design_list:
+    for inputs, handle, _mw in design_list:
         L1, D1, b, rocker, swing_deg = inputs
         syn = synthesize(L1, D1, b, rocker, math.radians(swing_deg), handle)
         if syn.feasible and syn.crank_length >= MIN_CRANK:
             syns.append(syn)
     assume(len(syns) >= 2)
-    mw = np.array([d[2] for d in design_list[:len(syns)]])
-    fields = ("pivot_x", "pivot_y", "crank_length", "coupler_length", "rocker_length",
-              "handle_length", "branch")
+    mw = np.array([d[2] for d in design_list[: len(syns)]])
+    fields = (
+        "pivot_x",
+        "pivot_y",
+        "crank_length",
+        "coupler_length",
+        "rocker_length",
+        "handle_length",
+        "branch",
+    )
     cols = [np.array([float(getattr(s, f)) for s in syns])[:, None] for f in fields]
     lk = FourBar(*cols)
     th = crank_grid(97, 0.01)
@@ -138,8 +145,15 @@ def test_kernel_and_broadcasting_match_per_design_evaluate(design_list):
     assert many.force.shape == (len(syns), th.size) == fk.shape
     for i, syn in enumerate(syns):
         one = kinematic_state(syn.linkage, th, mw[i])
-        for name in ("coupler_x", "coupler_y", "rocker_angle", "rocker_rate", "handle_rate",
-                     "transmission_angle", "force"):
+        for name in (
+            "coupler_x",
+            "coupler_y",
+            "rocker_angle",
+            "rocker_rate",
+            "handle_rate",
+            "transmission_angle",
+            "force",
+        ):
             np.testing.assert_allclose(getattr(many, name)[i], getattr(one, name), rtol=1e-14, atol=0)
         np.testing.assert_array_equal(many.singular[i], one.singular)
         np.testing.assert_allclose(bx[i], one.coupler_x, rtol=1e-13, atol=1e-15)

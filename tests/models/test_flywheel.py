@@ -1,4 +1,4 @@
-"""The flywheel scene (``pumplink.models.flywheel``, issue #6): least peak operator force, its limits,
+"""The flywheel scene (``pumplink.models.flywheel``): least peak operator force, its limits,
 scaling and consistency, the reported force profile and wheel speed, the solve_ivp cross-check.
 
 Expected values never come from the code under test.  They come from
@@ -7,7 +7,7 @@ Expected values never come from the code under test.  They come from
   feasibility test done literally on a fine crank grid, using only grip positions from
   ``pumplink.mechanisms.fourbar.kinematic_state`` and the 50-digit dead centres of ``tests/reference.py``,
   with bisection on the peak force and an a-priori bound on its own grid error;
-* closed forms: ``pumplink.models.quasi_static.mean_force`` (F_mean = pi Mw / (2 H sin(swing/2)), NOTES.md
+* closed forms: ``pumplink.models.quasi_static.mean_force`` (F_mean = pi Mw / (2 H sin(swing/2)), docs/physics.md
   §1) and the dead-centre asymptote W Fp -> Mw^2 / kappa derived below, kappa from the 50-digit
   reference;
 * quadrature of the reported profile (Gauss-Legendre, split where the profile has kinks or
@@ -31,16 +31,15 @@ import math
 import mpmath
 import numpy as np
 import pytest
+import reference as R
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-import reference as R
-from pumplink.models import flywheel as fw
 from pumplink.analysis import design
+from pumplink.mechanisms.fourbar import FourBar, grip_stroke, kinematic_state, synthesize
+from pumplink.models import flywheel as fw
 from pumplink.models.quasi_static import mean_force
-from pumplink.mechanisms.fourbar import kinematic_state
 from pumplink.spec import default_spec, parse_spec
-from pumplink.mechanisms.fourbar import FourBar, grip_stroke, synthesize
 
 TWO_PI = 2.0 * math.pi
 DEG = math.pi / 180.0
@@ -72,7 +71,7 @@ class Case:
 
     @property
     def f_mean(self):
-        """F_mean from the closed form of pumplink.models.quasi_static (NOTES.md §1), not from flywheel."""
+        """F_mean from the closed form of pumplink.models.quasi_static (docs/physics.md), not from flywheel."""
         return float(mean_force(self.mw, grip_stroke(self.syn.handle_length, self.syn.swing)))
 
     def required(self, band):
@@ -103,7 +102,7 @@ def _case(L1, D1, b, rocker, swing_deg, handle, mw) -> Case:
 
 
 DEFAULT = _default_case()  # Mw = 11.25 N m, F_mean = 35.34 N, deficit at F_mean 9.13 J
-#: Further feasible designs (realistic ranges of issue #2), chosen for variety, with bands [J]:
+#: Further feasible designs (realistic ranges), chosen for variety, with bands [J]:
 #: a deep pivot with a large torque; a 110 deg swing with a 9.6 deg minimum transmission angle
 #: (ill-conditioned near the dead centres); a 120 deg swing on a short rocker.  The band at
 #: which the answer reaches F_mean (the deficit at F_mean) is about 36, 32 and 4.2 J; the bands
@@ -116,7 +115,7 @@ OTHERS = {
 
 
 # ---------------------------------------------------------------------------------------------
-# Independent brute force: the reservoir sweep of issue #6, literally
+# Independent brute force: a literal reservoir sweep
 
 
 def reservoir_sweep(increments, band):
@@ -164,8 +163,13 @@ class _Reservoir:
         plus = (fold - ext) % TWO_PI
         n1 = int(round(n * plus / TWO_PI))
         n2 = n - n1
-        th = np.concatenate([ext + plus * np.arange(n1) / n1,
-                             ext + plus + (TWO_PI - plus) * np.arange(n2) / n2, [ext + TWO_PI]])
+        th = np.concatenate(
+            [
+                ext + plus * np.arange(n1) / n1,
+                ext + plus + (TWO_PI - plus) * np.arange(n2) / n2,
+                [ext + TWO_PI],
+            ]
+        )
         lk = case.lk
         state = kinematic_state(lk, th, 1.0)
         px = lk.pivot_x + lk.handle * np.cos(state.rocker_angle)
@@ -191,14 +195,14 @@ class _Reservoir:
     def feasible(self, force, band):
         if force * self.total < TWO_PI * self.mw:
             return False
-        return bool(self.energies(force, band)[self.n:].min() >= 0.0)
+        return bool(self.energies(force, band)[self.n :].min() >= 0.0)
 
     def worst_arc_travel(self, force):
         """Grip travel G [m] of the arc with the largest drop of U ending in revolution 2."""
         u = force * self.cum_travel - self.mw * self.cum_angle
         drop = np.maximum.accumulate(u) - u
-        j = self.n + int(np.argmax(drop[self.n:]))
-        i = int(np.argmax(u[:j + 1]))
+        j = self.n + int(np.argmax(drop[self.n :]))
+        i = int(np.argmax(u[: j + 1]))
         return float(self.cum_travel[j] - self.cum_travel[i])
 
     def least(self, band):
@@ -217,7 +221,7 @@ class _Reservoir:
                 hi = mid
             else:
                 lo = mid
-        bound = 2.0 * hi * self.g_slope * self.h ** 2 / (4.0 * self.worst_arc_travel(hi))
+        bound = 2.0 * hi * self.g_slope * self.h**2 / (4.0 * self.worst_arc_travel(hi))
         return hi, bound
 
 
@@ -228,12 +232,12 @@ ROUNDING = 1e-10
 
 def test_reservoir_closed_form_is_the_literal_sweep():
     """The numpy form used by the bisection equals the step-by-step sweep (and its verdict)."""
-    res = _Reservoir(DEFAULT, 2 ** 12)
+    res = _Reservoir(DEFAULT, 2**12)
     for force, band in ((36.0, 9.0), (60.0, 5.0), (155.0, 2.0), (155.6, 2.0), (620.0, 0.5)):
         literal = reservoir_sweep(res.increments(force), band)
         closed = res.energies(force, band)
         assert np.max(np.abs(literal - closed)) <= 1e-11 * (1.0 + force)
-        assert (literal[res.n:].min() >= 0) == (closed[res.n:].min() >= 0)
+        assert (literal[res.n :].min() >= 0) == (closed[res.n :].min() >= 0)
     # the least force for 2 J is 155.57 N (test below): 155.0 N fails, 155.6 N passes
     assert not res.feasible(155.0, 2.0) and res.feasible(155.6, 2.0)
 
@@ -257,7 +261,7 @@ def test_least_peak_force_of_the_default_design_against_the_reservoir_sweep(band
     2**17 / 2**18 against the bound at 2**18: 7.9e-8 / 1.4e-8 vs 2.2e-7 (0.5 J, Fp* = 620.9 N),
     5.2e-9 / 9.3e-10 vs 1.4e-8 (2 J, 155.57 N), 3.3e-10 / 2.8e-10 vs 2.2e-9 (5 J, 62.94 N).  At
     20 J (above the deficit at F_mean, 9.13 J) the answer is F_mean itself (4e-16)."""
-    exact, bounds = _check_against_brute(DEFAULT, band, (2 ** 17, 2 ** 18))
+    exact, bounds = _check_against_brute(DEFAULT, band, (2**17, 2**18))
     if band > 9.2:
         assert exact == pytest.approx(DEFAULT.f_mean, rel=1e-12)
     else:
@@ -271,7 +275,7 @@ def test_least_peak_force_of_other_designs_against_the_reservoir_sweep(name):
     -3e-12 (the smallest band of each design largest), always inside the bound (<= 5.6e-6)."""
     case, bands = OTHERS[name]
     for band in bands:
-        exact, (bound,) = _check_against_brute(case, band, (2 ** 18,))
+        exact, (bound,) = _check_against_brute(case, band, (2**18,))
         assert exact > case.f_mean  # bands below the deficit at F_mean: the interesting regime
         assert bound <= 2e-5  # a meaningful comparison (measured bound <= 5.6e-6)
 
@@ -281,12 +285,12 @@ def test_literal_sweep_accepts_the_answer_and_rejects_one_part_per_million_less(
     the flywheel never runs dry in the second revolution; 1 ppm less and it does."""
     band = 2.0
     exact = DEFAULT.required(band)
-    res = _Reservoir(DEFAULT, 2 ** 18)
-    assert _Reservoir(DEFAULT, 2 ** 18).least(band)[1] < 1e-7 * exact  # bound well below 1 ppm
+    res = _Reservoir(DEFAULT, 2**18)
+    assert _Reservoir(DEFAULT, 2**18).least(band)[1] < 1e-7 * exact  # bound well below 1 ppm
     ok = reservoir_sweep(res.increments(exact), band)
     low = reservoir_sweep(res.increments(exact * (1 - 1e-6)), band)
-    assert ok[res.n:].min() >= -ROUNDING * band
-    assert low[res.n:].min() < 0.0
+    assert ok[res.n :].min() >= -ROUNDING * band
+    assert low[res.n :].min() < 0.0
 
 
 # ---------------------------------------------------------------------------------------------
@@ -300,7 +304,7 @@ def _all_cases():
 def test_infinite_and_large_bands_give_the_mean_force():
     """W -> inf: an infinite flywheel, the operator pushes F_mean all the time.  Any band above
     the deficit at F_mean gives F_mean too.  Reference: pumplink.models.quasi_static.mean_force (closed form
-    pi Mw / (2 H sin(swing/2)), NOTES.md §1); flywheel computes the stroke from positions, so
+    pi Mw / (2 H sin(swing/2)), docs/physics.md); flywheel computes the stroke from positions, so
     agreement is to rounding (measured <= 3.6e-15), not bitwise.  The deficit is taken at
     F_mean (1 + 1e-12): exactly at F_mean the cycle's work is done or not by rounding, and
     ``energy_deficit(force.mean_force(...))`` is inf for the wide-swing design (flywheel's own
@@ -320,7 +324,9 @@ def _dead_centre_slopes(case):
     """kappa = |d^2 Px / dt^2| at both dead centres [m/rad^2], 50-digit reference."""
     ref = R.from_synthesis(case.syn)
     with mpmath.workdps(30):
-        return [float(abs(mpmath.diff(lambda t: R.state(ref, t)["grip_rate"], dc))) for dc in R.dead_centres(ref)]
+        return [
+            float(abs(mpmath.diff(lambda t: R.state(ref, t)["grip_rate"], dc))) for dc in R.dead_centres(ref)
+        ]
 
 
 def _asymptote(case):
@@ -329,7 +335,7 @@ def _asymptote(case):
     D = integral_{-a}^{a} (Mw - Fp kappa |phi|) dphi = Mw a = Mw^2 / (Fp kappa).  With D = W at
     the worse dead centre (smaller kappa): W Fp -> Mw^2 / min(kappa).  The asymmetric terms of g
     cancel to first order, so W Fp / limit - 1 = O(a^2) = O(W^2)."""
-    return case.mw ** 2 / min(_dead_centre_slopes(case))
+    return case.mw**2 / min(_dead_centre_slopes(case))
 
 
 def test_force_grows_like_one_over_the_band_near_zero():
@@ -347,8 +353,7 @@ def test_force_grows_like_one_over_the_band_near_zero():
 
 
 def test_force_grows_without_bound_as_the_band_vanishes():
-    """The limit W -> 0 of the docstring ("W -> 0 gives the quasi-static maximum, infinite") and of
-    issue #6 ("delta_allow -> 0 grows without bound").
+    """The limit W -> 0 of the docstring ("W -> 0 gives the quasi-static maximum, infinite") and of ("delta_allow -> 0 grows without bound").
 
     Default design, hand asymptote W Fp -> Mw^2 / kappa = 310.40 N J (see :func:`_asymptote`; its
     O(W^2) correction is < 1e-9 for W < 1e-3 J).  The force must rise strictly as the band shrinks
@@ -363,7 +368,7 @@ def test_force_grows_without_bound_as_the_band_vanishes():
     case = DEFAULT
     limit = _asymptote(case)
     cap = fw.FORCE_CAP_RATIO * case.f_mean
-    bands = [10.0 ** -k for k in range(1, 11)] + [1e-30, 1e-300]
+    bands = [10.0**-k for k in range(1, 11)] + [1e-30, 1e-300]
     forces = list(case.required(bands))
     bad = [(w, f, g) for w, f, g in zip(bands, forces, forces[1:]) if not (g > f or f == g == math.inf)]
     assert not bad, f"required_peak_force does not grow as the band shrinks: {bad}"
@@ -380,8 +385,9 @@ def test_force_grows_without_bound_as_the_band_vanishes():
 
 
 @settings(max_examples=6, deadline=None)
-@given(st.floats(0.1, 20.0), st.floats(1.0, 15.0), st.floats(0.01, 0.5),
-       st.floats(0.2, 5.0), st.floats(0.2, 5.0))
+@given(
+    st.floats(0.1, 20.0), st.floats(1.0, 15.0), st.floats(0.01, 0.5), st.floats(0.2, 5.0), st.floats(0.2, 5.0)
+)
 def test_answer_depends_on_inertia_speed_and_fluctuation_only_through_the_band(j, speed, delta, a, b):
     """Derivation.  With E = J w^2 / 2 the energy balance per crank radian is
     dE/dt = F g(t) - Mw (Eq. (1) of the module): the crank angle is the clock and w does not
@@ -396,8 +402,9 @@ def test_answer_depends_on_inertia_speed_and_fluctuation_only_through_the_band(j
     two = DEFAULT.scene(j / (a * a * b), a * speed, b * delta)
     assert two.energy_band == pytest.approx(one.energy_band, rel=1e-14)
     assert two.least_peak_force == pytest.approx(one.least_peak_force, rel=1e-12)
-    assert two.fluctuation / two.speed_fluctuation == pytest.approx(one.fluctuation / one.speed_fluctuation,
-                                                                    rel=1e-10)
+    assert two.fluctuation / two.speed_fluctuation == pytest.approx(
+        one.fluctuation / one.speed_fluctuation, rel=1e-10
+    )
     # the speed needed to pass scales the same way: J w_min^2 delta is invariant
     args = (DEFAULT.lk, *DEFAULT.dcs, DEFAULT.mw, 1.5 * DEFAULT.f_mean)
     w1 = fw.min_passing_speed(*args, j, delta)
@@ -424,7 +431,9 @@ def test_min_passing_speed_is_where_the_force_limit_is_just_enough():
     limits = np.array([40.0, 60.0, 100.0, 300.0])
     speeds = fw.min_passing_speed(*_repeat(case, limits.size), limits, inertia, delta)
     assert np.all((0 < speeds) & (speeds < np.inf))
-    at, faster, slower = (case.required(fw.energy_band(inertia, speeds * k, delta)) for k in (1, 1 + 1e-6, 1 - 1e-6))
+    at, faster, slower = (
+        case.required(fw.energy_band(inertia, speeds * k, delta)) for k in (1, 1 + 1e-6, 1 - 1e-6)
+    )
     np.testing.assert_allclose(at, limits, rtol=1e-9)
     assert np.all(faster < limits) and np.all(slower > limits)  # just faster passes, just slower not
     # a limit below F_mean: no speed helps
@@ -432,16 +441,27 @@ def test_min_passing_speed_is_where_the_force_limit_is_just_enough():
 
 
 def _spec_design(L1, D1, b, rocker, handle, swing_deg, rope_force):
-    spec = parse_spec({"wheel": {"radius": 0.25},
-                       "linkage": {"L1": L1, "D1": D1, "b": b, "rocker": rocker, "handle": handle, "swing": swing_deg},
-                       "load": {"rope_force": rope_force}})
+    spec = parse_spec(
+        {
+            "wheel": {"radius": 0.25},
+            "linkage": {"L1": L1, "D1": D1, "b": b, "rocker": rocker, "handle": handle, "swing": swing_deg},
+            "load": {"rope_force": rope_force},
+        }
+    )
     return design(spec), float(spec.wheel_torque)
 
 
 def spec_designs():
     """FourBar inputs in the realistic ranges (inside the spec's limits) and a rope force [N]."""
-    return st.tuples(st.floats(0.0, 1.0), st.floats(-0.5, 0.8), st.floats(0.0, 0.3), st.floats(0.05, 0.6),
-                     st.floats(0.3, 1.5), st.floats(10.0, 150.0), st.floats(5.0, 200.0))
+    return st.tuples(
+        st.floats(0.0, 1.0),
+        st.floats(-0.5, 0.8),
+        st.floats(0.0, 0.3),
+        st.floats(0.05, 0.6),
+        st.floats(0.3, 1.5),
+        st.floats(10.0, 150.0),
+        st.floats(5.0, 200.0),
+    )
 
 
 def _feasible_case(inputs) -> Case:
@@ -453,7 +473,15 @@ def _feasible_case(inputs) -> Case:
 def _repeat(case, k):
     """The same design k times, as arrays (a vectorised call over k bands)."""
     s = case.syn
-    fields = ("pivot_x", "pivot_y", "crank_length", "coupler_length", "rocker_length", "handle_length", "branch")
+    fields = (
+        "pivot_x",
+        "pivot_y",
+        "crank_length",
+        "coupler_length",
+        "rocker_length",
+        "handle_length",
+        "branch",
+    )
     lk = FourBar(*[np.full(k, float(getattr(s, f))) for f in fields])
     return lk, np.full(k, case.dcs[0]), np.full(k, case.dcs[1]), np.full(k, case.mw)
 
@@ -512,7 +540,7 @@ def test_reported_profile_and_wheel_speed(name):
     case, inertia, speed, delta = SCENES[name]
     sc = case.scene(inertia, speed, delta)
     lk, mw = case.lk, case.mw
-    n = 2 ** 18
+    n = 2**18
     th = sc.top_angle + (np.arange(n) + 0.5) * (TWO_PI / n)
     force = fw.operator_force(sc, th)
     # |F| <= Fp* everywhere (rounding only: on the ceiling F = Mw / g <= Fp*)
@@ -530,7 +558,7 @@ def test_reported_profile_and_wheel_speed(name):
     omega = fw.wheel_speed(sc, checks)
     for t, w in zip(checks, omega):
         gained = _gauss(lambda x: work_rate(x) - mw, _breaks(case, sc, sc.top_angle, t))
-        assert 0.5 * inertia * (w * w - sc.max_speed ** 2) == pytest.approx(gained, abs=1e-9 * sc.energy_band)
+        assert 0.5 * inertia * (w * w - sc.max_speed**2) == pytest.approx(gained, abs=1e-9 * sc.energy_band)
 
     # the speed stays in [min, max], reaches both, (max + min)/2 is the requested mean speed
     ws = fw.wheel_speed(sc, th)
@@ -614,7 +642,7 @@ def test_simulation_follows_the_energy_balance_of_the_profile(speed_deg):
     per_turn = _gauss(work_rate, _breaks(case, sc, sc.top_angle, sc.top_angle + TWO_PI))
     assert per_turn < -1e-2  # the control loses energy (0.11 J at 180, 0.50 J at 360 deg/s)
     sim = fw.integrate_motion(weak)
-    energy = 0.5 * inertia * sim.speeds_at_start ** 2
+    energy = 0.5 * inertia * sim.speeds_at_start**2
     expected = energy[0] + per_turn * np.arange(energy.size)
     assert np.max(np.abs(energy - expected)) <= 2e-7 * energy[0], (np.diff(energy), per_turn)
 
@@ -644,10 +672,18 @@ def test_vectorised_calls_equal_per_design_calls(items):
     for inputs, log_band in items:
         d, mw = _spec_design(*inputs)
         cases.append(Case(d.synthesis, mw))  # infeasible designs too: NaN rows
-        bands.append(10.0 ** log_band)
+        bands.append(10.0**log_band)
     assume(any(c.syn.feasible for c in cases))
     bands[0] = 0.0  # and a zero band: inf
-    fields = ("pivot_x", "pivot_y", "crank_length", "coupler_length", "rocker_length", "handle_length", "branch")
+    fields = (
+        "pivot_x",
+        "pivot_y",
+        "crank_length",
+        "coupler_length",
+        "rocker_length",
+        "handle_length",
+        "branch",
+    )
     lk = FourBar(*[np.array([float(getattr(c.syn, f)) for c in cases]) for f in fields])
     dce = np.array([c.dcs[0] for c in cases])
     dcf = np.array([c.dcs[1] for c in cases])
