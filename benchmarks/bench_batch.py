@@ -1,4 +1,4 @@
-"""Benchmark of `pumplink batch` (issue #4): 100,000 variants x 360 crank samples, CSV written.
+"""Benchmark of `pumplink batch`: 100,000 variants x 360 crank samples, CSV written.
 
 Runs the real command end to end (start-up, evaluation, CSV file) in a subprocess, several
 times, and reports the median wall time, variants/s, CPU time and the peak resident memory of
@@ -6,13 +6,13 @@ the run (the largest process: the parent or a worker; measured with resource.get
 wrapper subprocess, so runs do not mix).  Memory is also measured on a grid 4x larger to show
 it does not grow with the grid (rows are streamed in chunks).
 
-A second grid gives the wheel a mass (issue #6): 10,000 variants decided by the flywheel model,
+A second grid gives the wheel a mass: 10,000 variants decided by the flywheel model,
 whose least peak force (``pumplink.models.flywheel.least_peak_force``) and minimum passing speed
 cost far more per design than the quasi-static sweep; measured the same way.
 
     .venv/bin/python benchmarks/bench_batch.py [--repeat 3] [--quick]
 
-Target (issue #4): <= 3 s wall for 100,000 variants on this 2-core machine; < 1 GB memory.
+Target: <= 3 s wall for 100,000 variants on this 2-core machine; < 1 GB memory.
 The machine is shared: timings are noisy, compare medians run side by side.
 """
 
@@ -96,13 +96,28 @@ def main() -> None:
         big = tmp / "grid-400k.toml"
         big.write_text(GRID.format(base=base, num=40))
         out = tmp / "out.csv"
-        print(f"pumplink batch, 100,000 variants x 360 crank samples, CSV written ({os.cpu_count()} CPUs; "
-              f"cores free for us before the runs: {free_cores():.1f})")
+        print(
+            f"pumplink batch, 100,000 variants x 360 crank samples, CSV written ({os.cpu_count()} CPUs; "
+            f"cores free for us before the runs: {free_cores():.1f})"
+        )
         rows = {}
         for _ in range(args.repeat):  # interleaved, so load from other processes hits all settings alike
             for w in (1, 2):
-                cmd = [*PUMPLINK, "batch", str(grid), "--fail-on", "none", "--samples", "360",
-                       "--format", "csv", "--out", str(out), "--workers", str(w)]
+                cmd = [
+                    *PUMPLINK,
+                    "batch",
+                    str(grid),
+                    "--fail-on",
+                    "none",
+                    "--samples",
+                    "360",
+                    "--format",
+                    "csv",
+                    "--out",
+                    str(out),
+                    "--workers",
+                    str(w),
+                ]
                 rows.setdefault(w, []).append(measure(cmd))
         n_rows = sum(1 for _ in out.open()) - 1
         assert n_rows == 100_000, n_rows
@@ -111,26 +126,60 @@ def main() -> None:
             cpu = statistics.median(r["cpu"] for r in rs)
             rss = max(r["maxrss_kb"] for r in rs) / 1024
             walls = ", ".join(f"{r['wall']:.2f}" for r in rs)
-            print(f"  --workers {w}: median wall {wall:.2f} s ({100_000 / wall:,.0f} variants/s), "
-                  f"CPU {cpu:.2f} s, peak RSS {rss:.0f} MB   [walls: {walls}]")
-        print("  command: pumplink batch GRID --fail-on none --samples 360 --format csv --out out.csv --workers W")
+            print(
+                f"  --workers {w}: median wall {wall:.2f} s ({100_000 / wall:,.0f} variants/s), "
+                f"CPU {cpu:.2f} s, peak RSS {rss:.0f} MB   [walls: {walls}]"
+            )
+        print(
+            "  command: pumplink batch GRID --fail-on none --samples 360 --format csv --out out.csv --workers W"
+        )
         print(f"  CSV: {out.stat().st_size / 1e6:.1f} MB, {n_rows} rows")
         print(f"  cores free for us after the runs: {free_cores():.1f} (other jobs share this machine)")
         if not args.quick:
-            r = measure([*PUMPLINK, "batch", str(big), "--fail-on", "none", "--format", "csv", "--out",
-                         str(out), "--workers", "2"])
-            print(f"  400,000 variants, --workers 2: wall {r['wall']:.2f} s, peak RSS {r['maxrss_kb'] / 1024:.0f} MB "
-                  f"(memory does not grow with the grid)")
+            r = measure(
+                [
+                    *PUMPLINK,
+                    "batch",
+                    str(big),
+                    "--fail-on",
+                    "none",
+                    "--format",
+                    "csv",
+                    "--out",
+                    str(out),
+                    "--workers",
+                    "2",
+                ]
+            )
+            print(
+                f"  400,000 variants, --workers 2: wall {r['wall']:.2f} s, peak RSS {r['maxrss_kb'] / 1024:.0f} MB "
+                f"(memory does not grow with the grid)"
+            )
 
         fly = tmp / "grid-flywheel-10k.toml"
         fly.write_text(FLYWHEEL_GRID.format(base=base))
-        print(f"pumplink batch, 10,000 variants with wheel.mass (flywheel model), CSV written "
-              f"(cores free: {free_cores():.1f})")
+        print(
+            f"pumplink batch, 10,000 variants with wheel.mass (flywheel model), CSV written "
+            f"(cores free: {free_cores():.1f})"
+        )
         rows = {}
         for _ in range(args.repeat):
             for w in (1, 2):
-                cmd = [*PUMPLINK, "batch", str(fly), "--fail-on", "none", "--samples", "360",
-                       "--format", "csv", "--out", str(out), "--workers", str(w)]
+                cmd = [
+                    *PUMPLINK,
+                    "batch",
+                    str(fly),
+                    "--fail-on",
+                    "none",
+                    "--samples",
+                    "360",
+                    "--format",
+                    "csv",
+                    "--out",
+                    str(out),
+                    "--workers",
+                    str(w),
+                ]
                 rows.setdefault(w, []).append(measure(cmd))
         lines = out.read_text().splitlines()
         n_rows = len(lines) - 1
@@ -141,10 +190,14 @@ def main() -> None:
             cpu = statistics.median(r["cpu"] for r in rs)
             rss = max(r["maxrss_kb"] for r in rs) / 1024
             walls = ", ".join(f"{r['wall']:.2f}" for r in rs)
-            print(f"  --workers {w}: median wall {wall:.2f} s ({10_000 / wall:,.0f} variants/s), "
-                  f"CPU {cpu:.2f} s, peak RSS {rss:.0f} MB   [walls: {walls}]")
-        print(f"  command: pumplink batch FLYWHEEL_GRID --fail-on none --samples 360 --format csv --out out.csv "
-              f"--workers W ({passed} of 10,000 pass)")
+            print(
+                f"  --workers {w}: median wall {wall:.2f} s ({10_000 / wall:,.0f} variants/s), "
+                f"CPU {cpu:.2f} s, peak RSS {rss:.0f} MB   [walls: {walls}]"
+            )
+        print(
+            f"  command: pumplink batch FLYWHEEL_GRID --fail-on none --samples 360 --format csv --out out.csv "
+            f"--workers W ({passed} of 10,000 pass)"
+        )
 
 
 if __name__ == "__main__":

@@ -19,7 +19,7 @@ import numpy as np
 
 from pumplink.analysis import design
 from pumplink.mechanisms.angles import offset_table, shifted_directions
-from pumplink.mechanisms.fourbar import kinematic_state, force_kernel, kernel_work
+from pumplink.mechanisms.fourbar import force_kernel, kernel_work, kinematic_state
 from pumplink.spec import default_spec
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -55,7 +55,9 @@ def main() -> None:
 
     theta = np.arange(3600) * (2 * np.pi / 3600)
     t = median_time(lambda: kinematic_state(lk, theta, mw), 50)
-    print(f"sweep of 3600 crank angles, full state (evaluate):       {t * 1e3:8.3f} ms  ({3600 / t / 1e6:6.1f} M positions/s)")
+    print(
+        f"sweep of 3600 crank angles, full state (evaluate):       {t * 1e3:8.3f} ms  ({3600 / t / 1e6:6.1f} M positions/s)"
+    )
 
     n, chunk = 5_000_000, 8192
     step = 2 * np.pi / n
@@ -69,13 +71,19 @@ def main() -> None:
 
     t = median_time(stream)
     rate = n / t / 1e6
-    print(f"kinematics + force, 5 M positions streamed (one design):  {t * 1e3:8.1f} ms  ({rate:6.1f} M positions/s; target >= 30)")
+    print(
+        f"kinematics + force, 5 M positions streamed (one design):  {t * 1e3:8.1f} ms  ({rate:6.1f} M positions/s; target >= 30)"
+    )
 
     cfg = str(ROOT / "configs" / "prototype.toml")
     for label, args, target in (
         ("pumplink --help", [EXE, "--help"], 0.5),
         ("pumplink synth configs/prototype.toml", [EXE, "synth", cfg], 0.5),
-        ("pumplink force --samples 5000000 --summary", [EXE, "force", "--samples", "5000000", "--summary"], None),
+        (
+            "pumplink force --samples 5000000 --summary",
+            [EXE, "force", "--samples", "5000000", "--summary"],
+            None,
+        ),
     ):
         t = median_time(lambda: subprocess.run(args, stdout=subprocess.DEVNULL, check=False), 7)
         goal = f"; target < {target} s" if target else ""

@@ -16,11 +16,11 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_core import EXE, ROOT, machine, median_time  # noqa: E402
 
-from pumplink.models import flywheel as fw  # noqa: E402
 from pumplink.analysis import design  # noqa: E402
+from pumplink.mechanisms.fourbar import FourBar  # noqa: E402
+from pumplink.models import flywheel as fw  # noqa: E402
 from pumplink.models.quasi_static import peak_force  # noqa: E402
 from pumplink.spec import load_spec  # noqa: E402
-from pumplink.mechanisms.fourbar import FourBar  # noqa: E402
 
 EXAMPLE = ROOT / "examples" / "well-12m-flywheel.toml"
 
@@ -34,16 +34,24 @@ def main() -> None:
     band = float(fw.energy_band(j, 2 * np.pi, 0.2))
     t1 = median_time(lambda: fw.least_peak_force(lk, dce, dcf, mw, band), 15)
     tq = median_time(lambda: peak_force(lk, dce, dcf, np.radians(20), mw), 15)
-    print(f"least peak force (flywheel), one design:                 {t1 * 1e3:8.2f} ms  "
-          f"(quasi-static windowed peak: {tq * 1e3:.2f} ms, ratio {t1 / tq:.1f}x)")
+    print(
+        f"least peak force (flywheel), one design:                 {t1 * 1e3:8.2f} ms  "
+        f"(quasi-static windowed peak: {tq * 1e3:.2f} ms, ratio {t1 / tq:.1f}x)"
+    )
     n = 10_000
-    rep = FourBar(*(np.full(n, float(v)) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker,
-                                                   lk.handle, lk.branch)))
+    rep = FourBar(
+        *(
+            np.full(n, float(v))
+            for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch)
+        )
+    )
     bands = np.linspace(0.5, 15.0, n)  # 10,000 designs x speeds in one vectorised call
     tn = median_time(lambda: fw.least_peak_force(rep, dce, dcf, mw, bands), 3)
     tqn = median_time(lambda: peak_force(rep, dce, dcf, np.radians(20), mw), 3)
-    print(f"least peak force, 10,000 designs vectorised:             {tn:8.3f} s   ({n / tn:,.0f} designs/s; "
-          f"quasi-static peak {n / tqn:,.0f} designs/s)")
+    print(
+        f"least peak force, 10,000 designs vectorised:             {tn:8.3f} s   ({n / tn:,.0f} designs/s; "
+        f"quasi-static peak {n / tqn:,.0f} designs/s)"
+    )
     ts = median_time(lambda: fw.integrate_motion(fw.scene(lk, dce, dcf, mw, j, 2 * np.pi, 0.2)), 3)
     print(f"scene + solve_ivp cross-check (4 revolutions):           {ts:8.3f} s")
     for label, args in (

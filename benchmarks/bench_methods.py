@@ -1,4 +1,4 @@
-"""Throughput of the force kernel vs pylinkage's step_fast and the `numeric` route (issue #3 item 6).
+"""Throughput of the force kernel vs pylinkage's step_fast and the `numeric` route.
 
 All in one process, side by side, medians of repeated runs (the machine is shared and noisy).
 A "position" is one (design, crank angle) pair: for pumplink, coupler point B plus the operator
@@ -14,12 +14,11 @@ import time
 
 import numpy as np
 
+from pumplink.analysis import design
 from pumplink.mechanisms.angles import grid_directions
-from pumplink.mechanisms.fourbar import force_kernel, kernel_work
+from pumplink.mechanisms.fourbar import FourBar, force_kernel, kernel_work, synthesize
 from pumplink.methods import numeric, vector
 from pumplink.spec import default_spec
-from pumplink.analysis import design
-from pumplink.mechanisms.fourbar import FourBar, synthesize
 
 REPEATS = 7
 
@@ -37,13 +36,30 @@ def median_time(fn, repeats=REPEATS):
 def feasible_designs(n, seed=1):
     rng = np.random.default_rng(seed)
     m = 4 * n
-    syn = synthesize(rng.uniform(0.2, 0.8, m), rng.uniform(-0.1, 0.4, m), rng.uniform(0.0, 0.2, m),
-                     rng.uniform(0.15, 0.4, m), np.radians(rng.uniform(30, 80, m)), rng.uniform(0.6, 1.2, m))
+    syn = synthesize(
+        rng.uniform(0.2, 0.8, m),
+        rng.uniform(-0.1, 0.4, m),
+        rng.uniform(0.0, 0.2, m),
+        rng.uniform(0.15, 0.4, m),
+        np.radians(rng.uniform(30, 80, m)),
+        rng.uniform(0.6, 1.2, m),
+    )
     ok = np.nonzero(syn.feasible)[0][:n]
     assert ok.size == n
-    return FourBar(*(np.asarray(v)[ok][:, None] for v in (syn.pivot_x, syn.pivot_y, syn.crank_length,
-                                                           syn.coupler_length, syn.rocker_length,
-                                                           syn.handle_length, syn.branch)))
+    return FourBar(
+        *(
+            np.asarray(v)[ok][:, None]
+            for v in (
+                syn.pivot_x,
+                syn.pivot_y,
+                syn.crank_length,
+                syn.coupler_length,
+                syn.rocker_length,
+                syn.handle_length,
+                syn.branch,
+            )
+        )
+    )
 
 
 def batched(lk: FourBar, cs, sn, block=8):
@@ -52,8 +68,12 @@ def batched(lk: FourBar, cs, sn, block=8):
     d = lk.crank.shape[0]
     work = kernel_work((block, cs.size))
     for i in range(0, d, block):
-        sub = FourBar(*(v[i:i + block] for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker,
-                                                 lk.handle, lk.branch)))
+        sub = FourBar(
+            *(
+                v[i : i + block]
+                for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch)
+            )
+        )
         force_kernel(sub, cs, sn, 13.5, work if sub.crank.shape[0] == block else None)
 
 
@@ -89,7 +109,8 @@ def main():
     for block in (1, 4, 16, 64):
         t = median_time(lambda: batched(many, cs, sn, block))
         results[f"pumplink force_kernel, {n_designs} designs x {n_angles} angles, {block} designs/block"] = (
-            n_designs * n_angles / t)
+            n_designs * n_angles / t
+        )
     # single design, same sweep
     t = median_time(lambda: force_kernel(lk, cs, sn, 13.5))
     results[f"pumplink force_kernel, 1 design x {n_angles} angles"] = n_angles / t
@@ -101,7 +122,8 @@ def main():
     traj = pl.step_fast(iterations=n_angles)
     t = median_time(lambda: pl.step_fast(iterations=n_angles))
     results[f"pylinkage {pylinkage.__version__} step_fast (numba), 1 design x {n_angles}, positions only"] = (
-        n_angles / t)
+        n_angles / t
+    )
     # sanity: pylinkage's rocker joint traces the same rocker circle as ours
     bxy = traj[:, -1, :]
     radius = np.hypot(bxy[:, 0] - lk.pivot_x, bxy[:, 1] - lk.pivot_y)
@@ -113,18 +135,26 @@ def main():
     results["numeric (fsolve + central difference), 1 design x 72"] = few.size / t
 
     width = max(len(k) for k in results)
-    best_pumplink = max(v for k, v in results.items() if k.startswith("pumplink force_") and " designs x " in k)
+    best_pumplink = max(
+        v for k, v in results.items() if k.startswith("pumplink force_") and " designs x " in k
+    )
     pyl = next(v for k, v in results.items() if k.startswith("pylinkage"))
     num = results["numeric (fsolve + central difference), 1 design x 72"]
     print(f"positions per second (median of {REPEATS}; one core; {time.strftime('%Y-%m-%d %H:%M')})")
     for k, v in results.items():
         print(f"  {k:<{width}}  {v / 1e6:10.3f} M/s")
-    print(f"ratio best batched pumplink (B + force) / pylinkage step_fast (positions): {best_pumplink / pyl:8.1f}x")
+    print(
+        f"ratio best batched pumplink (B + force) / pylinkage step_fast (positions): {best_pumplink / pyl:8.1f}x"
+    )
     single = results[f"pumplink force_kernel, 1 design x {n_angles} angles"]
     print(f"ratio single-design pumplink force_kernel / pylinkage step_fast:           {single / pyl:8.1f}x")
-    print(f"ratio best batched pumplink / numeric:                                     {best_pumplink / num:8.0f}x")
-    print(f"target >= 50 M positions/s (batched): {'met' if best_pumplink >= 50e6 else 'NOT met'} "
-          f"({best_pumplink / 1e6:.1f} M/s); target >= 5x pylinkage: {'met' if best_pumplink >= 5 * pyl else 'NOT met'}")
+    print(
+        f"ratio best batched pumplink / numeric:                                     {best_pumplink / num:8.0f}x"
+    )
+    print(
+        f"target >= 50 M positions/s (batched): {'met' if best_pumplink >= 50e6 else 'NOT met'} "
+        f"({best_pumplink / 1e6:.1f} M/s); target >= 5x pylinkage: {'met' if best_pumplink >= 5 * pyl else 'NOT met'}"
+    )
 
 
 if __name__ == "__main__":

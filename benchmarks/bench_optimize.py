@@ -1,4 +1,4 @@
-"""Wall time of the design searches (issue #5): `optimize` on every configs/*.toml spec and the
+"""Wall time of the design searches: `optimize` on every configs/*.toml spec and the
 exact seed-001 transmission optimum.  Medians of repeated runs in this one process (the machine
 is shared, so absolute seconds are noisy; compare side by side).
 
@@ -7,13 +7,13 @@ Run: .venv/bin/python benchmarks/bench_optimize.py   (or `make bench`)
 
 import math
 import statistics
-import tomllib
 import time
+import tomllib
 from pathlib import Path
 
+from pumplink.mechanisms.crank_rocker import optimal_crank_rocker
 from pumplink.optimize import make_problem, optimize
 from pumplink.spec import load_spec
-from pumplink.mechanisms.crank_rocker import optimal_crank_rocker
 
 REPEATS = 3
 ROOT = Path(__file__).resolve().parent.parent
@@ -31,7 +31,7 @@ def median_time(fn, repeats=REPEATS):
 def main():
     optimal_crank_rocker(1.1818, math.radians(40), 50.0)  # warm-up: scipy import
     t, _ = median_time(lambda: optimal_crank_rocker(1.1818, math.radians(40), 50.0), 5)
-    print(f"transmission optimum (seed 001 example): median {t * 1e3:.1f} ms")
+    print(f"transmission optimum (the optimal-transmission paper example): median {t * 1e3:.1f} ms")
     for path in sorted((ROOT / "configs").glob("*.toml")):
         if "vary" in tomllib.loads(path.read_text(encoding="utf-8")):
             continue  # a batch file of variants, not a single spec
@@ -39,9 +39,11 @@ def main():
         problem = make_problem(spec)
         t, res = median_time(lambda: optimize(problem, seed=0))
         peak = float(res.at_best.verdict_peak[0])  # the flywheel's least peak when the spec gives inertia
-        print(f"optimize {path.name} ({problem.model}): median {t:.2f} s over {REPEATS} runs; {res.evaluations} "
-              f"designs; peak {peak:.2f} N (spec's own {float(res.at_spec.verdict_peak[0]):.2f} N); "
-              f"{'passes' if peak <= spec.operator.force_limit else 'fails'} {spec.operator.force_limit:g} N")
+        print(
+            f"optimize {path.name} ({problem.model}): median {t:.2f} s over {REPEATS} runs; {res.evaluations} "
+            f"designs; peak {peak:.2f} N (spec's own {float(res.at_spec.verdict_peak[0]):.2f} N); "
+            f"{'passes' if peak <= spec.operator.force_limit else 'fails'} {spec.operator.force_limit:g} N"
+        )
 
 
 def grid_check(path: Path, m: int) -> None:
@@ -55,13 +57,15 @@ def grid_check(path: Path, m: int) -> None:
     x = np.array(np.meshgrid(*axes, indexing="ij")).reshape(len(axes), -1)
     best, feasible = np.inf, 0
     for i in range(0, x.shape[1], 50_000):
-        ev = evaluate_designs(problem, x[:, i:i + 50_000])
+        ev = evaluate_designs(problem, x[:, i : i + 50_000])
         ok = np.all(ev.slack >= 0, axis=0) & np.isfinite(ev.verdict_peak)
         feasible += int(ok.sum())
         if ok.any():
             best = min(best, float(ev.verdict_peak[ok].min()))
-    print(f"grid check {path.name} ({problem.model}): {m}^{len(axes)} = {x.shape[1]} designs over the default "
-          f"bounds, {feasible} meet every constraint, lowest peak {best:.2f} N")
+    print(
+        f"grid check {path.name} ({problem.model}): {m}^{len(axes)} = {x.shape[1]} designs over the default "
+        f"bounds, {feasible} meet every constraint, lowest peak {best:.2f} N"
+    )
 
 
 if __name__ == "__main__":

@@ -1,4 +1,4 @@
-"""Accuracy comparisons of the force methods and the sampling study (issue #3).
+"""Accuracy comparisons of the force methods and the sampling study.
 
 Pure functions: sample sets, error statistics against the ``reference`` method, and what a
 uniform sweep of N samples reports for the peak and mean force.  No timing here (the
@@ -9,15 +9,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from pumplink.models import quasi_static as _force
 from pumplink.mechanisms.angles import crank_grid
-from pumplink.mechanisms.fourbar import kinematic_state
+from pumplink.mechanisms.fourbar import FourBar, grip_stroke, kinematic_state
 from pumplink.methods import DANGER_KINDS, DEAD_CENTRE, NEAR_DEAD_CENTRE, UNIFORM, MethodResult, danger_points
-from pumplink.mechanisms.fourbar import FourBar, grip_stroke
+from pumplink.models import quasi_static as _force
 
-#: Offsets from each dead centre [deg] at which the methods are compared (issue #3 item 2b).
+#: Offsets from each dead centre [deg] at which the methods are compared.
 DEAD_CENTRE_OFFSETS_DEG = (1.0, 1e-2, 1e-4, 1e-6)
-#: Sample counts of the sampling study (issue #3 item 3).
+#: Sample counts of the sampling study.
 SAMPLE_COUNTS = (12, 36, 72, 360, 3600)
 #: Name of the sample set made of every danger point (and 1e-9 rad either side).
 DANGER = "danger points"
@@ -57,8 +56,13 @@ def error_stats(result: MethodResult, ref: MethodResult, tolerance: float) -> di
         err = np.where(both, np.abs(f - fr) / np.abs(fr), np.nan)
     wrong = (both & (err > tolerance)) | (~flagged & ~np.isfinite(f) & np.isfinite(fr))
     missed = np.asarray(ref.singular) & np.isfinite(f)
-    return {"n": int(f.size), "max_rel_error": float(np.max(err[both])) if both.any() else None,
-            "flagged": int(flagged.sum()), "missed_singular": int(missed.sum()), "wrong": int(wrong.sum())}
+    return {
+        "n": int(f.size),
+        "max_rel_error": float(np.max(err[both])) if both.any() else None,
+        "flagged": int(flagged.sum()),
+        "missed_singular": int(missed.sum()),
+        "wrong": int(wrong.sum()),
+    }
 
 
 def failures(stats_by_set: dict[str, dict]) -> list[str]:
@@ -79,7 +83,7 @@ def sampled_mean_force(lk: FourBar, n: int, wheel_torque) -> float:
 
     The cycle's work 2 pi Mw divided by the grip travel the samples see,
     sum |Px(j+1) - Px(j)| around the closed sweep; the exact travel is twice the stroke
-    2 H sin(swing/2) (NOTES.md §1), which a coarse sweep underestimates at the turning points.
+    2 H sin(swing/2) (docs/physics.md), which a coarse sweep underestimates at the turning points.
     """
     st = kinematic_state(lk, crank_grid(n), wheel_torque)
     gx = lk.pivot_x + lk.handle * np.cos(st.rocker_angle)
@@ -87,8 +91,15 @@ def sampled_mean_force(lk: FourBar, n: int, wheel_torque) -> float:
     return float(2.0 * np.pi * wheel_torque / travel)
 
 
-def sampling_study(lk: FourBar, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, swing,
-                   counts=SAMPLE_COUNTS) -> list[dict]:
+def sampling_study(
+    lk: FourBar,
+    dead_centre_extended,
+    dead_centre_folded,
+    dead_band,
+    wheel_torque,
+    swing,
+    counts=SAMPLE_COUNTS,
+) -> list[dict]:
     """What a uniform sweep of N samples (from crank angle 0) reports, against the exact values.
 
     Returns one dict per N: ``n``; ``sampled_max`` (largest finite |F| of the sweep with no
@@ -97,7 +108,9 @@ def sampling_study(lk: FourBar, dead_centre_extended, dead_centre_folded, dead_b
     relative error ``peak_error``; ``sampled_mean`` (:func:`sampled_mean_force`), ``exact_mean``
     (:func:`pumplink.models.quasi_static.mean_force`) and ``mean_error``.  Forces [N].
     """
-    exact_peak, _ = _force.dead_band_peak_force(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque)
+    exact_peak, _ = _force.dead_band_peak_force(
+        lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque
+    )
     exact_mean = float(_force.mean_force(wheel_torque, grip_stroke(lk.handle, swing)))
     rows = []
     for n in counts:
@@ -105,9 +118,16 @@ def sampling_study(lk: FourBar, dead_centre_extended, dead_centre_folded, dead_b
         f = np.abs(st.force[np.isfinite(st.force)])
         peak = _force.sampled_peak(lk, n, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band)
         mean = sampled_mean_force(lk, n, wheel_torque)
-        rows.append({"n": int(n), "sampled_max": float(f.max()) if f.size else None,
-                     "sampled_peak": peak if np.isfinite(peak) else None, "exact_peak": float(exact_peak),
-                     "peak_error": abs(peak - exact_peak) / exact_peak if np.isfinite(peak) else None,
-                     "sampled_mean": mean, "exact_mean": exact_mean,
-                     "mean_error": abs(mean - exact_mean) / exact_mean})
+        rows.append(
+            {
+                "n": int(n),
+                "sampled_max": float(f.max()) if f.size else None,
+                "sampled_peak": peak if np.isfinite(peak) else None,
+                "exact_peak": float(exact_peak),
+                "peak_error": abs(peak - exact_peak) / exact_peak if np.isfinite(peak) else None,
+                "sampled_mean": mean,
+                "exact_mean": exact_mean,
+                "mean_error": abs(mean - exact_mean) / exact_mean,
+            }
+        )
     return rows

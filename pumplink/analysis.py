@@ -16,7 +16,14 @@ import numpy as np
 
 from pumplink.constants import GRAVITY, LINK_ENERGY_LIMIT, LINK_MASS_PER_METRE, SUSTAINED_POWER_W
 from pumplink.errors import InfeasibleDesign, SpecError
-from pumplink.mechanisms.fourbar import State, Synthesis, grip_stroke, infeasibility_reason, kinematic_state, synthesize
+from pumplink.mechanisms.fourbar import (
+    State,
+    Synthesis,
+    grip_stroke,
+    infeasibility_reason,
+    kinematic_state,
+    synthesize,
+)
 from pumplink.models import FLYWHEEL, MODELS, Conditions, choose_model
 from pumplink.models import flywheel as _fw
 from pumplink.models import quasi_static as _qs
@@ -142,8 +149,14 @@ def conditions(spec: PumpSpec, speed: float | None = None) -> Conditions:
     return Conditions(w, np.radians(op.dead_band), j, op.speed_fluctuation)
 
 
-def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: int = 360,
-                   at_deg=None, keep_samples: bool = True, progress=None) -> ForceResult:
+def force_analysis(
+    spec: PumpSpec,
+    speed_deg_s: float | None = None,
+    samples: int = 360,
+    at_deg=None,
+    keep_samples: bool = True,
+    progress=None,
+) -> ForceResult:
     """Force sweep, checks and verdict for one spec.
 
     Parameters
@@ -165,11 +178,35 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
     nan = float("nan")
     inertia = spec.inertia
     model = choose_model(inertia is not None)
-    fly = {} if inertia is None else dict(inertia=inertia, speed_fluctuation=op.speed_fluctuation,
-                                          energy_band=float(_fw.energy_band(inertia, speed, op.speed_fluctuation)))
+    fly = (
+        {}
+        if inertia is None
+        else dict(
+            inertia=inertia,
+            speed_fluctuation=op.speed_fluctuation,
+            energy_band=float(_fw.energy_band(inertia, speed, op.speed_fluctuation)),
+        )
+    )
     if not d.feasible:
-        return ForceResult(d, speed_deg, float(speed), mw, mw * float(speed), op.force_limit, float(band), nan, nan,
-                           nan, nan, 0, None, None, None, model=model.label, **fly)
+        return ForceResult(
+            d,
+            speed_deg,
+            float(speed),
+            mw,
+            mw * float(speed),
+            op.force_limit,
+            float(band),
+            nan,
+            nan,
+            nan,
+            nan,
+            0,
+            None,
+            None,
+            None,
+            model=model.label,
+            **fly,
+        )
     lk = syn.linkage
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
     mean = float(_qs.mean_force(mw, grip_stroke(spec.linkage.handle, syn.swing)))
@@ -204,22 +241,59 @@ def force_analysis(spec: PumpSpec, speed_deg_s: float | None = None, samples: in
     if model.key == FLYWHEEL:
         fp = float(model.peak_force(lk, dce, dcf, mw, cond))
         sc = _fw.scene(lk, dce, dcf, mw, inertia, float(speed), op.speed_fluctuation, solved=fp)
-        fly.update(least_peak_force=sc.least_peak_force, scene=sc, min_passing_speed=float(_fw.min_passing_speed(
-            lk, dce, dcf, mw, op.force_limit, inertia, op.speed_fluctuation)))
+        fly.update(
+            least_peak_force=sc.least_peak_force,
+            scene=sc,
+            min_passing_speed=float(
+                _fw.min_passing_speed(lk, dce, dcf, mw, op.force_limit, inertia, op.speed_fluctuation)
+            ),
+        )
         if np.isfinite(sc.least_peak_force):
-            fly.update(mark_operator_force=_fw.operator_force(sc, marks.crank_angle),
-                       mark_wheel_speed=_fw.wheel_speed(sc, marks.crank_angle))
+            fly.update(
+                mark_operator_force=_fw.operator_force(sc, marks.crank_angle),
+                mark_wheel_speed=_fw.wheel_speed(sc, marks.crank_angle),
+            )
             if theta is not None:
-                fly.update(operator_force=_fw.operator_force(sc, theta), wheel_speed=_fw.wheel_speed(sc, theta),
-                           on_ceiling=_fw.on_ceiling(sc, theta))
+                fly.update(
+                    operator_force=_fw.operator_force(sc, theta),
+                    wheel_speed=_fw.wheel_speed(sc, theta),
+                    on_ceiling=_fw.on_ceiling(sc, theta),
+                )
         verdict_peak = sc.least_peak_force
-        share = 100.0 * link / fly["energy_band"] if fly["energy_band"] > 0 else np.inf  # J = 0: no band at all
-    verdict = assess(True, mean, verdict_peak, op.force_limit, link_energy_share=share,
-                     transmission_angle=np.degrees(d.transmission_angle), power=mw * speed,
-                     axle_height=spec.wheel.axle_height)
-    return ForceResult(d, speed_deg, float(speed), mw, mw * float(speed), op.force_limit, float(band), mean, peak,
-                       peak_angle, sampled, n, verdict, state if keep_samples or at_deg is not None else None,
-                       band_mask, marks, model=model.label, link_energy=link, **fly)
+        share = (
+            100.0 * link / fly["energy_band"] if fly["energy_band"] > 0 else np.inf
+        )  # J = 0: no band at all
+    verdict = assess(
+        True,
+        mean,
+        verdict_peak,
+        op.force_limit,
+        link_energy_share=share,
+        transmission_angle=np.degrees(d.transmission_angle),
+        power=mw * speed,
+        axle_height=spec.wheel.axle_height,
+    )
+    return ForceResult(
+        d,
+        speed_deg,
+        float(speed),
+        mw,
+        mw * float(speed),
+        op.force_limit,
+        float(band),
+        mean,
+        peak,
+        peak_angle,
+        sampled,
+        n,
+        verdict,
+        state if keep_samples or at_deg is not None else None,
+        band_mask,
+        marks,
+        model=model.label,
+        link_energy=link,
+        **fly,
+    )
 
 
 def _link_grid() -> np.ndarray:
@@ -275,8 +349,11 @@ def verify(r: ForceResult, rtol: float = VERIFY_RTOL) -> Verification:
     if r.scene is None or not math.isfinite(r.scene.least_peak_force):
         raise SpecError("nothing to integrate: no finite peak force keeps the wheel turning")
     sim = _fw.integrate_motion(r.scene)
-    agree = (sim.periodicity <= rtol and abs(sim.mean_speed - r.speed) <= rtol * r.speed
-             and sim.fluctuation <= r.speed_fluctuation * (1 + rtol))
+    agree = (
+        sim.periodicity <= rtol
+        and abs(sim.mean_speed - r.speed) <= rtol * r.speed
+        and sim.fluctuation <= r.speed_fluctuation * (1 + rtol)
+    )
     return Verification(sim, rtol, bool(agree))
 
 
@@ -315,8 +392,10 @@ def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
     InfeasibleDesign : no crank-rocker for this spec.
     """
     if spec.inertia is None:
-        raise SpecError(f"{spec.name}: the speed study needs the wheel's inertia (the quasi-static force does not "
-                        "depend on speed); add wheel.mass [kg] or wheel.inertia [kg m^2] to the spec")
+        raise SpecError(
+            f"{spec.name}: the speed study needs the wheel's inertia (the quasi-static force does not "
+            "depend on speed); add wheel.mass [kg] or wheel.inertia [kg m^2] to the spec"
+        )
     d = design(spec)
     if not d.feasible:
         raise InfeasibleDesign(f"{spec.name}: {d.error}")
@@ -324,19 +403,41 @@ def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
     given = np.asarray(speeds_deg_s, float)
     w = np.radians(np.append(given, op.speed))  # the spec's own speed last
     lk = syn.linkage
-    rep = type(lk)(*(np.full(w.size, float(v)) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker,
-                                                         lk.handle, lk.branch)))
+    rep = type(lk)(
+        *(
+            np.full(w.size, float(v))
+            for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch)
+        )
+    )
     cond = Conditions(w, np.radians(op.dead_band), j, op.speed_fluctuation)
     req = MODELS[FLYWHEEL].peak_force(rep, syn.dead_centre_extended, syn.dead_centre_folded, mw, cond)
     band = _fw.energy_band(j, w, op.speed_fluctuation)
     mean = float(_qs.mean_force(mw, grip_stroke(spec.linkage.handle, syn.swing)))
-    qs = _qs.dead_band_peak_force(lk, syn.dead_centre_extended, syn.dead_centre_folded, np.radians(op.dead_band),
-                                  mw)[0]
-    mps = float(_fw.min_passing_speed(lk, syn.dead_centre_extended, syn.dead_centre_folded, mw, op.force_limit, j,
-                                      op.speed_fluctuation))
+    qs = _qs.dead_band_peak_force(
+        lk, syn.dead_centre_extended, syn.dead_centre_folded, np.radians(op.dead_band), mw
+    )[0]
+    mps = float(
+        _fw.min_passing_speed(
+            lk, syn.dead_centre_extended, syn.dead_centre_folded, mw, op.force_limit, j, op.speed_fluctuation
+        )
+    )
     passed = assess(True, mean, req, op.force_limit).passed
-    return SpeedSweep(d, j, op.speed_fluctuation, op.force_limit, mean, float(qs), mps, given, w[:-1], band[:-1],
-                      req[:-1], mw * w[:-1], passed[:-1], bool(passed[-1]))
+    return SpeedSweep(
+        d,
+        j,
+        op.speed_fluctuation,
+        op.force_limit,
+        mean,
+        float(qs),
+        mps,
+        given,
+        w[:-1],
+        band[:-1],
+        req[:-1],
+        mw * w[:-1],
+        passed[:-1],
+        bool(passed[-1]),
+    )
 
 
 # ----------------------------------------------------------------------------- model choice
@@ -372,42 +473,102 @@ def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
     arm = max(lk.handle, lk.rocker)
     mpl = lk.mass_per_length or LINK_MASS_PER_METRE
     handle_mass = mpl * arm
-    lift = handle_mass * GRAVITY * 0.5 * arm * (1 - np.cos(np.radians(lk.swing) / 2))  # weight of the handle's centre
-    effects = [Effect("load torque Mw = Fw rw (pump efficiency in Fw)", True, r.wheel_torque, "N·m", "", nan,
-                      f"work per revolution 2π Mw = {work:.1f} J: what the operator supplies on average")]
+    lift = (
+        handle_mass * GRAVITY * 0.5 * arm * (1 - np.cos(np.radians(lk.swing) / 2))
+    )  # weight of the handle's centre
+    effects = [
+        Effect(
+            "load torque Mw = Fw rw (pump efficiency in Fw)",
+            True,
+            r.wheel_torque,
+            "N·m",
+            "",
+            nan,
+            f"work per revolution 2π Mw = {work:.1f} J: what the operator supplies on average",
+        )
+    ]
     qs = r.dead_band_peak_force
-    effects.append(Effect(f"quasi-static force, peak outside ±{op.dead_band:g}° of the dead centres", True, qs, "N",
-                          "the force limit", qs / r.force_limit,
-                          "infinite at the dead centres themselves: something must carry the linkage through"))
+    effects.append(
+        Effect(
+            f"quasi-static force, peak outside ±{op.dead_band:g}° of the dead centres",
+            True,
+            qs,
+            "N",
+            "the force limit",
+            qs / r.force_limit,
+            "infinite at the dead centres themselves: something must carry the linkage through",
+        )
+    )
     if r.flywheel:
         wheel_ke = 0.5 * r.inertia * w * w
-        moving = spec.load.moving_mass_kg * spec.wheel.radius ** 2
-        effects.append(Effect("inertia of wheel + rope and water, J", True, r.inertia, "kg·m²",
-                              "of which rope and water", _ratio(moving, r.inertia),
-                              f"kinetic energy {wheel_ke:.2f} J at {r.speed_deg_s:g} deg/s; band W = J ω̄² δ = "
-                              f"{r.energy_band:.2f} J"))
+        moving = spec.load.moving_mass_kg * spec.wheel.radius**2
+        effects.append(
+            Effect(
+                "inertia of wheel + rope and water, J",
+                True,
+                r.inertia,
+                "kg·m²",
+                "of which rope and water",
+                _ratio(moving, r.inertia),
+                f"kinetic energy {wheel_ke:.2f} J at {r.speed_deg_s:g} deg/s; band W = J ω̄² δ = "
+                f"{r.energy_band:.2f} J",
+            )
+        )
         ref, ref_name = r.energy_band, "the energy band W"
     else:
         ref, ref_name = work, "the work per revolution"
-    effects.append(Effect("kinetic energy of coupler + handle (largest)", False, r.link_energy, "J", ref_name,
-                          _ratio(r.link_energy, ref), f"links taken as {mpl:.2f} kg/m tube; grows as speed²"))
-    effects.append(Effect("weight of the handle (lift over the swing)", False, lift, "J", ref_name, _ratio(lift, ref),
-                          f"{handle_mass:.2f} kg; given back on the way down each stroke"))
-    effects.append(Effect("operator power Mw ω̄", True, r.power, "W", "75 W sustained for hours", r.power / SUSTAINED_POWER_W,
-                          "a person gives 50-150 W for an hour (docs/physics.md §5)"))
+    effects.append(
+        Effect(
+            "kinetic energy of coupler + handle (largest)",
+            False,
+            r.link_energy,
+            "J",
+            ref_name,
+            _ratio(r.link_energy, ref),
+            f"links taken as {mpl:.2f} kg/m tube; grows as speed²",
+        )
+    )
+    effects.append(
+        Effect(
+            "weight of the handle (lift over the swing)",
+            False,
+            lift,
+            "J",
+            ref_name,
+            _ratio(lift, ref),
+            f"{handle_mass:.2f} kg; given back on the way down each stroke",
+        )
+    )
+    effects.append(
+        Effect(
+            "operator power Mw ω̄",
+            True,
+            r.power,
+            "W",
+            "75 W sustained for hours",
+            r.power / SUSTAINED_POWER_W,
+            "a person gives 50-150 W for an hour (docs/physics.md §5)",
+        )
+    )
     small = _ratio(r.link_energy, ref) <= LINK_ENERGY_LIMIT and _ratio(lift, ref) <= LINK_ENERGY_LIMIT
     if not r.flywheel:
-        why = ("Quasi-static + dead band answered: the spec gives no inertia, so speed cannot enter and the dead band "
-               f"±{op.dead_band:g}° stands in for the flywheel. Give wheel.mass or wheel.inertia to let the wheel's "
-               "energy decide (the flywheel model); the links' energy is then compared with the energy band.")
+        why = (
+            "Quasi-static + dead band answered: the spec gives no inertia, so speed cannot enter and the dead band "
+            f"±{op.dead_band:g}° stands in for the flywheel. Give wheel.mass or wheel.inertia to let the wheel's "
+            "energy decide (the flywheel model); the links' energy is then compared with the energy band."
+        )
     elif small:
-        why = ("Flywheel answered: the quasi-static force is infinite at the dead centres, so the wheel's energy must "
-               f"enter; the neglected link energy and handle weight are at most {LINK_ENERGY_LIMIT:.0%} of the band, "
-               "so link inertia (full dynamics) would not change the verdict materially.")
+        why = (
+            "Flywheel answered: the quasi-static force is infinite at the dead centres, so the wheel's energy must "
+            f"enter; the neglected link energy and handle weight are at most {LINK_ENERGY_LIMIT:.0%} of the band, "
+            "so link inertia (full dynamics) would not change the verdict materially."
+        )
     else:
-        why = ("Flywheel answered: the quasi-static force is infinite at the dead centres, so the wheel's energy must "
-               f"enter. But the neglected link energy or handle weight exceeds {LINK_ENERGY_LIMIT:.0%} of the energy "
-               "band: this design is past what the flywheel scene covers. Full dynamics (link masses and weight, the "
-               "operator's arms) would be needed for a firm answer, which pumplink does not model; treat the verdict "
-               "as an estimate, or lighten the handle (linkage.mass_per_length) or add wheel mass.")
+        why = (
+            "Flywheel answered: the quasi-static force is infinite at the dead centres, so the wheel's energy must "
+            f"enter. But the neglected link energy or handle weight exceeds {LINK_ENERGY_LIMIT:.0%} of the energy "
+            "band: this design is past what the flywheel scene covers. Full dynamics (link masses and weight, the "
+            "operator's arms) would be needed for a firm answer, which pumplink does not model; treat the verdict "
+            "as an estimate, or lighten the handle (linkage.mass_per_length) or add wheel mass."
+        )
     return tuple(effects), why

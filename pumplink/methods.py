@@ -9,8 +9,8 @@ poliastro's propagators.  The point kinds a method may fail at are the constants
 * ``vector`` - the production kernel :func:`pumplink.mechanisms.fourbar.kinematic_state` (closed-form loop
   closure, analytic velocity ratio).  The default.
 * ``paper`` - the pump paper's instant-centre route, Eq. (4)-(6), literally: slopes tA, tB,
-  the quadratic for B, distances IA, IB; in the seed's frame-aligned coordinates (x along the
-  frame line O2->O4), transformed to ours (NOTES.md §1).
+  the quadratic for B, distances IA, IB; in the paper's frame-aligned coordinates (x along the
+  frame line O2->O4), transformed to ours (docs/physics.md).
 * ``numeric`` - what a user would write without this tool: ``scipy.optimize.fsolve`` on the
   loop closure at every crank angle, and a central difference of the grip position.
 * ``reference`` - the textbook route (rocker angle from the loop closure, velocity ratio
@@ -22,13 +22,12 @@ NaN there with ``failed`` set, and NaN with ``singular`` set at a dead centre.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
-from pumplink.mechanisms.fourbar import SINGULAR_SIN, kinematic_state
-from pumplink.mechanisms.fourbar import FourBar
+from pumplink.mechanisms.fourbar import SINGULAR_SIN, FourBar, kinematic_state
 
 UNIFORM = "uniform sweep"
 NEAR_DEAD_CENTRE = "near a dead centre (down to 1e-6 deg)"
@@ -37,8 +36,15 @@ CRANK_PERPENDICULAR = "crank perpendicular to the frame line"
 ROCKER_PERPENDICULAR = "rocker perpendicular to the frame line"
 CRANK_PARALLEL_ROCKER = "crank parallel to the rocker"
 CRANK_ALONG_FRAME = "crank along the frame line"
-POINT_KINDS = (UNIFORM, NEAR_DEAD_CENTRE, DEAD_CENTRE, CRANK_PERPENDICULAR, ROCKER_PERPENDICULAR,
-               CRANK_PARALLEL_ROCKER, CRANK_ALONG_FRAME)
+POINT_KINDS = (
+    UNIFORM,
+    NEAR_DEAD_CENTRE,
+    DEAD_CENTRE,
+    CRANK_PERPENDICULAR,
+    ROCKER_PERPENDICULAR,
+    CRANK_PARALLEL_ROCKER,
+    CRANK_ALONG_FRAME,
+)
 DANGER_KINDS = (CRANK_PERPENDICULAR, ROCKER_PERPENDICULAR, CRANK_PARALLEL_ROCKER, CRANK_ALONG_FRAME)
 
 #: Digits the ``reference`` method carries.
@@ -55,7 +61,7 @@ class MethodResult:
     coupler_x, coupler_y : coupler-rocker joint B [m].
     grip_x, grip_y : hand grip P = O4 + (H / rocker) (B - O4) [m].
     handle_rate : dPx/dt2, horizontal grip travel per crank radian [m/rad].
-    force : horizontal operator force Mw / (dPx/dt2) [N] (NOTES.md §1); NaN where flagged.
+    force : horizontal operator force Mw / (dPx/dt2) [N] (docs/physics.md); NaN where flagged.
     singular : the method found a dead centre here (force infinite).
     failed : the method could not produce a value here (its own breakdown, not the linkage's).
     """
@@ -81,8 +87,17 @@ def _result(lk: FourBar, th, bx, by, rate, wheel_torque, singular, failed) -> Me
     with np.errstate(divide="ignore", invalid="ignore"):
         force = np.where(bad, np.nan, wheel_torque / np.where(bad, 1.0, handle_rate))  # Eq. (3), virtual work
     nanf = np.where(failed, np.nan, 1.0)
-    return MethodResult(th, bx * nanf, by * nanf, gx * nanf, gy * nanf, np.where(bad, np.nan, handle_rate),
-                        force, singular & ~failed, failed)
+    return MethodResult(
+        th,
+        bx * nanf,
+        by * nanf,
+        gx * nanf,
+        gy * nanf,
+        np.where(bad, np.nan, handle_rate),
+        force,
+        singular & ~failed,
+        failed,
+    )
 
 
 # ----------------------------------------------------------------------------- vector
@@ -97,8 +112,16 @@ def vector(lk: FourBar, crank_angle, wheel_torque=1.0) -> MethodResult:
     """
     st = kinematic_state(lk, crank_angle, wheel_torque)
     failed = np.zeros(np.shape(st.force), bool)
-    return _result(lk, st.crank_angle, st.coupler_x, st.coupler_y, st.rocker_rate, wheel_torque,
-                   st.singular, failed | np.isnan(st.coupler_x))
+    return _result(
+        lk,
+        st.crank_angle,
+        st.coupler_x,
+        st.coupler_y,
+        st.rocker_rate,
+        wheel_torque,
+        st.singular,
+        failed | np.isnan(st.coupler_x),
+    )
 
 
 # ----------------------------------------------------------------------------- paper
@@ -119,13 +142,13 @@ def seed_frame(lk: FourBar):
 
 
 def paper_seed_coordinates(l1, crank, coupler, rocker, seed_angle, root_sign):
-    """Eq. (4)-(6) of the pump paper in the seed's own frame, as printed.
+    """Eq. (4)-(6) of the pump paper in the paper's own frame, as printed.
 
     Parameters
     ----------
     l1, crank, coupler, rocker : link lengths l1..l4 [m].
-    seed_angle : the seed's crank angle [rad]: xA = l2 sin(t2), yA = l2 cos(t2).
-    root_sign : +1 or -1, which root of the quadratic for xB (the seed prints +).
+    seed_angle : the paper's crank angle [rad]: xA = l2 sin(t2), yA = l2 cos(t2).
+    root_sign : +1 or -1, which root of the quadratic for xB (the paper prints +).
 
     Returns
     -------
@@ -157,11 +180,11 @@ def paper_seed_coordinates(l1, crank, coupler, rocker, seed_angle, root_sign):
 def paper(lk: FourBar, crank_angle, wheel_torque=1.0) -> MethodResult:
     """The pump paper's instant-centre route, Eq. (4)-(6), transformed to product coordinates.
 
-    Steps: our crank angle -> the seed's (measured from the normal to the frame line, so
+    Steps: our crank angle -> the paper's (measured from the normal to the frame line, so
     xA = l2 sin t2, yA = l2 cos t2); B from the quadratic of Eq. (6) and yB from the rocker
     circle; the instant centre I from the slopes tA = yA/xA and tB = yB/(xB - l1) (Eq. 5);
     |omega4/omega2| = l2 IB / (IA l4) (Eq. 4); B back to our axes, where the operator's force is
-    horizontal, and F = Mw / (dPx/dt2) (Eq. 3; the seed's cos(phi) with our horizontal).
+    horizontal, and F = Mw / (dPx/dt2) (Eq. 3; the paper's cos(phi) with our horizontal).
 
     Two things the seed leaves implicit are supplied: the root of the quadratic belonging to the
     linkage's assembly branch (the printed "+" root is that branch only while yA has one sign,
@@ -185,7 +208,8 @@ def paper(lk: FourBar, crank_angle, wheel_torque=1.0) -> MethodResult:
     root_sign = np.where(handed * lk.branch * ya0 >= 0, 1.0, -1.0)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         xa, ya, xb, yb, xi, yi, ratio, disc, ta, tb = paper_seed_coordinates(
-            l1, lk.crank, lk.coupler, lk.rocker, seed_angle, root_sign)
+            l1, lk.crank, lk.coupler, lk.rocker, seed_angle, root_sign
+        )
         # sign of omega4/omega2: omega3 (A - I) = omega2 A and omega4 (B - O4) = omega3 (B - I)
         s3 = np.sign(xa * (xa - xi) + ya * (ya - yi))
         s4 = np.sign((xb - xi) * (xb - l1) + (yb - yi) * yb)
@@ -213,8 +237,10 @@ def _solve_loop(lk: FourBar, theta: float, guess):
 
     def loop(x):
         t3, t4 = x
-        return [ax + lk.coupler * np.cos(t3) - lk.pivot_x - lk.rocker * np.cos(t4),
-                ay + lk.coupler * np.sin(t3) - lk.pivot_y - lk.rocker * np.sin(t4)]
+        return [
+            ax + lk.coupler * np.cos(t3) - lk.pivot_x - lk.rocker * np.cos(t4),
+            ay + lk.coupler * np.sin(t3) - lk.pivot_y - lk.rocker * np.sin(t4),
+        ]
 
     sol, info, ier, _ = fsolve(loop, guess, full_output=True, xtol=1e-13)
     # judged by the residual: from an already converged guess fsolve can report "not making good
@@ -238,7 +264,9 @@ def numeric(lk: FourBar, crank_angle, wheel_torque=1.0) -> MethodResult:
     tell a dead centre from a failure, so it never sets ``singular``.
     """
     th = np.atleast_1d(np.asarray(crank_angle, float))
-    px, py, c, k, r, h = (float(v) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle))
+    px, py, c, k, r, h = (
+        float(v) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle)
+    )
     n = th.size
     bx, by, rate = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.nan)
     failed = np.zeros(n, bool)
@@ -269,9 +297,22 @@ def numeric(lk: FourBar, crank_angle, wheel_torque=1.0) -> MethodResult:
         rate[i] = -(gxp - gxm) / (2.0 * NUMERIC_STEP) / (h * np.sin(t4))  # back to omega4/omega2
     shape = np.shape(crank_angle)
     res = _result(lk, th, bx, by, rate, wheel_torque, np.zeros(n, bool), failed)
-    return MethodResult(*(np.reshape(v, shape) for v in (
-        res.crank_angle, res.coupler_x, res.coupler_y, res.grip_x, res.grip_y, res.handle_rate, res.force,
-        res.singular, res.failed)))
+    return MethodResult(
+        *(
+            np.reshape(v, shape)
+            for v in (
+                res.crank_angle,
+                res.coupler_x,
+                res.coupler_y,
+                res.grip_x,
+                res.grip_y,
+                res.handle_rate,
+                res.force,
+                res.singular,
+                res.failed,
+            )
+        )
+    )
 
 
 # ----------------------------------------------------------------------------- reference
@@ -291,7 +332,9 @@ def reference(lk: FourBar, crank_angle, wheel_torque=1.0, digits: int = REFERENC
     out = np.empty((3, flat.size))
     sing = np.zeros(flat.size, bool)
     with mp.workdps(digits):
-        px, py, c, k, r = (mp.mpf(float(v)) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker))
+        px, py, c, k, r = (
+            mp.mpf(float(v)) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker)
+        )
         br = float(lk.branch)
         for i, t in enumerate(flat):
             t = mp.mpf(float(t))
@@ -340,39 +383,93 @@ class Method:
 
 
 #: Relative force error a method promises where it returns an unflagged value, by point kind.
-#: vector: 1e-12 at >= 1 deg from a dead centre, 1e-6 at 1e-6 deg (issue #3 item 4).
+#: vector: 1e-12 at >= 1 deg from a dead centre, 1e-6 at 1e-6 deg.
 METHODS: dict[str, Method] = {
     "vector": Method(
-        "vector", vector,
-        "closed-form loop closure + analytic velocity ratio (production kernel)", True,
-        {UNIFORM: "exact", NEAR_DEAD_CENTRE: "accurate", DEAD_CENTRE: "flags", CRANK_PERPENDICULAR: "exact",
-         ROCKER_PERPENDICULAR: "exact", CRANK_PARALLEL_ROCKER: "exact", CRANK_ALONG_FRAME: "exact"},
-        {UNIFORM: 1e-12, NEAR_DEAD_CENTRE: 1e-6, DEAD_CENTRE: 1e-6, CRANK_PERPENDICULAR: 1e-12,
-         ROCKER_PERPENDICULAR: 1e-12, CRANK_PARALLEL_ROCKER: 1e-12, CRANK_ALONG_FRAME: 1e-12},
-        "only the dead centres themselves (flagged singular)"),
+        "vector",
+        vector,
+        "closed-form loop closure + analytic velocity ratio (production kernel)",
+        True,
+        {
+            UNIFORM: "exact",
+            NEAR_DEAD_CENTRE: "accurate",
+            DEAD_CENTRE: "flags",
+            CRANK_PERPENDICULAR: "exact",
+            ROCKER_PERPENDICULAR: "exact",
+            CRANK_PARALLEL_ROCKER: "exact",
+            CRANK_ALONG_FRAME: "exact",
+        },
+        {
+            UNIFORM: 1e-12,
+            NEAR_DEAD_CENTRE: 1e-6,
+            DEAD_CENTRE: 1e-6,
+            CRANK_PERPENDICULAR: 1e-12,
+            ROCKER_PERPENDICULAR: 1e-12,
+            CRANK_PARALLEL_ROCKER: 1e-12,
+            CRANK_ALONG_FRAME: 1e-12,
+        },
+        "only the dead centres themselves (flagged singular)",
+    ),
     "paper": Method(
-        "paper", paper,
-        "the seed's instant centre, slopes tA, tB and quadratic for B (Eq. 4-6)", True,
-        {UNIFORM: "accurate", NEAR_DEAD_CENTRE: "accurate", DEAD_CENTRE: "flags", CRANK_PERPENDICULAR: "flags",
-         ROCKER_PERPENDICULAR: "flags", CRANK_PARALLEL_ROCKER: "flags", CRANK_ALONG_FRAME: "flags"},
-        {UNIFORM: 1e-6, NEAR_DEAD_CENTRE: 1e-2, DEAD_CENTRE: 1e-2, CRANK_PERPENDICULAR: 1e-6,
-         ROCKER_PERPENDICULAR: 1e-6, CRANK_PARALLEL_ROCKER: 1e-6, CRANK_ALONG_FRAME: 1e-6},
+        "paper",
+        paper,
+        "the paper's instant centre, slopes tA, tB and quadratic for B (Eq. 4-6)",
+        True,
+        {
+            UNIFORM: "accurate",
+            NEAR_DEAD_CENTRE: "accurate",
+            DEAD_CENTRE: "flags",
+            CRANK_PERPENDICULAR: "flags",
+            ROCKER_PERPENDICULAR: "flags",
+            CRANK_PARALLEL_ROCKER: "flags",
+            CRANK_ALONG_FRAME: "flags",
+        },
+        {
+            UNIFORM: 1e-6,
+            NEAR_DEAD_CENTRE: 1e-2,
+            DEAD_CENTRE: 1e-2,
+            CRANK_PERPENDICULAR: 1e-6,
+            ROCKER_PERPENDICULAR: 1e-6,
+            CRANK_PARALLEL_ROCKER: 1e-6,
+            CRANK_ALONG_FRAME: 1e-6,
+        },
         "xA = 0, xB = l1, tA = tB (division by zero) and yA ~ 0 (the quadratic's discriminant rounds "
-        "below zero: flagged though the linkage assembles; half the digits lost nearby)"),
+        "below zero: flagged though the linkage assembles; half the digits lost nearby)",
+    ),
     "numeric": Method(
-        "numeric", numeric,
-        "scipy fsolve on the loop closure + central difference of the grip position", False,
-        {UNIFORM: "accurate", NEAR_DEAD_CENTRE: "flags", DEAD_CENTRE: "flags", CRANK_PERPENDICULAR: "accurate",
-         ROCKER_PERPENDICULAR: "accurate", CRANK_PARALLEL_ROCKER: "accurate", CRANK_ALONG_FRAME: "accurate"},
-        {UNIFORM: 1e-6, NEAR_DEAD_CENTRE: 1e-2, DEAD_CENTRE: 1e-2, CRANK_PERPENDICULAR: 1e-6,
-         ROCKER_PERPENDICULAR: 1e-6, CRANK_PARALLEL_ROCKER: 1e-6, CRANK_ALONG_FRAME: 1e-6},
-        "within a few difference steps of a dead centre (flagged); cannot say 'dead centre'"),
+        "numeric",
+        numeric,
+        "scipy fsolve on the loop closure + central difference of the grip position",
+        False,
+        {
+            UNIFORM: "accurate",
+            NEAR_DEAD_CENTRE: "flags",
+            DEAD_CENTRE: "flags",
+            CRANK_PERPENDICULAR: "accurate",
+            ROCKER_PERPENDICULAR: "accurate",
+            CRANK_PARALLEL_ROCKER: "accurate",
+            CRANK_ALONG_FRAME: "accurate",
+        },
+        {
+            UNIFORM: 1e-6,
+            NEAR_DEAD_CENTRE: 1e-2,
+            DEAD_CENTRE: 1e-2,
+            CRANK_PERPENDICULAR: 1e-6,
+            ROCKER_PERPENDICULAR: 1e-6,
+            CRANK_PARALLEL_ROCKER: 1e-6,
+            CRANK_ALONG_FRAME: 1e-6,
+        },
+        "within a few difference steps of a dead centre (flagged); cannot say 'dead centre'",
+    ),
     "reference": Method(
-        "reference", reference,
-        f"textbook loop closure in mpmath, {REFERENCE_DIGITS} digits (ground truth)", False,
+        "reference",
+        reference,
+        f"textbook loop closure in mpmath, {REFERENCE_DIGITS} digits (ground truth)",
+        False,
         {kind: "exact" for kind in POINT_KINDS},
         {kind: 1e-15 for kind in POINT_KINDS},
-        "nothing in range; several hundred times slower than vector"),
+        "nothing in range; several hundred times slower than vector",
+    ),
 }
 
 
@@ -390,8 +487,10 @@ def danger_points(lk: FourBar) -> dict[str, np.ndarray]:
     two_pi = 2.0 * np.pi
     px, py, c, k, r = (float(v) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker))
     fdir = np.arctan2(py, px)  # O2 -> O4
-    out = {CRANK_PERPENDICULAR: np.mod(fdir + np.array([0.5, -0.5]) * np.pi, two_pi),
-           CRANK_ALONG_FRAME: np.mod(fdir + np.array([0.0, np.pi]), two_pi)}
+    out = {
+        CRANK_PERPENDICULAR: np.mod(fdir + np.array([0.5, -0.5]) * np.pi, two_pi),
+        CRANK_ALONG_FRAME: np.mod(fdir + np.array([0.0, np.pi]), two_pi),
+    }
 
     def rocker_angle(t):
         st = kinematic_state(lk, t)
@@ -414,6 +513,8 @@ def danger_points(lk: FourBar) -> dict[str, np.ndarray]:
     g = np.sin(rocker_angle(grid) - grid)
     roots = []
     for i in np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]:
-        roots.append(brentq(lambda t: np.sin(rocker_angle(t) - t), grid[i], grid[i + 1], xtol=1e-15, rtol=1e-15))
+        roots.append(
+            brentq(lambda t: np.sin(rocker_angle(t) - t), grid[i], grid[i + 1], xtol=1e-15, rtol=1e-15)
+        )
     out[CRANK_PARALLEL_ROCKER] = np.mod(np.array(roots), two_pi)
     return out

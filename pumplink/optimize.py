@@ -1,9 +1,9 @@
-"""Pump design search: the feasible linkage that needs the least operator force (issue #5).
+"""Pump design search: the feasible linkage that needs the least operator force.
 
 Variables (by default, in spec units): ``rocker`` [m], ``L1`` [m], ``D1`` [m], ``swing`` [deg]
 within :data:`DEFAULT_BOUNDS`; every other spec value stays fixed.  Objective: the peak force of
-the verdict (as ``pumplink force``) or the mean force pi Mw / (2 H sin(swing/2)) (NOTES.md §1).
-The peak of the verdict depends on the model (issue #6): when the spec gives inertia
+the verdict (as ``pumplink force``) or the mean force pi Mw / (2 H sin(swing/2)) (docs/physics.md).
+The peak of the verdict depends on the model: when the spec gives inertia
 (``wheel.inertia``, ``wheel.mass`` or ``load.moving_mass``) it is the flywheel's least peak force
 at the spec's speed and speed fluctuation (``pumplink.models.flywheel.least_peak_force``, vectorised
 over the population); otherwise the exact windowed peak outside the dead bands
@@ -13,12 +13,12 @@ limit.  Constraints (all ``g >= 0``):
 * the dead-centre synthesis gives a crank-rocker with the exact swing: 0 < psi2 < psi1 < pi
   (``pumplink.mechanisms.fourbar``);
 * transmission angle: min(gamma_min, 180 deg - gamma_max) >= 45 deg
-  (``pumplink.analysis.MIN_TRANSMISSION_DEG``, NOTES.md §3, seed 003: [lambda_max] <= 45 deg for
+  (``pumplink.analysis.MIN_TRANSMISSION_DEG``, docs/models.md §4, the lever-mechanism textbook: [lambda_max] <= 45 deg for
   a rotating driven link);
-* hand-grip height over the whole swing within 0.5-0.9 m above the ground (NOTES.md §4,
+* hand-grip height over the whole swing within 0.5-0.9 m above the ground (docs/physics.md §5,
   "efficient push height ~0.84 m, range 0.5-0.9 m"); the grip is at axle height - D1 + H sin(theta4);
 * horizontal grip stroke 2 H sin(swing/2) at most 1.0 m: the pump paper's own prototype
-  (seed 000: H = 1 m, swing 60 deg, chosen "as function of the motion capability of human
+  (the pump paper: H = 1 m, swing 60 deg, chosen "as function of the motion capability of human
   operators"); no lower limit (a shorter stroke only raises the force);
 * the crank arcs outside the dead bands are not empty (the peak is then defined); quasi-static
   model only: the flywheel's peak is defined for every crank-rocker, and the dead band plays no
@@ -38,12 +38,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from pumplink.constants import MIN_TRANSMISSION_DEG
+from pumplink.errors import InfeasibleDesign, SpecError
+from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_stroke, synthesize
 from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC, Conditions
 from pumplink.models import quasi_static as _qs
-from pumplink.verdict import assess
-from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.spec import PumpSpec, parse_spec, spec_to_dict
-from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_stroke, synthesize
+from pumplink.verdict import assess
 
 #: Keys that may vary (the [linkage] table of the spec), with their units.
 VARIABLE_UNITS = {"L1": "m", "D1": "m", "b": "m", "rocker": "m", "handle": "m", "swing": "deg"}
@@ -85,7 +85,7 @@ class Problem:
 
     @property
     def flywheel(self) -> bool:
-        """True when the spec gives inertia: the flywheel model decides the peak (issue #6)."""
+        """True when the spec gives inertia: the flywheel model decides the peak."""
         return self.spec.inertia is not None
 
     @property
@@ -175,7 +175,9 @@ def parse_bounds(items: list[str] | None) -> dict[str, tuple[float, float]]:
         try:
             lo, hi = float(lo_s), float(hi_s)
         except ValueError:
-            raise SpecError(f"--vary {key}={rng!r}: bounds must be numbers, e.g. --vary {key}=0.1:0.4") from None
+            raise SpecError(
+                f"--vary {key}={rng!r}: bounds must be numbers, e.g. --vary {key}=0.1:0.4"
+            ) from None
         if not (math.isfinite(lo) and math.isfinite(hi)):
             raise SpecError(f"--vary {key}={rng!r}: bounds must be finite numbers")
         if lo >= hi:
@@ -202,8 +204,10 @@ def _check_spec_range(key: str, lo: float, hi: float) -> None:
         lo_txt = f"> {gt:g}" if gt is not None else f">= {ge:g}"
         hi_txt = f"< {lt:g}" if lt is not None else f"<= {le:g}"
         unit = VARIABLE_UNITS[key]
-        raise SpecError(f"--vary {key}={lo:g}:{hi:g} leaves the allowed range of linkage.{key} "
-                        f"({lo_txt} and {hi_txt} {unit}); narrow the bounds")
+        raise SpecError(
+            f"--vary {key}={lo:g}:{hi:g} leaves the allowed range of linkage.{key} "
+            f"({lo_txt} and {hi_txt} {unit}); narrow the bounds"
+        )
 
 
 def parse_range(name: str, text: str | None, default: tuple[float, float]) -> tuple[float, float]:
@@ -216,30 +220,49 @@ def parse_range(name: str, text: str | None, default: tuple[float, float]) -> tu
     except ValueError:
         lo = hi = float("nan")
     if not sep or not (math.isfinite(lo) and math.isfinite(hi)) or lo < 0 or lo >= hi:
-        raise SpecError(f"--{name} {text!r} must be LO:HI in metres with 0 <= LO < HI, e.g. --{name} "
-                        f"{default[0]:g}:{default[1]:g}")
+        raise SpecError(
+            f"--{name} {text!r} must be LO:HI in metres with 0 <= LO < HI, e.g. --{name} "
+            f"{default[0]:g}:{default[1]:g}"
+        )
     return lo, hi
 
 
-def make_problem(spec: PumpSpec, bounds: dict[str, tuple[float, float]] | None = None, objective: str = "peak",
-                 axle_height: float | None = None, grip_height=GRIP_HEIGHT_M, stroke=STROKE_M) -> Problem:
+def make_problem(
+    spec: PumpSpec,
+    bounds: dict[str, tuple[float, float]] | None = None,
+    objective: str = "peak",
+    axle_height: float | None = None,
+    grip_height=GRIP_HEIGHT_M,
+    stroke=STROKE_M,
+) -> Problem:
     """Assemble a :class:`Problem`; the axle height is ``axle_height``, else the spec's
     ``wheel.axle_height``, else :data:`DEFAULT_AXLE_HEIGHT_M`."""
     bounds = dict(DEFAULT_BOUNDS) if bounds is None else bounds
     if objective not in ("peak", "mean"):
         raise SpecError(f"--objective {objective!r} is unknown; use peak or mean")
     if spec.inertia == 0.0 and objective == "peak":
-        raise SpecError(f"{spec.name}: the inertia is 0 kg m^2 (load.moving_mass = 0 and no wheel mass), so there is no "
-                        "energy band (J w^2 delta = 0) and every design needs an infinite peak force; give wheel.mass "
-                        "[kg] or wheel.inertia [kg m^2], or leave out load.moving_mass for the quasi-static model")
+        raise SpecError(
+            f"{spec.name}: the inertia is 0 kg m^2 (load.moving_mass = 0 and no wheel mass), so there is no "
+            "energy band (J w^2 delta = 0) and every design needs an infinite peak force; give wheel.mass "
+            "[kg] or wheel.inertia [kg m^2], or leave out load.moving_mass for the quasi-static model"
+        )
     if axle_height is None:
         axle_height = spec.wheel.axle_height if spec.wheel.axle_height is not None else DEFAULT_AXLE_HEIGHT_M
     if not (math.isfinite(axle_height) and 0 < axle_height <= 5):
-        raise SpecError(f"--axle-height {axle_height:g} must be a height in metres with 0 < value <= 5, e.g. 0.55")
+        raise SpecError(
+            f"--axle-height {axle_height:g} must be a height in metres with 0 < value <= 5, e.g. 0.55"
+        )
     names = tuple(bounds)
-    return Problem(spec, names, np.array([bounds[k][0] for k in names], float),
-                   np.array([bounds[k][1] for k in names], float), objective, float(axle_height),
-                   tuple(grip_height), tuple(stroke))
+    return Problem(
+        spec,
+        names,
+        np.array([bounds[k][0] for k in names], float),
+        np.array([bounds[k][1] for k in names], float),
+        objective,
+        float(axle_height),
+        tuple(grip_height),
+        tuple(stroke),
+    )
 
 
 def _columns(problem: Problem, x: np.ndarray) -> dict[str, np.ndarray]:
@@ -278,38 +301,71 @@ def evaluate_designs(problem: Problem, x) -> Evaluation:
     stroke = grip_stroke(h, sw)
     plus = syn.stroke_plus_x
     win = np.where(ok, np.degrees(np.minimum(plus, 2 * np.pi - plus) - 2 * band), 0.0)
-    slack = np.stack([np.degrees(margin), g_mu, grip_low - problem.grip_height[0],
-                      problem.grip_height[1] - grip_high, stroke - problem.stroke[0],
-                      problem.stroke[1] - stroke, win])
+    slack = np.stack(
+        [
+            np.degrees(margin),
+            g_mu,
+            grip_low - problem.grip_height[0],
+            problem.grip_height[1] - grip_high,
+            stroke - problem.stroke[0],
+            problem.stroke[1] - stroke,
+            win,
+        ]
+    )
     if problem.flywheel:
         slack = slack[:-1]  # the dead-band window: quasi-static model only
 
     mean = _qs.mean_force(mw, grip_stroke(h, sw))
     op = spec.operator
-    cond = Conditions(float(np.radians(float(op.speed))), band,
-                      np.nan if spec.inertia is None else spec.inertia, op.speed_fluctuation)
+    cond = Conditions(
+        float(np.radians(float(op.speed))),
+        band,
+        np.nan if spec.inertia is None else spec.inertia,
+        op.speed_fluctuation,
+    )
     peak = np.full(ok.shape, np.nan)
     live = ok & (win > 0)
     lk = syn.linkage
     if live.any():
-        sub = type(lk)(*(np.asarray(getattr(lk, f))[live] for f in ("pivot_x", "pivot_y", "crank", "coupler",
-                                                                       "rocker", "handle", "branch")))
-        peak[live] = MODELS[QUASI_STATIC].peak_force(sub, syn.dead_centre_extended[live], syn.dead_centre_folded[live],
-                                                     mw, cond)
+        sub = type(lk)(
+            *(
+                np.asarray(getattr(lk, f))[live]
+                for f in ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")
+            )
+        )
+        peak[live] = MODELS[QUASI_STATIC].peak_force(
+            sub, syn.dead_centre_extended[live], syn.dead_centre_folded[live], mw, cond
+        )
     required = np.full(ok.shape, np.nan)
     if problem.flywheel and ok.any():
         # the flywheel's least peak force at the spec's speed, as pumplink force
-        sub = type(lk)(*(np.asarray(getattr(lk, f))[ok] for f in ("pivot_x", "pivot_y", "crank", "coupler",
-                                                                     "rocker", "handle", "branch")))
-        required[ok] = MODELS[FLYWHEEL].peak_force(sub, syn.dead_centre_extended[ok], syn.dead_centre_folded[ok], mw,
-                                                   cond)
+        sub = type(lk)(
+            *(
+                np.asarray(getattr(lk, f))[ok]
+                for f in ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")
+            )
+        )
+        required[ok] = MODELS[FLYWHEEL].peak_force(
+            sub, syn.dead_centre_extended[ok], syn.dead_centre_folded[ok], mw, cond
+        )
     verdict = required if problem.flywheel else peak
     mean = np.where(ok, mean, np.nan)
     passed = assess(ok, mean, verdict, op.force_limit).passed
     obj = verdict if problem.objective == "peak" else mean
     obj = np.where(np.isfinite(obj), obj, INFEASIBLE_OBJECTIVE)
-    return Evaluation(obj, peak, mean, slack, np.where(ok, np.degrees(mu), np.nan),
-                      grip_low, grip_high, stroke, required, np.asarray(passed), problem.flywheel)
+    return Evaluation(
+        obj,
+        peak,
+        mean,
+        slack,
+        np.where(ok, np.degrees(mu), np.nan),
+        grip_low,
+        grip_high,
+        stroke,
+        required,
+        np.asarray(passed),
+        problem.flywheel,
+    )
 
 
 def _spec_with(problem: Problem, x) -> PumpSpec:
@@ -325,8 +381,14 @@ def _feasible(ev: Evaluation, i: int = 0) -> bool:
     return bool(np.all(ev.slack[:, i] >= 0) and ev.objective[i] < INFEASIBLE_OBJECTIVE)
 
 
-def optimize(problem: Problem, seed: int | None = 0, popsize: int = 20, maxiter: int = 300,
-             tol: float = 1e-8, polish: bool = True) -> OptimizationResult:
+def optimize(
+    problem: Problem,
+    seed: int | None = 0,
+    popsize: int = 20,
+    maxiter: int = 300,
+    tol: float = 1e-8,
+    polish: bool = True,
+) -> OptimizationResult:
     """Global search (differential evolution, vectorised) then a local SLSQP polish.
 
     Raises
@@ -353,26 +415,41 @@ def optimize(problem: Problem, seed: int | None = 0, popsize: int = 20, maxiter:
 
     n = len(problem.names)
     con = NonlinearConstraint(lambda x: ev(x).slack, 0.0, np.inf)
-    res = differential_evolution(lambda x: ev(x).objective, list(zip(problem.lower, problem.upper)),
-                                 constraints=con, vectorized=True, updating="deferred", rng=seed,
-                                 popsize=popsize, maxiter=maxiter, tol=tol, polish=False, init="sobol")
+    res = differential_evolution(
+        lambda x: ev(x).objective,
+        list(zip(problem.lower, problem.upper)),
+        constraints=con,
+        vectorized=True,
+        updating="deferred",
+        rng=seed,
+        popsize=popsize,
+        maxiter=maxiter,
+        tol=tol,
+        polish=False,
+        init="sobol",
+    )
     x = np.asarray(res.x, float)
     e = evaluate_designs(problem, x[:, None])
     if not _feasible(e):
         names = problem.constraint_names()
         if np.all(e.slack[:, 0] >= 0):  # constraints met, but the objective is not finite
-            fix = ("give the wheel more inertia (wheel.mass) or allow more speed fluctuation" if problem.flywheel
-                   else "give operator.dead_band > 0")
+            fix = (
+                "give the wheel more inertia (wheel.mass) or allow more speed fluctuation"
+                if problem.flywheel
+                else "give operator.dead_band > 0"
+            )
             raise InfeasibleDesign(
                 f"no design inside the bounds needs a finite {problem.objective} force ({problem.model} model): the "
                 f"best one found ({_fmt_x(problem, x)}) meets every constraint but needs more than "
-                f"{INFEASIBLE_OBJECTIVE:g} N; {fix}")
+                f"{INFEASIBLE_OBJECTIVE:g} N; {fix}"
+            )
         j = int(np.argmin(e.slack[:, 0]))
         unit = CONSTRAINTS[j][1]
         raise InfeasibleDesign(
             f"no design inside the bounds meets every constraint: the closest one found "
             f"({_fmt_x(problem, x)}) misses '{names[j]}' by {-e.slack[j, 0]:.4g} {unit}; "
-            f"widen the --vary bounds or relax --grip-height / --stroke / --axle-height")
+            f"widen the --vary bounds or relax --grip-height / --stroke / --axle-height"
+        )
     polished = False
     if polish:
         scale = problem.upper - problem.lower
@@ -384,8 +461,14 @@ def optimize(problem: Problem, seed: int | None = 0, popsize: int = 20, maxiter:
             return ev(problem.lower + z * scale).slack[:, 0]
 
         z0 = (x - problem.lower) / scale
-        loc = minimize(f, z0, method="SLSQP", bounds=[(0.0, 1.0)] * n,
-                       constraints=[{"type": "ineq", "fun": g}], options=dict(maxiter=200, ftol=1e-12))
+        loc = minimize(
+            f,
+            z0,
+            method="SLSQP",
+            bounds=[(0.0, 1.0)] * n,
+            constraints=[{"type": "ineq", "fun": g}],
+            options=dict(maxiter=200, ftol=1e-12),
+        )
         xp = problem.lower + np.clip(loc.x, 0.0, 1.0) * scale
         cand = _pull_back(problem, x, xp)
         if cand is not None:
@@ -397,11 +480,25 @@ def optimize(problem: Problem, seed: int | None = 0, popsize: int = 20, maxiter:
     names = problem.constraint_names()
     binding = tuple(nm for nm, s in zip(names, e.slack[:, 0]) if s <= BINDING_TOL)
     span = problem.upper - problem.lower
-    at_bounds = tuple(f"{k} at {'lower' if abs(v - lo) <= 1e-6 * s else 'upper'} bound"
-                      for k, v, lo, hi, s in zip(problem.names, x, problem.lower, problem.upper, span)
-                      if min(abs(v - lo), abs(hi - v)) <= 1e-6 * s)
-    return OptimizationResult(problem, x, _spec_with(problem, x), e, at_spec, binding, at_bounds, count[0],
-                              int(res.nit), polished, seed, str(res.message))
+    at_bounds = tuple(
+        f"{k} at {'lower' if abs(v - lo) <= 1e-6 * s else 'upper'} bound"
+        for k, v, lo, hi, s in zip(problem.names, x, problem.lower, problem.upper, span)
+        if min(abs(v - lo), abs(hi - v)) <= 1e-6 * s
+    )
+    return OptimizationResult(
+        problem,
+        x,
+        _spec_with(problem, x),
+        e,
+        at_spec,
+        binding,
+        at_bounds,
+        count[0],
+        int(res.nit),
+        polished,
+        seed,
+        str(res.message),
+    )
 
 
 def _pull_back(problem: Problem, good: np.ndarray, cand: np.ndarray, steps: int = 40):

@@ -1,6 +1,6 @@
 """The pump spec: a TOML file validated by pydantic (SI units; angles in degrees).
 
-The keys and units are the contract other tools write against (issue #2).  Every bad value is
+The keys and units are the contract other tools write against.  Every bad value is
 reported as one sentence naming the key, the value and what is allowed.
 """
 
@@ -82,63 +82,86 @@ class _Section(BaseModel):
 class Wheel(_Section):
     radius: float = Field(ge=0.001, le=5, description="upper wheel radius rw [m]")
     axle_height: float | None = Field(
-        default=None, gt=0, le=5,
+        default=None,
+        gt=0,
+        le=5,
         description="height of the wheel axle above the ground [m] (optional; the paper uses 0.40-0.70 m)",
     )
     inertia: float | None = Field(
-        default=None, gt=0, le=1000,
+        default=None,
+        gt=0,
+        le=1000,
         description="moment of inertia of the wheel about its axle [kg m^2] (optional; turns on the flywheel model)",
     )
     mass: float | None = Field(
-        default=None, gt=0, le=1000,
+        default=None,
+        gt=0,
+        le=1000,
         description="wheel mass [kg], taken as a rim: J = mass * radius^2 (optional, instead of inertia)",
     )
 
     @model_validator(mode="after")
-    def _one_inertia(self) -> "Wheel":
+    def _one_inertia(self) -> Wheel:
         if self.inertia is not None and self.mass is not None:
-            raise ValueError(f"give either wheel.inertia [kg m^2] or wheel.mass [kg], not both "
-                             f"(inertia = {self.inertia!r}, mass = {self.mass!r})")
+            raise ValueError(
+                f"give either wheel.inertia [kg m^2] or wheel.mass [kg], not both "
+                f"(inertia = {self.inertia!r}, mass = {self.mass!r})"
+            )
         return self
 
 
 class Linkage(_Section):
-    L1: float = Field(ge=0, le=10, description="horizontal placement of the rocker pivot beyond the stand [m]")
-    D1: float = Field(ge=-10, le=10, description="depth of the rocker pivot below the axle [m] (negative = above)")
+    L1: float = Field(
+        ge=0, le=10, description="horizontal placement of the rocker pivot beyond the stand [m]"
+    )
+    D1: float = Field(
+        ge=-10, le=10, description="depth of the rocker pivot below the axle [m] (negative = above)"
+    )
     b: float = Field(ge=0, le=10, description="width of the pump stand [m]")
     rocker: float = Field(ge=0.001, le=10, description="rocker length l4 [m]")
     handle: float = Field(ge=0.001, le=20, description="handle length H, rocker pivot to hand grip [m]")
     swing: float = Field(ge=1, lt=180, description="total handle swing [deg], symmetric about vertical")
     mass_per_length: float | None = Field(
-        default=None, gt=0, le=100,
+        default=None,
+        gt=0,
+        le=100,
         description="mass per metre of the handle and coupler [kg/m] for the link-energy estimate "
-                    "(default 1.56: 3/4-inch steel tube)",
+        "(default 1.56: 3/4-inch steel tube)",
     )
 
 
 class Load(_Section):
     rope_force: float | None = Field(
-        default=None, gt=0, le=10_000,
+        default=None,
+        gt=0,
+        le=10_000,
         description="rope force Fw at the wheel rim [N] (or give head and pipe_diameter)",
     )
     head: float | None = Field(default=None, gt=0, le=200, description="pumping head [m]")
     pipe_diameter: float | None = Field(default=None, ge=0.001, le=0.5, description="rising-main bore [m]")
     efficiency: float | None = Field(
-        default=None, ge=0.05, le=1, description="rope-pump efficiency with head/pipe_diameter [-] (default 0.75)"
+        default=None,
+        ge=0.05,
+        le=1,
+        description="rope-pump efficiency with head/pipe_diameter [-] (default 0.75)",
     )
     moving_mass: float | None = Field(
-        default=None, ge=0, le=10_000,
+        default=None,
+        ge=0,
+        le=10_000,
         description="rope, pistons and water moving with the wheel rim [kg] (default with head and "
-                    "pipe_diameter: the water in the rising main)",
+        "pipe_diameter: the water in the rising main)",
     )
 
     @model_validator(mode="after")
-    def _one_load(self) -> "Load":
+    def _one_load(self) -> Load:
         by_head = self.head is not None or self.pipe_diameter is not None
         if self.rope_force is not None and by_head:
             raise ValueError("give either load.rope_force or load.head with load.pipe_diameter, not both")
         if self.rope_force is None and not (self.head is not None and self.pipe_diameter is not None):
-            raise ValueError("give load.rope_force [N], or load.head [m] together with load.pipe_diameter [m]")
+            raise ValueError(
+                "give load.rope_force [N], or load.head [m] together with load.pipe_diameter [m]"
+            )
         if self.efficiency is not None and not by_head:
             raise ValueError("load.efficiency only applies with load.head and load.pipe_diameter")
         return self
@@ -155,15 +178,21 @@ class Load(_Section):
 
 
 class Operator(_Section):
-    force_limit: float = Field(default=FORCE_LIMIT_N, ge=1, le=10_000, description="largest acceptable operator force [N]")
+    force_limit: float = Field(
+        default=FORCE_LIMIT_N, ge=1, le=10_000, description="largest acceptable operator force [N]"
+    )
     speed: float = Field(default=360.0, gt=0, le=7200, description="wheel speed [deg/s]")
     dead_band: float = Field(
-        default=20.0, ge=0, lt=90,
+        default=20.0,
+        ge=0,
+        lt=90,
         description="crank angle each side of a dead centre left to the wheel's inertia [deg] "
-                    "(quasi-static model only)",
+        "(quasi-static model only)",
     )
     speed_fluctuation: float = Field(
-        default=DEFAULT_SPEED_FLUCTUATION, gt=0, le=1,
+        default=DEFAULT_SPEED_FLUCTUATION,
+        gt=0,
+        le=1,
         description="largest coefficient of speed fluctuation (w_max - w_min) / w_mean [-] (flywheel model)",
     )
 
@@ -173,8 +202,10 @@ class PumpSpec(_Section):
     wheel: Wheel = Field(description="the [wheel] table: radius [m]")
     linkage: Linkage = Field(description="the [linkage] table: L1, D1, b, rocker, handle, swing")
     load: Load = Field(description="the [load] table: rope_force [N], or head [m] with pipe_diameter [m]")
-    operator: Operator = Field(default=Operator(), description="the [operator] table: force_limit, speed, dead_band, "
-                                                               "speed_fluctuation")
+    operator: Operator = Field(
+        default=Operator(),
+        description="the [operator] table: force_limit, speed, dead_band, speed_fluctuation",
+    )
 
     @property
     def wheel_torque(self) -> float:
@@ -185,7 +216,7 @@ class PumpSpec(_Section):
     def inertia(self) -> float | None:
         """Moment of inertia about the wheel axle [kg m^2] for the flywheel model, or None.
 
-        Given when the spec states wheel.inertia, wheel.mass or load.moving_mass (issue #6): the
+        Given when the spec states wheel.inertia, wheel.mass or load.moving_mass: the
         wheel's J (or mass * radius^2, a rim) plus the moving mass * radius^2.  A spec with none of
         them is analysed quasi-statically with the dead band, as before.
         """
@@ -196,7 +227,7 @@ class PumpSpec(_Section):
 
 
 #: The built-in default design (``pumplink force`` with no spec; ``pumplink init``).  It is the
-#: example of issue #2: a 0.5 m wheel (20" rim class, NOTES.md §4), a 1 m handle swung +-30 deg
+#: prototype example: a 0.5 m wheel (20" rim class, docs/physics.md §5), a 1 m handle swung +-30 deg
 #: about vertical, 45 N at the rim (about 8 m head through a 23 mm bore at 75 % efficiency).
 DEFAULT_SPEC: dict[str, Any] = {
     "name": "Prototype",
@@ -286,14 +317,20 @@ def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
         One sentence per problem (the first in the message, the count of the others after it).
     """
     if not isinstance(data, dict) or not data:
-        raise SpecError(f"{source}: empty spec; expected [wheel], [linkage], [load] (write an example with `pumplink init`)")
+        raise SpecError(
+            f"{source}: empty spec; expected [wheel], [linkage], [load] (write an example with `pumplink init`)"
+        )
     try:
         return PumpSpec.model_validate(data)
     except ValidationError as exc:
         # An unknown key is usually a typo that also causes a "missing" error: report it first.
         errs = sorted(exc.errors(), key=lambda e: e["type"] != "extra_forbidden")
         first = _describe(errs[0])
-        more = f" (and {len(errs) - 1} more: {', '.join('.'.join(map(str, e['loc'])) or 'load' for e in errs[1:])})" if len(errs) > 1 else ""
+        more = (
+            f" (and {len(errs) - 1} more: {', '.join('.'.join(map(str, e['loc'])) or 'load' for e in errs[1:])})"
+            if len(errs) > 1
+            else ""
+        )
         raise SpecError(f"{source}: {first}{more}.") from None
 
 

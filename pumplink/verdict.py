@@ -71,12 +71,28 @@ def _check(key, value, limit, relation, unit, severity, feasible, ok=None) -> Ch
         if ok is None:
             ok = np.asarray(value) <= limit if relation == "<=" else np.asarray(value) >= limit
         passed = np.asarray(feasible, bool) & ok
-    return Check(key, _scalar(np.asarray(value, float)), _scalar(np.asarray(limit, float)), _scalar(relation), unit,
-                 severity, _scalar(passed))
+    return Check(
+        key,
+        _scalar(np.asarray(value, float)),
+        _scalar(np.asarray(limit, float)),
+        _scalar(relation),
+        unit,
+        severity,
+        _scalar(passed),
+    )
 
 
-def assess(feasible, mean_force, peak_force, force_limit, *, link_energy_share=None, transmission_angle=None,
-           power=None, axle_height=None) -> Verdict:
+def assess(
+    feasible,
+    mean_force,
+    peak_force,
+    force_limit,
+    *,
+    link_energy_share=None,
+    transmission_angle=None,
+    power=None,
+    axle_height=None,
+) -> Verdict:
     """Decide the checks and the verdict (PASS iff feasible and every ``fail`` check passes).
 
     Parameters
@@ -97,19 +113,35 @@ def assess(feasible, mean_force, peak_force, force_limit, *, link_energy_share=N
         _check("peak_force", peak_force, force_limit, "<=", "N", FAIL, feasible),
     ]
     if link_energy_share is not None:
-        checks.append(_check("link_energy_share", link_energy_share, 100.0 * LINK_ENERGY_LIMIT, "<=", "%", WARN,
-                             feasible))
+        checks.append(
+            _check(
+                "link_energy_share", link_energy_share, 100.0 * LINK_ENERGY_LIMIT, "<=", "%", WARN, feasible
+            )
+        )
     if transmission_angle is not None:
-        checks.append(_check("transmission_angle", transmission_angle, MIN_TRANSMISSION_DEG, ">=", "deg", WARN,
-                             feasible))
+        checks.append(
+            _check(
+                "transmission_angle", transmission_angle, MIN_TRANSMISSION_DEG, ">=", "deg", WARN, feasible
+            )
+        )
     if power is not None:
         checks.append(_check("power", power, SUSTAINED_POWER_W, "<=", "W", WARN, feasible))
     if axle_height is not None:
         lo, hi = AXLE_HEIGHT_RANGE_M
         h = np.asarray(axle_height, float)
         low = h < lo
-        checks.append(_check("axle_height", h, np.where(low, lo, hi), np.where(low, ">=", "<="), "m", WARN, feasible,
-                             ok=(h >= lo) & (h <= hi)))
+        checks.append(
+            _check(
+                "axle_height",
+                h,
+                np.where(low, lo, hi),
+                np.where(low, ">=", "<="),
+                "m",
+                WARN,
+                feasible,
+                ok=(h >= lo) & (h <= hi),
+            )
+        )
     passed = np.asarray(feasible, bool)
     for c in checks:
         if c.severity == FAIL:

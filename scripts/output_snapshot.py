@@ -52,8 +52,11 @@ def write(folder: Path) -> None:
 
 def compare(a: Path, b: Path) -> int:
     names = sorted({p.name for p in a.glob("*.txt")} | {p.name for p in b.glob("*.txt")})
-    bad = [n for n in names if not (a / n).exists() or not (b / n).exists()
-           or (a / n).read_bytes() != (b / n).read_bytes()]
+    bad = [
+        n
+        for n in names
+        if not (a / n).exists() or not (b / n).exists() or (a / n).read_bytes() != (b / n).read_bytes()
+    ]
     for n in bad:
         print(f"differs: {n}")
     print(f"{len(names) - len(bad)} of {len(names)} outputs byte-identical")

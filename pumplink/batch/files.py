@@ -1,6 +1,6 @@
 """Batch files: a base spec plus axes to vary; parsing, validation and variant naming.
 
-A batch file (TOML) names a base spec and the spec keys to vary (issue #4)::
+A batch file (TOML) names a base spec and the spec keys to vary::
 
     name = "rocker-study"           # optional; default: the file stem (prefix of variant names)
     base = "prototype.toml"         # a spec file (relative to this file), or the spec inline as [base]
@@ -14,7 +14,7 @@ and the short key (the part after the last dot, the full key where that is ambig
 example ``rocker-study#07[rocker=0.25 swing=45]``.  Names depend only on the batch file, so a
 ``--chunk K/N`` slice names its variants as the full run does.
 
-The verdict is that of ``pumplink force`` (issue #6).  A variant whose spec gives inertia
+The verdict is that of ``pumplink force``.  A variant whose spec gives inertia
 (``wheel.inertia``, ``wheel.mass`` or ``load.moving_mass``, in the base or on an axis) is decided by
 the flywheel model: it passes iff it is feasible, the mean force is within the limit and the least
 peak force with the flywheel (:func:`pumplink.models.flywheel.least_peak_force` at the variant's speed and
@@ -34,9 +34,10 @@ from __future__ import annotations
 
 import difflib
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -151,40 +152,56 @@ def _axis_values(key: str, raw: Any, where: str) -> np.ndarray:
             raise SpecError(f"{where}: [vary] '{key}' is an empty list; give at least one value")
         for v in raw:
             if not _is_number(v):
-                raise SpecError(f"{where}: [vary] '{key}' has {v!r} ({type(v).__name__}), not a number; "
-                                f"give a list of numbers such as [0.2, 0.25]")
+                raise SpecError(
+                    f"{where}: [vary] '{key}' has {v!r} ({type(v).__name__}), not a number; "
+                    f"give a list of numbers such as [0.2, 0.25]"
+                )
             if not math.isfinite(v):
                 raise SpecError(f"{where}: [vary] '{key}' has {v!r}, not a finite number")
         if len(raw) > MAX_AXIS_VALUES:
-            raise SpecError(f"{where}: [vary] '{key}' has {len(raw)} values, more than {MAX_AXIS_VALUES:,}; "
-                            f"split the batch")
+            raise SpecError(
+                f"{where}: [vary] '{key}' has {len(raw)} values, more than {MAX_AXIS_VALUES:,}; "
+                f"split the batch"
+            )
         return np.array(raw, dtype=float)
     if isinstance(raw, dict):
         unknown = sorted(set(raw) - {"start", "stop", "num"})
         if unknown:
-            raise SpecError(f"{where}: [vary] '{key}' has unknown key '{unknown[0]}'; a range is "
-                            f"{{ start = ..., stop = ..., num = ... }} (ends included)")
+            raise SpecError(
+                f"{where}: [vary] '{key}' has unknown key '{unknown[0]}'; a range is "
+                f"{{ start = ..., stop = ..., num = ... }} (ends included)"
+            )
         for part in ("start", "stop", "num"):
             if part not in raw:
-                raise SpecError(f"{where}: [vary] '{key}' range is missing '{part}'; a range is "
-                                f"{{ start = ..., stop = ..., num = ... }} (ends included)")
+                raise SpecError(
+                    f"{where}: [vary] '{key}' range is missing '{part}'; a range is "
+                    f"{{ start = ..., stop = ..., num = ... }} (ends included)"
+                )
         start, stop, num = raw["start"], raw["stop"], raw["num"]
         for part, v in (("start", start), ("stop", stop)):
             if not _is_number(v) or not math.isfinite(v):
                 raise SpecError(f"{where}: [vary] '{key}' range {part} = {v!r} is not a finite number")
         if not isinstance(num, int) or isinstance(num, bool):
-            raise SpecError(f"{where}: [vary] '{key}' range num = {num!r} is not an integer; give the "
-                            f"number of values, ends included (e.g. num = 7)")
+            raise SpecError(
+                f"{where}: [vary] '{key}' range num = {num!r} is not an integer; give the "
+                f"number of values, ends included (e.g. num = 7)"
+            )
         if not 1 <= num <= MAX_AXIS_VALUES:
-            raise SpecError(f"{where}: [vary] '{key}' range num = {num} is out of range; allowed: "
-                            f"1 <= num <= {MAX_AXIS_VALUES:,}")
+            raise SpecError(
+                f"{where}: [vary] '{key}' range num = {num} is out of range; allowed: "
+                f"1 <= num <= {MAX_AXIS_VALUES:,}"
+            )
         if num > 1 and start == stop:
-            raise SpecError(f"{where}: [vary] '{key}' range has start = stop = {start!r} with num = {num}; "
-                            f"give num = 1 or different ends")
+            raise SpecError(
+                f"{where}: [vary] '{key}' range has start = stop = {start!r} with num = {num}; "
+                f"give num = 1 or different ends"
+            )
         vals = np.linspace(float(start), float(stop), num)
         return np.array([float(f"{v:.{LINSPACE_DIGITS}g}") for v in vals.tolist()])
-    raise SpecError(f"{where}: [vary] '{key}' = {raw!r} must be a list of numbers or a range "
-                    f"{{ start = ..., stop = ..., num = ... }}")
+    raise SpecError(
+        f"{where}: [vary] '{key}' = {raw!r} must be a list of numbers or a range "
+        f"{{ start = ..., stop = ..., num = ... }}"
+    )
 
 
 def _set(data: dict, key: str, value: float) -> dict:
@@ -213,7 +230,7 @@ def parse_batch(data: Any, source: str, folder: Path | None = None, stem: str | 
         One sentence naming the offending key (exit 2).
     """
     if not isinstance(data, dict) or not data:
-        raise SpecError(f"{source}: empty batch file; expected base = \"spec.toml\" (or [base]) and [vary]")
+        raise SpecError(f'{source}: empty batch file; expected base = "spec.toml" (or [base]) and [vary]')
     for k in data:
         if k not in _TOP_KEYS:
             close = difflib.get_close_matches(k, _TOP_KEYS, n=1)
@@ -223,7 +240,9 @@ def parse_batch(data: Any, source: str, folder: Path | None = None, stem: str | 
     if not isinstance(label, str) or not label.strip():
         raise SpecError(f"{source}: 'name' = {label!r} must be non-empty text (the prefix of variant names)")
     if "base" not in data:
-        raise SpecError(f"{source}: missing key 'base'; give base = \"spec.toml\" or the spec inline as [base]")
+        raise SpecError(
+            f"{source}: missing key 'base'; give base = \"spec.toml\" or the spec inline as [base]"
+        )
     raw_base = data["base"]
     if isinstance(raw_base, str):
         path = Path(raw_base)
@@ -243,17 +262,19 @@ def parse_batch(data: Any, source: str, folder: Path | None = None, stem: str | 
 
     vary = data.get("vary")
     if vary is None:
-        raise SpecError(f"{source}: missing [vary] table; add e.g. [vary] \"linkage.rocker\" = [0.2, 0.25]")
+        raise SpecError(f'{source}: missing [vary] table; add e.g. [vary] "linkage.rocker" = [0.2, 0.25]')
     if not isinstance(vary, dict):
         raise SpecError(f"{source}: 'vary' = {vary!r} must be a table ([vary]) of \"section.key\" = values")
     if not vary:
-        raise SpecError(f"{source}: [vary] is empty; add an axis such as \"linkage.rocker\" = [0.2, 0.25]")
+        raise SpecError(f'{source}: [vary] is empty; add an axis such as "linkage.rocker" = [0.2, 0.25]')
     for key in vary:
         if key not in VARIABLE_KEYS:
             close = difflib.get_close_matches(key, VARIABLE_KEYS, n=1)
             hint = f" (did you mean '{close[0]}'?)" if close else ""
-            raise SpecError(f"{source}: [vary] '{key}' is not a numeric spec key{hint}; allowed: "
-                            f"{', '.join(VARIABLE_KEYS)}")
+            raise SpecError(
+                f"{source}: [vary] '{key}' is not a numeric spec key{hint}; allowed: "
+                f"{', '.join(VARIABLE_KEYS)}"
+            )
     axes = []
     for (key, raw), short in zip(vary.items(), _short_keys(list(vary))):
         values = _axis_values(key, raw, source)
@@ -271,8 +292,10 @@ def parse_batch(data: Any, source: str, folder: Path | None = None, stem: str | 
         raise SpecError(f"{exc}".rstrip(".") + " (check the varied keys against the base spec).") from None
     b = Batch(source, label, base, spec, tuple(axes))
     if b.size > MAX_VARIANTS:
-        raise SpecError(f"{source}: [vary] makes {b.size:.3g} variants, more than {MAX_VARIANTS:.0e}; "
-                        f"use fewer values per axis")
+        raise SpecError(
+            f"{source}: [vary] makes {b.size:.3g} variants, more than {MAX_VARIANTS:.0e}; "
+            f"use fewer values per axis"
+        )
     return b
 
 
@@ -325,8 +348,10 @@ def parse_fail_on(text: str) -> tuple[str, ...]:
         return FAIL_CHECKS
     bad = [p for p in parts if p not in FAIL_CHECKS]
     if bad or not parts:
-        raise SpecError(f"--fail-on {text!r}: unknown check {bad[0] if bad else '(empty)'!r}; give a comma-separated "
-                        f"list of {', '.join(FAIL_CHECKS)}, or all, or none")
+        raise SpecError(
+            f"--fail-on {text!r}: unknown check {bad[0] if bad else '(empty)'!r}; give a comma-separated "
+            f"list of {', '.join(FAIL_CHECKS)}, or all, or none"
+        )
     return tuple(c for c in FAIL_CHECKS if c in parts)
 
 
@@ -376,8 +401,10 @@ def variant_names(batch: Batch, start: int, stop: int) -> list[str]:
         return [batch.label] * (stop - start)
     width = len(str(batch.size - 1))
     ij = axis_indices(batch, start, stop)
-    parts = [np.array([f"{a.short}={lab}" for lab in a.labels], dtype=object)[ij[:, j]].tolist()
-             for j, a in enumerate(batch.axes)]
+    parts = [
+        np.array([f"{a.short}={lab}" for lab in a.labels], dtype=object)[ij[:, j]].tolist()
+        for j, a in enumerate(batch.axes)
+    ]
     label = batch.label
     return [f"{label}#{i:0{width}d}[{p}]" for i, p in zip(range(start, stop), map(" ".join, zip(*parts)))]
 

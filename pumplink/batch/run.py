@@ -8,8 +8,9 @@ per variant are bit-for-bit those of :func:`pumplink.analysis.force_analysis` (`
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
-from typing import Any, Callable, Iterator, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -122,7 +123,9 @@ def spec_physics(batch: Batch, cols: dict[str, np.ndarray], n: int) -> tuple[np.
     def get(key):
         return _given(batch, cols, key, n)
 
-    fw = spec.rope_force(get("load.rope_force"), get("load.head"), get("load.pipe_diameter"), get("load.efficiency"))
+    fw = spec.rope_force(
+        get("load.rope_force"), get("load.head"), get("load.pipe_diameter"), get("load.efficiency")
+    )
     fw = np.broadcast_to(fw, (n,))
     if not batch.flywheel:
         return fw, np.full(n, np.nan)
@@ -133,13 +136,18 @@ def spec_physics(batch: Batch, cols: dict[str, np.ndarray], n: int) -> tuple[np.
 
 def _rows(cond: Conditions, idx) -> Conditions:
     """The conditions of the designs ``idx``."""
-    return Conditions(*(np.asarray(v)[idx] for v in (cond.speed, cond.dead_band, cond.inertia,
-                                                      cond.speed_fluctuation)))
+    return Conditions(
+        *(np.asarray(v)[idx] for v in (cond.speed, cond.dead_band, cond.inertia, cond.speed_fluctuation))
+    )
 
 
 def _take(lk: FourBar, idx) -> FourBar:
-    return FourBar(*(np.asarray(getattr(lk, f))[idx] for f in
-                     ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")))
+    return FourBar(
+        *(
+            np.asarray(getattr(lk, f))[idx]
+            for f in ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")
+        )
+    )
 
 
 def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batch_index: int = 0) -> Chunk:
@@ -201,7 +209,7 @@ def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batc
     passing = np.full(n, np.nan)
     rows = np.nonzero(fly & feasible)[0]
     for s0 in range(0, rows.size, FLYWHEEL_DESIGNS):  # bounded temporaries
-        r = rows[s0:s0 + FLYWHEEL_DESIGNS]
+        r = rows[s0 : s0 + FLYWHEEL_DESIGNS]
         part = _take(lk, r)
         dce, dcf = syn.dead_centre_extended[r], syn.dead_centre_folded[r]
         required[r] = MODELS[FLYWHEEL].peak_force(part, dce, dcf, mw[r], _rows(cond, r))
@@ -219,17 +227,40 @@ def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batc
             if k not in cache:
                 cache[k] = infeasibility_reason(*k)
             reasons[i] = cache[k]
-    return Chunk(batch_index, start, stop, values, np.asarray(syn.frame_length), np.asarray(syn.crank_length),
-                 np.asarray(syn.coupler_length), feasible, reasons, np.asarray(syn.time_ratio),
-                 np.asarray(syn.transmission_min), np.asarray(syn.transmission_max), mean, peak, sampled,
-                 power, limit, mean_ok, peak_ok, verdict.passed, flywheel=fly, inertia=j,
-                 speed_fluctuation=delta, least_peak_force=required, min_passing_speed=passing)
+    return Chunk(
+        batch_index,
+        start,
+        stop,
+        values,
+        np.asarray(syn.frame_length),
+        np.asarray(syn.crank_length),
+        np.asarray(syn.coupler_length),
+        feasible,
+        reasons,
+        np.asarray(syn.time_ratio),
+        np.asarray(syn.transmission_min),
+        np.asarray(syn.transmission_max),
+        mean,
+        peak,
+        sampled,
+        power,
+        limit,
+        mean_ok,
+        peak_ok,
+        verdict.passed,
+        flywheel=fly,
+        inertia=j,
+        speed_fluctuation=delta,
+        least_peak_force=required,
+        min_passing_speed=passing,
+    )
 
 
 # ----------------------------------------------------------------------------- scheduling
 # ----------------------------------------------------------------------------- scheduling
-def plan(batches: Sequence[Batch], chunk: tuple[int, int] = (1, 1),
-         designs: int = CHUNK_DESIGNS) -> list[tuple[int, int, int]]:
+def plan(
+    batches: Sequence[Batch], chunk: tuple[int, int] = (1, 1), designs: int = CHUNK_DESIGNS
+) -> list[tuple[int, int, int]]:
     """Tasks ``(batch, start, stop)`` for slice K of N of the run, in order.
 
     The run is all variants of all batches, concatenated; slice K (1-based) of N is the
@@ -274,8 +305,14 @@ def _task(task: tuple[int, int, int], samples: int, post):
     return _evaluate_one(_worker_batches, task, samples, post)
 
 
-def run(batches: Sequence[Batch], samples: int = 360, chunk: tuple[int, int] = (1, 1), workers: int = 1,
-        designs: int | None = None, post: Callable[[Batch, Chunk], Any] | None = None) -> Iterator[tuple[Chunk, Any]]:
+def run(
+    batches: Sequence[Batch],
+    samples: int = 360,
+    chunk: tuple[int, int] = (1, 1),
+    workers: int = 1,
+    designs: int | None = None,
+    post: Callable[[Batch, Chunk], Any] | None = None,
+) -> Iterator[tuple[Chunk, Any]]:
     """Evaluate slice ``chunk`` of the run, yielding ``(Chunk, post(batch, chunk))`` in variant order.
 
     With ``workers`` > 1 the chunks are evaluated by that many processes

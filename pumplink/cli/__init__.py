@@ -13,7 +13,7 @@ import signal
 import sys
 
 # Importing a command module registers it; this order is the order of `pumplink --help`.
-from pumplink.cli import synth, force, speed, init, methods, transmission, optimize, batch  # noqa: F401, I001
+from pumplink.cli import batch, force, init, methods, optimize, speed, synth, transmission  # noqa: F401, I001
 from pumplink.cli.common import app, settings
 from pumplink.errors import PumplinkError
 

@@ -14,27 +14,64 @@ from pumplink.errors import SpecError
 
 @app.command()
 def batch(
-    inputs: Annotated[list[Path], typer.Argument(help="Batch files, spec files or folders of them (*.toml).",
-                                                 show_default=False)],
-    samples: Annotated[int, typer.Option(help="Uniform crank samples per variant for the sampled-peak column "
-                                              "(0: skip it); peak_force_N is exact whatever this is.",
-                                         min=0, max=1_000_000)] = 360,
-    fmt: Annotated[Format, typer.Option("--format", "-f", help="Rows as csv or json; table: the summary "
-                                                               "(and the rows, or the failures of a large run).")] = Format.table,
-    out: Annotated[Optional[Path], typer.Option("--out", "-o", help="Write the rows to this file (atomically) "
-                                                                    "instead of stdout.", show_default=False)] = None,
-    junit: Annotated[Optional[Path], typer.Option("--junit", help="Also write JUnit XML, one testcase per variant "
-                                                                  "(atomically).", show_default=False)] = None,
+    inputs: Annotated[
+        list[Path],
+        typer.Argument(help="Batch files, spec files or folders of them (*.toml).", show_default=False),
+    ],
+    samples: Annotated[
+        int,
+        typer.Option(
+            help="Uniform crank samples per variant for the sampled-peak column "
+            "(0: skip it); peak_force_N is exact whatever this is.",
+            min=0,
+            max=1_000_000,
+        ),
+    ] = 360,
+    fmt: Annotated[
+        Format,
+        typer.Option(
+            "--format",
+            "-f",
+            help="Rows as csv or json; table: the summary (and the rows, or the failures of a large run).",
+        ),
+    ] = Format.table,
+    out: Annotated[
+        Optional[Path],
+        typer.Option(
+            "--out",
+            "-o",
+            help="Write the rows to this file (atomically) instead of stdout.",
+            show_default=False,
+        ),
+    ] = None,
+    junit: Annotated[
+        Optional[Path],
+        typer.Option(
+            "--junit", help="Also write JUnit XML, one testcase per variant (atomically).", show_default=False
+        ),
+    ] = None,
     workers: Annotated[int, typer.Option(help="Worker processes (0: one per CPU).", min=0, max=256)] = 1,
-    fail_on: Annotated[str, typer.Option("--fail-on", help="Checks that make the run fail (exit 1): any of "
-                                                           "mean,peak,infeasible; or all, or none. peak is the "
-                                                           "verdict's peak: the least peak force with the flywheel "
-                                                           "where the variant gives inertia (wheel.mass, "
-                                                           "wheel.inertia or load.moving_mass), else the peak "
-                                                           "outside the dead bands.")] = "mean,peak,infeasible",
-    chunk: Annotated[Optional[str], typer.Option("--chunk", help="Evaluate only slice K of N (1-based) of all "
-                                                                 "variants, e.g. 3/8; names stay those of the full run.",
-                                                 show_default=False)] = None,
+    fail_on: Annotated[
+        str,
+        typer.Option(
+            "--fail-on",
+            help="Checks that make the run fail (exit 1): any of "
+            "mean,peak,infeasible; or all, or none. peak is the "
+            "verdict's peak: the least peak force with the flywheel "
+            "where the variant gives inertia (wheel.mass, "
+            "wheel.inertia or load.moving_mass), else the peak "
+            "outside the dead bands.",
+        ),
+    ] = "mean,peak,infeasible",
+    chunk: Annotated[
+        Optional[str],
+        typer.Option(
+            "--chunk",
+            help="Evaluate only slice K of N (1-based) of all "
+            "variants, e.g. 3/8; names stay those of the full run.",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """Evaluate many variants at once: a base spec plus axes to vary (Cartesian product).
 
@@ -66,8 +103,14 @@ def batch(
         raise SpecError("--out writes rows: give --format csv or --format json with it")
     for opt, path in (("--out", out), ("--junit", junit)):  # before any work: fail fast, exit 2
         if path is not None and (path.is_dir() or not path.parent.is_dir()):
-            raise SpecError(f"{opt} {path}: " + ("is a folder; give a file name" if path.is_dir() else
-                                                 f"folder {path.parent} does not exist"))
+            raise SpecError(
+                f"{opt} {path}: "
+                + (
+                    "is a folder; give a file name"
+                    if path.is_dir()
+                    else f"folder {path.parent} does not exist"
+                )
+            )
     batches = _batch.load_inputs(inputs)
     tasks = _batch.plan(batches, k_n)
     total = sum(e - s for _, s, e in tasks)
@@ -79,15 +122,24 @@ def batch(
     previous = signal.signal(signal.SIGTERM, _terminate)
     try:
         with progress(total, "batch") as advance:
-            post = functools.partial(rb.render_chunk, fmt=fmt.value, vkeys=rb.varied_keys(batches), fail_on=sel,
-                                     junit=junit is not None)  # runs in the workers
+            post = functools.partial(
+                rb.render_chunk,
+                fmt=fmt.value,
+                vkeys=rb.varied_keys(batches),
+                fail_on=sel,
+                junit=junit is not None,
+            )  # runs in the workers
             results = _batch.run(batches, samples, k_n, n_workers, post=post)
-            summary, rows = rb.write_stream(batches, results, total, fmt.value, out, junit, sel, samples, k_n, advance)
+            summary, rows = rb.write_stream(
+                batches, results, total, fmt.value, out, junit, sel, samples, k_n, advance
+            )
     except KeyboardInterrupt:
         sys.stderr.write("interrupted; no output file written\n")
         raise typer.Exit(130) from None
     except BrokenProcessPool:  # a worker was killed (SIGKILL, out of memory)
-        sys.stderr.write("interrupted: a worker process was killed (out of memory?); no output file written\n")
+        sys.stderr.write(
+            "interrupted: a worker process was killed (out of memory?); no output file written\n"
+        )
         raise typer.Exit(130) from None
     finally:
         signal.signal(signal.SIGTERM, previous)

@@ -11,7 +11,7 @@ import typer
 app = typer.Typer(
     name="pumplink",
     help="Design the four-bar linkage that lets a standing operator drive a rope pump by hand.\n\n"
-         "Example: [bold]pumplink init pump.toml && pumplink force pump.toml --speed 360[/]",
+    "Example: [bold]pumplink init pump.toml && pumplink force pump.toml --speed 360[/]",
     no_args_is_help=True,
     rich_markup_mode="rich",
     pretty_exceptions_enable=False,
@@ -47,8 +47,10 @@ def _version(value: bool) -> None:
 @app.callback()
 def _main(
     debug: Annotated[bool, typer.Option("--debug", help="Show the full traceback on errors.")] = False,
-    version: Annotated[Optional[bool], typer.Option("--version", callback=_version, is_eager=True,
-                                                    help="Print the version and exit.")] = None,
+    version: Annotated[
+        Optional[bool],
+        typer.Option("--version", callback=_version, is_eager=True, help="Print the version and exit."),
+    ] = None,
 ) -> None:
     settings["debug"] = debug
 

@@ -14,22 +14,51 @@ from pumplink.errors import SpecError
 
 @app.command()
 def force(
-    spec: Annotated[Optional[Path], typer.Argument(help="TOML pump spec; omit for the built-in default design.",
-                                                   show_default=False)] = None,
-    speed: Annotated[Optional[float], typer.Option(help="Wheel speed \\[deg/s] (default: the spec's operator.speed).",
-                                                   min=1e-9, max=7200)] = None,
-    samples: Annotated[int, typer.Option(help="Uniform crank samples over one revolution.", min=1, max=1_000_000_000)] = 360,
-    at: Annotated[Optional[list[float]], typer.Option("--at", help="Evaluate exactly this crank angle \\[deg] (repeatable).",
-                                                      show_default=False)] = None,
-    summary: Annotated[bool, typer.Option("--summary", help="Only the checks and verdict (no per-sample rows).")] = False,
-    plot: Annotated[Optional[Path], typer.Option(help="Also write the force curve to this .png/.svg/.pdf "
-                                                      "(needs the plot extra: pip install 'pumplink\\[plot]').",
-                                                 show_default=False)] = None,
-    explain: Annotated[bool, typer.Option("--explain", help="Also report which effects the model includes, their "
-                                                            "size at this speed, and why the model is enough.")] = False,
-    verify: Annotated[bool, typer.Option("--verify", help="Flywheel model: integrate the equation of motion "
-                                                          "(scipy solve_ivp) under the reported force profile and "
-                                                          "check it is periodic with the mean speed and δ.")] = False,
+    spec: Annotated[
+        Optional[Path],
+        typer.Argument(help="TOML pump spec; omit for the built-in default design.", show_default=False),
+    ] = None,
+    speed: Annotated[
+        Optional[float],
+        typer.Option(help="Wheel speed \\[deg/s] (default: the spec's operator.speed).", min=1e-9, max=7200),
+    ] = None,
+    samples: Annotated[
+        int, typer.Option(help="Uniform crank samples over one revolution.", min=1, max=1_000_000_000)
+    ] = 360,
+    at: Annotated[
+        Optional[list[float]],
+        typer.Option(
+            "--at", help="Evaluate exactly this crank angle \\[deg] (repeatable).", show_default=False
+        ),
+    ] = None,
+    summary: Annotated[
+        bool, typer.Option("--summary", help="Only the checks and verdict (no per-sample rows).")
+    ] = False,
+    plot: Annotated[
+        Optional[Path],
+        typer.Option(
+            help="Also write the force curve to this .png/.svg/.pdf "
+            "(needs the plot extra: pip install 'pumplink\\[plot]').",
+            show_default=False,
+        ),
+    ] = None,
+    explain: Annotated[
+        bool,
+        typer.Option(
+            "--explain",
+            help="Also report which effects the model includes, their "
+            "size at this speed, and why the model is enough.",
+        ),
+    ] = False,
+    verify: Annotated[
+        bool,
+        typer.Option(
+            "--verify",
+            help="Flywheel model: integrate the equation of motion "
+            "(scipy solve_ivp) under the reported force profile and "
+            "check it is periodic with the mean speed and δ.",
+        ),
+    ] = False,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Operator force over the crank cycle, the checks and the 100 N verdict.
@@ -55,9 +84,13 @@ def force(
     from pumplink.spec import default_spec, load_spec
 
     if at and any(not math.isfinite(a) for a in at):
-        raise SpecError(f"--at {next(a for a in at if not math.isfinite(a))!r} is not a finite angle; give degrees such as --at 90")
+        raise SpecError(
+            f"--at {next(a for a in at if not math.isfinite(a))!r} is not a finite angle; give degrees such as --at 90"
+        )
     if not summary and not at and samples > SAMPLE_LIMIT_KEPT:
-        raise SpecError(f"--samples {samples} keeps too many rows (at most {SAMPLE_LIMIT_KEPT:,}); add --summary to stream them")
+        raise SpecError(
+            f"--samples {samples} keeps too many rows (at most {SAMPLE_LIMIT_KEPT:,}); add --summary to stream them"
+        )
     if plot is not None:
         from pumplink.output.charts import check_path, pyplot
 
@@ -67,8 +100,10 @@ def force(
 
     s = load_spec(spec) if spec is not None else default_spec()
     if verify and s.inertia is None:
-        raise SpecError(f"--verify checks the flywheel model, but {s.name} gives no inertia; add wheel.mass [kg] "
-                        "or wheel.inertia [kg m^2] to the spec")
+        raise SpecError(
+            f"--verify checks the flywheel model, but {s.name} gives no inertia; add wheel.mass [kg] "
+            "or wheel.inertia [kg m^2] to the spec"
+        )
     with progress(1000, "force sweep") as advance:  # drawn on a terminal for sweeps over a second
         done = [0]
 
@@ -94,8 +129,10 @@ def force(
         extra["verify"] = verify_row(check)
         agrees = check.agrees
     elif verify and result.design.feasible:  # an infinite least peak force: no periodic motion exists
-        sys.stderr.write(f"verify: nothing to integrate; no finite peak force keeps the wheel turning "
-                         f"(energy band J·ω̄²·δ = {result.energy_band:.3g} J)\n")
+        sys.stderr.write(
+            f"verify: nothing to integrate; no finite peak force keeps the wheel turning "
+            f"(energy band J·ω̄²·δ = {result.energy_band:.3g} J)\n"
+        )
     render_force(result, fmt.value, summary=summary, extra=extra)
     if fmt.value != "json":  # the reports follow the table; with CSV on stdout they go to stderr
         from pumplink.output.tables import render_explain, render_verify

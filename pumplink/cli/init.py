@@ -14,7 +14,9 @@ from pumplink.errors import SpecError
 
 @app.command()
 def init(
-    path: Annotated[Path, typer.Argument(help="Where to write the spec ('-' for stdout).")] = Path("pump.toml"),
+    path: Annotated[Path, typer.Argument(help="Where to write the spec ('-' for stdout).")] = Path(
+        "pump.toml"
+    ),
     overwrite: Annotated[bool, typer.Option("--force", help="Overwrite an existing file.")] = False,
 ) -> None:
     """Write the built-in default spec (a realistic prototype) as TOML to edit.

@@ -11,7 +11,7 @@ from pumplink.cli.common import Format, FormatOpt, app
 from pumplink.errors import SpecError
 
 
-# ----------------------------------------------------------------------------- methods (issue #3)
+# ----------------------------------------------------------------------------- methods
 def _seconds_per_position(fn, args, n: int, repeats: int, budget: float = 1.0) -> float:
     """Median wall time of ``fn(*args)`` per position [s] over ``repeats`` runs (fewer if slow)."""
     import statistics
@@ -30,22 +30,46 @@ def _seconds_per_position(fn, args, n: int, repeats: int, budget: float = 1.0) -
 
 @app.command()
 def methods(
-    spec: Annotated[Optional[Path], typer.Argument(help="TOML pump spec; omit for the built-in default design.",
-                                                   show_default=False)] = None,
-    samples: Annotated[int, typer.Option(help="Uniform crank samples of the accuracy sweep.", min=4, max=100_000)] = 360,
-    method: Annotated[Optional[list[str]], typer.Option("--method", "-m", help="Only this method (repeatable): "
-                                                        "vector, paper, numeric, reference.", show_default=False)] = None,
-    repeats: Annotated[int, typer.Option(help="Timing repeats per method and sampling (median).", min=1, max=1000)] = 7,
-    plot: Annotated[Optional[Path], typer.Option("--plot", help="Write log error vs log time per position "
-                                                 "(.png, .svg or .pdf).", show_default=False)] = None,
-    samples_plot: Annotated[Optional[Path], typer.Option("--samples-plot", help="Write sampled vs exact peak and "
-                                                         "mean force for N = 12..3600 (.png, .svg or .pdf).",
-                                                         show_default=False)] = None,
+    spec: Annotated[
+        Optional[Path],
+        typer.Argument(help="TOML pump spec; omit for the built-in default design.", show_default=False),
+    ] = None,
+    samples: Annotated[
+        int, typer.Option(help="Uniform crank samples of the accuracy sweep.", min=4, max=100_000)
+    ] = 360,
+    method: Annotated[
+        Optional[list[str]],
+        typer.Option(
+            "--method",
+            "-m",
+            help="Only this method (repeatable): vector, paper, numeric, reference.",
+            show_default=False,
+        ),
+    ] = None,
+    repeats: Annotated[
+        int, typer.Option(help="Timing repeats per method and sampling (median).", min=1, max=1000)
+    ] = 7,
+    plot: Annotated[
+        Optional[Path],
+        typer.Option(
+            "--plot",
+            help="Write log error vs log time per position (.png, .svg or .pdf).",
+            show_default=False,
+        ),
+    ] = None,
+    samples_plot: Annotated[
+        Optional[Path],
+        typer.Option(
+            "--samples-plot",
+            help="Write sampled vs exact peak and mean force for N = 12..3600 (.png, .svg or .pdf).",
+            show_default=False,
+        ),
+    ] = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Speed against accuracy of the force methods, where each one fails, and how many samples a sweep needs.
 
-    Every method (vector: production; paper: the seed's instant centre, Eq. 4-6; numeric: scipy
+    Every method (vector: production; paper: the paper's instant centre, Eq. 4-6; numeric: scipy
     root finding + finite difference; reference: mpmath, 50 digits) is timed (median of
     --repeats) and compared with the reference on a uniform sweep, next to the dead centres
     (1 to 1e-6 deg) and at the danger points (crank or rocker perpendicular to the frame line,
@@ -59,7 +83,7 @@ def methods(
     from pumplink import accuracy
     from pumplink.analysis import design
     from pumplink.errors import InfeasibleDesign
-    from pumplink.methods import METHODS, UNIFORM, NEAR_DEAD_CENTRE
+    from pumplink.methods import METHODS, NEAR_DEAD_CENTRE, UNIFORM
     from pumplink.output.charts import check_path, plot_methods, plot_sampling, pyplot
     from pumplink.output.tables import render_methods
     from pumplink.spec import default_spec, load_spec
@@ -93,16 +117,30 @@ def methods(
         for kind, angles in sets.items():
             tol = m.tolerance.get(kind, max(m.tolerance[k] for k in m.tolerance))
             stats = accuracy.error_stats(m.function(lk, angles, mw), refs[kind], tol)
-            stats["seconds_per_position"] = _seconds_per_position(m.function, (lk, angles, mw), angles.size,
-                                                                  repeats)
+            stats["seconds_per_position"] = _seconds_per_position(
+                m.function, (lk, angles, mw), angles.size, repeats
+            )
             per_set[kind] = stats
-        rows.append({"name": name, "summary": m.summary, "cannot_handle": m.cannot,
-                     "seconds_per_position": per_set[UNIFORM]["seconds_per_position"],
-                     "max_rel_error_uniform": per_set[UNIFORM]["max_rel_error"],
-                     "max_rel_error_near_dead_centre": per_set[NEAR_DEAD_CENTRE]["max_rel_error"],
-                     "failures": accuracy.failures(per_set), "samplings": per_set})
-    study = accuracy.sampling_study(lk, syn.dead_centre_extended, syn.dead_centre_folded,
-                                    float(np.radians(s.operator.dead_band)), mw, syn.swing)
+        rows.append(
+            {
+                "name": name,
+                "summary": m.summary,
+                "cannot_handle": m.cannot,
+                "seconds_per_position": per_set[UNIFORM]["seconds_per_position"],
+                "max_rel_error_uniform": per_set[UNIFORM]["max_rel_error"],
+                "max_rel_error_near_dead_centre": per_set[NEAR_DEAD_CENTRE]["max_rel_error"],
+                "failures": accuracy.failures(per_set),
+                "samplings": per_set,
+            }
+        )
+    study = accuracy.sampling_study(
+        lk,
+        syn.dead_centre_extended,
+        syn.dead_centre_folded,
+        float(np.radians(s.operator.dead_band)),
+        mw,
+        syn.swing,
+    )
     render_methods(s.name, rows, study, fmt.value, dead_band_deg=s.operator.dead_band)
     if plot is not None:
         plot_methods(rows, plot, title=s.name)

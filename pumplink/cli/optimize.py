@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from enum import Enum
-
 from pathlib import Path
 from typing import Annotated, Optional
 
@@ -13,7 +12,7 @@ from pumplink.cli.common import Format, FormatOpt, app, load_specs
 from pumplink.errors import SpecError
 
 
-# ----------------------------------------------------------------------------- design search (issue #5)
+# ----------------------------------------------------------------------------- design search
 class Objective(str, Enum):
     peak = "peak"
     mean = "mean"
@@ -21,20 +20,47 @@ class Objective(str, Enum):
 
 @app.command()
 def optimize(
-    spec: Annotated[Path, typer.Argument(help="TOML pump spec: fixed values and the starting design.", show_default=False)],
-    vary: Annotated[Optional[list[str]], typer.Option("--vary", help="KEY=LO:HI in spec units (repeatable); keys: L1, D1, "
-                                                      "b, rocker, handle \\[m], swing \\[deg]. Default: rocker=0.1:0.4 "
-                                                      "L1=0:1 D1=-0.3:1.2 swing=30:100.", show_default=False)] = None,
-    objective: Annotated[Objective, typer.Option(help="Minimise the peak force of the verdict (the flywheel's "
-                                                     "least peak force when the spec gives inertia, else the exact "
-                                                     "peak outside the dead bands) or the mean force.")] = Objective.peak,
-    seed: Annotated[int, typer.Option(help="Random seed of the differential evolution (same seed, same answer).")] = 0,
-    axle_height: Annotated[Optional[float], typer.Option(help="Wheel-axle height \\[m] (default: the spec's "
-                                                         "wheel.axle_height, else 0.55).", show_default=False)] = None,
-    grip_height: Annotated[str, typer.Option(help="Allowed grip height above ground over the swing, LO:HI \\[m].")] = "0.5:0.9",
+    spec: Annotated[
+        Path, typer.Argument(help="TOML pump spec: fixed values and the starting design.", show_default=False)
+    ],
+    vary: Annotated[
+        Optional[list[str]],
+        typer.Option(
+            "--vary",
+            help="KEY=LO:HI in spec units (repeatable); keys: L1, D1, "
+            "b, rocker, handle \\[m], swing \\[deg]. Default: rocker=0.1:0.4 "
+            "L1=0:1 D1=-0.3:1.2 swing=30:100.",
+            show_default=False,
+        ),
+    ] = None,
+    objective: Annotated[
+        Objective,
+        typer.Option(
+            help="Minimise the peak force of the verdict (the flywheel's "
+            "least peak force when the spec gives inertia, else the exact "
+            "peak outside the dead bands) or the mean force."
+        ),
+    ] = Objective.peak,
+    seed: Annotated[
+        int, typer.Option(help="Random seed of the differential evolution (same seed, same answer).")
+    ] = 0,
+    axle_height: Annotated[
+        Optional[float],
+        typer.Option(
+            help="Wheel-axle height \\[m] (default: the spec's wheel.axle_height, else 0.55).",
+            show_default=False,
+        ),
+    ] = None,
+    grip_height: Annotated[
+        str, typer.Option(help="Allowed grip height above ground over the swing, LO:HI \\[m].")
+    ] = "0.5:0.9",
     stroke: Annotated[str, typer.Option(help="Allowed horizontal grip stroke, LO:HI \\[m].")] = "0:1.0",
-    write: Annotated[Optional[Path], typer.Option(help="Write the optimum as a new spec (TOML).", show_default=False)] = None,
-    overwrite: Annotated[bool, typer.Option("--force", help="Overwrite the --write file if it exists.")] = False,
+    write: Annotated[
+        Optional[Path], typer.Option(help="Write the optimum as a new spec (TOML).", show_default=False)
+    ] = None,
+    overwrite: Annotated[
+        bool, typer.Option("--force", help="Overwrite the --write file if it exists.")
+    ] = False,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Search frame placement, rocker and swing for the least operator force.
@@ -46,7 +72,16 @@ def optimize(
 
     Example: [bold]pumplink optimize configs/prototype.toml --vary D1=0:0.8 --vary swing=40:90 --write best.toml[/]
     """
-    from pumplink.optimize import GRIP_HEIGHT_M, STROKE_M, make_problem, optimize as run, parse_bounds, parse_range
+    from pumplink.optimize import (
+        GRIP_HEIGHT_M,
+        STROKE_M,
+        make_problem,
+        parse_bounds,
+        parse_range,
+    )
+    from pumplink.optimize import (
+        optimize as run,
+    )
     from pumplink.output.tables import optimize_row, render_optimize
 
     bounds = parse_bounds(vary)

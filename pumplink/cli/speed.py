@@ -14,13 +14,27 @@ from pumplink.errors import SpecError
 
 @app.command()
 def speed(
-    spec: Annotated[Path, typer.Argument(help="TOML pump spec with the wheel's inertia (wheel.mass or wheel.inertia).",
-                                         show_default=False)],
-    lo: Annotated[float, typer.Option("--from", help="Lowest mean wheel speed \\[deg/s].", min=1e-6, max=7200)] = 120.0,
-    hi: Annotated[float, typer.Option("--to", help="Highest mean wheel speed \\[deg/s].", min=1e-6, max=7200)] = 720.0,
+    spec: Annotated[
+        Path,
+        typer.Argument(
+            help="TOML pump spec with the wheel's inertia (wheel.mass or wheel.inertia).", show_default=False
+        ),
+    ],
+    lo: Annotated[
+        float, typer.Option("--from", help="Lowest mean wheel speed \\[deg/s].", min=1e-6, max=7200)
+    ] = 120.0,
+    hi: Annotated[
+        float, typer.Option("--to", help="Highest mean wheel speed \\[deg/s].", min=1e-6, max=7200)
+    ] = 720.0,
     step: Annotated[float, typer.Option(help="Speed step \\[deg/s].", min=1e-3, max=7200)] = 30.0,
-    plot: Annotated[Optional[Path], typer.Option(help="Write the chart (peak force against speed) to this "
-                                                      ".png/.svg/.pdf (needs pumplink\\[plot]).", show_default=False)] = None,
+    plot: Annotated[
+        Optional[Path],
+        typer.Option(
+            help="Write the chart (peak force against speed) to this "
+            ".png/.svg/.pdf (needs pumplink\\[plot]).",
+            show_default=False,
+        ),
+    ] = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Least peak operator force against mean wheel speed, and the slowest speed
@@ -43,7 +57,9 @@ def speed(
         raise SpecError(f"--to {hi:g} is below --from {lo:g}; give --from LOW --to HIGH in deg/s")
     n = int(np.floor((hi - lo) / step + 1e-9)) + 1
     if n > 10_000:
-        raise SpecError(f"--from {lo:g} --to {hi:g} --step {step:g} gives {n} speeds; at most 10,000 (raise --step)")
+        raise SpecError(
+            f"--from {lo:g} --to {hi:g} --step {step:g} gives {n} speeds; at most 10,000 (raise --step)"
+        )
     if plot is not None:
         from pumplink.output.charts import check_path, pyplot
 

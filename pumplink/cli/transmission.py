@@ -13,14 +13,27 @@ from pumplink.errors import SpecError
 
 @app.command()
 def transmission(
-    time_ratio: Annotated[float, typer.Option("--time-ratio", "-k", help="Time ratio K > 1 (slow/fast stroke).")] = 1.1818,
+    time_ratio: Annotated[
+        float, typer.Option("--time-ratio", "-k", help="Time ratio K > 1 (slow/fast stroke).")
+    ] = 1.1818,
     swing: Annotated[float, typer.Option(help="Rocker swing φ \\[deg].")] = 40.0,
-    rocker: Annotated[float, typer.Option(help="Rocker length (any unit; the other lengths come out in it).")] = 50.0,
-    compare: Annotated[bool, typer.Option("--compare/--no-compare",
-                                          help="Compare with the paper's published designs (its example only).")] = True,
-    chart: Annotated[Optional[Path], typer.Option(help="Write the paper's design diagram (contours over θ and φ) "
-                                                       "to this image file instead (needs pumplink\\[plot]).",
-                                                  show_default=False)] = None,
+    rocker: Annotated[
+        float, typer.Option(help="Rocker length (any unit; the other lengths come out in it).")
+    ] = 50.0,
+    compare: Annotated[
+        bool,
+        typer.Option(
+            "--compare/--no-compare", help="Compare with the paper's published designs (its example only)."
+        ),
+    ] = True,
+    chart: Annotated[
+        Optional[Path],
+        typer.Option(
+            help="Write the paper's design diagram (contours over θ and φ) "
+            "to this image file instead (needs pumplink\\[plot]).",
+            show_default=False,
+        ),
+    ] = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Crank-rocker with the best minimum transmission angle for K and φ (exact).
@@ -52,5 +65,7 @@ def transmission(
             raise SpecError(f"{name} {v!r} is not a finite number")
     opt = cr.optimal_crank_rocker(time_ratio, math.radians(swing), rocker)
     sim = cr.measure_motion(cr.optimum_linkage(opt))
-    comps = cr.published_comparisons() if compare and cr.is_published_example(time_ratio, swing, rocker) else []
+    comps = (
+        cr.published_comparisons() if compare and cr.is_published_example(time_ratio, swing, rocker) else []
+    )
     render_transmission(transmission_rows(opt, sim, comps, cr.PUBLISHED_GAMMA_MIN_DEG), fmt.value)

@@ -35,7 +35,7 @@ def grid_directions(n: int, i0: int = 0, i1: int | None = None, start: float = 0
     nblocks = -(-(i1 - j0) // block)
     base = start + (j0 + np.arange(nblocks) * block) * step
     c, s = shifted_directions(base, offset_table(step, block), 0, block)
-    return c.ravel()[i0 - j0:i1 - j0], s.ravel()[i0 - j0:i1 - j0]
+    return c.ravel()[i0 - j0 : i1 - j0], s.ravel()[i0 - j0 : i1 - j0]
 
 
 def offset_table(step: float, size: int):
@@ -50,7 +50,7 @@ def shifted_directions(base, table, first: int, size: int):
     Angle addition, cos(a + b) = cos a cos b - sin a sin b; ``base`` may be an array of any
     shape, the result has shape ``base.shape + (size,)``.
     """
-    co, so = table[0][first:first + size], table[1][first:first + size]
+    co, so = table[0][first : first + size], table[1][first : first + size]
     cb, sb = np.cos(base)[..., None], np.sin(base)[..., None]
     c = co * cb
     c -= so * sb

@@ -1,8 +1,8 @@
-"""Optimal-transmission crank-rocker for a given time ratio and rocker swing (seed 001, NOTES.md §2).
+"""Optimal-transmission crank-rocker for a given time ratio and rocker swing (the optimal-transmission paper, docs/crank-rocker.md).
 
-Problem (seed 001 §1): given the time ratio K, the rocker swing phi and the rocker length, find
+Problem (§1 of the optimal-transmission paper): given the time ratio K, the rocker swing phi and the rocker length, find
 the crank-rocker (crank, coupler, rocker, frame) whose effective minimum transmission angle
-min(gamma_min, 180 deg - gamma_max) is largest.  Seed 001 steps the crank pivot along the design
+min(gamma_min, 180 deg - gamma_max) is largest.  The optimal-transmission paper steps the crank pivot along the design
 circle and reads a diagram; here the optimum is solved to solver tolerance.
 
 Geometry (derived here; coordinates of this module only).  The rocker pivot D is the origin and
@@ -13,15 +13,15 @@ the bisector of the rocker swing is +y.  The rocker's extreme positions are
 
 At the dead centres crank and coupler are collinear, so the crank directions there are A->C2 and
 C1->A: they differ by 180 deg + angle(C1 A C2).  The time ratio K therefore fixes the angle
-C1 A C2 = theta = 180 deg (K - 1)/(K + 1) (seed 001 Eq. 7), and the crank pivot A lies on one of
+C1 A C2 = theta = 180 deg (K - 1)/(K + 1) (Eq. 7 of the optimal-transmission paper), and the crank pivot A lies on one of
 the two circles through C1 and C2 on which the chord C1C2 subtends theta (the "design circle"
-of seed 001 Fig. 1, and its mirror image in the chord).  We place A with the law of sines in the
+of Fig. 1 of the optimal-transmission paper, and its mirror image in the chord).  We place A with the law of sines in the
 triangle C1 A C2:  with a1 = |A C1| and w = rocker sin(phi/2) (half the chord),
 
     sin v = a1 sin(theta) / (2 w),   u = pi - theta - v          (v, u: angles at C2, C1)
     A = C1 + a1 (cos u, side * sin u)                           (side = -1 toward D, +1 away)
     a2 = |A C2| = sqrt(a1^2 + 4 w^2 - 4 w a1 cos u)             (law of cosines at C1)
-    crank = (a2 - a1)/2,  coupler = (a2 + a1)/2,  frame = |A|   (seed 001 Eq. 8-9)
+    crank = (a2 - a1)/2,  coupler = (a2 + a1)/2,  frame = |A|   (Eq. 8-9 of the optimal-transmission paper)
 
 for 0 < a1 < w / sin(theta/2) (beyond it a1 > a2: the mirror-image design with C1 and C2
 swapped, which has the same transmission angles).  This form stays finite as theta -> 0.
@@ -36,7 +36,7 @@ triangle inequalities of A-D-C1 and A-D-C2 (frame + crank <= coupler + rocker,
 frame - crank >= |coupler - rocker|) every admissible point gives a crank-rocker.
 :func:`measure_motion` checks all of this by running the linkage through ``pumplink.mechanisms.fourbar``.
 
-Transmission angle (NOTES.md §2, seed 001 Eq. 4-6): its extremes occur with crank and frame
+Transmission angle (docs/crank-rocker.md, Eq. 4-6) of the optimal-transmission paper: its extremes occur with crank and frame
 collinear, cos gamma = (coupler^2 + rocker^2 - (frame -+ crank)^2)/(2 coupler rocker); the
 effective minimum is min(gamma_min, pi - gamma_max).
 
@@ -70,12 +70,12 @@ class OptimalCrankRocker:
 
     Attributes
     ----------
-    time_ratio : K [-];  theta : extreme included angle [rad] (seed 001 Eq. 7).
+    time_ratio : K [-];  theta : extreme included angle [rad] (Eq. 7 of the optimal-transmission paper).
     swing : rocker swing phi [rad].
     crank, coupler, rocker, frame : link lengths.
     transmission : effective minimum transmission angle min(gamma_min, pi - gamma_max) [rad].
-    gamma_min, gamma_max : transmission-angle extremes [rad] (seed 001 Eq. 4-5).
-    rocker_to_frame : rocker / frame (seed 001's l3/l4).
+    gamma_min, gamma_max : transmission-angle extremes [rad] (Eq. 4-5 of the optimal-transmission paper).
+    rocker_to_frame : rocker / frame (the optimal-transmission paper's l3/l4).
     crank_pivot_x, crank_pivot_y : crank pivot A, rocker pivot at the origin, swing bisector +y.
     side : -1 if A is on the rocker pivot's side of the chord C1C2, +1 if beyond it.
     binding : 0 both extremes equal (gamma_min = pi - gamma_max), 1 gamma_min alone, 2 gamma_max alone.
@@ -117,9 +117,9 @@ class MeasuredMotion:
 
 
 def extreme_included_angle(time_ratio):
-    """Extreme included angle theta = pi (K - 1)/(K + 1) [rad] (seed 001 Eq. 7, NOTES.md §2)."""
+    """Extreme included angle theta = pi (K - 1)/(K + 1) [rad] (Eq. 7 of the optimal-transmission paper, docs/crank-rocker.md)."""
     k = np.asarray(time_ratio, float)
-    return np.pi * (k - 1.0) / (k + 1.0)  # seed 001 Eq. (7)
+    return np.pi * (k - 1.0) / (k + 1.0)  # Eq. (7) of the optimal-transmission paper
 
 
 def time_ratio_from_angle(theta):
@@ -129,14 +129,16 @@ def time_ratio_from_angle(theta):
 
 
 def effective_transmission(crank, coupler, rocker, frame):
-    """min(gamma_min, pi - gamma_max) of a crank-rocker [rad] (seed 001 Eq. 4-6, NOTES.md §2).
+    """min(gamma_min, pi - gamma_max) of a crank-rocker [rad] (Eq. 4-6 of the optimal-transmission paper, docs/crank-rocker.md).
 
     Returns
     -------
     mu, gamma_min, gamma_max : [rad].
     """
-    gmin, gmax = transmission_range(frame, crank, coupler, rocker)  # seed 001 Eq. (4)-(5)
-    return np.minimum(gmin, np.pi - gmax), gmin, gmax  # seed 001 Eq. (6)
+    gmin, gmax = transmission_range(
+        frame, crank, coupler, rocker
+    )  # Eq. (4)-(5) of the optimal-transmission paper
+    return np.minimum(gmin, np.pi - gmax), gmin, gmax  # Eq. (6) of the optimal-transmission paper
 
 
 def arc_limit(theta):
@@ -168,8 +170,8 @@ def crank_rocker_on_circle(s, theta, swing, rocker, side):
     ax = -w + a1 * np.cos(u)
     ay = yc + side * a1 * np.sin(u)
     a2 = np.sqrt(a1 * a1 + 4.0 * w * w - 4.0 * w * a1 * np.cos(u))  # law of cosines at C1
-    crank = 0.5 * (a2 - a1)  # seed 001 Eq. (8)
-    coupler = 0.5 * (a2 + a1)  # seed 001 Eq. (9)
+    crank = 0.5 * (a2 - a1)  # Eq. (8) of the optimal-transmission paper
+    coupler = 0.5 * (a2 + a1)  # Eq. (9) of the optimal-transmission paper
     frame = np.hypot(ax, ay)
     # cross(C - A, D - A) for C = C1, C2 (D = origin): same sign <=> same side of line A-D.
     s1 = (-w - ax) * (-ay) - (yc - ay) * (-ax)
@@ -205,8 +207,12 @@ def _optimum_chunk(theta, swing, rocker, n):
         rows = np.arange(d)
         x0, x1, x2 = ls[rows, jc - 1], ls[rows, jc], ls[rows, jc + 1]
         has = np.isfinite(mu[rows, j])
-        res = find_minimum(lambda x, t, p, r: -_mu_on_arc(x, t, p, r, side), (x0, x1, x2),
-                           args=(theta, swing, rocker), tolerances=dict(xatol=1e-15, xrtol=1e-15))
+        res = find_minimum(
+            lambda x, t, p, r: -_mu_on_arc(x, t, p, r, side),
+            (x0, x1, x2),
+            args=(theta, swing, rocker),
+            tolerances=dict(xatol=1e-15, xrtol=1e-15),
+        )
         cand_ls = np.where(res.success & (-res.f_x >= mu[rows, j]), res.x, ls[rows, j])
         cc, kk, ff, _, _, okc = crank_rocker_on_circle(np.exp(cand_ls), theta, swing, rocker, side)
         cand_mu = np.where(okc & has, effective_transmission(cc, kk, rocker, ff)[0], -np.inf)
@@ -218,7 +224,7 @@ def _optimum_chunk(theta, swing, rocker, n):
 
 
 def optimal_crank_rocker(time_ratio, swing, rocker=1.0, samples: int = SCAN_POINTS) -> OptimalCrankRocker:
-    """Crank-rocker with the largest effective minimum transmission angle (seed 001, exact).
+    """Crank-rocker with the largest effective minimum transmission angle (the optimal-transmission paper, exact).
 
     Both design circles are scanned on ``samples`` points (geometric in |A C1|) restricted to
     the one-branch arc, and the best point is refined by scipy's bracketing minimiser
@@ -239,14 +245,16 @@ def optimal_crank_rocker(time_ratio, swing, rocker=1.0, samples: int = SCAN_POIN
     k, phi, r = np.broadcast_arrays(*(np.asarray(v, float) for v in (time_ratio, swing, rocker)))
     if not np.all(np.isfinite(k) & (k > 1.0)):
         bad = k[~(np.isfinite(k) & (k > 1.0))].flat[0]
-        raise SpecError(f"time ratio K = {bad:g} must be > 1: at K = 1 the minimum transmission angle only "
-                        "approaches 90 deg - swing/2 as the frame grows without bound; give e.g. K = 1.05")
+        raise SpecError(
+            f"time ratio K = {bad:g} must be > 1: at K = 1 the minimum transmission angle only "
+            "approaches 90 deg - swing/2 as the frame grows without bound; give e.g. K = 1.05"
+        )
     if not np.all(np.isfinite(phi) & (phi > 0) & (phi < np.pi)):
         bad = phi[~(np.isfinite(phi) & (phi > 0) & (phi < np.pi))].flat[0]
         raise SpecError(f"rocker swing {np.degrees(bad):g} deg must be between 0 and 180 deg; give e.g. 40")
     if not np.all(np.isfinite(r) & (r > 0)):
         raise SpecError(f"rocker length {r[~(np.isfinite(r) & (r > 0))].flat[0]:g} must be a positive number")
-    theta = extreme_included_angle(k)  # seed 001 Eq. (7)
+    theta = extreme_included_angle(k)  # Eq. (7) of the optimal-transmission paper
     shape = k.shape
     th, ph, rr = theta.ravel(), phi.ravel(), r.ravel()
     out_mu, out_ls, out_side = (np.empty(th.size) for _ in range(3))
@@ -262,9 +270,20 @@ def optimal_crank_rocker(time_ratio, swing, rocker=1.0, samples: int = SCAN_POIN
         return a[()] if a.ndim == 0 else a
 
     return OptimalCrankRocker(
-        time_ratio=out(k), theta=out(theta), swing=out(phi), crank=out(c), coupler=out(kk), rocker=out(rr),
-        frame=out(f), transmission=out(mu), gamma_min=out(gmin), gamma_max=out(gmax),
-        rocker_to_frame=out(rr / f), crank_pivot_x=out(ax), crank_pivot_y=out(ay), side=out(out_side),
+        time_ratio=out(k),
+        theta=out(theta),
+        swing=out(phi),
+        crank=out(c),
+        coupler=out(kk),
+        rocker=out(rr),
+        frame=out(f),
+        transmission=out(mu),
+        gamma_min=out(gmin),
+        gamma_max=out(gmax),
+        rocker_to_frame=out(rr / f),
+        crank_pivot_x=out(ax),
+        crank_pivot_y=out(ay),
+        side=out(out_side),
         binding=out(binding.astype(np.int8)),
     )
 
@@ -280,8 +299,15 @@ def optimum_linkage(opt: OptimalCrankRocker) -> FourBar:
     r, phi = float(opt.rocker), float(opt.swing)
     c2x, c2y = r * np.sin(0.5 * phi), r * np.cos(0.5 * phi)
     cross = (-ax) * (c2y - ay) - (-ay) * (c2x - ax)
-    return FourBar(pivot_x=-ax, pivot_y=-ay, crank=float(opt.crank), coupler=float(opt.coupler),
-                   rocker=r, handle=r, branch=1.0 if cross > 0 else -1.0)
+    return FourBar(
+        pivot_x=-ax,
+        pivot_y=-ay,
+        crank=float(opt.crank),
+        coupler=float(opt.coupler),
+        rocker=r,
+        handle=r,
+        branch=1.0 if cross > 0 else -1.0,
+    )
 
 
 def measure_motion(lk: FourBar, samples: int = 4096) -> MeasuredMotion:
@@ -310,8 +336,11 @@ def measure_motion(lk: FourBar, samples: int = 4096) -> MeasuredMotion:
     nan = float("nan")
     if not assembles or flips.size != 2:
         return MeasuredMotion(nan, nan, nan, assembles)
-    roots = find_root(lambda x: kinematic_state(lk, x).rocker_rate, (th[flips], th[flips + 1]),
-                      tolerances=dict(xatol=1e-15, xrtol=1e-16)).x
+    roots = find_root(
+        lambda x: kinematic_state(lk, x).rocker_rate,
+        (th[flips], th[flips + 1]),
+        tolerances=dict(xatol=1e-15, xrtol=1e-16),
+    ).x
     ends = kinematic_state(lk, roots)
     ang = np.arctan2(ends.coupler_y - lk.pivot_y, ends.coupler_x - lk.pivot_x)
     swing = abs(float(np.angle(np.exp(1j * (ang[1] - ang[0])))))
@@ -385,4 +414,6 @@ def design_chart() -> DesignChart:
     ph = np.linspace(10.0, 120.0, 56)
     opt = optimal_crank_rocker(time_ratio_from_angle(np.radians(th))[:, None], np.radians(ph)[None, :])
     ex = PUBLISHED_EXAMPLE
-    return DesignChart(th, ph, opt, ex["swing_deg"], float(np.degrees(extreme_included_angle(ex["time_ratio"]))))
+    return DesignChart(
+        th, ph, opt, ex["swing_deg"], float(np.degrees(extreme_included_angle(ex["time_ratio"])))
+    )

@@ -51,10 +51,10 @@ REASONS = {
     STROKE_NOT_POSITIVE: "the stroke must be positive",
     ROD_RATIO_NOT_ABOVE_ONE: "the rod ratio l/r must exceed 1, else the crank cannot turn fully",
     OFFSET_TOO_LARGE: "the rod must be longer than crank + |offset| (l/r > 1 + |e/r|), "
-                      "else the crank cannot turn fully",
+    "else the crank cannot turn fully",
     TIME_RATIO_BELOW_ONE: "the time ratio K must be at least 1 (K is slow stroke over fast stroke)",
     TIME_RATIO_TOO_LARGE: "no crank-slider with this rod ratio reaches this time ratio; "
-                          "K must stay below largest_time_ratio(rod_ratio) - lengthen the rod ratio",
+    "K must stay below largest_time_ratio(rod_ratio) - lengthen the rod ratio",
 }
 
 
@@ -313,14 +313,18 @@ def _design(r, rod, e, reason, too_large):
     good = reason == OK
     # on the boundary rounding may leave l - r - |e| <= 0: refuse rather than return NaN indicators
     with np.errstate(invalid="ignore"):
-        fits = np.asarray(turns_fully(np.where(good, r, 1.0), np.where(good, rod, 3.0),
-                                      np.where(good, e, 0.0)))
+        fits = np.asarray(
+            turns_fully(np.where(good, r, 1.0), np.where(good, rod, 3.0), np.where(good, e, 0.0))
+        )
     reason = np.where(good & ~fits, too_large, reason)
     good = reason == OK
     r, rod, e = (np.where(good, x, np.nan) for x in (r, rod, e))
     return CrankSliderDesign(
-        crank_length=_out(r), rod_length=_out(rod), offset=_out(e),
-        stroke=stroke(r, rod, e), time_ratio=time_ratio(r, rod, e),
+        crank_length=_out(r),
+        rod_length=_out(rod),
+        offset=_out(e),
+        stroke=stroke(r, rod, e),
+        time_ratio=time_ratio(r, rod, e),
         extreme_rod_angle=extreme_rod_angle(r, rod, e),
         largest_pressure_angle=largest_pressure_angle(r, rod, e),
         reason=_out(reason.astype(int)),

@@ -1,8 +1,8 @@
 """The pump four-bar: dead-centre synthesis, positions, velocity ratio and quasi-static force.
 
-Part 1, synthesis -- Dead-centre synthesis of the pump linkage (Eq. 1-2 of the pump paper, NOTES.md §1).
+Part 1, synthesis -- Dead-centre synthesis of the pump linkage (Eq. 1-2 of the pump paper, docs/physics.md).
 
-Coordinates (product convention, NOTES.md §1): origin at the wheel axle O2, x horizontal, y up,
+Coordinates (product convention, docs/physics.md): origin at the wheel axle O2, x horizontal, y up,
 angles counter-clockwise from +x.  The rocker pivot is O4 = (-(L1 + b/2), -D1); the handle (the
 rocker extended to length H) swings symmetrically about the vertical through
 90 deg +- swing/2.
@@ -23,7 +23,7 @@ with a reason.
 
 Part 2, kinematics and force -- Position, velocity and quasi-static force of the pump four-bar (the ``vector`` method).
 
-Closed-form loop closure in product coordinates (NOTES.md §1).  With the crank direction
+Closed-form loop closure in product coordinates (docs/physics.md).  With the crank direction
 (cos t2, sin t2), A = crank * (cos t2, sin t2) and d = O4 - A, e^2 = |d|^2:
 
     P1 = cos t2 * O4x + sin t2 * O4y          (O4 . crank direction)
@@ -38,7 +38,7 @@ omega4/omega2 = (A x u)/(R x u) with u = B - A, R = B - O4; here R x u = -q e^2 
 A x u = crank * (t P2 + q (P1 - crank)), so no slope or instant centre appears and
 nothing divides by zero except at the dead centres (A x u = 0) themselves.
 
-The handle grip is P = O4 + (H/rocker) R.  Virtual work (NOTES.md §1) gives the horizontal
+The handle grip is P = O4 + (H/rocker) R.  Virtual work (docs/physics.md) gives the horizontal
 operator force that balances the wheel torque Mw:
 
     F = Mw / (dPx/dt2),  dPx/dt2 = (H/rocker) * Ry * crank * (t P2 + q (P1 - crank)) / (q e^2)
@@ -123,12 +123,19 @@ class Synthesis:
     @property
     def linkage(self) -> FourBar:
         """The synthesised four-bar, for the kinematics and force functions."""
-        return FourBar(self.pivot_x, self.pivot_y, self.crank_length, self.coupler_length,
-                       self.rocker_length, self.handle_length, self.branch)
+        return FourBar(
+            self.pivot_x,
+            self.pivot_y,
+            self.crank_length,
+            self.coupler_length,
+            self.rocker_length,
+            self.handle_length,
+            self.branch,
+        )
 
 
 def rocker_pivot(L1, D1, b):
-    """Rocker pivot O4 relative to the wheel axle [m] (NOTES.md §1).
+    """Rocker pivot O4 relative to the wheel axle [m] (docs/physics.md).
 
     Returns
     -------
@@ -138,7 +145,7 @@ def rocker_pivot(L1, D1, b):
 
 
 def frame_length(L1, D1, b):
-    """Frame length O2-O4 [m], Eq. (1) of the pump paper as read in NOTES.md §1."""
+    """Frame length O2-O4 [m], Eq. (1) of the pump paper as read in docs/physics.md."""
     return np.hypot(np.asarray(L1, float) + 0.5 * np.asarray(b, float), D1)  # Eq. (1)
 
 
@@ -180,7 +187,7 @@ def grip_stroke(handle, swing):
 
 
 def transmission_range(frame, crank, coupler, rocker):
-    """Extreme transmission angles of a crank-rocker [rad] (NOTES.md §2, seed 001 Eq. 4-5).
+    """Extreme transmission angles of a crank-rocker [rad] (docs/crank-rocker.md, Eq. 4-5) of the optimal-transmission paper.
 
     The coupler-rocker angle is extreme when crank and frame are collinear:
     cos gamma = (coupler^2 + rocker^2 - (frame -+ crank)^2) / (2 coupler rocker).
@@ -188,8 +195,12 @@ def transmission_range(frame, crank, coupler, rocker):
     den = 2.0 * coupler * rocker
     # Products, not ``** 2``, so scalars and arrays round identically (see ``_side``).
     near, far = frame - crank, frame + crank
-    cmin = (coupler * coupler + rocker * rocker - near * near) / den  # seed 001 Eq. (4)
-    cmax = (coupler * coupler + rocker * rocker - far * far) / den  # seed 001 Eq. (5)
+    cmin = (
+        coupler * coupler + rocker * rocker - near * near
+    ) / den  # Eq. (4) of the optimal-transmission paper
+    cmax = (
+        coupler * coupler + rocker * rocker - far * far
+    ) / den  # Eq. (5) of the optimal-transmission paper
     return np.arccos(np.clip(cmin, -1.0, 1.0)), np.arccos(np.clip(cmax, -1.0, 1.0))
 
 
@@ -202,7 +213,7 @@ def synthesize(L1, D1, b, rocker, swing, handle=1.0) -> Synthesis:
 
     Parameters
     ----------
-    L1, D1, b : frame placement [m] (NOTES.md §1).
+    L1, D1, b : frame placement [m] (docs/physics.md).
     rocker : rocker length l4 [m].
     swing : total handle swing [rad], 0 < swing < pi.
     handle : handle length H [m] (carried along for the force analysis).
@@ -212,7 +223,9 @@ def synthesize(L1, D1, b, rocker, swing, handle=1.0) -> Synthesis:
     Synthesis
         Broadcast over all inputs; infeasible designs carry a reason code and NaN lengths.
     """
-    L1, D1, b, rocker, swing, handle = np.broadcast_arrays(*(np.asarray(v, float) for v in (L1, D1, b, rocker, swing, handle)))
+    L1, D1, b, rocker, swing, handle = np.broadcast_arrays(
+        *(np.asarray(v, float) for v in (L1, D1, b, rocker, swing, handle))
+    )
     px, py = rocker_pivot(L1, D1, b)
     frame = frame_length(L1, D1, b)
     beta, psi1, psi2 = extreme_angles(L1, D1, b, swing)
@@ -256,12 +269,25 @@ def synthesize(L1, D1, b, rocker, swing, handle=1.0) -> Synthesis:
         return a[()] if a.ndim == 0 else a
 
     return Synthesis(
-        frame_length=out(frame), beta=out(beta), psi1=out(psi1), psi2=out(psi2),
-        crank_length=out(crank), coupler_length=out(coupler), rocker_length=out(rocker + 0.0),
-        handle_length=out(handle + 0.0), swing=out(swing + 0.0), pivot_x=out(px), pivot_y=out(py),
-        dead_centre_extended=out(dc_ext), dead_centre_folded=out(dc_fold), time_ratio=out(ratio),
-        stroke_plus_x=out(plus), transmission_min=out(gmin), transmission_max=out(gmax),
-        branch=out(branch), reason=out(reason),
+        frame_length=out(frame),
+        beta=out(beta),
+        psi1=out(psi1),
+        psi2=out(psi2),
+        crank_length=out(crank),
+        coupler_length=out(coupler),
+        rocker_length=out(rocker + 0.0),
+        handle_length=out(handle + 0.0),
+        swing=out(swing + 0.0),
+        pivot_x=out(px),
+        pivot_y=out(py),
+        dead_centre_extended=out(dc_ext),
+        dead_centre_folded=out(dc_fold),
+        time_ratio=out(ratio),
+        stroke_plus_x=out(plus),
+        transmission_min=out(gmin),
+        transmission_max=out(gmax),
+        branch=out(branch),
+        reason=out(reason),
     )
 
 
@@ -284,18 +310,28 @@ def infeasibility_reason(code, L1, D1, b, swing) -> str | None:
     vertical = reach <= 0.0  # pivot straight below/above the axle: no D1 or swing helps
     if code == SWING_CROSSES_FRAME_LINE:
         limit_d1 = reach * np.tan(np.radians(90.0 - half))
-        fix = ("place the pivot to the side of the axle (L1 + b/2 > 0)" if vertical else
-               f"make D1 < {limit_d1:.4f} m, L1 larger, or the swing < {2 * (90 - alpha):.2f} deg")
-        return (f"the frame line from the rocker pivot to the axle rises at {alpha:.2f} deg, so the handle's "
-                f"forward extreme (rocker at {90 - half:.2f} deg) is not above it (psi2 = {90 - half - alpha:.2f} deg, "
-                f"must be > 0) and no crank-rocker gives this swing; {fix}")
+        fix = (
+            "place the pivot to the side of the axle (L1 + b/2 > 0)"
+            if vertical
+            else f"make D1 < {limit_d1:.4f} m, L1 larger, or the swing < {2 * (90 - alpha):.2f} deg"
+        )
+        return (
+            f"the frame line from the rocker pivot to the axle rises at {alpha:.2f} deg, so the handle's "
+            f"forward extreme (rocker at {90 - half:.2f} deg) is not above it (psi2 = {90 - half - alpha:.2f} deg, "
+            f"must be > 0) and no crank-rocker gives this swing; {fix}"
+        )
     if code == SWING_CROSSES_FRAME_EXTENSION:
         limit_d1 = -reach * np.tan(np.radians(90.0 - half))
-        fix = ("place the pivot to the side of the axle (L1 + b/2 > 0)" if vertical else
-               f"make D1 > {limit_d1:.4f} m (pivot less high), L1 larger, or the swing < {2 * (90 + alpha):.2f} deg")
-        return (f"the frame line from the rocker pivot to the axle falls at {-alpha:.2f} deg, so the handle's "
-                f"backward extreme (rocker at {90 + half:.2f} deg) passes the line's extension "
-                f"(psi1 = {90 + half - alpha:.2f} deg, must be < 180) and no crank-rocker gives this swing; {fix}")
+        fix = (
+            "place the pivot to the side of the axle (L1 + b/2 > 0)"
+            if vertical
+            else f"make D1 > {limit_d1:.4f} m (pivot less high), L1 larger, or the swing < {2 * (90 + alpha):.2f} deg"
+        )
+        return (
+            f"the frame line from the rocker pivot to the axle falls at {-alpha:.2f} deg, so the handle's "
+            f"backward extreme (rocker at {90 + half:.2f} deg) passes the line's extension "
+            f"(psi1 = {90 + half - alpha:.2f} deg, must be < 180) and no crank-rocker gives this swing; {fix}"
+        )
     raise ValueError(f"unknown reason code {code}")
 
 
@@ -357,8 +393,16 @@ def force_kernel(lk: FourBar, cs, sn, wheel_torque, work: np.ndarray | None = No
     force : horizontal operator force at the grip [N], +x positive; NaN at a dead centre.
     """
     px, py, c, k, r = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker
-    shape = np.broadcast_shapes(np.shape(cs), np.shape(px), np.shape(c), np.shape(k), np.shape(r),
-                                np.shape(lk.branch), np.shape(lk.handle), np.shape(wheel_torque))
+    shape = np.broadcast_shapes(
+        np.shape(cs),
+        np.shape(px),
+        np.shape(c),
+        np.shape(k),
+        np.shape(r),
+        np.shape(lk.branch),
+        np.shape(lk.handle),
+        np.shape(wheel_torque),
+    )
     if work is None or work.shape[1:] != shape:
         work = kernel_work(shape)
     with np.errstate(all="ignore"):  # dead centres and non-assemblable inputs give NaN/inf, by design
@@ -475,5 +519,14 @@ def _kinematic_state(lk: FourBar, th, wheel_torque) -> State:
     handle_rate = -(lk.handle / r) * ry * rate
     force = np.where(singular, np.nan, wheel_torque / handle_rate)  # Eq. (3), virtual work
     cos_g = (k * k + r * r - e2) / (2.0 * k * r)  # law of cosines in A-B-O4
-    return State(th, bx, by, np.arctan2(ry, rx), rate, handle_rate,
-                 np.arccos(np.clip(cos_g, -1.0, 1.0)), force, singular)
+    return State(
+        th,
+        bx,
+        by,
+        np.arctan2(ry, rx),
+        rate,
+        handle_rate,
+        np.arccos(np.clip(cos_g, -1.0, 1.0)),
+        force,
+        singular,
+    )

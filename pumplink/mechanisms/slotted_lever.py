@@ -49,9 +49,9 @@ REASONS = {
     STROKE_NOT_POSITIVE: "the stroke must be positive",
     FRAME_NOT_POSITIVE: "the frame length (crank pivot to lever pivot) must be positive",
     TIME_RATIO_NOT_ABOVE_ONE: "a slotted lever's time ratio exceeds 1 (K = 1 needs a zero crank "
-                              "and an infinite lever); ask for K > 1",
+    "and an infinite lever); ask for K > 1",
     SLOT_TOO_SHORT: "the lever is shorter than the block's farthest reach d + r, so the slot "
-                    "cannot hold the block; choose a shorter frame length",
+    "cannot hold the block; choose a shorter frame length",
 }
 
 
@@ -249,8 +249,12 @@ def synthesize_from_time_ratio(time_ratio, stroke, frame_length=None):
         good = reason == OK
     r, d, lever = (np.where(good, x, np.nan) for x in (r, d, lever))
     return SlottedLeverDesign(
-        crank_length=_out(r), frame_length=_out(d), lever_length=_out(lever),
-        swing_angle=swing_angle(r, d), stroke=_stroke(r, d, lever), time_ratio=_time_ratio(r, d),
+        crank_length=_out(r),
+        frame_length=_out(d),
+        lever_length=_out(lever),
+        swing_angle=swing_angle(r, d),
+        stroke=_stroke(r, d, lever),
+        time_ratio=_time_ratio(r, d),
         reason=_out(reason.astype(int)),
     )
 

@@ -251,16 +251,21 @@ def redundant_constraints(formula_mobility: int, mobility: int, local_mobilities
     mobility; a four-bar (W0 = 1, Wm = 0, W = 1, q = 0) shows the sign must be minus.
     Source: the lever-mechanism textbook, §2.2; docs/mechanisms.md §3.
     """
-    for label, value in (("formula_mobility", formula_mobility), ("mobility", mobility),
-                         ("local_mobilities", local_mobilities)):
+    for label, value in (
+        ("formula_mobility", formula_mobility),
+        ("mobility", mobility),
+        ("local_mobilities", local_mobilities),
+    ):
         if not isinstance(value, int) or isinstance(value, bool):
             raise ValueError(f"{label} must be an integer, not {value!r}.")
     if local_mobilities < 0:
         raise ValueError("local_mobilities must not be negative.")
     q = mobility + local_mobilities - formula_mobility  # Eq. (3.3)
     if q < 0:
-        raise ValueError(f"the mechanism would have q = {q} < 0 redundant constraints: a working mobility of "
-                         f"{mobility} with {local_mobilities} local freedom(s) exceeds what the pairs allow.")
+        raise ValueError(
+            f"the mechanism would have q = {q} < 0 redundant constraints: a working mobility of "
+            f"{mobility} with {local_mobilities} local freedom(s) exceeds what the pairs allow."
+        )
     return q
 
 
@@ -392,8 +397,9 @@ def _decompose(names, frame, joints, drivers):
                 break
         if found is None:
             rest = ", ".join(x for x in moving if x in present and x not in drivers)
-            return tuple(reversed(removed)), (f"links {rest} form no Assur group of mobility 0 with "
-                                              f"drivers {', '.join(drivers)}")
+            return tuple(reversed(removed)), (
+                f"links {rest} form no Assur group of mobility 0 with drivers {', '.join(drivers)}"
+            )
         removed.append(_describe(found, js, moving))
         present -= found
     # what is left must be the primary mechanisms: each driver pivoted on (or sliding in) the frame
@@ -401,8 +407,9 @@ def _decompose(names, frame, joints, drivers):
     for d in drivers:
         mine = [j for j in js if d in j.links]
         if len(mine) != 1 or set(mine[0].links) != {d, frame}:
-            return tuple(reversed(removed)), (f"driver {d} is not joined to the frame alone by one "
-                                              "lower pair once the groups are removed")
+            return tuple(reversed(removed)), (
+                f"driver {d} is not joined to the frame alone by one lower pair once the groups are removed"
+            )
     return tuple(reversed(removed)), ""
 
 
@@ -456,8 +463,9 @@ def assur_groups(links, frame, joints, drivers):
 
 def _pivoted(names, frame, joints):
     """Moving links joined to the frame by a lower pair, in input order."""
-    return [x for x in names
-            if x != frame and any(j.lower and frame in j.links and x in j.links for j in joints)]
+    return [
+        x for x in names if x != frame and any(j.lower and frame in j.links and x in j.links for j in joints)
+    ]
 
 
 def driving_links(links, frame, joints, passive_links=(), local_mobilities=0):
@@ -501,12 +509,16 @@ def analyse_structure(links, frame, joints, drivers=None, passive_links=(), loca
         _mechanism(active, frame, active_joints)
     except ValueError as err:
         raise ValueError(f"without the passive links the mechanism falls apart: {err}") from None
-    reduced = 3 * (len(active) - 1) - 2 * sum(j.pairs for j in active_joints if j.lower) - sum(
-        j.pairs for j in active_joints if not j.lower)
+    reduced = (
+        3 * (len(active) - 1)
+        - 2 * sum(j.pairs for j in active_joints if j.lower)
+        - sum(j.pairs for j in active_joints if not j.lower)
+    )
     q = reduced - formula  # Eq. (3.3) with W0 + Wm = the reduced mechanism's count
     if q < 0:
-        raise ValueError(f"the passive links {', '.join(passive)} add freedoms instead of "
-                         "redundant constraints.")
+        raise ValueError(
+            f"the passive links {', '.join(passive)} add freedoms instead of redundant constraints."
+        )
     working = formula + q - local_mobilities  # Eq. (3.2)
     if drivers is not None:
         chosen = _check_drivers(drivers, names, frame)
@@ -532,9 +544,16 @@ def analyse_structure(links, frame, joints, drivers=None, passive_links=(), loca
         if reason and first:
             reason = f"{reason} (the first choice fails: {first})"
     return StructureAnalysis(
-        moving_links=n, lower_pairs=p1, higher_pairs=p2, formula_mobility=formula,
-        redundant_constraints=q, local_mobilities=local_mobilities, mobility=working,
-        drivers=tuple(chosen), groups=tuple(groups),
+        moving_links=n,
+        lower_pairs=p1,
+        higher_pairs=p2,
+        formula_mobility=formula,
+        redundant_constraints=q,
+        local_mobilities=local_mobilities,
+        mobility=working,
+        drivers=tuple(chosen),
+        groups=tuple(groups),
         mechanism_class=max((g.group_class for g in groups), default=1),
-        decomposed=not reason, reason=reason,
+        decomposed=not reason,
+        reason=reason,
     )

@@ -10,8 +10,8 @@ a dead band.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
@@ -51,10 +51,13 @@ class Model:
     summary: str
 
 
-def _quasi_static_peak(fourbar, dead_centre_extended, dead_centre_folded, wheel_torque, conditions: Conditions):
+def _quasi_static_peak(
+    fourbar, dead_centre_extended, dead_centre_folded, wheel_torque, conditions: Conditions
+):
     """Exact peak of the quasi-static force outside the dead bands [N] (docs/models.md §1)."""
-    return quasi_static.dead_band_peak_force(fourbar, dead_centre_extended, dead_centre_folded,
-                                             conditions.dead_band, wheel_torque)[0]
+    return quasi_static.dead_band_peak_force(
+        fourbar, dead_centre_extended, dead_centre_folded, conditions.dead_band, wheel_torque
+    )[0]
 
 
 def _flywheel_peak(fourbar, dead_centre_extended, dead_centre_folded, wheel_torque, conditions: Conditions):
@@ -64,12 +67,22 @@ def _flywheel_peak(fourbar, dead_centre_extended, dead_centre_folded, wheel_torq
 
 
 MODELS: dict[str, Model] = {
-    QUASI_STATIC: Model(QUASI_STATIC, "quasi-static + dead band", _quasi_static_peak, ("dead_band",),
-                        "Eq. (3) of the pump paper; infinite at the dead centres, so the peak is taken outside "
-                        "±dead_band of them; blind to speed"),
-    FLYWHEEL: Model(FLYWHEEL, "flywheel", _flywheel_peak, ("inertia", "speed", "speed_fluctuation"),
-                    "the wheel's inertia carries the dead centres: least peak force for a periodic motion with "
-                    "speed fluctuation within δ at the mean speed; link inertia neglected"),
+    QUASI_STATIC: Model(
+        QUASI_STATIC,
+        "quasi-static + dead band",
+        _quasi_static_peak,
+        ("dead_band",),
+        "Eq. (3) of the pump paper; infinite at the dead centres, so the peak is taken outside "
+        "±dead_band of them; blind to speed",
+    ),
+    FLYWHEEL: Model(
+        FLYWHEEL,
+        "flywheel",
+        _flywheel_peak,
+        ("inertia", "speed", "speed_fluctuation"),
+        "the wheel's inertia carries the dead centres: least peak force for a periodic motion with "
+        "speed fluctuation within δ at the mean speed; link inertia neglected",
+    ),
 }
 
 

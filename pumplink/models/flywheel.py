@@ -4,7 +4,7 @@ The quasi-static force (``pumplink.mechanisms.fourbar``) is infinite at both dea
 cancels out of it.  In the pump the upper wheel and the moving rope and water are a flywheel.
 This module answers the question the quasi-static model cannot: *what is the least peak
 force an operator needs to keep the wheel turning at a mean speed with a bounded speed
-fluctuation?*  (issue #6, NOTES.md §1 and §4).
+fluctuation?*  (docs/physics.md and docs/models.md §2).
 
 The scene
 ---------
@@ -40,7 +40,7 @@ the band: with U(t) the integral of u, started at the top W at t0,
 
 Over one revolution this maps a start x to min(x + A, C), A = U(t + 2 pi) - U(t) = 2 Fp S -
 2 pi Mw (S: grip stroke), C a constant.  A periodic path needs A >= 0, i.e. Fp >= F_mean
-(NOTES.md §1), and then the fixed point is reached after one revolution; the path from the
+(docs/physics.md), and then the fixed point is reached after one revolution; the path from the
 top dominates every other feasible path, so a periodic motion inside the band exists **iff**
 A >= 0 and it never drops more than W below the top:
 
@@ -75,7 +75,6 @@ from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.fourbar import FourBar, kinematic_state, loop_closure
 from pumplink.models import quasi_static as _qs
 
-
 #: Uniform grid points per revolution on which the extrema of U are located before refinement.
 GRID = 256
 #: Geometric nodes each side of a dead centre, at GRID cell / 4**k for k = 1..CLUSTER (down to
@@ -90,7 +89,6 @@ RTOL = 1e-13
 #: every practical purpose, zero (no operator pushes 10,000 times the mean force), and beyond it the
 #: rounding of U (~eps Fp S) grows past ~1e-6 of the band (tests/test_flywheel.py).
 FORCE_CAP_RATIO = 1e4
-
 
 
 def energy_band(inertia, mean_speed, speed_fluctuation):
@@ -177,9 +175,14 @@ def _nodes(dce, dcf):
     off = h * 4.0 ** -np.arange(1, CLUSTER + 1)  # h/4 ... : inside the first half cell
     near0 = np.concatenate([off, TWO_PI - off, [0.0]])
     nearp = np.concatenate([-off, off, [0.0]])
-    x = np.concatenate([np.broadcast_to(uni, plus.shape + uni.shape),
-                        np.broadcast_to(near0, plus.shape + near0.shape),
-                        np.mod(plus[:, None] + nearp, TWO_PI)], axis=1)
+    x = np.concatenate(
+        [
+            np.broadcast_to(uni, plus.shape + uni.shape),
+            np.broadcast_to(near0, plus.shape + near0.shape),
+            np.mod(plus[:, None] + nearp, TWO_PI),
+        ],
+        axis=1,
+    )
     return np.sort(x, axis=1), plus
 
 
@@ -202,9 +205,23 @@ class _Prepared:
 
 
 def _prepare(lk: FourBar, dce, dcf, wheel_torque):
-    params = np.broadcast_arrays(*(np.asarray(v, float) for v in (
-        lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch,
-        dce, dcf, wheel_torque)))
+    params = np.broadcast_arrays(
+        *(
+            np.asarray(v, float)
+            for v in (
+                lk.pivot_x,
+                lk.pivot_y,
+                lk.crank,
+                lk.coupler,
+                lk.rocker,
+                lk.handle,
+                lk.branch,
+                dce,
+                dcf,
+                wheel_torque,
+            )
+        )
+    )
     scalar = params[0].ndim == 0
     *geom, dce, dcf, mw = [np.atleast_1d(p).ravel() for p in params]
     with np.errstate(all="ignore"):
@@ -213,19 +230,27 @@ def _prepare(lk: FourBar, dce, dcf, wheel_torque):
         stroke = np.abs(xf - xe)
         nodes, plus = _nodes(dce, dcf)
         g2 = [p[:, None] for p in geom]
-        base, local = _travel_parts(nodes, *g2, dce[:, None], plus[:, None], xe[:, None], xf[:, None],
-                                    stroke[:, None])
+        base, local = _travel_parts(
+            nodes, *g2, dce[:, None], plus[:, None], xe[:, None], xf[:, None], stroke[:, None]
+        )
     return _Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local), scalar
 
 
 def _u_integral(phi, force, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke, mw):
     """U(phi) = Fp G(phi) - Mw phi [J]: the largest energy the operator can have added [Eq. (3)]."""
-    return force * _travel(phi, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke) - mw * phi
+    return (
+        force * _travel(phi, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke)
+        - mw * phi
+    )
 
 
-def _u_relative(phi, force, ref_base, ref_x, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke, mw):
+def _u_relative(
+    phi, force, ref_base, ref_x, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke, mw
+):
     """U(phi) - (Fp ref_base - Mw ref_x) [J], computed without the large constant (for the refinement)."""
-    base, local = _travel_parts(phi, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke)
+    base, local = _travel_parts(
+        phi, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke
+    )
     return force * ((base - ref_base) + local) - mw * (phi - ref_x)
 
 
@@ -263,9 +288,12 @@ def _refined_extrema(prep: _Prepared, force, rows=None, refine: bool = True):
         f_el = force[d_idx]
         mw_el = prep.mw[rows[d_idx]]
         rb, rx = base[d_idx, n_idx], x[d_idx, n_idx]  # U relative to the node's dead centre: no cancellation
-        res = find_minimum(lambda t, f, b0, x0, *p, sign=sign: sign * _u_relative(t, f, b0, x0, *p),
-                           (x_prev[d_idx, n_idx], rx, x_next[d_idx, n_idx]),
-                           args=(f_el, rb, rx) + args + (mw_el,), tolerances=REFINE_TOL)
+        res = find_minimum(
+            lambda t, f, b0, x0, *p, sign=sign: sign * _u_relative(t, f, b0, x0, *p),
+            (x_prev[d_idx, n_idx], rx, x_next[d_idx, n_idx]),
+            args=(f_el, rb, rx) + args + (mw_el,),
+            tolerances=REFINE_TOL,
+        )
         at_node = f_el * local[d_idx, n_idx]  # the node's own relative U
         better = np.isfinite(res.f_x) & ((-res.f_x >= at_node) if sign < 0 else (res.f_x <= at_node))
         xi = np.where(better, res.x, rx)
@@ -382,8 +410,15 @@ def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool, cap):
     return lam
 
 
-def min_passing_speed(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, force_limit,
-                      inertia, speed_fluctuation):
+def min_passing_speed(
+    lk: FourBar,
+    dead_centre_extended,
+    dead_centre_folded,
+    wheel_torque,
+    force_limit,
+    inertia,
+    speed_fluctuation,
+):
     """Least mean wheel speed [rad/s] at which ``force_limit`` suffices: w = sqrt(D(F_limit) / (J delta)).
 
     From Eq. (2)-(3): the design passes iff D(F_limit) <= J w_bar^2 delta.  Infinite when the
@@ -441,9 +476,16 @@ def _local_maxima(x, u, a0):
     return np.nonzero((u >= u_prev) & (u > u_next))[0]
 
 
-def scene(lk: FourBar, dead_centre_extended: float, dead_centre_folded: float, wheel_torque: float,
-          inertia: float, mean_speed: float, speed_fluctuation: float,
-          solved: float | None = None) -> Scene:
+def scene(
+    lk: FourBar,
+    dead_centre_extended: float,
+    dead_centre_folded: float,
+    wheel_torque: float,
+    inertia: float,
+    mean_speed: float,
+    speed_fluctuation: float,
+    solved: float | None = None,
+) -> Scene:
     """Solve the flywheel scene of one design: Fp*, the operator's force profile and w(t).
 
     The reported motion is the "as full as possible" one of the module docstring at Fp*: the
@@ -460,9 +502,26 @@ def scene(lk: FourBar, dead_centre_extended: float, dead_centre_folded: float, w
     f_mean = float(_qs.mean_force(wheel_torque, prep.stroke[0]))
     nan = float("nan")
     if not np.isfinite(fp):
-        return Scene(inertia, mean_speed, speed_fluctuation, band, fp, f_mean, nan, nan, nan,
-                     np.empty((0, 2)), nan, lk, wheel_torque, dead_centre_extended, dead_centre_folded,
-                     np.empty(0), np.empty(0), nan)
+        return Scene(
+            inertia,
+            mean_speed,
+            speed_fluctuation,
+            band,
+            fp,
+            f_mean,
+            nan,
+            nan,
+            nan,
+            np.empty((0, 2)),
+            nan,
+            lk,
+            wheel_torque,
+            dead_centre_extended,
+            dead_centre_folded,
+            np.empty(0),
+            np.empty(0),
+            nan,
+        )
     x, u, b, l, a = _refined_extrema(prep, np.array([fp]))
     a0 = max(float(a[0]), 0.0)
     drop = float(_drawdown(x, u, b, l, np.array([a0]), prep.stroke)[0][0])
@@ -474,7 +533,7 @@ def scene(lk: FourBar, dead_centre_extended: float, dead_centre_folded: float, w
     args = prep.args(slice(0, 1))
     for m in range(peaks.size):
         # maxima in (xm - 2 pi, xm): the earlier ones this revolution and the later ones shifted back
-        before = np.concatenate([um[:m], um[m + 1:] - a0, [um[m] - a0]])
+        before = np.concatenate([um[:m], um[m + 1 :] - a0, [um[m] - a0]])
         level = before.max()
         if um[m] <= level:
             continue  # below an earlier top: the wheel is not full here
@@ -487,15 +546,36 @@ def scene(lk: FourBar, dead_centre_extended: float, dead_centre_folded: float, w
             if ul <= level or lo_idx < k - x.size:
                 break
             lo_idx -= 1
-        res = find_root(lambda t, *p: _u_integral(t, fp, *p, prep.mw[:1]) - level,
-                        (xl, xm[m]), args=args, tolerances=dict(xatol=0.0, xrtol=1e-15))
+        res = find_root(
+            lambda t, *p: _u_integral(t, fp, *p, prep.mw[:1]) - level,
+            (xl, xm[m]),
+            args=args,
+            tolerances=dict(xatol=0.0, xrtol=1e-15),
+        )
         ceil.append((float(res.x[0]), float(xm[m])))
     ceiling = np.mod(np.array(ceil).reshape(-1, 2) + dead_centre_extended, TWO_PI)
     top = float(np.mod(xm[np.argmax(um)] + dead_centre_extended, TWO_PI))
-    fluct = drop / (inertia * mean_speed ** 2)  # Eq. (2): the range of E is the drawdown
-    return Scene(inertia, mean_speed, speed_fluctuation, band, float(fp), f_mean, fluct,
-                 mean_speed * (1 + fluct / 2), mean_speed * (1 - fluct / 2), ceiling, top, lk,
-                 float(wheel_torque), float(dead_centre_extended), float(dead_centre_folded), xm, um, a0)
+    fluct = drop / (inertia * mean_speed**2)  # Eq. (2): the range of E is the drawdown
+    return Scene(
+        inertia,
+        mean_speed,
+        speed_fluctuation,
+        band,
+        float(fp),
+        f_mean,
+        fluct,
+        mean_speed * (1 + fluct / 2),
+        mean_speed * (1 - fluct / 2),
+        ceiling,
+        top,
+        lk,
+        float(wheel_torque),
+        float(dead_centre_extended),
+        float(dead_centre_folded),
+        xm,
+        um,
+        a0,
+    )
 
 
 def on_ceiling(sc: Scene, crank_angle):
@@ -532,7 +612,7 @@ def wheel_speed(sc: Scene, crank_angle):
     col = phi.reshape(-1, 1)
     inside = (cand_x <= col) & (cand_x > col - TWO_PI)
     top = np.maximum(uphi.reshape(-1), np.where(inside, cand_u, -np.inf).max(axis=1)).reshape(phi.shape)
-    energy = 0.5 * sc.inertia * sc.max_speed ** 2 - (top - uphi)  # Eq. (1) from the top of the band
+    energy = 0.5 * sc.inertia * sc.max_speed**2 - (top - uphi)  # Eq. (1) from the top of the band
     return np.sqrt(2.0 * energy / sc.inertia)
 
 
@@ -576,7 +656,10 @@ def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> TimeInt
     def rhs(_t, y):
         th = y[0]
         g = kinematic_state(sc.linkage, th, 1.0).handle_rate
-        return [y[1], (float(operator_force(sc, th)) * float(g) - mw) / j]  # Eq. (1): J w dw/dt = (F g - Mw) w
+        return [
+            y[1],
+            (float(operator_force(sc, th)) * float(g) - mw) / j,
+        ]  # Eq. (1): J w dw/dt = (F g - Mw) w
 
     def turn(_t, y):
         return np.sin(0.5 * (y[0] - t0))  # zero each time the crank is back at the start angle
@@ -586,8 +669,17 @@ def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> TimeInt
     horizon = 4.0 * cycles * TWO_PI / sc.min_speed
     # On the top-speed arcs dw/dt is exactly 0, so the error estimate vanishes and, unbounded, one
     # step could jump over whole revolutions: at most 1/64 revolution per step.
-    sol = solve_ivp(rhs, (0.0, horizon), [t0, sc.max_speed], method="DOP853", rtol=rtol, atol=1e-12 * sc.max_speed,
-                    events=turn, dense_output=True, max_step=TWO_PI / 64 / sc.max_speed)
+    sol = solve_ivp(
+        rhs,
+        (0.0, horizon),
+        [t0, sc.max_speed],
+        method="DOP853",
+        rtol=rtol,
+        atol=1e-12 * sc.max_speed,
+        events=turn,
+        dense_output=True,
+        max_step=TWO_PI / 64 / sc.max_speed,
+    )
     times = sol.t_events[0]
     times = times[times > 1e-9 * horizon][:cycles]
     speeds = np.array([sc.max_speed] + [float(sol.sol(t)[1]) for t in times])
@@ -595,8 +687,16 @@ def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> TimeInt
     w = sol.sol(np.linspace(last0, last1, 40001))[1]
     wmax, wmin = float(w.max()), float(w.min())
     mean = 0.5 * (wmax + wmin)
-    return TimeIntegration(int(times.size), speeds, float(np.max(np.abs(speeds - speeds[0])) / speeds[0]), wmax, wmin,
-                      mean, TWO_PI / (last1 - last0), (wmax - wmin) / mean)
+    return TimeIntegration(
+        int(times.size),
+        speeds,
+        float(np.max(np.abs(speeds - speeds[0])) / speeds[0]),
+        wmax,
+        wmin,
+        mean,
+        TWO_PI / (last1 - last0),
+        (wmax - wmin) / mean,
+    )
 
 
 # ----------------------------------------------------------------------------- neglected effects
@@ -615,7 +715,12 @@ def link_energy(lk: FourBar, crank_angle, mean_speed, mass_per_length=LINK_MASS_
     w4 = st.rocker_rate * w
     rx, ry = st.coupler_x - lk.pivot_x, st.coupler_y - lk.pivot_y
     vbx, vby = -w4 * ry, w4 * rx
-    coupler = mass_per_length * lk.coupler / 6.0 * (vax * vax + vay * vay + vax * vbx + vay * vby + vbx * vbx + vby * vby)
+    coupler = (
+        mass_per_length
+        * lk.coupler
+        / 6.0
+        * (vax * vax + vay * vay + vax * vbx + vay * vby + vbx * vbx + vby * vby)
+    )
     arm = np.maximum(lk.handle, lk.rocker)
     handle = mass_per_length * arm / 6.0 * (w4 * arm) ** 2
     return coupler + handle

@@ -1,4 +1,4 @@
-"""Operator-force quantities over the crank cycle (NOTES.md §1, Eq. 3 of the pump paper).
+"""Operator-force quantities over the crank cycle (docs/physics.md, Eq. 3 of the pump paper).
 
 All functions are pure and broadcast over designs (1-D arrays of per-design parameters).
 """
@@ -10,9 +10,7 @@ import functools
 import numpy as np
 
 from pumplink.mechanisms.angles import TWO_PI, angular_distance, offset_table, shifted_directions
-from pumplink.mechanisms.fourbar import force_kernel, kernel_work
-from pumplink.mechanisms.fourbar import FourBar
-
+from pumplink.mechanisms.fourbar import FourBar, force_kernel, kernel_work
 
 #: Points per dead-band window on which the exact peak search starts (independent of the
 #: user's --samples); the best interior point is then refined by a bracketing minimiser.
@@ -44,7 +42,8 @@ def mean_force(wheel_torque, stroke):
 def in_dead_band(crank_angle, dead_centre_extended, dead_centre_folded, dead_band):
     """True where a crank angle lies within ``dead_band`` [rad] of either dead centre."""
     return (angular_distance(crank_angle, dead_centre_extended) <= dead_band) | (
-        angular_distance(crank_angle, dead_centre_folded) <= dead_band)
+        angular_distance(crank_angle, dead_centre_folded) <= dead_band
+    )
 
 
 def _windows(dc_ext, dc_fold, band):
@@ -82,9 +81,24 @@ def dead_band_peak_force(lk: FourBar, dead_centre_extended, dead_centre_folded, 
     """
     from scipy.optimize.elementwise import find_minimum  # lazy: keeps start-up fast
 
-    params = np.broadcast_arrays(*(np.asarray(v, float) for v in (
-        lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch,
-        wheel_torque, dead_centre_extended, dead_centre_folded, dead_band)))
+    params = np.broadcast_arrays(
+        *(
+            np.asarray(v, float)
+            for v in (
+                lk.pivot_x,
+                lk.pivot_y,
+                lk.crank,
+                lk.coupler,
+                lk.rocker,
+                lk.handle,
+                lk.branch,
+                wheel_torque,
+                dead_centre_extended,
+                dead_centre_folded,
+                dead_band,
+            )
+        )
+    )
     scalar = params[0].ndim == 0
     params = [np.atleast_1d(p).ravel() for p in params]
     *geom, dce, dcf, band = params  # geom: px, py, c, k, r, h, br, mw
@@ -110,8 +124,9 @@ def dead_band_peak_force(lk: FourBar, dead_centre_extended, dead_centre_folded, 
         th = theta[d_idx, a_idx]
         bracket = (th[np.arange(jj.size), jj - 1], th[np.arange(jj.size), jj], th[np.arange(jj.size), jj + 1])
         args = tuple(p[d_idx] for p in geom)
-        res = find_minimum(lambda x, *a: -_abs_force(x, *a), bracket, args=args,
-                           tolerances=dict(xatol=1e-13, xrtol=1e-15))
+        res = find_minimum(
+            lambda x, *a: -_abs_force(x, *a), bracket, args=args, tolerances=dict(xatol=1e-13, xrtol=1e-15)
+        )
         better = res.success & (-res.f_x > best[inner])
         best[inner] = np.where(better, -res.f_x, best[inner])
         best_th[inner] = np.where(better, res.x, best_th[inner])
@@ -139,8 +154,9 @@ def _offset_table(n: int):
     return offset_table(TWO_PI / n, SWEEP_BLOCK)
 
 
-def sampled_peak(lk: FourBar, n: int, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band,
-                 progress=None):
+def sampled_peak(
+    lk: FourBar, n: int, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band, progress=None
+):
     """Largest |force| over a uniform sweep of ``n`` crank angles strictly outside the dead bands.
 
     This is what a sampled sweep reports (it can step over the rise toward a dead centre);
@@ -159,9 +175,24 @@ def sampled_peak(lk: FourBar, n: int, wheel_torque, dead_centre_extended, dead_c
     -------
     peak : largest sampled |force| [N] per design (NaN where no sample lies outside the bands).
     """
-    params = np.broadcast_arrays(*(np.asarray(v, float) for v in (
-        lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch, wheel_torque,
-        dead_centre_extended, dead_centre_folded, dead_band)))
+    params = np.broadcast_arrays(
+        *(
+            np.asarray(v, float)
+            for v in (
+                lk.pivot_x,
+                lk.pivot_y,
+                lk.crank,
+                lk.coupler,
+                lk.rocker,
+                lk.handle,
+                lk.branch,
+                wheel_torque,
+                dead_centre_extended,
+                dead_centre_folded,
+                dead_band,
+            )
+        )
+    )
     scalar = params[0].ndim == 0
     *geom, dce, dcf, band = [np.atleast_1d(p).ravel() for p in params]
     n_designs = dce.size

@@ -15,8 +15,9 @@ import os
 import shutil
 import sys
 import tempfile
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from pathlib import Path
-from typing import Any, Callable, Iterable, Iterator, Sequence
+from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
@@ -29,11 +30,30 @@ from pumplink.errors import SpecError
 #: Per-variant columns after the name, the source and the varied keys (CSV order).  The
 #: flywheel scene's columns are named as in ``pumplink force --format json``
 #: (``pumplink.output.tables.force_summary``); empty (null) for quasi-static variants.
-SCENE_COLUMNS = ("model", "inertia_kg_m2", "speed_fluctuation", "required_peak_force_N", "min_passing_speed_deg_s")
+SCENE_COLUMNS = (
+    "model",
+    "inertia_kg_m2",
+    "speed_fluctuation",
+    "required_peak_force_N",
+    "min_passing_speed_deg_s",
+)
 FIXED_COLUMNS = (
-    "frame_length", "crank_length", "coupler_length", "feasible", "reason", "time_ratio",
-    "transmission_min_deg", "transmission_max_deg", "mean_force_N", "peak_force_N",
-    "sampled_peak_force_N", "power_W", "force_limit_N", *SCENE_COLUMNS, "pass", "failed",
+    "frame_length",
+    "crank_length",
+    "coupler_length",
+    "feasible",
+    "reason",
+    "time_ratio",
+    "transmission_min_deg",
+    "transmission_max_deg",
+    "mean_force_N",
+    "peak_force_N",
+    "sampled_peak_force_N",
+    "power_W",
+    "force_limit_N",
+    *SCENE_COLUMNS,
+    "pass",
+    "failed",
 )
 #: Rows shown by ``--format table``: all if the run has at most this many, else the failures.
 TABLE_ROWS = 100
@@ -101,8 +121,11 @@ def chunk_rows(batch: Batch, c: Chunk, cols: dict[str, list] | None = None) -> l
     vals = c.values.tolist()
     rows = []
     for i in range(len(c)):
-        row = {"name": cols["name"][i], "source": batch.source,
-               "vary": {k: v for k, v in zip(batch.keys, vals[i])}}
+        row = {
+            "name": cols["name"][i],
+            "source": batch.source,
+            "vary": {k: v for k, v in zip(batch.keys, vals[i])},
+        }
         row.update({k: cols[k][i] for k in FIXED_COLUMNS})
         rows.append(row)
     return rows
@@ -143,14 +166,29 @@ def csv_text(batch: Batch, c: Chunk, vkeys: Sequence[str]) -> str:
     bools = {True: "True", False: "False"}
     cache: dict = {None: ""}
     reason = [cache[r] if r in cache else cache.setdefault(r, _csv_cell(r)) for r in c.reason]
-    cols += [_csv_floats(c.frame_length), _csv_floats(c.crank_length), _csv_floats(c.coupler_length),
-             [bools[x] for x in c.feasible.tolist()], reason, _csv_floats(c.time_ratio),
-             _csv_floats(np.degrees(c.transmission_min)), _csv_floats(np.degrees(c.transmission_max)),
-             _csv_floats(c.mean_force), _csv_floats(c.dead_band_peak_force), _csv_floats(c.sampled_peak),
-             _csv_floats(c.power), _csv_floats(c.force_limit)]
+    cols += [
+        _csv_floats(c.frame_length),
+        _csv_floats(c.crank_length),
+        _csv_floats(c.coupler_length),
+        [bools[x] for x in c.feasible.tolist()],
+        reason,
+        _csv_floats(c.time_ratio),
+        _csv_floats(np.degrees(c.transmission_min)),
+        _csv_floats(np.degrees(c.transmission_max)),
+        _csv_floats(c.mean_force),
+        _csv_floats(c.dead_band_peak_force),
+        _csv_floats(c.sampled_peak),
+        _csv_floats(c.power),
+        _csv_floats(c.force_limit),
+    ]
     if c.flywheel.any():
-        cols += [[_csv_cell(m) for m in _models(c)], _csv_floats(c.inertia), _csv_floats(c.speed_fluctuation),
-                 _csv_floats(c.least_peak_force), _csv_floats(np.degrees(c.min_passing_speed))]
+        cols += [
+            [_csv_cell(m) for m in _models(c)],
+            _csv_floats(c.inertia),
+            _csv_floats(c.speed_fluctuation),
+            _csv_floats(c.least_peak_force),
+            _csv_floats(np.degrees(c.min_passing_speed)),
+        ]
     else:  # quasi-static only: no scene columns to format
         cols += [[_csv_cell(QUASI_STATIC)] * n] + [[""] * n] * 4
     cols += [[bools[x] for x in c.passed.tolist()], _failed_text(c)]
@@ -164,8 +202,11 @@ def json_text(batch: Batch, c: Chunk) -> str:
 
 def junit_text(batch: Batch, c: Chunk, fail_on: Sequence[str]) -> tuple[str, int, int]:
     """The chunk's JUnit testcases, with the number of failures and skipped."""
-    cols = {"mean_force_N": _floats(c.mean_force), "peak_force_N": _floats(c.dead_band_peak_force),
-            "force_limit_N": _floats(c.force_limit)}
+    cols = {
+        "mean_force_N": _floats(c.mean_force),
+        "peak_force_N": _floats(c.dead_band_peak_force),
+        "force_limit_N": _floats(c.force_limit),
+    }
     cls = f"pumplink.batch.{Path(batch.source).stem}"
     parts, failures, skipped = [], 0, 0
     names = variant_names(batch, c.start, c.stop)
@@ -176,8 +217,9 @@ def junit_text(batch: Batch, c: Chunk, fail_on: Sequence[str]) -> tuple[str, int
     return "".join(parts), failures, skipped
 
 
-def render_chunk(batch: Batch, c: Chunk, fmt: str, vkeys: Sequence[str], fail_on: Sequence[str],
-                 junit: bool) -> dict[str, Any]:
+def render_chunk(
+    batch: Batch, c: Chunk, fmt: str, vkeys: Sequence[str], fail_on: Sequence[str], junit: bool
+) -> dict[str, Any]:
     """Text for one chunk, built where the chunk was evaluated (a worker process)."""
     out: dict[str, Any] = {"data": None, "junit": None}
     if fmt == "csv":
@@ -199,8 +241,10 @@ def atomic_write(path: Path) -> Iterator[Any]:
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     except OSError as exc:
-        raise SpecError(f"{path}: cannot be written ({exc.strerror}); check that the folder "
-                        f"{path.parent} exists and is writable") from None
+        raise SpecError(
+            f"{path}: cannot be written ({exc.strerror}); check that the folder "
+            f"{path.parent} exists and is writable"
+        ) from None
     try:
         umask = os.umask(0)
         os.umask(umask)
@@ -221,7 +265,7 @@ def _junit_case(name: str, classname: str, failure: str | None, skipped: str | N
     if failure is not None:
         return f'{head}>\n      <failure message={quoteattr(failure)} type="pumplink">{escape(failure)}</failure>\n    </testcase>\n'
     if skipped is not None:
-        return f'{head}>\n      <skipped message={quoteattr(skipped)}/>\n    </testcase>\n'
+        return f"{head}>\n      <skipped message={quoteattr(skipped)}/>\n    </testcase>\n"
     return f"{head}/>\n"
 
 
@@ -243,22 +287,38 @@ def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequ
                 pk = float(c.least_peak_force[i])
                 what = f"peak force with the flywheel (δ ≤ {float(c.speed_fluctuation[i]):g})"
                 if pk == math.inf:
-                    bad.append(f"{what} infinite (the energy band J ω² δ is too small to carry the linkage through "
-                               f"the dead centres: J = {float(c.inertia[i]):g} kg m^2)")
+                    bad.append(
+                        f"{what} infinite (the energy band J ω² δ is too small to carry the linkage through "
+                        f"the dead centres: J = {float(c.inertia[i]):g} kg m^2)"
+                    )
                 else:
-                    bad.append(f"{what} undefined" if math.isnan(pk) else f"{what} {pk:.2f} N > limit {lim[i]:g} N")
+                    bad.append(
+                        f"{what} undefined" if math.isnan(pk) else f"{what} {pk:.2f} N > limit {lim[i]:g} N"
+                    )
             else:
                 pk = cols["peak_force_N"][i]
-                bad.append("peak force undefined (no crank angle outside the dead bands)" if pk is None
-                           else f"peak force {pk:.2f} N > limit {lim[i]:g} N")
+                bad.append(
+                    "peak force undefined (no crank angle outside the dead bands)"
+                    if pk is None
+                    else f"peak force {pk:.2f} N > limit {lim[i]:g} N"
+                )
         out.append(("; ".join(bad) if bad else None, None))
     return out
 
 
 # ----------------------------------------------------------------------------- the stream
 def _new_summary(total: int, fail_on, samples, chunk) -> dict[str, Any]:
-    return {"variants": total, "pass": 0, "fail": 0, "infeasible": 0, "failed_selected": 0,
-            "fail_on": list(fail_on), "samples": samples, "chunk": f"{chunk[0]}/{chunk[1]}", "best": None}
+    return {
+        "variants": total,
+        "pass": 0,
+        "fail": 0,
+        "infeasible": 0,
+        "failed_selected": 0,
+        "fail_on": list(fail_on),
+        "samples": samples,
+        "chunk": f"{chunk[0]}/{chunk[1]}",
+        "best": None,
+    }
 
 
 def _update_summary(s: dict, batch: Batch, c: Chunk, fail_on) -> None:
@@ -273,14 +333,27 @@ def _update_summary(s: dict, batch: Batch, c: Chunk, fail_on) -> None:
     if peak.size:
         i = int(np.argmin(peak))  # first of equal peaks: the lowest variant index wins ties
         if math.isfinite(peak[i]) and (s["best"] is None or peak[i] < s["best"]["peak_force_N"]):
-            s["best"] = {"name": variant_name(batch, c.start + i), "model": FLYWHEEL if c.flywheel[i] else QUASI_STATIC,
-                         "peak_force_N": float(peak[i]), "mean_force_N": float(c.mean_force[i]),
-                         "pass": bool(c.passed[i])}
+            s["best"] = {
+                "name": variant_name(batch, c.start + i),
+                "model": FLYWHEEL if c.flywheel[i] else QUASI_STATIC,
+                "peak_force_N": float(peak[i]),
+                "mean_force_N": float(c.mean_force[i]),
+                "pass": bool(c.passed[i]),
+            }
 
 
-def write_stream(batches: Sequence[Batch], results: Iterable[tuple[Chunk, dict]], total: int, fmt: str,
-                 out: Path | None, junit: Path | None, fail_on: Sequence[str], samples: int,
-                 chunk: tuple[int, int] = (1, 1), advance: Callable[[int], None] | None = None):
+def write_stream(
+    batches: Sequence[Batch],
+    results: Iterable[tuple[Chunk, dict]],
+    total: int,
+    fmt: str,
+    out: Path | None,
+    junit: Path | None,
+    fail_on: Sequence[str],
+    samples: int,
+    chunk: tuple[int, int] = (1, 1),
+    advance: Callable[[int], None] | None = None,
+):
     """Write the rendered chunks (from ``batch.run(..., post=render_chunk)``) as they come.
 
     csv/json rows go to ``out`` (atomically) or stdout; JUnit to ``junit`` (atomically).
@@ -294,15 +367,19 @@ def write_stream(batches: Sequence[Batch], results: Iterable[tuple[Chunk, dict]]
         if fmt in ("csv", "json"):
             data = stack.enter_context(atomic_write(out)) if out is not None else sys.stdout
         jfile = stack.enter_context(atomic_write(junit)) if junit is not None else None
-        suite = stack.enter_context(tempfile.TemporaryFile("w+", encoding="utf-8")) if junit is not None else None
+        suite = (
+            stack.enter_context(tempfile.TemporaryFile("w+", encoding="utf-8")) if junit is not None else None
+        )
         counts = {"tests": 0, "failures": 0, "skipped": 0}
         current = -1
 
         def flush_suite():
             if current < 0:
                 return
-            jfile.write(f'  <testsuite name={quoteattr(batches[current].source)} tests="{counts["tests"]}" '
-                        f'failures="{counts["failures"]}" errors="0" skipped="{counts["skipped"]}">\n')
+            jfile.write(
+                f'  <testsuite name={quoteattr(batches[current].source)} tests="{counts["tests"]}" '
+                f'failures="{counts["failures"]}" errors="0" skipped="{counts["skipped"]}">\n'
+            )
             suite.seek(0)
             shutil.copyfileobj(suite, jfile)  # a finished suite's testcases, streamed from disk
             jfile.write("  </testsuite>\n")
@@ -326,10 +403,12 @@ def write_stream(batches: Sequence[Batch], results: Iterable[tuple[Chunk, dict]]
                 pending = text["data"]
             elif fmt == "table" and len(table_rows) < TABLE_ROWS:
                 show = np.ones(len(c), bool) if total <= TABLE_ROWS else c.failed(fail_on)
-                pick = np.nonzero(show)[0][:TABLE_ROWS - len(table_rows)].tolist()
+                pick = np.nonzero(show)[0][: TABLE_ROWS - len(table_rows)].tolist()
                 if pick:
                     cc = chunk_columns(b, c)
-                    table_rows.extend({"name": cc["name"][i], **{k: cc[k][i] for k in FIXED_COLUMNS}} for i in pick)
+                    table_rows.extend(
+                        {"name": cc["name"][i], **{k: cc[k][i] for k in FIXED_COLUMNS}} for i in pick
+                    )
             if jfile is not None:
                 if c.batch != current:
                     flush_suite()
@@ -343,8 +422,13 @@ def write_stream(batches: Sequence[Batch], results: Iterable[tuple[Chunk, dict]]
             if advance is not None:
                 advance(len(c))
         if fmt == "json":
-            data.write(pending.removesuffix(",\n") + ('\n' if pending else '') + '],\n"summary": '
-                       + json.dumps(summary, allow_nan=False, ensure_ascii=False) + "}\n")
+            data.write(
+                pending.removesuffix(",\n")
+                + ("\n" if pending else "")
+                + '],\n"summary": '
+                + json.dumps(summary, allow_nan=False, ensure_ascii=False)
+                + "}\n"
+            )
         if jfile is not None:
             flush_suite()
             jfile.write("</testsuites>\n")
@@ -357,13 +441,19 @@ def summary_line(s: dict[str, Any], elapsed: float | None = None, wrote: Sequenc
     """One line for stderr: counts, best variant, what failed, what was written."""
     best = s["best"]
     fly = " (flywheel)" if best and best["model"] == FLYWHEEL else ""
-    best_txt = (f"; lowest peak{fly} {best['peak_force_N']:.1f} N: {best['name']}" if best else "; no feasible variant")
+    best_txt = (
+        f"; lowest peak{fly} {best['peak_force_N']:.1f} N: {best['name']}"
+        if best
+        else "; no feasible variant"
+    )
     sel = ",".join(s["fail_on"]) or "none"
     t = f" in {elapsed:.2f} s" if elapsed is not None else ""
     w = f"; wrote {', '.join(map(str, wrote))}" if wrote else ""
     chunk = f" (slice {s['chunk']})" if s["chunk"] != "1/1" else ""
-    return (f"batch: {s['variants']} variants{chunk}{t}: {s['pass']} pass, {s['fail']} fail, "
-            f"{s['infeasible']} infeasible; {s['failed_selected']} failing --fail-on {sel}{best_txt}{w}")
+    return (
+        f"batch: {s['variants']} variants{chunk}{t}: {s['pass']} pass, {s['fail']} fail, "
+        f"{s['infeasible']} infeasible; {s['failed_selected']} failing --fail-on {sel}{best_txt}{w}"
+    )
 
 
 def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
@@ -376,14 +466,30 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
     out = out or sys.stdout
     c = console(out)
     if rows:
-        title = ("Batch variants" if s["variants"] <= TABLE_ROWS else
-                 f"Failing variants (first {len(rows)} of {s['failed_selected']}; all rows with --format csv --out FILE)")
+        title = (
+            "Batch variants"
+            if s["variants"] <= TABLE_ROWS
+            else f"Failing variants (first {len(rows)} of {s['failed_selected']}; all rows with --format csv --out FILE)"
+        )
         t = Table(title=title, title_justify="left")
         mixed = any(r["model"] == FLYWHEEL for r in rows)  # the model column only when a flywheel decides
-        heads = ("variant", "crank l2 [m]", "coupler l3 [m]", "K", "γ min–max [deg]", "mean [N]", "peak [N]",
-                 *(("model",) if mixed else ()), "limit [N]", "power [W]", "result")
+        heads = (
+            "variant",
+            "crank l2 [m]",
+            "coupler l3 [m]",
+            "K",
+            "γ min–max [deg]",
+            "mean [N]",
+            "peak [N]",
+            *(("model",) if mixed else ()),
+            "limit [N]",
+            "power [W]",
+            "result",
+        )
         for h in heads:
-            t.add_column(h.replace("[", "\\["), justify="left" if h in ("variant", "model", "result") else "right")
+            t.add_column(
+                h.replace("[", "\\["), justify="left" if h in ("variant", "model", "result") else "right"
+            )
         for r in rows:
             if not r["feasible"]:
                 res = f"[red]infeasible[/]: {escape_markup(r['reason'])}"
@@ -391,25 +497,43 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
                 res = "[green]pass[/]" if r["pass"] else f"[red]FAIL[/] ({r['failed']})"
             fly = r["model"] == FLYWHEEL
             # the peak that decided: with the flywheel (None there: infinite), else outside the dead bands
-            peak = (_f(r["required_peak_force_N"], "{:.1f}", none="∞" if r["feasible"] else "—") if fly
-                    else _f(r["peak_force_N"], "{:.1f}"))
+            peak = (
+                _f(r["required_peak_force_N"], "{:.1f}", none="∞" if r["feasible"] else "—")
+                if fly
+                else _f(r["peak_force_N"], "{:.1f}")
+            )
             model = (("flywheel" if fly else "dead band"),) if mixed else ()
-            t.add_row(escape_markup(r["name"]), _f(r["crank_length"], "{:.4f}"), _f(r["coupler_length"], "{:.4f}"),
-                      _f(r["time_ratio"], "{:.4f}"),
-                      f"{_f(r['transmission_min_deg'], '{:.1f}')}–{_f(r['transmission_max_deg'], '{:.1f}')}",
-                      _f(r["mean_force_N"], "{:.1f}"), peak, *model, _f(r["force_limit_N"], "{:g}"),
-                      _f(r["power_W"], "{:.1f}"), res)
+            t.add_row(
+                escape_markup(r["name"]),
+                _f(r["crank_length"], "{:.4f}"),
+                _f(r["coupler_length"], "{:.4f}"),
+                _f(r["time_ratio"], "{:.4f}"),
+                f"{_f(r['transmission_min_deg'], '{:.1f}')}–{_f(r['transmission_max_deg'], '{:.1f}')}",
+                _f(r["mean_force_N"], "{:.1f}"),
+                peak,
+                *model,
+                _f(r["force_limit_N"], "{:g}"),
+                _f(r["power_W"], "{:.1f}"),
+                res,
+            )
         c.print(t)
         if mixed:
-            c.print("peak: the least peak force with the flywheel where the model is flywheel (the spec gives "
-                    "inertia), else the peak outside the dead bands", markup=False)
+            c.print(
+                "peak: the least peak force with the flywheel where the model is flywheel (the spec gives "
+                "inertia), else the peak outside the dead bands",
+                markup=False,
+            )
     best = s["best"]
-    c.print(f"{s['variants']} variants: [green]{s['pass']} pass[/], [red]{s['fail']} fail[/], "
-            f"{s['infeasible']} infeasible; {s['failed_selected']} failing --fail-on {','.join(s['fail_on']) or 'none'}")
+    c.print(
+        f"{s['variants']} variants: [green]{s['pass']} pass[/], [red]{s['fail']} fail[/], "
+        f"{s['infeasible']} infeasible; {s['failed_selected']} failing --fail-on {','.join(s['fail_on']) or 'none'}"
+    )
     if best:
         fly = " with the flywheel" if best["model"] == FLYWHEEL else ""
-        c.print(f"lowest peak force{fly}: {escape_markup(best['name'])} — peak {best['peak_force_N']:.1f} N, "
-                f"mean {best['mean_force_N']:.1f} N ({'pass' if best['pass'] else 'FAIL'})")
+        c.print(
+            f"lowest peak force{fly}: {escape_markup(best['name'])} — peak {best['peak_force_N']:.1f} N, "
+            f"mean {best['mean_force_N']:.1f} N ({'pass' if best['pass'] else 'FAIL'})"
+        )
 
 
 def escape_markup(text: str | None) -> str:

@@ -42,7 +42,9 @@ def check_path(path) -> Path:
     """Validate a chart path's extension before any work is done."""
     path = Path(path)
     if path.suffix.lower() not in SUFFIXES:
-        raise SpecError(f"--plot {path}: unknown chart type '{path.suffix}'; use a file ending in .png, .svg or .pdf")
+        raise SpecError(
+            f"--plot {path}: unknown chart type '{path.suffix}'; use a file ending in .png, .svg or .pdf"
+        )
     return path
 
 
@@ -69,25 +71,49 @@ def force_curve(result, curve, path) -> Path:
         x = np.degrees(dc)
         ax.axvline(x, color="k", lw=0.8, ls=":")
         ax.text(x, 2.6 * lim, f" dead centre\n ({label})", fontsize=8, va="top")
-        for lo, hi in ((x - band, x + band), (x - band + 360, x + band + 360), (x - band - 360, x + band - 360)):
+        for lo, hi in (
+            (x - band, x + band),
+            (x - band + 360, x + band + 360),
+            (x - band - 360, x + band - 360),
+        ):
             ax.axvspan(lo, hi, color="0.85", lw=0)
     ax.axhline(lim, color="C3", lw=1, ls="--", label=f"limit ±{lim:g} N")
     ax.axhline(-lim, color="C3", lw=1, ls="--")
     for sgn in (1, -1):
-        ax.axhline(sgn * result.mean_force, color="C2", lw=1, ls="-.",
-                   label=f"mean force ±{result.mean_force:.1f} N" if sgn > 0 else None)
+        ax.axhline(
+            sgn * result.mean_force,
+            color="C2",
+            lw=1,
+            ls="-.",
+            label=f"mean force ±{result.mean_force:.1f} N" if sgn > 0 else None,
+        )
     if curve.operator_force is not None:
-        ax.plot(np.degrees(theta), curve.operator_force, color="C1", lw=1.8,
-                label=f"operator force with the flywheel (peak {result.least_peak_force:.1f} N)")
+        ax.plot(
+            np.degrees(theta),
+            curve.operator_force,
+            color="C1",
+            lw=1.8,
+            label=f"operator force with the flywheel (peak {result.least_peak_force:.1f} N)",
+        )
         ax2 = ax.twinx()
         ax2.plot(np.degrees(theta), np.degrees(curve.wheel_speed), color="C4", lw=1, ls="--")
         ax2.set_ylabel("wheel speed [deg/s] (dashed)", color="C4")
         ax2.set_ylim(0, 1.3 * np.degrees(result.scene.max_speed))
     pk = np.degrees(result.dead_band_peak_angle)
-    ax.plot([pk], [curve.peak_sign * result.dead_band_peak_force], "o", color="C3",
-            label=f"peak outside dead bands {result.dead_band_peak_force:.1f} N")
-    ax.set(xlim=(0, 360), ylim=(-3 * lim, 3 * lim), xlabel="crank angle θ2 [deg]", ylabel="horizontal force at the grip [N]",
-           title=f"{result.design.spec.name}: operator force (grey: ±{band:g}° dead bands left to the wheel's inertia)")
+    ax.plot(
+        [pk],
+        [curve.peak_sign * result.dead_band_peak_force],
+        "o",
+        color="C3",
+        label=f"peak outside dead bands {result.dead_band_peak_force:.1f} N",
+    )
+    ax.set(
+        xlim=(0, 360),
+        ylim=(-3 * lim, 3 * lim),
+        xlabel="crank angle θ2 [deg]",
+        ylabel="horizontal force at the grip [N]",
+        title=f"{result.design.spec.name}: operator force (grey: ±{band:g}° dead bands left to the wheel's inertia)",
+    )
     ax.set_xticks(range(0, 361, 45))
     ax.grid(alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)
@@ -108,21 +134,48 @@ def speed_chart(sweep, path) -> Path:
     plt = pyplot()
     v = sweep.speed_deg_s
     fig, ax = plt.subplots(figsize=(8, 4.8), layout="constrained")
-    ax.plot(v, sweep.least_peak_force, color="C1", lw=2, marker="o", ms=3,
-            label=f"least peak force, flywheel (J = {sweep.inertia:.3f} kg·m², δ ≤ {sweep.speed_fluctuation:g})")
+    ax.plot(
+        v,
+        sweep.least_peak_force,
+        color="C1",
+        lw=2,
+        marker="o",
+        ms=3,
+        label=f"least peak force, flywheel (J = {sweep.inertia:.3f} kg·m², δ ≤ {sweep.speed_fluctuation:g})",
+    )
     ax.axhline(sweep.force_limit, color="C3", ls="--", lw=1, label=f"limit {sweep.force_limit:g} N")
-    ax.axhline(sweep.mean_force, color="C2", ls="-.", lw=1, label=f"mean force {sweep.mean_force:.1f} N (infinite flywheel)")
-    ax.axhline(sweep.dead_band_peak_force, color="C0", ls=":", lw=1,
-               label=f"quasi-static peak outside the dead band {sweep.dead_band_peak_force:.1f} N (speed-blind)")
+    ax.axhline(
+        sweep.mean_force,
+        color="C2",
+        ls="-.",
+        lw=1,
+        label=f"mean force {sweep.mean_force:.1f} N (infinite flywheel)",
+    )
+    ax.axhline(
+        sweep.dead_band_peak_force,
+        color="C0",
+        ls=":",
+        lw=1,
+        label=f"quasi-static peak outside the dead band {sweep.dead_band_peak_force:.1f} N (speed-blind)",
+    )
     if np.isfinite(sweep.min_passing_speed):
         x = np.degrees(sweep.min_passing_speed)
         ax.axvline(x, color="k", lw=0.8, ls=":")
-        ax.annotate(f"passes from {x:.0f} deg/s", (x, sweep.force_limit), xytext=(8, 30), textcoords="offset points",
-                    arrowprops=dict(arrowstyle="->", lw=0.8), fontsize=9)
+        ax.annotate(
+            f"passes from {x:.0f} deg/s",
+            (x, sweep.force_limit),
+            xytext=(8, 30),
+            textcoords="offset points",
+            arrowprops=dict(arrowstyle="->", lw=0.8),
+            fontsize=9,
+        )
     top = np.nanmax(np.where(np.isfinite(sweep.least_peak_force), sweep.least_peak_force, np.nan))
-    ax.set(xlabel="mean wheel speed ω̄ [deg/s]", ylabel="peak horizontal force at the grip [N]",
-           ylim=(0, min(max(top, sweep.force_limit) * 1.1, 4 * sweep.force_limit)),
-           title=f"{sweep.design.spec.name}: the wheel's inertia carries the dead centres; faster needs less force")
+    ax.set(
+        xlabel="mean wheel speed ω̄ [deg/s]",
+        ylabel="peak horizontal force at the grip [N]",
+        ylim=(0, min(max(top, sweep.force_limit) * 1.1, 4 * sweep.force_limit)),
+        title=f"{sweep.design.spec.name}: the wheel's inertia carries the dead centres; faster needs less force",
+    )
     ax2 = ax.twinx()
     ax2.plot(v, sweep.power, color="0.5", lw=1, ls="--")
     ax2.axhline(75, color="0.5", lw=0.6, ls=":")
@@ -138,8 +191,12 @@ def speed_chart(sweep, path) -> Path:
 ERROR_FLOOR = 1e-17
 
 
-MARKERS = {"uniform sweep": "o", "near a dead centre (down to 1e-6 deg)": "s", "exactly at a dead centre": "x",
-           "danger points": "^"}
+MARKERS = {
+    "uniform sweep": "o",
+    "near a dead centre (down to 1e-6 deg)": "s",
+    "exactly at a dead centre": "x",
+    "danger points": "^",
+}
 
 
 COLOURS = {"vector": "tab:blue", "paper": "tab:orange", "numeric": "tab:green", "reference": "tab:gray"}
@@ -154,11 +211,24 @@ def plot_methods(rows: list[dict], path: Path, title: str = "") -> None:
             if st["max_rel_error"] is None:
                 continue  # every point flagged (e.g. exact dead centres): nothing to plot
             err = max(st["max_rel_error"], ERROR_FLOOR)
-            ax.scatter(st["seconds_per_position"], err, marker=MARKERS.get(kind, "o"),
-                       color=COLOURS.get(r["name"], "k"), s=55, zorder=3)
-        ax.annotate(r["name"], (r["samplings"]["uniform sweep"]["seconds_per_position"],
-                                max(r["samplings"]["uniform sweep"]["max_rel_error"] or ERROR_FLOOR, ERROR_FLOOR)),
-                    textcoords="offset points", xytext=(6, 6), color=COLOURS.get(r["name"], "k"))
+            ax.scatter(
+                st["seconds_per_position"],
+                err,
+                marker=MARKERS.get(kind, "o"),
+                color=COLOURS.get(r["name"], "k"),
+                s=55,
+                zorder=3,
+            )
+        ax.annotate(
+            r["name"],
+            (
+                r["samplings"]["uniform sweep"]["seconds_per_position"],
+                max(r["samplings"]["uniform sweep"]["max_rel_error"] or ERROR_FLOOR, ERROR_FLOOR),
+            ),
+            textcoords="offset points",
+            xytext=(6, 6),
+            color=COLOURS.get(r["name"], "k"),
+        )
     for kind, mk in MARKERS.items():
         if kind != "exactly at a dead centre":
             ax.scatter([], [], marker=mk, color="k", label=kind)
@@ -180,8 +250,13 @@ def plot_sampling(study: list[dict], path: Path, title: str = "", dead_band_deg:
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4.2))
     n = [s["n"] for s in study]
     a1.plot(n, [s["sampled_max"] for s in study], "o-", color="tab:red", label="sweep max |Fh|, no dead band")
-    a1.plot(n, [s["sampled_peak"] for s in study], "s-", color="tab:blue",
-            label=f"sampled peak outside ±{dead_band_deg:g}°")
+    a1.plot(
+        n,
+        [s["sampled_peak"] for s in study],
+        "s-",
+        color="tab:blue",
+        label=f"sampled peak outside ±{dead_band_deg:g}°",
+    )
     a1.axhline(study[0]["exact_peak"], color="tab:blue", ls="--", label="exact peak outside band")
     a1.axhline(study[0]["exact_mean"], color="tab:green", ls=":", label="mean force (lower bound)")
     a1.set_xscale("log")
@@ -191,7 +266,13 @@ def plot_sampling(study: list[dict], path: Path, title: str = "", dead_band_deg:
     a1.legend(fontsize=8)
     a1.set_title("peak force a sweep reports", fontsize=10)
     a2.plot(n, [s["peak_error"] for s in study], "s-", color="tab:blue", label="sampled peak (outside band)")
-    a2.plot(n, [max(s["mean_error"], ERROR_FLOOR) for s in study], "o-", color="tab:green", label="sampled mean force")
+    a2.plot(
+        n,
+        [max(s["mean_error"], ERROR_FLOOR) for s in study],
+        "o-",
+        color="tab:green",
+        label="sampled mean force",
+    )
     a2.set_xscale("log")
     a2.set_yscale("log")
     a2.set_xlabel("samples per revolution N")
@@ -223,19 +304,35 @@ def transmission_chart(chart, path) -> None:
     fig, ax = plt.subplots(figsize=(8.5, 6.5), dpi=120)
     cs1 = ax.contour(phi, th, mu, levels=np.arange(10, 90, 5), colors="tab:blue", linewidths=1.0)
     ax.clabel(cs1, fmt="%g°", fontsize=8)
-    cs2 = ax.contour(phi, th, ratio, levels=np.round(np.arange(0.1, 2.01, 0.1), 2), colors="tab:red",
-                     linewidths=0.9, linestyles="--")
+    cs2 = ax.contour(
+        phi,
+        th,
+        ratio,
+        levels=np.round(np.arange(0.1, 2.01, 0.1), 2),
+        colors="tab:red",
+        linewidths=0.9,
+        linestyles="--",
+    )
     ax.clabel(cs2, fmt="%.1f", fontsize=8)
     ax.plot([chart.example_swing_deg], [chart.example_theta_deg], "ko", ms=4)
-    ax.annotate("the paper's example", (chart.example_swing_deg, chart.example_theta_deg),
-                xytext=(6, 6), textcoords="offset points", fontsize=8)
+    ax.annotate(
+        "the paper's example",
+        (chart.example_swing_deg, chart.example_theta_deg),
+        xytext=(6, 6),
+        textcoords="offset points",
+        fontsize=8,
+    )
     ax.set_xlabel("rocker swing φ [deg]")
     ax.set_ylabel("extreme included angle θ = 180°(K−1)/(K+1) [deg]")
-    sec = ax.secondary_yaxis("right", functions=(lambda t: (180 + t) / (180 - t), lambda k: 180 * (k - 1) / (k + 1)))
+    sec = ax.secondary_yaxis(
+        "right", functions=(lambda t: (180 + t) / (180 - t), lambda k: 180 * (k - 1) / (k + 1))
+    )
     sec.set_ylabel("time ratio K")
-    ax.set_title("Optimal transmission of the crank-rocker (the paper's Fig. 3, exact)\n"
-                 "blue: best minimum transmission angle [deg]; red dashed: rocker/frame at the optimum",
-                 fontsize=9)
+    ax.set_title(
+        "Optimal transmission of the crank-rocker (the paper's Fig. 3, exact)\n"
+        "blue: best minimum transmission angle [deg]; red dashed: rocker/frame at the optimum",
+        fontsize=9,
+    )
     ax.grid(alpha=0.3)
     fig.tight_layout()
     save(fig, path)

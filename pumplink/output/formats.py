@@ -12,7 +12,8 @@ import json
 import math
 import sys
 import time
-from typing import Any, Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
+from typing import Any
 
 import numpy as np
 
@@ -31,8 +32,9 @@ def deg(x) -> float | None:
 
 # ----------------------------------------------------------------------------- progress
 @contextlib.contextmanager
-def progress(total: int, label: str = "batch", enabled: bool | None = None,
-             delay: float = 1.0) -> Iterator[Callable[[int], None]]:
+def progress(
+    total: int, label: str = "batch", enabled: bool | None = None, delay: float = 1.0
+) -> Iterator[Callable[[int], None]]:
     """``advance(n)`` for a Rich progress bar on stderr, shown only on a terminal and only once
     the run has taken longer than ``delay`` seconds."""
     if enabled is None:
@@ -47,8 +49,14 @@ def progress(total: int, label: str = "batch", enabled: bool | None = None,
             from rich.console import Console
             from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-            bar = Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
-                           console=Console(stderr=True), transient=True)
+            bar = Progress(
+                TextColumn(label),
+                BarColumn(),
+                MofNCompleteColumn(),
+                TimeRemainingColumn(),
+                console=Console(stderr=True),
+                transient=True,
+            )
             bar.start()
             state["bar"], state["task"] = bar, bar.add_task(label, total=total)
         if state["bar"] is not None:

@@ -8,25 +8,29 @@ from __future__ import annotations
 
 import math
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from typing import TYPE_CHECKING
-
 if TYPE_CHECKING:
     from pumplink.analysis import Design, ForceResult, SpeedSweep
-from pumplink.output.formats import console, deg, fmt as _f, num, write_csv, write_json as _json
+from pumplink.output.formats import console, deg, num, write_csv
+from pumplink.output.formats import fmt as _f
+from pumplink.output.formats import write_json as _json
+
 
 # ----------------------------------------------------------------------------- rows
 def design_row(d: Design) -> dict[str, Any]:
-    """The JSON contract of one synthesised design (issue #2)."""
+    """The JSON contract of one synthesised design."""
     s, lk = d.synthesis, d.spec.linkage
     return {
         "name": d.spec.name,
         "feasible": d.feasible,
         "error": d.error,
-        "L1": lk.L1, "D1": lk.D1, "b": lk.b, "swing_deg": lk.swing,
+        "L1": lk.L1,
+        "D1": lk.D1,
+        "b": lk.b,
+        "swing_deg": lk.swing,
         "frame_length": num(s.frame_length),
         "beta_deg": deg(s.beta),
         "psi1_deg": deg(s.psi1),
@@ -45,32 +49,46 @@ def design_row(d: Design) -> dict[str, Any]:
 
 
 def force_summary(r: ForceResult) -> dict[str, Any]:
-    """The JSON contract of a force analysis without samples (issue #2)."""
+    """The JSON contract of a force analysis without samples."""
     out = design_row(r.design)
-    out.update({
-        "speed_deg_s": r.speed_deg_s,
-        "wheel_torque_Nm": num(r.wheel_torque),
-        "power_W": num(r.power),
-        "force_limit_N": num(r.force_limit),
-        "dead_band_deg": r.design.spec.operator.dead_band,
-        "model": r.model,
-        "inertia_kg_m2": None if r.inertia is None else num(r.inertia),
-        "speed_fluctuation": r.speed_fluctuation,
-        "energy_band_J": None if r.energy_band is None else num(r.energy_band),
-        "required_peak_force_N": None if r.least_peak_force is None else num(r.least_peak_force),
-        "min_passing_speed_deg_s": None if r.min_passing_speed is None else deg(r.min_passing_speed),
-        "wheel_speed_range_deg_s": _speed_range(r),
-        "link_kinetic_energy_J": num(r.link_energy),
-        "mean_force_N": num(r.mean_force),
-        "peak_force_N": num(r.dead_band_peak_force),
-        "peak_force_infinite": bool(r.dead_band_peak_force == math.inf),  # dead_band = 0: the window reaches a dead centre
-        "peak_crank_deg": deg(r.dead_band_peak_angle),
-        "sampled_peak_force_N": num(r.sampled_peak),
-        "samples_n": r.samples_n,
-        "pass": r.passed,
-        "checks": [{"name": check_label(c, r), "value": num(c.value), "limit": c.limit, "relation": c.relation,
-                    "unit": c.unit, "severity": c.severity, "pass": c.passed} for c in r.checks],
-    })
+    out.update(
+        {
+            "speed_deg_s": r.speed_deg_s,
+            "wheel_torque_Nm": num(r.wheel_torque),
+            "power_W": num(r.power),
+            "force_limit_N": num(r.force_limit),
+            "dead_band_deg": r.design.spec.operator.dead_band,
+            "model": r.model,
+            "inertia_kg_m2": None if r.inertia is None else num(r.inertia),
+            "speed_fluctuation": r.speed_fluctuation,
+            "energy_band_J": None if r.energy_band is None else num(r.energy_band),
+            "required_peak_force_N": None if r.least_peak_force is None else num(r.least_peak_force),
+            "min_passing_speed_deg_s": None if r.min_passing_speed is None else deg(r.min_passing_speed),
+            "wheel_speed_range_deg_s": _speed_range(r),
+            "link_kinetic_energy_J": num(r.link_energy),
+            "mean_force_N": num(r.mean_force),
+            "peak_force_N": num(r.dead_band_peak_force),
+            "peak_force_infinite": bool(
+                r.dead_band_peak_force == math.inf
+            ),  # dead_band = 0: the window reaches a dead centre
+            "peak_crank_deg": deg(r.dead_band_peak_angle),
+            "sampled_peak_force_N": num(r.sampled_peak),
+            "samples_n": r.samples_n,
+            "pass": r.passed,
+            "checks": [
+                {
+                    "name": check_label(c, r),
+                    "value": num(c.value),
+                    "limit": c.limit,
+                    "relation": c.relation,
+                    "unit": c.unit,
+                    "severity": c.severity,
+                    "pass": c.passed,
+                }
+                for c in r.checks
+            ],
+        }
+    )
     return out
 
 
@@ -116,8 +134,9 @@ def sample_rows(r: ForceResult) -> list[dict[str, Any]]:
         # the operator's force and the wheel speed: the flywheel scene's profile, or (quasi-static)
         # the quasi-static force at a constant speed
         "operator_force_N": s.force if r.operator_force is None else r.operator_force,
-        "wheel_speed_deg_s": np.degrees(np.broadcast_to(r.speed if r.wheel_speed is None else r.wheel_speed,
-                                                        s.force.shape)),
+        "wheel_speed_deg_s": np.degrees(
+            np.broadcast_to(r.speed if r.wheel_speed is None else r.wheel_speed, s.force.shape)
+        ),
     }
     lists = {k: v.tolist() for k, v in cols.items()}
     sing, band = s.singular.tolist(), r.in_dead_band.tolist()
@@ -141,12 +160,32 @@ def render_designs(designs: list[Design], fmt: str, out=None) -> None:
     from rich.markup import escape
     from rich.table import Table
 
-    t = Table(title="Dead-centre synthesis, Eq. (1)–(2) of the pump paper", title_justify="left",
-              caption="lengths \\[m], angles \\[deg]; l1 frame, l2 crank, l3 coupler, l4 rocker, H handle, Δθ swing, "
-                      "K time ratio, γ transmission angle, DC crank angle of the extended / folded dead centre",
-              caption_justify="left")
-    for h in ("design", "L1", "D1", "b", "l4", "H", "Δθ", "l1", "β", "l2", "l3", "K", "γ min", "γ max",
-              "DC ext", "DC fold", "feasible"):
+    t = Table(
+        title="Dead-centre synthesis, Eq. (1)–(2) of the pump paper",
+        title_justify="left",
+        caption="lengths \\[m], angles \\[deg]; l1 frame, l2 crank, l3 coupler, l4 rocker, H handle, Δθ swing, "
+        "K time ratio, γ transmission angle, DC crank angle of the extended / folded dead centre",
+        caption_justify="left",
+    )
+    for h in (
+        "design",
+        "L1",
+        "D1",
+        "b",
+        "l4",
+        "H",
+        "Δθ",
+        "l1",
+        "β",
+        "l2",
+        "l3",
+        "K",
+        "γ min",
+        "γ max",
+        "DC ext",
+        "DC fold",
+        "feasible",
+    ):
         t.add_column(h, justify="left" if h in ("design", "feasible") else "right", no_wrap=h == "design")
     notes = []
     for d, r in zip(designs, rows):
@@ -155,11 +194,25 @@ def render_designs(designs: list[Design], fmt: str, out=None) -> None:
             notes.append(f"({len(notes) + 1}) {r['name']}: {r['error']}.")  # printed with markup=False
         lk = d.spec.linkage
         tr, dc = r["transmission_angle_deg"], r["dead_centres_deg"]
-        t.add_row(escape(r["name"]), _f(lk.L1), _f(lk.D1), _f(lk.b), _f(lk.rocker), _f(lk.handle), _f(lk.swing, "{:.1f}"),
-                  _f(r["frame_length"], "{:.4f}"), _f(r["beta_deg"], "{:.2f}"),
-                  _f(r["crank_length"], "{:.4f}"), _f(r["coupler_length"], "{:.4f}"), _f(r["time_ratio"], "{:.4f}"),
-                  _f(tr["min"], "{:.1f}"), _f(tr["max"], "{:.1f}"), _f(dc["extended"], "{:.2f}"),
-                  _f(dc["folded"], "{:.2f}"), ok)
+        t.add_row(
+            escape(r["name"]),
+            _f(lk.L1),
+            _f(lk.D1),
+            _f(lk.b),
+            _f(lk.rocker),
+            _f(lk.handle),
+            _f(lk.swing, "{:.1f}"),
+            _f(r["frame_length"], "{:.4f}"),
+            _f(r["beta_deg"], "{:.2f}"),
+            _f(r["crank_length"], "{:.4f}"),
+            _f(r["coupler_length"], "{:.4f}"),
+            _f(r["time_ratio"], "{:.4f}"),
+            _f(tr["min"], "{:.1f}"),
+            _f(tr["max"], "{:.1f}"),
+            _f(dc["extended"], "{:.2f}"),
+            _f(dc["folded"], "{:.2f}"),
+            ok,
+        )
     c = console(out)
     c.print(t)
     for n in notes:
@@ -182,16 +235,22 @@ def _condensed_indices(r: ForceResult, max_rows: int = 24) -> list[int]:
 
 
 def model_line(r: ForceResult) -> str:
-    """Which model decided the verdict, in words (issue #6)."""
+    """Which model decided the verdict, in words."""
     if r.flywheel:
-        return (f"model: flywheel, J = {r.inertia:.3f} kg·m², δ ≤ {r.speed_fluctuation:g} at a mean "
-                f"{r.speed_deg_s:g} deg/s (energy band W = J·ω̄²·δ = {r.energy_band:.2f} J); links' inertia neglected")
-    return ("model: quasi-static + dead band (the wheel's inertia is assumed to carry the linkage "
-            f"through ±{r.design.spec.operator.dead_band:g}° of each dead centre; give wheel.mass or "
-            "wheel.inertia to let the speed decide)")
+        return (
+            f"model: flywheel, J = {r.inertia:.3f} kg·m², δ ≤ {r.speed_fluctuation:g} at a mean "
+            f"{r.speed_deg_s:g} deg/s (energy band W = J·ω̄²·δ = {r.energy_band:.2f} J); links' inertia neglected"
+        )
+    return (
+        "model: quasi-static + dead band (the wheel's inertia is assumed to carry the linkage "
+        f"through ±{r.design.spec.operator.dead_band:g}° of each dead centre; give wheel.mass or "
+        "wheel.inertia to let the speed decide)"
+    )
 
 
-def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None, extra: dict | None = None) -> None:
+def render_force(
+    r: ForceResult, fmt: str, summary: bool = False, out=None, extra: dict | None = None
+) -> None:
     """`pumplink force`: sweep table (condensed), checks and the verdict.
 
     ``extra`` (JSON only): more top-level keys, e.g. ``explain`` and ``verify``.
@@ -217,20 +276,31 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None, extr
         c.print("[bold red]VERDICT: FAIL[/] (no linkage to drive)")
         return
     dc = d["dead_centres_deg"]
-    c.print(f"[bold]{name}[/]  crank l2 = {d['crank_length']:.4f} m, coupler l3 = {d['coupler_length']:.4f} m, "
-            f"rocker l4 = {d['rocker_length']:.4f} m, frame l1 = {d['frame_length']:.4f} m, handle H = {d['handle_length']:.3f} m")
-    c.print(f"dead centres at crank {dc['extended']:.2f}° (extended) and {dc['folded']:.2f}° (folded); "
-            f"time ratio K = {d['time_ratio']:.4f}; wheel torque Mw = {r.wheel_torque:.3f} N·m at "
-            f"{r.speed_deg_s:g} deg/s ({r.power:.1f} W)")
+    c.print(
+        f"[bold]{name}[/]  crank l2 = {d['crank_length']:.4f} m, coupler l3 = {d['coupler_length']:.4f} m, "
+        f"rocker l4 = {d['rocker_length']:.4f} m, frame l1 = {d['frame_length']:.4f} m, handle H = {d['handle_length']:.3f} m"
+    )
+    c.print(
+        f"dead centres at crank {dc['extended']:.2f}° (extended) and {dc['folded']:.2f}° (folded); "
+        f"time ratio K = {d['time_ratio']:.4f}; wheel torque Mw = {r.wheel_torque:.3f} N·m at "
+        f"{r.speed_deg_s:g} deg/s ({r.power:.1f} W)"
+    )
     fly = r.flywheel and r.operator_force is not None
 
     if not summary and r.samples is not None and r.samples.crank_angle.size:
         s = r.samples
         kind = "flywheel scene: the operator's force and the wheel speed" if fly else "quasi-static"
-        t = Table(title=f"Operator force over the crank cycle ({kind}, {r.samples_n} samples"
-                        f"{', condensed' if s.crank_angle.size > 28 else ''})", title_justify="left")
+        t = Table(
+            title=f"Operator force over the crank cycle ({kind}, {r.samples_n} samples"
+            f"{', condensed' if s.crank_angle.size > 28 else ''})",
+            title_justify="left",
+        )
         heads = ["crank θ2 [deg]", "quasi-static Fh [N]"]
-        heads += ["operator F [N]", f"|F| vs {r.force_limit:g} N", "wheel ω [deg/s]"] if fly else [f"|Fh| vs {r.force_limit:g} N"]
+        heads += (
+            ["operator F [N]", f"|F| vs {r.force_limit:g} N", "wheel ω [deg/s]"]
+            if fly
+            else [f"|Fh| vs {r.force_limit:g} N"]
+        )
         heads += ["grip speed [m/s]", "φ [deg]", "rocker θ4 [deg]", "γ [deg]", "note"]
         for h in heads:
             t.add_column(escape(h), justify="left" if h.startswith(("|", "note")) else "right")
@@ -244,10 +314,19 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None, extr
                 mid = [_f(op, "{:+.1f}"), _bar(op, r.force_limit), _f(np.degrees(w), "{:.1f}")]
             else:
                 mid = [_bar(None if st.singular[i] else float(f), r.force_limit)]
-            rows.append((float(st.crank_angle[i]) % (2 * math.pi), _f(np.degrees(st.crank_angle[i]) % 360, "{:.2f}"),
-                         qs, *mid, _f(speed, "{:.3f}"),
-                         _f(np.degrees(st.rocker_angle[i]) - 90, "{:+.1f}"), _f(np.degrees(st.rocker_angle[i]), "{:.1f}"),
-                         _f(np.degrees(st.transmission_angle[i]), "{:.1f}"), note))
+            rows.append(
+                (
+                    float(st.crank_angle[i]) % (2 * math.pi),
+                    _f(np.degrees(st.crank_angle[i]) % 360, "{:.2f}"),
+                    qs,
+                    *mid,
+                    _f(speed, "{:.3f}"),
+                    _f(np.degrees(st.rocker_angle[i]) - 90, "{:+.1f}"),
+                    _f(np.degrees(st.rocker_angle[i]), "{:.1f}"),
+                    _f(np.degrees(st.transmission_angle[i]), "{:.1f}"),
+                    note,
+                )
+            )
 
         for i in _condensed_indices(r):
             if s.singular[i]:
@@ -265,7 +344,9 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None, extr
                 for i, label in enumerate(("dead centre (extended)", "dead centre (folded)")):
                     add(m, i, speeds[i], f"[bold]{label}[/]", ops[i], ws[i])
             else:
-                for i, label in enumerate(("dead centre (extended)", "dead centre (folded)", "exact peak outside dead band")):
+                for i, label in enumerate(
+                    ("dead centre (extended)", "dead centre (folded)", "exact peak outside dead band")
+                ):
                     add(m, i, speeds[i], f"[bold]{label}[/]")
         for row in sorted(rows, key=lambda x: x[0] % (2 * math.pi)):
             t.add_row(*row[1:])
@@ -275,19 +356,39 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None, extr
     for h in ("check", "value", "limit", "result"):
         ct.add_column(h, justify="right" if h in ("value", "limit") else "left")
     if r.flywheel:
-        ct.add_row(f"quasi-static peak outside ±{r.design.spec.operator.dead_band:g}° (dead-band model, for comparison)",
-                   f"{_f(r.dead_band_peak_force, '{:.2f}', '∞')} N", "", "[dim]info[/]")
+        ct.add_row(
+            f"quasi-static peak outside ±{r.design.spec.operator.dead_band:g}° (dead-band model, for comparison)",
+            f"{_f(r.dead_band_peak_force, '{:.2f}', '∞')} N",
+            "",
+            "[dim]info[/]",
+        )
         mps = r.min_passing_speed
-        ct.add_row("least mean wheel speed that passes the limit", "never" if mps == math.inf else
-                   f"{_f(np.degrees(mps), '{:.1f}')} deg/s", f"at {r.force_limit:g} N", "[dim]info[/]")
+        ct.add_row(
+            "least mean wheel speed that passes the limit",
+            "never" if mps == math.inf else f"{_f(np.degrees(mps), '{:.1f}')} deg/s",
+            f"at {r.force_limit:g} N",
+            "[dim]info[/]",
+        )
     else:
-        ct.add_row("sampled peak outside dead band (for comparison)", f"{_f(r.sampled_peak, '{:.2f}')} N",
-                   f"{r.samples_n} samples", "[dim]info[/]")
+        ct.add_row(
+            "sampled peak outside dead band (for comparison)",
+            f"{_f(r.sampled_peak, '{:.2f}')} N",
+            f"{r.samples_n} samples",
+            "[dim]info[/]",
+        )
     for ch in r.checks:
-        res = "[green]pass[/]" if ch.passed else ("[red]FAIL[/]" if ch.severity == "fail" else "[yellow]warning[/]")
+        res = (
+            "[green]pass[/]"
+            if ch.passed
+            else ("[red]FAIL[/]" if ch.severity == "fail" else "[yellow]warning[/]")
+        )
         unit = f" {ch.unit}" if ch.unit else ""
-        ct.add_row(escape(check_label(ch, r)), f"{_f(ch.value, '{:.2f}', '∞') if ch.value != np.inf else '∞'}{unit}",
-                   f"{ch.relation} {ch.limit:g}{unit}", res)
+        ct.add_row(
+            escape(check_label(ch, r)),
+            f"{_f(ch.value, '{:.2f}', '∞') if ch.value != np.inf else '∞'}{unit}",
+            f"{ch.relation} {ch.limit:g}{unit}",
+            res,
+        )
     c.print(ct)
     c.print(model_line(r))
     warned = [ch for ch in r.checks if ch.severity == "warn" and not ch.passed]
@@ -295,33 +396,60 @@ def render_force(r: ForceResult, fmt: str, summary: bool = False, out=None, extr
     how = " with the flywheel" if r.flywheel else ""
     if r.passed:
         note = f" ({len(warned)} warning{'s' if len(warned) > 1 else ''} below)" if warned else ""
-        c.print(f"[bold green]VERDICT: PASS[/] — mean {r.mean_force:.1f} N and peak {peak:.1f} N{how} are within "
-                f"the {r.force_limit:g} N limit{note}")
+        c.print(
+            f"[bold green]VERDICT: PASS[/] — mean {r.mean_force:.1f} N and peak {peak:.1f} N{how} are within "
+            f"the {r.force_limit:g} N limit{note}"
+        )
     else:
         bad = [check_label(ch, r) for ch in r.checks if ch.severity == "fail" and not ch.passed]
         hint = ""
         if r.flywheel and r.min_passing_speed is not None and math.isfinite(r.min_passing_speed):
-            hint = f"; it passes from a mean {np.degrees(r.min_passing_speed):.0f} deg/s (see: pumplink speed)"
-        c.print(f"[bold red]VERDICT: FAIL[/] — {', '.join(bad)} above the {r.force_limit:g} N limit "
-                f"(mean {r.mean_force:.1f} N, peak {_f(peak, '{:.1f}', '∞')} N{how}){hint}")
+            hint = (
+                f"; it passes from a mean {np.degrees(r.min_passing_speed):.0f} deg/s (see: pumplink speed)"
+            )
+        c.print(
+            f"[bold red]VERDICT: FAIL[/] — {', '.join(bad)} above the {r.force_limit:g} N limit "
+            f"(mean {r.mean_force:.1f} N, peak {_f(peak, '{:.1f}', '∞')} N{how}){hint}"
+        )
     for ch in warned:
         if ch.key == "link_energy_share":
-            c.print(f"[yellow]warning:[/] the links' kinetic energy is {ch.value:.0f} % of the energy band (> "
-                    f"{ch.limit:g} %): the flywheel model neglects it, so treat the verdict as an estimate "
-                    "(a lighter handle or a heavier wheel; see --explain)")
+            c.print(
+                f"[yellow]warning:[/] the links' kinetic energy is {ch.value:.0f} % of the energy band (> "
+                f"{ch.limit:g} %): the flywheel model neglects it, so treat the verdict as an estimate "
+                "(a lighter handle or a heavier wheel; see --explain)"
+            )
             continue
-        c.print(f"[yellow]warning:[/] {escape(check_label(ch, r))} is {ch.value:.2f} {ch.unit}, outside {ch.relation} {ch.limit:g} {ch.unit}"
-                + (" (a person sustains ~75 W for hours; slow the wheel or lower the load)" if ch.key == "power" else "")
-                + (" (pressure angle above 45°: the coupler pushes the crank at a poor angle and the joints wear)"
-                   if ch.key == "transmission_angle" else ""))
+        c.print(
+            f"[yellow]warning:[/] {escape(check_label(ch, r))} is {ch.value:.2f} {ch.unit}, outside {ch.relation} {ch.limit:g} {ch.unit}"
+            + (
+                " (a person sustains ~75 W for hours; slow the wheel or lower the load)"
+                if ch.key == "power"
+                else ""
+            )
+            + (
+                " (pressure angle above 45°: the coupler pushes the crank at a poor angle and the joints wear)"
+                if ch.key == "transmission_angle"
+                else ""
+            )
+        )
 
 
 # ----------------------------------------------------------------------------- model choice, verification, speed
 # ----------------------------------------------------------------------------- model choice, verification, speed
 def explain_rows(effects) -> list[dict[str, Any]]:
     """The model-choice report as rows (JSON/CSV)."""
-    return [{"effect": e.name, "included": e.included, "value": num(e.value), "unit": e.unit,
-             "compared_with": e.compared_with, "ratio": num(e.ratio), "note": e.note} for e in effects]
+    return [
+        {
+            "effect": e.name,
+            "included": e.included,
+            "value": num(e.value),
+            "unit": e.unit,
+            "compared_with": e.compared_with,
+            "ratio": num(e.ratio),
+            "note": e.note,
+        }
+        for e in effects
+    ]
 
 
 def render_explain(effects, why: str, out=None) -> None:
@@ -330,14 +458,24 @@ def render_explain(effects, why: str, out=None) -> None:
     from rich.table import Table
 
     c = console(out or sys.stdout)
-    t = Table(title="Model choice: what is in the model, and how big it is at this speed", title_justify="left")
+    t = Table(
+        title="Model choice: what is in the model, and how big it is at this speed", title_justify="left"
+    )
     for h in ("effect", "in model", "size", "compared with", "ratio", "note"):
         t.add_column(h, justify="right" if h in ("size", "ratio") else "left")
     for e in effects:
         inc = "[green]yes[/]" if e.included else "[dim]neglected[/]"
-        ratio = "" if not math.isfinite(e.ratio) else (f"{e.ratio:.0%}" if e.ratio < 10 else f"{e.ratio:.1f}×")
-        t.add_row(escape(e.name), inc, f"{_f(e.value, '{:.3g}', '∞')} {e.unit}", escape(e.compared_with), ratio,
-                  escape(e.note))
+        ratio = (
+            "" if not math.isfinite(e.ratio) else (f"{e.ratio:.0%}" if e.ratio < 10 else f"{e.ratio:.1f}×")
+        )
+        t.add_row(
+            escape(e.name),
+            inc,
+            f"{_f(e.value, '{:.3g}', '∞')} {e.unit}",
+            escape(e.compared_with),
+            ratio,
+            escape(e.note),
+        )
     c.print(t)
     c.print(why, markup=False)
 
@@ -345,34 +483,56 @@ def render_explain(effects, why: str, out=None) -> None:
 def verify_row(v) -> dict[str, Any]:
     """The solve_ivp cross-check (:class:`pumplink.analysis.Verification`) as a row."""
     sim = v.integration
-    return {"method": "scipy solve_ivp (DOP853, rtol 1e-11), open-loop force profile F(θ2)",
-            "cycles": sim.cycles, "periodicity": num(sim.periodicity),
-            "mean_speed_deg_s": deg(sim.mean_speed), "time_mean_speed_deg_s": deg(sim.time_mean_speed),
-            "speed_range_deg_s": {"min": deg(sim.min_speed), "max": deg(sim.max_speed)},
-            "fluctuation": num(sim.fluctuation), "tolerance": v.tolerance, "agrees": v.agrees}
+    return {
+        "method": "scipy solve_ivp (DOP853, rtol 1e-11), open-loop force profile F(θ2)",
+        "cycles": sim.cycles,
+        "periodicity": num(sim.periodicity),
+        "mean_speed_deg_s": deg(sim.mean_speed),
+        "time_mean_speed_deg_s": deg(sim.time_mean_speed),
+        "speed_range_deg_s": {"min": deg(sim.min_speed), "max": deg(sim.max_speed)},
+        "fluctuation": num(sim.fluctuation),
+        "tolerance": v.tolerance,
+        "agrees": v.agrees,
+    }
 
 
 def render_verify(row: dict[str, Any], out=None) -> None:
     c = console(out or sys.stdout)
     ok = "[bold green]agrees[/]" if row["agrees"] else "[bold red]DISAGREES[/]"
-    c.print(f"verify ({row['method']}, {row['cycles']} revolutions): {ok} — periodic to {row['periodicity']:.1e}, "
-            f"mean speed (max+min)/2 = {row['mean_speed_deg_s']:.4f} deg/s, fluctuation δ = {row['fluctuation']:.6f}, "
-            f"wheel {row['speed_range_deg_s']['min']:.1f}–{row['speed_range_deg_s']['max']:.1f} deg/s "
-            f"(time-averaged {row['time_mean_speed_deg_s']:.1f} deg/s)")
+    c.print(
+        f"verify ({row['method']}, {row['cycles']} revolutions): {ok} — periodic to {row['periodicity']:.1e}, "
+        f"mean speed (max+min)/2 = {row['mean_speed_deg_s']:.4f} deg/s, fluctuation δ = {row['fluctuation']:.6f}, "
+        f"wheel {row['speed_range_deg_s']['min']:.1f}–{row['speed_range_deg_s']['max']:.1f} deg/s "
+        f"(time-averaged {row['time_mean_speed_deg_s']:.1f} deg/s)"
+    )
 
 
 def speed_rows(sw: SpeedSweep) -> list[dict[str, Any]]:
-    return [{"speed_deg_s": float(w), "energy_band_J": num(b), "required_peak_force_N": num(f),
-             "power_W": num(p), "pass": bool(ok)}
-            for w, b, f, p, ok in zip(sw.speed_deg_s, sw.energy_band, sw.least_peak_force, sw.power, sw.passed)]
+    return [
+        {
+            "speed_deg_s": float(w),
+            "energy_band_J": num(b),
+            "required_peak_force_N": num(f),
+            "power_W": num(p),
+            "pass": bool(ok),
+        }
+        for w, b, f, p, ok in zip(sw.speed_deg_s, sw.energy_band, sw.least_peak_force, sw.power, sw.passed)
+    ]
 
 
 def speed_summary(sw: SpeedSweep) -> dict[str, Any]:
     out = design_row(sw.design)
-    out.update({"model": "flywheel", "inertia_kg_m2": num(sw.inertia), "speed_fluctuation": sw.speed_fluctuation,
-                "force_limit_N": num(sw.force_limit), "mean_force_N": num(sw.mean_force),
-                "quasi_static_peak_force_N": num(sw.dead_band_peak_force),
-                "min_passing_speed_deg_s": deg(sw.min_passing_speed)})
+    out.update(
+        {
+            "model": "flywheel",
+            "inertia_kg_m2": num(sw.inertia),
+            "speed_fluctuation": sw.speed_fluctuation,
+            "force_limit_N": num(sw.force_limit),
+            "mean_force_N": num(sw.mean_force),
+            "quasi_static_peak_force_N": num(sw.dead_band_peak_force),
+            "min_passing_speed_deg_s": deg(sw.min_passing_speed),
+        }
+    )
     return out
 
 
@@ -388,30 +548,56 @@ def render_speed(sw: SpeedSweep, fmt: str, out=None) -> None:
     from rich.table import Table
 
     c = console(out)
-    t = Table(title=f"{escape(sw.design.spec.name)}: least peak operator force against mean wheel speed (flywheel, "
-                    f"J = {sw.inertia:.3f} kg·m², δ ≤ {sw.speed_fluctuation:g})", title_justify="left")
-    for h in ("speed [deg/s]", "rpm", "band W [J]", "peak force [N]", f"vs {sw.force_limit:g} N", "power [W]", "result"):
+    t = Table(
+        title=f"{escape(sw.design.spec.name)}: least peak operator force against mean wheel speed (flywheel, "
+        f"J = {sw.inertia:.3f} kg·m², δ ≤ {sw.speed_fluctuation:g})",
+        title_justify="left",
+    )
+    for h in (
+        "speed [deg/s]",
+        "rpm",
+        "band W [J]",
+        "peak force [N]",
+        f"vs {sw.force_limit:g} N",
+        "power [W]",
+        "result",
+    ):
         t.add_column(escape(h), justify="left" if h.startswith(("vs", "result")) else "right")
     for r in rows:
         f = r["required_peak_force_N"]
-        t.add_row(f"{r['speed_deg_s']:g}", f"{r['speed_deg_s'] / 6:.0f}", _f(r["energy_band_J"], "{:.2f}"),
-                  _f(f, "{:.1f}", "∞"), _bar(f, sw.force_limit), _f(r["power_W"], "{:.0f}"),
-                  "[green]pass[/]" if r["pass"] else "[red]FAIL[/]")
+        t.add_row(
+            f"{r['speed_deg_s']:g}",
+            f"{r['speed_deg_s'] / 6:.0f}",
+            _f(r["energy_band_J"], "{:.2f}"),
+            _f(f, "{:.1f}", "∞"),
+            _bar(f, sw.force_limit),
+            _f(r["power_W"], "{:.0f}"),
+            "[green]pass[/]" if r["pass"] else "[red]FAIL[/]",
+        )
     c.print(t)
     mps = sw.min_passing_speed
-    c.print(f"mean force {sw.mean_force:.1f} N (the floor: an infinite flywheel); quasi-static peak outside the dead "
-            f"band {sw.dead_band_peak_force:.1f} N (the dead-band model, blind to speed)")
+    c.print(
+        f"mean force {sw.mean_force:.1f} N (the floor: an infinite flywheel); quasi-static peak outside the dead "
+        f"band {sw.dead_band_peak_force:.1f} N (the dead-band model, blind to speed)"
+    )
     if math.isfinite(mps):
-        c.print(f"[bold]passes the {sw.force_limit:g} N limit from a mean {np.degrees(mps):.1f} deg/s "
-                f"({np.degrees(mps) / 6:.0f} rpm)[/]")
+        c.print(
+            f"[bold]passes the {sw.force_limit:g} N limit from a mean {np.degrees(mps):.1f} deg/s "
+            f"({np.degrees(mps) / 6:.0f} rpm)[/]"
+        )
     else:
-        c.print(f"[bold red]no speed passes[/]: the mean force {sw.mean_force:.1f} N is above the {sw.force_limit:g} N limit")
+        c.print(
+            f"[bold red]no speed passes[/]: the mean force {sw.mean_force:.1f} N is above the {sw.force_limit:g} N limit"
+        )
 
 
 # ----------------------------------------------------------------------------- transmission
 
-BINDING_TEXT = {0: "both extremes (gamma_min = 180 - gamma_max)", 1: "gamma_min (stationary on the arc)",
-                2: "180 - gamma_max (stationary on the arc)"}
+BINDING_TEXT = {
+    0: "both extremes (gamma_min = 180 - gamma_max)",
+    1: "gamma_min (stationary on the arc)",
+    2: "180 - gamma_max (stationary on the arc)",
+}
 
 
 # ----------------------------------------------------------------------------- transmission
@@ -429,24 +615,41 @@ def transmission_rows(opt, sim, comparisons=(), printed_gamma_min=None) -> dict[
         "time_ratio": num(opt.time_ratio),
         "theta_deg": deg(opt.theta),
         "swing_deg": deg(opt.swing),
-        "crank": num(opt.crank), "coupler": num(opt.coupler), "rocker": num(opt.rocker), "frame": num(opt.frame),
+        "crank": num(opt.crank),
+        "coupler": num(opt.coupler),
+        "rocker": num(opt.rocker),
+        "frame": num(opt.frame),
         "rocker_to_frame": num(opt.rocker_to_frame),
         "min_transmission_deg": deg(opt.transmission),
-        "gamma_min_deg": deg(opt.gamma_min), "gamma_max_deg": deg(opt.gamma_max),
+        "gamma_min_deg": deg(opt.gamma_min),
+        "gamma_max_deg": deg(opt.gamma_max),
         "binding": BINDING_TEXT[int(opt.binding)],
-        "crank_pivot_side": "rocker-pivot side of the chord C1C2" if opt.side < 0 else "far side of the chord C1C2",
-        "simulated": {"swing_deg": deg(sim.swing), "time_ratio": num(sim.time_ratio),
-                      "min_transmission_deg": deg(sim.transmission), "assembles": sim.assembles},
+        "crank_pivot_side": "rocker-pivot side of the chord C1C2"
+        if opt.side < 0
+        else "far side of the chord C1C2",
+        "simulated": {
+            "swing_deg": deg(sim.swing),
+            "time_ratio": num(sim.time_ratio),
+            "min_transmission_deg": deg(sim.transmission),
+            "assembles": sim.assembles,
+        },
         "compare": [],
     }
     for cmp in comparisons:
         c, k, r, f = cmp.lengths
-        out["compare"].append({
-            "design": cmp.label, "crank": c, "coupler": k, "rocker": r, "frame": f,
-            "min_transmission_deg": deg(cmp.transmission),
-            "ours_better_by_deg": num(np.degrees(opt.transmission - cmp.transmission)),
-            "simulated_swing_deg": deg(cmp.motion.swing), "simulated_time_ratio": num(cmp.motion.time_ratio),
-        })
+        out["compare"].append(
+            {
+                "design": cmp.label,
+                "crank": c,
+                "coupler": k,
+                "rocker": r,
+                "frame": f,
+                "min_transmission_deg": deg(cmp.transmission),
+                "ours_better_by_deg": num(np.degrees(opt.transmission - cmp.transmission)),
+                "simulated_swing_deg": deg(cmp.motion.swing),
+                "simulated_time_ratio": num(cmp.motion.time_ratio),
+            }
+        )
     if comparisons:
         out["printed_gamma_min_deg"] = printed_gamma_min
     return out
@@ -464,30 +667,62 @@ def render_transmission(row: dict[str, Any], fmt: str, out=None) -> None:
     from rich.table import Table
 
     c = console(out)
-    c.print(f"[bold]Optimal-transmission crank-rocker[/] for K = {row['time_ratio']:g} "
-            f"(θ = {row['theta_deg']:.6f}°), swing φ = {row['swing_deg']:g}°, rocker = {row['rocker']:g}")
+    c.print(
+        f"[bold]Optimal-transmission crank-rocker[/] for K = {row['time_ratio']:g} "
+        f"(θ = {row['theta_deg']:.6f}°), swing φ = {row['swing_deg']:g}°, rocker = {row['rocker']:g}"
+    )
     t = Table(title="Link lengths (rocker's unit) and transmission angle", title_justify="left")
-    for h in ("design", "crank", "coupler", "rocker", "frame", "rocker/frame", "min transmission [deg]",
-              "simulated swing [deg]", "simulated K"):
+    for h in (
+        "design",
+        "crank",
+        "coupler",
+        "rocker",
+        "frame",
+        "rocker/frame",
+        "min transmission [deg]",
+        "simulated swing [deg]",
+        "simulated K",
+    ):
         t.add_column(escape(h), justify="left" if h == "design" else "right")
     sim = row["simulated"]
-    t.add_row("[bold]optimum (this tool)[/]", _f(row["crank"], "{:.6f}"), _f(row["coupler"], "{:.6f}"),
-              _f(row["rocker"], "{:.6f}"), _f(row["frame"], "{:.6f}"), _f(row["rocker_to_frame"], "{:.6f}"),
-              _f(row["min_transmission_deg"], "{:.9f}"), _f(sim["swing_deg"], "{:.9f}"),
-              _f(sim["time_ratio"], "{:.9f}"))
+    t.add_row(
+        "[bold]optimum (this tool)[/]",
+        _f(row["crank"], "{:.6f}"),
+        _f(row["coupler"], "{:.6f}"),
+        _f(row["rocker"], "{:.6f}"),
+        _f(row["frame"], "{:.6f}"),
+        _f(row["rocker_to_frame"], "{:.6f}"),
+        _f(row["min_transmission_deg"], "{:.9f}"),
+        _f(sim["swing_deg"], "{:.9f}"),
+        _f(sim["time_ratio"], "{:.9f}"),
+    )
     for cmp in row["compare"]:
-        t.add_row(cmp["design"], _f(cmp["crank"], "{:.4f}"), _f(cmp["coupler"], "{:.4f}"), _f(cmp["rocker"], "{:.4f}"),
-                  _f(cmp["frame"], "{:.4f}"), _f(cmp["rocker"] / cmp["frame"], "{:.6f}"),
-                  _f(cmp["min_transmission_deg"], "{:.9f}"), _f(cmp["simulated_swing_deg"], "{:.6f}"),
-                  _f(cmp["simulated_time_ratio"], "{:.6f}"))
+        t.add_row(
+            cmp["design"],
+            _f(cmp["crank"], "{:.4f}"),
+            _f(cmp["coupler"], "{:.4f}"),
+            _f(cmp["rocker"], "{:.4f}"),
+            _f(cmp["frame"], "{:.4f}"),
+            _f(cmp["rocker"] / cmp["frame"], "{:.6f}"),
+            _f(cmp["min_transmission_deg"], "{:.9f}"),
+            _f(cmp["simulated_swing_deg"], "{:.6f}"),
+            _f(cmp["simulated_time_ratio"], "{:.6f}"),
+        )
     c.print(t)
-    c.print(f"γmin = {row['gamma_min_deg']:.9f}°, γmax = {row['gamma_max_deg']:.9f}°; binding: {row['binding']}; "
-            f"crank pivot on the {row['crank_pivot_side']}")
+    c.print(
+        f"γmin = {row['gamma_min_deg']:.9f}°, γmax = {row['gamma_max_deg']:.9f}°; binding: {row['binding']}; "
+        f"crank pivot on the {row['crank_pivot_side']}"
+    )
     for cmp in row["compare"]:
-        c.print(f"optimum is better than the {cmp['design']} by {cmp['ours_better_by_deg']:.9f}°", markup=False)
+        c.print(
+            f"optimum is better than the {cmp['design']} by {cmp['ours_better_by_deg']:.9f}°", markup=False
+        )
     if row["compare"]:
-        c.print(f"(the paper prints γmin = {row['printed_gamma_min_deg']}° for its diagram design; its own Eq. (4) "
-                f"gives the value above)", markup=False)
+        c.print(
+            f"(the paper prints γmin = {row['printed_gamma_min_deg']}° for its diagram design; its own Eq. (4) "
+            f"gives the value above)",
+            markup=False,
+        )
 
 
 # ----------------------------------------------------------------------------- optimize
@@ -522,22 +757,41 @@ def optimize_row(res) -> dict[str, Any]:
         "grip_height_range_m": list(p.grip_height),
         "stroke_range_m": list(p.stroke),
         "force_limit_N": p.spec.operator.force_limit,
-        "variables": [{"key": k, "unit": VARIABLE_UNITS[k], "lower": float(lo), "upper": float(hi),
-                       "spec": float(getattr(spec_lk, k)), "optimum": float(v)}
-                      for k, lo, hi, v in zip(p.names, p.lower, p.upper, res.x)],
-        "optimum": {"peak_force_N": num(peak_b), "required_peak_force_N": num(b.least_peak_force[0]),
-                    "mean_force_N": num(b.mean[0]),
-                    "transmission_deg": num(b.transmission[0]), "grip_height_m": [num(b.grip_low[0]), num(b.grip_high[0])],
-                    "stroke_m": num(b.stroke[0]), "rocker_pivot_height_m": num(p.axle_height - res.best.linkage.D1),
-                    "passes_force_limit": bool(b.passed[0])},
-        "spec_design": {"peak_force_N": num(peak_s), "required_peak_force_N": num(s.least_peak_force[0]),
-                        "mean_force_N": num(s.mean[0]),
-                        "transmission_deg": num(s.transmission[0]), "meets_constraints": spec_ok,
-                        "violated": [n for n, g in zip(names, s.slack[:, 0]) if g < 0]},
+        "variables": [
+            {
+                "key": k,
+                "unit": VARIABLE_UNITS[k],
+                "lower": float(lo),
+                "upper": float(hi),
+                "spec": float(getattr(spec_lk, k)),
+                "optimum": float(v),
+            }
+            for k, lo, hi, v in zip(p.names, p.lower, p.upper, res.x)
+        ],
+        "optimum": {
+            "peak_force_N": num(peak_b),
+            "required_peak_force_N": num(b.least_peak_force[0]),
+            "mean_force_N": num(b.mean[0]),
+            "transmission_deg": num(b.transmission[0]),
+            "grip_height_m": [num(b.grip_low[0]), num(b.grip_high[0])],
+            "stroke_m": num(b.stroke[0]),
+            "rocker_pivot_height_m": num(p.axle_height - res.best.linkage.D1),
+            "passes_force_limit": bool(b.passed[0]),
+        },
+        "spec_design": {
+            "peak_force_N": num(peak_s),
+            "required_peak_force_N": num(s.least_peak_force[0]),
+            "mean_force_N": num(s.mean[0]),
+            "transmission_deg": num(s.transmission[0]),
+            "meets_constraints": spec_ok,
+            "violated": [n for n, g in zip(names, s.slack[:, 0]) if g < 0],
+        },
         "improvement_N": num(obj_s - obj_b) if obj_s < 1e5 else None,
         "improvement_pct": num(100 * (obj_s - obj_b) / obj_s) if obj_s < 1e5 else None,
-        "constraints": [{"name": n, "unit": u, "slack": num(g), "binding": n in res.binding}
-                        for n, (_, u), g in zip(names, CONSTRAINTS, b.slack[:, 0])],
+        "constraints": [
+            {"name": n, "unit": u, "slack": num(g), "binding": n in res.binding}
+            for n, (_, u), g in zip(names, CONSTRAINTS, b.slack[:, 0])
+        ],
         "binding": list(res.binding) + list(res.at_bounds),
         "evaluations": res.evaluations,
         "generations": res.iterations,
@@ -551,8 +805,19 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
     if fmt == "json":
         return _json(row, out)
     if fmt == "csv":
-        flat = {k: v for k, v in row.items() if k not in ("variables", "constraints", "binding", "spec_design",
-                                                          "grip_height_range_m", "stroke_range_m")}
+        flat = {
+            k: v
+            for k, v in row.items()
+            if k
+            not in (
+                "variables",
+                "constraints",
+                "binding",
+                "spec_design",
+                "grip_height_range_m",
+                "stroke_range_m",
+            )
+        }
         for v in row["variables"]:
             flat[f"{v['key']}_optimum"] = v["optimum"]
         flat["binding"] = "; ".join(row["binding"])
@@ -562,28 +827,53 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
 
     c = console(out)
     fly = row["model"] == "flywheel"
-    model = (f"model: flywheel, J = {row['inertia_kg_m2']:.4g} kg·m², δ ≤ {row['speed_fluctuation']:g}, at "
-             f"{row['speed_deg_s']:g} deg/s" if fly else "model: quasi-static + dead band")
-    c.print(f"[bold]{row['name']}[/]: minimise the {row['objective']} operator force ({model}; seed {row['seed']}); axle height "
-            f"{row['axle_height_m']:g} m, grip height {row['grip_height_range_m'][0]:g}–{row['grip_height_range_m'][1]:g} m, "
-            f"stroke {row['stroke_range_m'][0]:g}–{row['stroke_range_m'][1]:g} m")
+    model = (
+        f"model: flywheel, J = {row['inertia_kg_m2']:.4g} kg·m², δ ≤ {row['speed_fluctuation']:g}, at "
+        f"{row['speed_deg_s']:g} deg/s"
+        if fly
+        else "model: quasi-static + dead band"
+    )
+    c.print(
+        f"[bold]{row['name']}[/]: minimise the {row['objective']} operator force ({model}; seed {row['seed']}); axle height "
+        f"{row['axle_height_m']:g} m, grip height {row['grip_height_range_m'][0]:g}–{row['grip_height_range_m'][1]:g} m, "
+        f"stroke {row['stroke_range_m'][0]:g}–{row['stroke_range_m'][1]:g} m"
+    )
     t = Table(title="Variables", title_justify="left")
     for h in ("key", "bounds", "spec", "optimum"):
         t.add_column(h, justify="left" if h == "key" else "right")
     for v in row["variables"]:
-        t.add_row(f"{v['key']} [{v['unit']}]", f"{v['lower']:g} … {v['upper']:g}", f"{v['spec']:.4f}", f"{v['optimum']:.6f}")
+        t.add_row(
+            f"{v['key']} [{v['unit']}]",
+            f"{v['lower']:g} … {v['upper']:g}",
+            f"{v['spec']:.4f}",
+            f"{v['optimum']:.6f}",
+        )
     c.print(t)
     o, s = row["optimum"], row["spec_design"]
     peak_key = "required_peak_force_N" if fly else "peak_force_N"  # the peak of the verdict
     t = Table(title="Forces", title_justify="left")
-    heads = ("design", *(("peak with the flywheel [N]", "peak outside the dead bands [N]") if fly else ("peak [N]",)),
-             "mean [N]", "transmission [deg]", "meets constraints")
+    heads = (
+        "design",
+        *(("peak with the flywheel [N]", "peak outside the dead bands [N]") if fly else ("peak [N]",)),
+        "mean [N]",
+        "transmission [deg]",
+        "meets constraints",
+    )
     for h in heads:
         t.add_column(escape(h), justify="left" if h in ("design",) else "right")
-    for label, d, meets in (("spec's own design", s, "yes" if s["meets_constraints"] else "[red]no[/]: " + "; ".join(s["violated"])),
-                            ("[bold]optimum[/]", o, "yes")):
-        peaks = (_f(d["required_peak_force_N"], "{:.3f}", none="∞"), _f(d["peak_force_N"], "{:.3f}")) if fly else \
-            (_f(d["peak_force_N"], "{:.3f}"),)
+    for label, d, meets in (
+        (
+            "spec's own design",
+            s,
+            "yes" if s["meets_constraints"] else "[red]no[/]: " + "; ".join(s["violated"]),
+        ),
+        ("[bold]optimum[/]", o, "yes"),
+    ):
+        peaks = (
+            (_f(d["required_peak_force_N"], "{:.3f}", none="∞"), _f(d["peak_force_N"], "{:.3f}"))
+            if fly
+            else (_f(d["peak_force_N"], "{:.3f}"),)
+        )
         t.add_row(label, *peaks, _f(d["mean_force_N"], "{:.3f}"), _f(d["transmission_deg"], "{:.2f}"), meets)
     c.print(t)
     t = Table(title="Constraints at the optimum (slack >= 0 is satisfied)", title_justify="left")
@@ -593,25 +883,36 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
         t.add_row(k["name"], f"{k['slack']:.6g} {k['unit']}", "[bold]binds[/]" if k["binding"] else "")
     c.print(t)
     if row["improvement_N"] is not None:
-        c.print(f"{row['objective']} force {_f(s[peak_key] if row['objective'] == 'peak' else s['mean_force_N'], '{:.2f}')} N → "
-                f"{_f(o[peak_key] if row['objective'] == 'peak' else o['mean_force_N'], '{:.2f}')} N "
-                f"({row['improvement_pct']:+.1f} % lower than the spec's own design)" if row["improvement_pct"] >= 0 else
-                f"the optimum needs {-row['improvement_N']:.2f} N more than the spec's own design, which breaks: "
-                f"{'; '.join(s['violated'])}", markup=False)
+        c.print(
+            f"{row['objective']} force {_f(s[peak_key] if row['objective'] == 'peak' else s['mean_force_N'], '{:.2f}')} N → "
+            f"{_f(o[peak_key] if row['objective'] == 'peak' else o['mean_force_N'], '{:.2f}')} N "
+            f"({row['improvement_pct']:+.1f} % lower than the spec's own design)"
+            if row["improvement_pct"] >= 0
+            else f"the optimum needs {-row['improvement_N']:.2f} N more than the spec's own design, which breaks: "
+            f"{'; '.join(s['violated'])}",
+            markup=False,
+        )
     c.print(f"binding: {', '.join(row['binding']) or 'none (interior optimum)'}", markup=False)
-    c.print(f"grip {o['grip_height_m'][0]:.3f}–{o['grip_height_m'][1]:.3f} m, stroke {o['stroke_m']:.3f} m, rocker pivot "
-            f"{o['rocker_pivot_height_m']:+.3f} m above the ground{' (below ground: needs a pit)' if o['rocker_pivot_height_m'] < 0 else ''}",
-            markup=False)
+    c.print(
+        f"grip {o['grip_height_m'][0]:.3f}–{o['grip_height_m'][1]:.3f} m, stroke {o['stroke_m']:.3f} m, rocker pivot "
+        f"{o['rocker_pivot_height_m']:+.3f} m above the ground{' (below ground: needs a pit)' if o['rocker_pivot_height_m'] < 0 else ''}",
+        markup=False,
+    )
     if not o["passes_force_limit"]:
-        c.print(f"no design inside these bounds and ergonomic limits keeps the force within {row['force_limit_N']:g} N: "
-                f"the best needs {_f(o[peak_key], '{:.2f}', none='∞')} N peak; it is held back by: "
-                f"{', '.join(row['binding'])}. "
-                "Widen the bounds that bind (--vary), or relax --grip-height / --stroke.", markup=False)
+        c.print(
+            f"no design inside these bounds and ergonomic limits keeps the force within {row['force_limit_N']:g} N: "
+            f"the best needs {_f(o[peak_key], '{:.2f}', none='∞')} N peak; it is held back by: "
+            f"{', '.join(row['binding'])}. "
+            "Widen the bounds that bind (--vary), or relax --grip-height / --stroke.",
+            markup=False,
+        )
     verdict = "[bold green]PASS[/]" if o["passes_force_limit"] else "[bold red]FAIL[/]"
-    c.print(f"{verdict}: optimum peak{' with the flywheel' if fly else ''} {_f(o[peak_key], '{:.2f}', none='∞')} N "
-            f"vs limit {row['force_limit_N']:g} N "
-            f"({row['evaluations']} designs evaluated, {row['generations']} generations"
-            f"{', polished' if row['polished'] else ''})")
+    c.print(
+        f"{verdict}: optimum peak{' with the flywheel' if fly else ''} {_f(o[peak_key], '{:.2f}', none='∞')} N "
+        f"vs limit {row['force_limit_N']:g} N "
+        f"({row['evaluations']} designs evaluated, {row['generations']} generations"
+        f"{', polished' if row['polished'] else ''})"
+    )
 
 
 # ----------------------------------------------------------------------------- methods
@@ -622,23 +923,47 @@ def _e(x) -> str:
 def json_rows(rows: list[dict]) -> list[dict]:
     """The JSON contract: name, seconds_per_position, max_rel_error_uniform,
     max_rel_error_near_dead_centre, failures (plus summary, cannot_handle and per-sampling detail)."""
-    return [{k: r[k] for k in ("name", "summary", "cannot_handle", "seconds_per_position", "max_rel_error_uniform",
-                               "max_rel_error_near_dead_centre", "failures", "samplings")} for r in rows]
+    return [
+        {
+            k: r[k]
+            for k in (
+                "name",
+                "summary",
+                "cannot_handle",
+                "seconds_per_position",
+                "max_rel_error_uniform",
+                "max_rel_error_near_dead_centre",
+                "failures",
+                "samplings",
+            )
+        }
+        for r in rows
+    ]
 
 
-def render_methods(name: str, rows: list[dict], study: list[dict], fmt: str, dead_band_deg: float, out=None) -> None:
+def render_methods(
+    name: str, rows: list[dict], study: list[dict], fmt: str, dead_band_deg: float, out=None
+) -> None:
     """`pumplink methods`: one row per method and the sampling study."""
     out = out or sys.stdout
     if fmt == "json":
         return _json({"design": name, "methods": json_rows(rows), "sampling": study}, out)
     if fmt == "csv":
-        return write_csv([{k: v for k, v in r.items() if k not in ("samplings", "failures")}
-                          | {"failures": "; ".join(r["failures"])} for r in rows], out)
+        return write_csv(
+            [
+                {k: v for k, v in r.items() if k not in ("samplings", "failures")}
+                | {"failures": "; ".join(r["failures"])}
+                for r in rows
+            ],
+            out,
+        )
     from rich.table import Table
 
     c = console(out)
-    t = Table(title=f"{name}: force methods against the 50-digit reference (relative error of Fh)",
-              title_justify="left")
+    t = Table(
+        title=f"{name}: force methods against the 50-digit reference (relative error of Fh)",
+        title_justify="left",
+    )
     kinds = list(rows[0]["samplings"]) if rows else []
     for h in ["method", "time / position"] + [f"max err: {k}" for k in kinds] + ["failures / flags"]:
         t.add_column(h, justify="left" if h in ("method", "failures / flags") else "right")
@@ -653,22 +978,43 @@ def render_methods(name: str, rows: list[dict], study: list[dict], fmt: str, dea
         cells.append("\n".join(r["failures"]) or "none")
         t.add_row(*cells)
     c.print(t)
-    c.print("flagged = NaN with a flag (dead centre: \"∞ (dead centre)\"), never a made-up number; "
-            "'silently wrong' = an unflagged value off by more than the method's registered tolerance.",
-            markup=False)
+    c.print(
+        'flagged = NaN with a flag (dead centre: "∞ (dead centre)"), never a made-up number; '
+        "'silently wrong' = an unflagged value off by more than the method's registered tolerance.",
+        markup=False,
+    )
     for r in rows:
         c.print(f"  {r['name']}: {r['summary']}; cannot handle: {r['cannot_handle']}", markup=False)
 
-    st = Table(title=f"How many samples? Uniform sweep from crank 0° vs exact values (dead band ±{dead_band_deg:g}°)",
-               title_justify="left")
-    for h in ("N", "sweep max |Fh| (no band)", "sampled peak outside band", "exact peak", "peak error",
-              "sampled mean", "exact mean", "mean error"):
+    st = Table(
+        title=f"How many samples? Uniform sweep from crank 0° vs exact values (dead band ±{dead_band_deg:g}°)",
+        title_justify="left",
+    )
+    for h in (
+        "N",
+        "sweep max |Fh| (no band)",
+        "sampled peak outside band",
+        "exact peak",
+        "peak error",
+        "sampled mean",
+        "exact mean",
+        "mean error",
+    ):
         st.add_column(h, justify="right")
     for s in study:
-        st.add_row(str(s["n"]), f"{s['sampled_max']:.1f} N" if s["sampled_max"] is not None else "—",
-                   f"{s['sampled_peak']:.2f} N" if s["sampled_peak"] is not None else "—",
-                   f"{s['exact_peak']:.2f} N", _e(s["peak_error"]), f"{s['sampled_mean']:.4f} N",
-                   f"{s['exact_mean']:.4f} N", _e(s["mean_error"]))
+        st.add_row(
+            str(s["n"]),
+            f"{s['sampled_max']:.1f} N" if s["sampled_max"] is not None else "—",
+            f"{s['sampled_peak']:.2f} N" if s["sampled_peak"] is not None else "—",
+            f"{s['exact_peak']:.2f} N",
+            _e(s["peak_error"]),
+            f"{s['sampled_mean']:.4f} N",
+            f"{s['exact_mean']:.4f} N",
+            _e(s["mean_error"]),
+        )
     c.print(st)
-    c.print("A sweep without a dead band reports whatever spike it lands next to (the true force is infinite at "
-            "the dead centres); with the band, the exact peak is found by root-bracketing, whatever N.", markup=False)
+    c.print(
+        "A sweep without a dead band reports whatever spike it lands next to (the true force is infinite at "
+        "the dead centres); with the band, the exact peak is found by root-bracketing, whatever N.",
+        markup=False,
+    )
