@@ -26,7 +26,11 @@ $(VENV)/.stamp-bench: pyproject.toml | $(BIN)/python
 run: $(VENV)/.stamp-base
 	$(BIN)/pumplink force --speed 360
 
+# Lint, format check and the layering contract first (seconds), then the suite.
 test: $(VENV)/.stamp-test
+	$(BIN)/ruff check .
+	$(BIN)/ruff format --check .
+	$(BIN)/lint-imports --no-cache
 	$(BIN)/python -m pytest -q
 
 # Every benchmarks/bench_*.py, one after the other in this process's venv (medians of repeats).
@@ -34,4 +38,4 @@ bench: $(VENV)/.stamp-bench
 	@for b in benchmarks/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done
 
 clean:
-	rm -rf $(VENV) build *.egg-info .pytest_cache .hypothesis
+	rm -rf $(VENV) build *.egg-info .pytest_cache .hypothesis .ruff_cache .import_linter_cache

@@ -131,7 +131,8 @@ def main() -> None:
                 f"CPU {cpu:.2f} s, peak RSS {rss:.0f} MB   [walls: {walls}]"
             )
         print(
-            "  command: pumplink batch GRID --fail-on none --samples 360 --format csv --out out.csv --workers W"
+            "  command: pumplink batch GRID --fail-on none --samples 360 --format csv --out out.csv "
+            "--workers W"
         )
         print(f"  CSV: {out.stat().st_size / 1e6:.1f} MB, {n_rows} rows")
         print(f"  cores free for us after the runs: {free_cores():.1f} (other jobs share this machine)")
@@ -152,7 +153,8 @@ def main() -> None:
                 ]
             )
             print(
-                f"  400,000 variants, --workers 2: wall {r['wall']:.2f} s, peak RSS {r['maxrss_kb'] / 1024:.0f} MB "
+                f"  400,000 variants, --workers 2: wall {r['wall']:.2f} s, "
+                f"peak RSS {r['maxrss_kb'] / 1024:.0f} MB "
                 f"(memory does not grow with the grid)"
             )
 
@@ -195,7 +197,8 @@ def main() -> None:
                 f"CPU {cpu:.2f} s, peak RSS {rss:.0f} MB   [walls: {walls}]"
             )
         print(
-            f"  command: pumplink batch FLYWHEEL_GRID --fail-on none --samples 360 --format csv --out out.csv "
+            "  command: pumplink batch FLYWHEEL_GRID --fail-on none --samples 360 --format csv "
+            "--out out.csv "
             f"--workers W ({passed} of 10,000 pass)"
         )
 

@@ -56,7 +56,8 @@ def main() -> None:
     theta = np.arange(3600) * (2 * np.pi / 3600)
     t = median_time(lambda: kinematic_state(lk, theta, mw), 50)
     print(
-        f"sweep of 3600 crank angles, full state (evaluate):       {t * 1e3:8.3f} ms  ({3600 / t / 1e6:6.1f} M positions/s)"
+        f"sweep of 3600 crank angles, full state (evaluate):       {t * 1e3:8.3f} ms  "
+        f"({3600 / t / 1e6:6.1f} M positions/s)"
     )
 
     n, chunk = 5_000_000, 8192
@@ -72,7 +73,8 @@ def main() -> None:
     t = median_time(stream)
     rate = n / t / 1e6
     print(
-        f"kinematics + force, 5 M positions streamed (one design):  {t * 1e3:8.1f} ms  ({rate:6.1f} M positions/s; target >= 30)"
+        f"kinematics + force, 5 M positions streamed (one design):  {t * 1e3:8.1f} ms  "
+        f"({rate:6.1f} M positions/s; target >= 30)"
     )
 
     cfg = str(ROOT / "configs" / "prototype.toml")
@@ -85,7 +87,7 @@ def main() -> None:
             None,
         ),
     ):
-        t = median_time(lambda: subprocess.run(args, stdout=subprocess.DEVNULL, check=False), 7)
+        t = median_time(lambda args=args: subprocess.run(args, stdout=subprocess.DEVNULL, check=False), 7)
         goal = f"; target < {target} s" if target else ""
         print(f"{label:<56} {t:8.3f} s wall (median of 7{goal})")
 

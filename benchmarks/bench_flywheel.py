@@ -19,7 +19,7 @@ from bench_core import EXE, ROOT, machine, median_time  # noqa: E402
 from pumplink.analysis import design  # noqa: E402
 from pumplink.mechanisms.fourbar import FourBar  # noqa: E402
 from pumplink.models import flywheel as fw  # noqa: E402
-from pumplink.models.quasi_static import peak_force  # noqa: E402
+from pumplink.models.quasi_static import dead_band_peak_force  # noqa: E402
 from pumplink.spec import load_spec  # noqa: E402
 
 EXAMPLE = ROOT / "examples" / "well-12m-flywheel.toml"
@@ -33,7 +33,7 @@ def main() -> None:
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
     band = float(fw.energy_band(j, 2 * np.pi, 0.2))
     t1 = median_time(lambda: fw.least_peak_force(lk, dce, dcf, mw, band), 15)
-    tq = median_time(lambda: peak_force(lk, dce, dcf, np.radians(20), mw), 15)
+    tq = median_time(lambda: dead_band_peak_force(lk, dce, dcf, np.radians(20), mw), 15)
     print(
         f"least peak force (flywheel), one design:                 {t1 * 1e3:8.2f} ms  "
         f"(quasi-static windowed peak: {tq * 1e3:.2f} ms, ratio {t1 / tq:.1f}x)"
@@ -47,7 +47,7 @@ def main() -> None:
     )
     bands = np.linspace(0.5, 15.0, n)  # 10,000 designs x speeds in one vectorised call
     tn = median_time(lambda: fw.least_peak_force(rep, dce, dcf, mw, bands), 3)
-    tqn = median_time(lambda: peak_force(rep, dce, dcf, np.radians(20), mw), 3)
+    tqn = median_time(lambda: dead_band_peak_force(rep, dce, dcf, np.radians(20), mw), 3)
     print(
         f"least peak force, 10,000 designs vectorised:             {tn:8.3f} s   ({n / tn:,.0f} designs/s; "
         f"quasi-static peak {n / tqn:,.0f} designs/s)"
@@ -59,7 +59,7 @@ def main() -> None:
         ("pumplink force EXAMPLE --summary --verify", [EXE, "force", str(EXAMPLE), "--summary", "--verify"]),
         ("pumplink speed EXAMPLE (21 speeds)", [EXE, "speed", str(EXAMPLE)]),
     ):
-        t = median_time(lambda: subprocess.run(args, stdout=subprocess.DEVNULL, check=False), 5)
+        t = median_time(lambda args=args: subprocess.run(args, stdout=subprocess.DEVNULL, check=False), 5)
         print(f"{label:<56} {t:8.3f} s wall (median of 5)")
 
 

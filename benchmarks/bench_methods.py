@@ -107,7 +107,7 @@ def main():
     many = feasible_designs(n_designs)
     results = {}
     for block in (1, 4, 16, 64):
-        t = median_time(lambda: batched(many, cs, sn, block))
+        t = median_time(lambda block=block: batched(many, cs, sn, block))
         results[f"pumplink force_kernel, {n_designs} designs x {n_angles} angles, {block} designs/block"] = (
             n_designs * n_angles / t
         )
@@ -144,16 +144,19 @@ def main():
     for k, v in results.items():
         print(f"  {k:<{width}}  {v / 1e6:10.3f} M/s")
     print(
-        f"ratio best batched pumplink (B + force) / pylinkage step_fast (positions): {best_pumplink / pyl:8.1f}x"
+        "ratio best batched pumplink (B + force) / pylinkage step_fast (positions): "
+        f"{best_pumplink / pyl:8.1f}x"
     )
     single = results[f"pumplink force_kernel, 1 design x {n_angles} angles"]
     print(f"ratio single-design pumplink force_kernel / pylinkage step_fast:           {single / pyl:8.1f}x")
     print(
-        f"ratio best batched pumplink / numeric:                                     {best_pumplink / num:8.0f}x"
+        "ratio best batched pumplink / numeric:                                     "
+        f"{best_pumplink / num:8.0f}x"
     )
     print(
         f"target >= 50 M positions/s (batched): {'met' if best_pumplink >= 50e6 else 'NOT met'} "
-        f"({best_pumplink / 1e6:.1f} M/s); target >= 5x pylinkage: {'met' if best_pumplink >= 5 * pyl else 'NOT met'}"
+        f"({best_pumplink / 1e6:.1f} M/s); "
+        f"target >= 5x pylinkage: {'met' if best_pumplink >= 5 * pyl else 'NOT met'}"
     )
 
 

@@ -37,11 +37,13 @@ def main():
             continue  # a batch file of variants, not a single spec
         spec = load_spec(path)
         problem = make_problem(spec)
-        t, res = median_time(lambda: optimize(problem, seed=0))
-        peak = float(res.at_best.verdict_peak[0])  # the flywheel's least peak when the spec gives inertia
+        t, res = median_time(lambda problem=problem: optimize(problem, seed=0))
+        # the flywheel's least peak when the spec gives inertia
+        peak = float(res.at_best.verdict_peak_force[0])
         print(
-            f"optimize {path.name} ({problem.model}): median {t:.2f} s over {REPEATS} runs; {res.evaluations} "
-            f"designs; peak {peak:.2f} N (spec's own {float(res.at_spec.verdict_peak[0]):.2f} N); "
+            f"optimize {path.name} ({problem.model}): median {t:.2f} s over {REPEATS} runs; "
+            f"{res.evaluations} "
+            f"designs; peak {peak:.2f} N (spec's own {float(res.at_spec.verdict_peak_force[0]):.2f} N); "
             f"{'passes' if peak <= spec.operator.force_limit else 'fails'} {spec.operator.force_limit:g} N"
         )
 
@@ -58,10 +60,10 @@ def grid_check(path: Path, m: int) -> None:
     best, feasible = np.inf, 0
     for i in range(0, x.shape[1], 50_000):
         ev = evaluate_designs(problem, x[:, i : i + 50_000])
-        ok = np.all(ev.slack >= 0, axis=0) & np.isfinite(ev.verdict_peak)
+        ok = np.all(ev.slack >= 0, axis=0) & np.isfinite(ev.verdict_peak_force)
         feasible += int(ok.sum())
         if ok.any():
-            best = min(best, float(ev.verdict_peak[ok].min()))
+            best = min(best, float(ev.verdict_peak_force[ok].min()))
     print(
         f"grid check {path.name} ({problem.model}): {m}^{len(axes)} = {x.shape[1]} designs over the default "
         f"bounds, {feasible} meet every constraint, lowest peak {best:.2f} N"

@@ -553,22 +553,26 @@ def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
     small = _ratio(r.link_energy, ref) <= LINK_ENERGY_LIMIT and _ratio(lift, ref) <= LINK_ENERGY_LIMIT
     if not r.flywheel:
         why = (
-            "Quasi-static + dead band answered: the spec gives no inertia, so speed cannot enter and the dead band "
-            f"±{op.dead_band:g}° stands in for the flywheel. Give wheel.mass or wheel.inertia to let the wheel's "
-            "energy decide (the flywheel model); the links' energy is then compared with the energy band."
+            "Quasi-static + dead band answered: the spec gives no inertia, so speed cannot enter and "
+            f"the dead band ±{op.dead_band:g}° stands in for the flywheel. Give wheel.mass or "
+            "wheel.inertia to let the wheel's energy decide (the flywheel model); the links' energy is "
+            "then compared with the energy band."
         )
     elif small:
         why = (
-            "Flywheel answered: the quasi-static force is infinite at the dead centres, so the wheel's energy must "
-            f"enter; the neglected link energy and handle weight are at most {LINK_ENERGY_LIMIT:.0%} of the band, "
+            "Flywheel answered: the quasi-static force is infinite at the dead centres, so the wheel's "
+            "energy must enter; the neglected link energy and handle weight are at most "
+            f"{LINK_ENERGY_LIMIT:.0%} of the band, "
             "so link inertia (full dynamics) would not change the verdict materially."
         )
     else:
         why = (
-            "Flywheel answered: the quasi-static force is infinite at the dead centres, so the wheel's energy must "
-            f"enter. But the neglected link energy or handle weight exceeds {LINK_ENERGY_LIMIT:.0%} of the energy "
-            "band: this design is past what the flywheel scene covers. Full dynamics (link masses and weight, the "
-            "operator's arms) would be needed for a firm answer, which pumplink does not model; treat the verdict "
+            "Flywheel answered: the quasi-static force is infinite at the dead centres, so the wheel's "
+            "energy must enter. But the neglected link energy or handle weight exceeds "
+            f"{LINK_ENERGY_LIMIT:.0%} of the energy "
+            "band: this design is past what the flywheel scene covers. Full dynamics (link masses and "
+            "weight, the operator's arms) would be needed for a firm answer, which pumplink does not "
+            "model; treat the verdict "
             "as an estimate, or lighten the handle (linkage.mass_per_length) or add wheel mass."
         )
     return tuple(effects), why

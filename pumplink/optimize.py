@@ -13,8 +13,8 @@ limit.  Constraints (all ``g >= 0``):
 * the dead-centre synthesis gives a crank-rocker with the exact swing: 0 < psi2 < psi1 < pi
   (``pumplink.mechanisms.fourbar``);
 * transmission angle: min(gamma_min, 180 deg - gamma_max) >= 45 deg
-  (``pumplink.analysis.MIN_TRANSMISSION_DEG``, docs/models.md §4, the lever-mechanism textbook: [lambda_max] <= 45 deg for
-  a rotating driven link);
+  (``pumplink.analysis.MIN_TRANSMISSION_DEG``, docs/models.md §4, the lever-mechanism textbook:
+  [lambda_max] <= 45 deg for a rotating driven link);
 * hand-grip height over the whole swing within 0.5-0.9 m above the ground (docs/physics.md §5,
   "efficient push height ~0.84 m, range 0.5-0.9 m"); the grip is at axle height - D1 + H sin(theta4);
 * horizontal grip stroke 2 H sin(swing/2) at most 1.0 m: the pump paper's own prototype
@@ -439,7 +439,8 @@ def optimize(
                 else "give operator.dead_band > 0"
             )
             raise InfeasibleDesign(
-                f"no design inside the bounds needs a finite {problem.objective} force ({problem.model} model): the "
+                f"no design inside the bounds needs a finite {problem.objective} force "
+                f"({problem.model} model): the "
                 f"best one found ({_fmt_x(problem, x)}) meets every constraint but needs more than "
                 f"{INFEASIBLE_OBJECTIVE:g} N; {fix}"
             )

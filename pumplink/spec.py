@@ -91,7 +91,8 @@ class Wheel(_Section):
         default=None,
         gt=0,
         le=1000,
-        description="moment of inertia of the wheel about its axle [kg m^2] (optional; turns on the flywheel model)",
+        description="moment of inertia of the wheel about its axle [kg m^2] "
+        "(optional; turns on the flywheel model)",
     )
     mass: float | None = Field(
         default=None,
@@ -318,7 +319,8 @@ def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
     """
     if not isinstance(data, dict) or not data:
         raise SpecError(
-            f"{source}: empty spec; expected [wheel], [linkage], [load] (write an example with `pumplink init`)"
+            f"{source}: empty spec; expected [wheel], [linkage], [load] "
+            "(write an example with `pumplink init`)"
         )
     try:
         return PumpSpec.model_validate(data)
@@ -327,7 +329,8 @@ def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
         errs = sorted(exc.errors(), key=lambda e: e["type"] != "extra_forbidden")
         first = _describe(errs[0])
         more = (
-            f" (and {len(errs) - 1} more: {', '.join('.'.join(map(str, e['loc'])) or 'load' for e in errs[1:])})"
+            f" (and {len(errs) - 1} more: "
+            f"{', '.join('.'.join(map(str, e['loc'])) or 'load' for e in errs[1:])})"
             if len(errs) > 1
             else ""
         )

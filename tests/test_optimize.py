@@ -265,8 +265,8 @@ def test_cli_flywheel_verdict_through_force(tmp_path, mass, code):
         t = run("optimize", str(spec), "--vary", "D1=-0.5:0.8", "--grip-height", "0:5", "--stroke", "0:5")
         assert t.returncode == 1 and "model: flywheel, J = 0.1875 kg·m², δ ≤ 0.2, at 360 deg/s" in t.stdout
         assert (
-            f"FAIL: optimum peak with the flywheel {d['optimum']['required_peak_force_N']:.2f} N vs limit 100 N"
-            in t.stdout
+            f"FAIL: optimum peak with the flywheel {d['optimum']['required_peak_force_N']:.2f} N "
+            "vs limit 100 N" in t.stdout
         )
 
 

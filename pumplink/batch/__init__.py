@@ -1,7 +1,7 @@
 """Batch runs over design variants: batch files (:mod:`~pumplink.batch.files`) and their
-evaluation in chunks on any executor (:mod:`~pumplink.batch.run`)."""
+evaluation in chunks on any executor (:mod:`~pumplink.batch.runner`)."""
 
-from pumplink.batch import run as run_module
+from pumplink.batch import runner as run_module
 from pumplink.batch.files import (
     FAIL_CHECKS,
     INERTIA_KEYS,
@@ -22,7 +22,7 @@ from pumplink.batch.files import (
     variant_names,
     variant_spec,
 )
-from pumplink.batch.run import (
+from pumplink.batch.runner import (
     CHUNK_DESIGNS,
     FLYWHEEL_DESIGNS,
     FLYWHEEL_LABEL,
@@ -60,6 +60,7 @@ __all__ = [
     "parse_fail_on",
     "plan",
     "run",
+    "run_module",
     "spec_batch",
     "variant_name",
     "variant_names",

@@ -24,7 +24,7 @@ app = typer.Typer(
 settings = {"debug": False}
 
 
-class Format(str, Enum):
+class Format(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
     table = "table"
     json = "json"
     csv = "csv"

@@ -85,11 +85,13 @@ def force(
 
     if at and any(not math.isfinite(a) for a in at):
         raise SpecError(
-            f"--at {next(a for a in at if not math.isfinite(a))!r} is not a finite angle; give degrees such as --at 90"
+            f"--at {next(a for a in at if not math.isfinite(a))!r} is not a finite angle; "
+            "give degrees such as --at 90"
         )
     if not summary and not at and samples > SAMPLE_LIMIT_KEPT:
         raise SpecError(
-            f"--samples {samples} keeps too many rows (at most {SAMPLE_LIMIT_KEPT:,}); add --summary to stream them"
+            f"--samples {samples} keeps too many rows (at most {SAMPLE_LIMIT_KEPT:,}); "
+            "add --summary to stream them"
         )
     if plot is not None:
         from pumplink.output.charts import check_path, pyplot

@@ -13,7 +13,7 @@ from pumplink.errors import SpecError
 
 
 # ----------------------------------------------------------------------------- design search
-class Objective(str, Enum):
+class Objective(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
     peak = "peak"
     mean = "mean"
 
@@ -71,7 +71,7 @@ def optimize(
     Exit 0 if the optimum passes the force limit, 1 if it fails or nothing is feasible.
 
     Example: [bold]pumplink optimize configs/prototype.toml --vary D1=0:0.8 --vary swing=40:90 --write best.toml[/]
-    """
+    """  # noqa: E501 -- typer prints this docstring as the --help text, keeping its line breaks
     from pumplink.optimize import (
         GRIP_HEIGHT_M,
         STROKE_M,

@@ -1,9 +1,11 @@
-"""Optimal-transmission crank-rocker for a given time ratio and rocker swing (the optimal-transmission paper, docs/crank-rocker.md).
+"""Optimal-transmission crank-rocker for a given time ratio and rocker swing (the
+optimal-transmission paper, docs/crank-rocker.md).
 
-Problem (§1 of the optimal-transmission paper): given the time ratio K, the rocker swing phi and the rocker length, find
-the crank-rocker (crank, coupler, rocker, frame) whose effective minimum transmission angle
-min(gamma_min, 180 deg - gamma_max) is largest.  The optimal-transmission paper steps the crank pivot along the design
-circle and reads a diagram; here the optimum is solved to solver tolerance.
+Problem (§1 of the optimal-transmission paper): given the time ratio K, the rocker swing phi and
+the rocker length, find the crank-rocker (crank, coupler, rocker, frame) whose effective minimum
+transmission angle min(gamma_min, 180 deg - gamma_max) is largest.  The optimal-transmission
+paper steps the crank pivot along the design circle and reads a diagram; here the optimum is
+solved to solver tolerance.
 
 Geometry (derived here; coordinates of this module only).  The rocker pivot D is the origin and
 the bisector of the rocker swing is +y.  The rocker's extreme positions are
@@ -13,10 +15,11 @@ the bisector of the rocker swing is +y.  The rocker's extreme positions are
 
 At the dead centres crank and coupler are collinear, so the crank directions there are A->C2 and
 C1->A: they differ by 180 deg + angle(C1 A C2).  The time ratio K therefore fixes the angle
-C1 A C2 = theta = 180 deg (K - 1)/(K + 1) (Eq. 7 of the optimal-transmission paper), and the crank pivot A lies on one of
-the two circles through C1 and C2 on which the chord C1C2 subtends theta (the "design circle"
-of Fig. 1 of the optimal-transmission paper, and its mirror image in the chord).  We place A with the law of sines in the
-triangle C1 A C2:  with a1 = |A C1| and w = rocker sin(phi/2) (half the chord),
+C1 A C2 = theta = 180 deg (K - 1)/(K + 1) (Eq. 7 of the optimal-transmission paper), and the
+crank pivot A lies on one of the two circles through C1 and C2 on which the chord C1C2 subtends
+theta (the "design circle" of Fig. 1 of the optimal-transmission paper, and its mirror image in
+the chord).  We place A with the law of sines in the triangle C1 A C2:  with a1 = |A C1| and
+w = rocker sin(phi/2) (half the chord),
 
     sin v = a1 sin(theta) / (2 w),   u = pi - theta - v          (v, u: angles at C2, C1)
     A = C1 + a1 (cos u, side * sin u)                           (side = -1 toward D, +1 away)
@@ -36,9 +39,10 @@ triangle inequalities of A-D-C1 and A-D-C2 (frame + crank <= coupler + rocker,
 frame - crank >= |coupler - rocker|) every admissible point gives a crank-rocker.
 :func:`measure_motion` checks all of this by running the linkage through ``pumplink.mechanisms.fourbar``.
 
-Transmission angle (docs/crank-rocker.md, Eq. 4-6) of the optimal-transmission paper: its extremes occur with crank and frame
-collinear, cos gamma = (coupler^2 + rocker^2 - (frame -+ crank)^2)/(2 coupler rocker); the
-effective minimum is min(gamma_min, pi - gamma_max).
+Transmission angle (docs/crank-rocker.md, Eq. 4-6) of the optimal-transmission paper: its
+extremes occur with crank and frame collinear,
+cos gamma = (coupler^2 + rocker^2 - (frame -+ crank)^2)/(2 coupler rocker); the effective
+minimum is min(gamma_min, pi - gamma_max).
 
 K = 1 (theta = 0) has no optimum: the design circle becomes the chord line, and the effective
 minimum rises toward 90 deg - phi/2 as the frame grows without bound (checked numerically in
@@ -117,7 +121,8 @@ class MeasuredMotion:
 
 
 def extreme_included_angle(time_ratio):
-    """Extreme included angle theta = pi (K - 1)/(K + 1) [rad] (Eq. 7 of the optimal-transmission paper, docs/crank-rocker.md)."""
+    """Extreme included angle theta = pi (K - 1)/(K + 1) [rad] (Eq. 7 of the optimal-transmission
+    paper, docs/crank-rocker.md)."""
     k = np.asarray(time_ratio, float)
     return np.pi * (k - 1.0) / (k + 1.0)  # Eq. (7) of the optimal-transmission paper
 
@@ -129,7 +134,8 @@ def time_ratio_from_angle(theta):
 
 
 def effective_transmission(crank, coupler, rocker, frame):
-    """min(gamma_min, pi - gamma_max) of a crank-rocker [rad] (Eq. 4-6 of the optimal-transmission paper, docs/crank-rocker.md).
+    """min(gamma_min, pi - gamma_max) of a crank-rocker [rad] (Eq. 4-6 of the optimal-transmission
+    paper, docs/crank-rocker.md).
 
     Returns
     -------
@@ -208,7 +214,7 @@ def _optimum_chunk(theta, swing, rocker, n):
         x0, x1, x2 = ls[rows, jc - 1], ls[rows, jc], ls[rows, jc + 1]
         has = np.isfinite(mu[rows, j])
         res = find_minimum(
-            lambda x, t, p, r: -_mu_on_arc(x, t, p, r, side),
+            lambda x, t, p, r, side=side: -_mu_on_arc(x, t, p, r, side),
             (x0, x1, x2),
             args=(theta, swing, rocker),
             tolerances=dict(xatol=1e-15, xrtol=1e-15),
@@ -224,7 +230,8 @@ def _optimum_chunk(theta, swing, rocker, n):
 
 
 def optimal_crank_rocker(time_ratio, swing, rocker=1.0, samples: int = SCAN_POINTS) -> OptimalCrankRocker:
-    """Crank-rocker with the largest effective minimum transmission angle (the optimal-transmission paper, exact).
+    """Crank-rocker with the largest effective minimum transmission angle (the
+    optimal-transmission paper, exact).
 
     Both design circles are scanned on ``samples`` points (geometric in |A C1|) restricted to
     the one-branch arc, and the best point is refined by scipy's bracketing minimiser

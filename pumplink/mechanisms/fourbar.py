@@ -21,7 +21,8 @@ the linkage they make swings through a different, unsymmetric arc; at psi = 0 or
 it is a change-point linkage that can flip assembly branch.  Those designs are rejected
 with a reason.
 
-Part 2, kinematics and force -- Position, velocity and quasi-static force of the pump four-bar (the ``vector`` method).
+Part 2, kinematics and force -- Position, velocity and quasi-static force of the pump four-bar
+(the ``vector`` method).
 
 Closed-form loop closure in product coordinates (docs/physics.md).  With the crank direction
 (cos t2, sin t2), A = crank * (cos t2, sin t2) and d = O4 - A, e^2 = |d|^2:
@@ -187,7 +188,8 @@ def grip_stroke(handle, swing):
 
 
 def transmission_range(frame, crank, coupler, rocker):
-    """Extreme transmission angles of a crank-rocker [rad] (docs/crank-rocker.md, Eq. 4-5) of the optimal-transmission paper.
+    """Extreme transmission angles of a crank-rocker [rad] (docs/crank-rocker.md, Eq. 4-5) of the
+    optimal-transmission paper.
 
     The coupler-rocker angle is extreme when crank and frame are collinear:
     cos gamma = (coupler^2 + rocker^2 - (frame -+ crank)^2) / (2 coupler rocker).
@@ -317,7 +319,8 @@ def infeasibility_reason(code, L1, D1, b, swing) -> str | None:
         )
         return (
             f"the frame line from the rocker pivot to the axle rises at {alpha:.2f} deg, so the handle's "
-            f"forward extreme (rocker at {90 - half:.2f} deg) is not above it (psi2 = {90 - half - alpha:.2f} deg, "
+            f"forward extreme (rocker at {90 - half:.2f} deg) is not above it "
+            f"(psi2 = {90 - half - alpha:.2f} deg, "
             f"must be > 0) and no crank-rocker gives this swing; {fix}"
         )
     if code == SWING_CROSSES_FRAME_EXTENSION:
@@ -325,7 +328,8 @@ def infeasibility_reason(code, L1, D1, b, swing) -> str | None:
         fix = (
             "place the pivot to the side of the axle (L1 + b/2 > 0)"
             if vertical
-            else f"make D1 > {limit_d1:.4f} m (pivot less high), L1 larger, or the swing < {2 * (90 + alpha):.2f} deg"
+            else f"make D1 > {limit_d1:.4f} m (pivot less high), L1 larger, "
+            f"or the swing < {2 * (90 + alpha):.2f} deg"
         )
         return (
             f"the frame line from the rocker pivot to the axle falls at {-alpha:.2f} deg, so the handle's "
@@ -392,7 +396,7 @@ def force_kernel(lk: FourBar, cs, sn, wheel_torque, work: np.ndarray | None = No
     bx, by : coupler point B [m].
     force : horizontal operator force at the grip [N], +x positive; NaN at a dead centre.
     """
-    px, py, c, k, r = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker
+    px, c, k, r = lk.pivot_x, lk.crank, lk.coupler, lk.rocker
     shape = np.broadcast_shapes(
         np.shape(cs),
         np.shape(px),

@@ -121,7 +121,8 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(12)
 
 
 def _grip_rate(theta, px, py, crank, coupler, rocker, handle, branch):
-    """dPx/dt2 [m/rad] (the kinematics of ``pumplink.mechanisms.fourbar``, no cancellation at a dead centre)."""
+    """dPx/dt2 [m/rad] (the kinematics of ``pumplink.mechanisms.fourbar``, no cancellation at a
+    dead centre)."""
     cs, sn = np.cos(theta), np.sin(theta)
     p1, p2, e2, t, q = loop_closure(FourBar(px, py, crank, coupler, rocker, handle, branch), cs, sn)
     dx, dy = px - crank * cs, py - crank * sn
@@ -348,8 +349,8 @@ def energy_deficit(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_
         out[low] = np.inf
         rows = np.nonzero(ok & ~low)[0]
         if rows.size:
-            x, u, b, l, a = _refined_extrema(prep, fp[rows], rows)
-            out[rows] = _drawdown(x, u, b, l, np.maximum(a, 0.0), prep.stroke[rows])[0]
+            x, u, b, loc, a = _refined_extrema(prep, fp[rows], rows)
+            out[rows] = _drawdown(x, u, b, loc, np.maximum(a, 0.0), prep.stroke[rows])[0]
     return float(out[0]) if scalar else out
 
 
@@ -398,8 +399,8 @@ def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool, cap):
     for _ in range(100):
         if active.size == 0:
             break
-        x, u, b, l, a = _refined_extrema(prep, lam[active], active, refine)
-        drop, length, travel = _drawdown(x, u, b, l, np.maximum(a, 0.0), prep.stroke[active])
+        x, u, b, loc, a = _refined_extrema(prep, lam[active], active, refine)
+        drop, length, travel = _drawdown(x, u, b, loc, np.maximum(a, 0.0), prep.stroke[active])
         new = (prep.mw[active] * length - band[active]) / travel  # Eq. (4): the arc's ratio
         grow = (drop > band[active]) & (new > lam[active])
         done = ~grow | (new - lam[active] <= RTOL * new)
@@ -522,9 +523,9 @@ def scene(
             np.empty(0),
             nan,
         )
-    x, u, b, l, a = _refined_extrema(prep, np.array([fp]))
+    x, u, b, loc, a = _refined_extrema(prep, np.array([fp]))
     a0 = max(float(a[0]), 0.0)
-    drop = float(_drawdown(x, u, b, l, np.array([a0]), prep.stroke)[0][0])
+    drop = float(_drawdown(x, u, b, loc, np.array([a0]), prep.stroke)[0][0])
     x, u = x[0], u[0]
     # local maxima of U (refined) and their running maximum over the previous revolution
     peaks = _local_maxima(x, u, a0)
@@ -547,7 +548,7 @@ def scene(
                 break
             lo_idx -= 1
         res = find_root(
-            lambda t, *p: _u_integral(t, fp, *p, prep.mw[:1]) - level,
+            lambda t, *p, level=level: _u_integral(t, fp, *p, prep.mw[:1]) - level,
             (xl, xm[m]),
             args=args,
             tolerances=dict(xatol=0.0, xrtol=1e-15),

@@ -263,7 +263,10 @@ def atomic_write(path: Path) -> Iterator[Any]:
 def _junit_case(name: str, classname: str, failure: str | None, skipped: str | None) -> str:
     head = f'    <testcase classname={quoteattr(classname)} name={quoteattr(name)} time="0"'
     if failure is not None:
-        return f'{head}>\n      <failure message={quoteattr(failure)} type="pumplink">{escape(failure)}</failure>\n    </testcase>\n'
+        return (
+            f'{head}>\n      <failure message={quoteattr(failure)} type="pumplink">'
+            f"{escape(failure)}</failure>\n    </testcase>\n"
+        )
     if skipped is not None:
         return f"{head}>\n      <skipped message={quoteattr(skipped)}/>\n    </testcase>\n"
     return f"{head}/>\n"
@@ -469,7 +472,8 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
         title = (
             "Batch variants"
             if s["variants"] <= TABLE_ROWS
-            else f"Failing variants (first {len(rows)} of {s['failed_selected']}; all rows with --format csv --out FILE)"
+            else f"Failing variants (first {len(rows)} of {s['failed_selected']}; "
+            "all rows with --format csv --out FILE)"
         )
         t = Table(title=title, title_justify="left")
         mixed = any(r["model"] == FLYWHEEL for r in rows)  # the model column only when a flywheel decides
@@ -526,7 +530,8 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
     best = s["best"]
     c.print(
         f"{s['variants']} variants: [green]{s['pass']} pass[/], [red]{s['fail']} fail[/], "
-        f"{s['infeasible']} infeasible; {s['failed_selected']} failing --fail-on {','.join(s['fail_on']) or 'none'}"
+        f"{s['infeasible']} infeasible; {s['failed_selected']} failing "
+        f"--fail-on {','.join(s['fail_on']) or 'none'}"
     )
     if best:
         fly = " with the flywheel" if best["model"] == FLYWHEEL else ""

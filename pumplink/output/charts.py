@@ -112,7 +112,8 @@ def force_curve(result, curve, path) -> Path:
         ylim=(-3 * lim, 3 * lim),
         xlabel="crank angle θ2 [deg]",
         ylabel="horizontal force at the grip [N]",
-        title=f"{result.design.spec.name}: operator force (grey: ±{band:g}° dead bands left to the wheel's inertia)",
+        title=f"{result.design.spec.name}: operator force "
+        f"(grey: ±{band:g}° dead bands left to the wheel's inertia)",
     )
     ax.set_xticks(range(0, 361, 45))
     ax.grid(alpha=0.3)
@@ -174,7 +175,8 @@ def speed_chart(sweep, path) -> Path:
         xlabel="mean wheel speed ω̄ [deg/s]",
         ylabel="peak horizontal force at the grip [N]",
         ylim=(0, min(max(top, sweep.force_limit) * 1.1, 4 * sweep.force_limit)),
-        title=f"{sweep.design.spec.name}: the wheel's inertia carries the dead centres; faster needs less force",
+        title=f"{sweep.design.spec.name}: the wheel's inertia carries the dead centres; "
+        "faster needs less force",
     )
     ax2 = ax.twinx()
     ax2.plot(v, sweep.power, color="0.5", lw=1, ls="--")

@@ -163,8 +163,9 @@ def render_designs(designs: list[Design], fmt: str, out=None) -> None:
     t = Table(
         title="Dead-centre synthesis, Eq. (1)–(2) of the pump paper",
         title_justify="left",
-        caption="lengths \\[m], angles \\[deg]; l1 frame, l2 crank, l3 coupler, l4 rocker, H handle, Δθ swing, "
-        "K time ratio, γ transmission angle, DC crank angle of the extended / folded dead centre",
+        caption="lengths \\[m], angles \\[deg]; l1 frame, l2 crank, l3 coupler, l4 rocker, H handle, "
+        "Δθ swing, K time ratio, γ transmission angle, DC crank angle of the extended / folded "
+        "dead centre",
         caption_justify="left",
     )
     for h in (
@@ -239,7 +240,8 @@ def model_line(r: ForceResult) -> str:
     if r.flywheel:
         return (
             f"model: flywheel, J = {r.inertia:.3f} kg·m², δ ≤ {r.speed_fluctuation:g} at a mean "
-            f"{r.speed_deg_s:g} deg/s (energy band W = J·ω̄²·δ = {r.energy_band:.2f} J); links' inertia neglected"
+            f"{r.speed_deg_s:g} deg/s (energy band W = J·ω̄²·δ = {r.energy_band:.2f} J); "
+            "links' inertia neglected"
         )
     return (
         "model: quasi-static + dead band (the wheel's inertia is assumed to carry the linkage "
@@ -278,7 +280,8 @@ def render_force(
     dc = d["dead_centres_deg"]
     c.print(
         f"[bold]{name}[/]  crank l2 = {d['crank_length']:.4f} m, coupler l3 = {d['coupler_length']:.4f} m, "
-        f"rocker l4 = {d['rocker_length']:.4f} m, frame l1 = {d['frame_length']:.4f} m, handle H = {d['handle_length']:.3f} m"
+        f"rocker l4 = {d['rocker_length']:.4f} m, frame l1 = {d['frame_length']:.4f} m, "
+        f"handle H = {d['handle_length']:.3f} m"
     )
     c.print(
         f"dead centres at crank {dc['extended']:.2f}° (extended) and {dc['folded']:.2f}° (folded); "
@@ -357,7 +360,8 @@ def render_force(
         ct.add_column(h, justify="right" if h in ("value", "limit") else "left")
     if r.flywheel:
         ct.add_row(
-            f"quasi-static peak outside ±{r.design.spec.operator.dead_band:g}° (dead-band model, for comparison)",
+            f"quasi-static peak outside ±{r.design.spec.operator.dead_band:g}° "
+            "(dead-band model, for comparison)",
             f"{_f(r.dead_band_peak_force, '{:.2f}', '∞')} N",
             "",
             "[dim]info[/]",
@@ -420,22 +424,24 @@ def render_force(
             )
             continue
         c.print(
-            f"[yellow]warning:[/] {escape(check_label(ch, r))} is {ch.value:.2f} {ch.unit}, outside {ch.relation} {ch.limit:g} {ch.unit}"
+            f"[yellow]warning:[/] {escape(check_label(ch, r))} is {ch.value:.2f} {ch.unit}, "
+            f"outside {ch.relation} {ch.limit:g} {ch.unit}"
             + (
                 " (a person sustains ~75 W for hours; slow the wheel or lower the load)"
                 if ch.key == "power"
                 else ""
             )
             + (
-                " (pressure angle above 45°: the coupler pushes the crank at a poor angle and the joints wear)"
+                " (pressure angle above 45°: the coupler pushes the crank at a poor angle "
+                "and the joints wear)"
                 if ch.key == "transmission_angle"
                 else ""
             )
         )
 
 
-# ----------------------------------------------------------------------------- model choice, verification, speed
-# ----------------------------------------------------------------------------- model choice, verification, speed
+# -------------------------------------------------------------------------- model choice, verification, speed
+# -------------------------------------------------------------------------- model choice, verification, speed
 def explain_rows(effects) -> list[dict[str, Any]]:
     """The model-choice report as rows (JSON/CSV)."""
     return [
@@ -500,8 +506,10 @@ def render_verify(row: dict[str, Any], out=None) -> None:
     c = console(out or sys.stdout)
     ok = "[bold green]agrees[/]" if row["agrees"] else "[bold red]DISAGREES[/]"
     c.print(
-        f"verify ({row['method']}, {row['cycles']} revolutions): {ok} — periodic to {row['periodicity']:.1e}, "
-        f"mean speed (max+min)/2 = {row['mean_speed_deg_s']:.4f} deg/s, fluctuation δ = {row['fluctuation']:.6f}, "
+        f"verify ({row['method']}, {row['cycles']} revolutions): {ok} — "
+        f"periodic to {row['periodicity']:.1e}, "
+        f"mean speed (max+min)/2 = {row['mean_speed_deg_s']:.4f} deg/s, "
+        f"fluctuation δ = {row['fluctuation']:.6f}, "
         f"wheel {row['speed_range_deg_s']['min']:.1f}–{row['speed_range_deg_s']['max']:.1f} deg/s "
         f"(time-averaged {row['time_mean_speed_deg_s']:.1f} deg/s)"
     )
@@ -577,8 +585,8 @@ def render_speed(sw: SpeedSweep, fmt: str, out=None) -> None:
     c.print(t)
     mps = sw.min_passing_speed
     c.print(
-        f"mean force {sw.mean_force:.1f} N (the floor: an infinite flywheel); quasi-static peak outside the dead "
-        f"band {sw.dead_band_peak_force:.1f} N (the dead-band model, blind to speed)"
+        f"mean force {sw.mean_force:.1f} N (the floor: an infinite flywheel); quasi-static peak "
+        f"outside the dead band {sw.dead_band_peak_force:.1f} N (the dead-band model, blind to speed)"
     )
     if math.isfinite(mps):
         c.print(
@@ -587,7 +595,8 @@ def render_speed(sw: SpeedSweep, fmt: str, out=None) -> None:
         )
     else:
         c.print(
-            f"[bold red]no speed passes[/]: the mean force {sw.mean_force:.1f} N is above the {sw.force_limit:g} N limit"
+            f"[bold red]no speed passes[/]: the mean force {sw.mean_force:.1f} N is above the "
+            f"{sw.force_limit:g} N limit"
         )
 
 
@@ -719,8 +728,8 @@ def render_transmission(row: dict[str, Any], fmt: str, out=None) -> None:
         )
     if row["compare"]:
         c.print(
-            f"(the paper prints γmin = {row['printed_gamma_min_deg']}° for its diagram design; its own Eq. (4) "
-            f"gives the value above)",
+            f"(the paper prints γmin = {row['printed_gamma_min_deg']}° for its diagram design; "
+            "its own Eq. (4) gives the value above)",
             markup=False,
         )
 
@@ -834,8 +843,10 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
         else "model: quasi-static + dead band"
     )
     c.print(
-        f"[bold]{row['name']}[/]: minimise the {row['objective']} operator force ({model}; seed {row['seed']}); axle height "
-        f"{row['axle_height_m']:g} m, grip height {row['grip_height_range_m'][0]:g}–{row['grip_height_range_m'][1]:g} m, "
+        f"[bold]{row['name']}[/]: minimise the {row['objective']} operator force "
+        f"({model}; seed {row['seed']}); axle height "
+        f"{row['axle_height_m']:g} m, grip height "
+        f"{row['grip_height_range_m'][0]:g}–{row['grip_height_range_m'][1]:g} m, "
         f"stroke {row['stroke_range_m'][0]:g}–{row['stroke_range_m'][1]:g} m"
     )
     t = Table(title="Variables", title_justify="left")
@@ -884,23 +895,26 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
     c.print(t)
     if row["improvement_N"] is not None:
         c.print(
-            f"{row['objective']} force {_f(s[peak_key] if row['objective'] == 'peak' else s['mean_force_N'], '{:.2f}')} N → "
+            f"{row['objective']} force "
+            f"{_f(s[peak_key] if row['objective'] == 'peak' else s['mean_force_N'], '{:.2f}')} N → "
             f"{_f(o[peak_key] if row['objective'] == 'peak' else o['mean_force_N'], '{:.2f}')} N "
             f"({row['improvement_pct']:+.1f} % lower than the spec's own design)"
             if row["improvement_pct"] >= 0
-            else f"the optimum needs {-row['improvement_N']:.2f} N more than the spec's own design, which breaks: "
-            f"{'; '.join(s['violated'])}",
+            else f"the optimum needs {-row['improvement_N']:.2f} N more than the spec's own design, "
+            f"which breaks: {'; '.join(s['violated'])}",
             markup=False,
         )
     c.print(f"binding: {', '.join(row['binding']) or 'none (interior optimum)'}", markup=False)
     c.print(
-        f"grip {o['grip_height_m'][0]:.3f}–{o['grip_height_m'][1]:.3f} m, stroke {o['stroke_m']:.3f} m, rocker pivot "
-        f"{o['rocker_pivot_height_m']:+.3f} m above the ground{' (below ground: needs a pit)' if o['rocker_pivot_height_m'] < 0 else ''}",
+        f"grip {o['grip_height_m'][0]:.3f}–{o['grip_height_m'][1]:.3f} m, stroke {o['stroke_m']:.3f} m, "
+        f"rocker pivot {o['rocker_pivot_height_m']:+.3f} m above the ground"
+        f"{' (below ground: needs a pit)' if o['rocker_pivot_height_m'] < 0 else ''}",
         markup=False,
     )
     if not o["passes_force_limit"]:
         c.print(
-            f"no design inside these bounds and ergonomic limits keeps the force within {row['force_limit_N']:g} N: "
+            "no design inside these bounds and ergonomic limits keeps the force within "
+            f"{row['force_limit_N']:g} N: "
             f"the best needs {_f(o[peak_key], '{:.2f}', none='∞')} N peak; it is held back by: "
             f"{', '.join(row['binding'])}. "
             "Widen the bounds that bind (--vary), or relax --grip-height / --stroke.",
@@ -908,7 +922,8 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
         )
     verdict = "[bold green]PASS[/]" if o["passes_force_limit"] else "[bold red]FAIL[/]"
     c.print(
-        f"{verdict}: optimum peak{' with the flywheel' if fly else ''} {_f(o[peak_key], '{:.2f}', none='∞')} N "
+        f"{verdict}: optimum peak{' with the flywheel' if fly else ''} "
+        f"{_f(o[peak_key], '{:.2f}', none='∞')} N "
         f"vs limit {row['force_limit_N']:g} N "
         f"({row['evaluations']} designs evaluated, {row['generations']} generations"
         f"{', polished' if row['polished'] else ''})"
@@ -987,7 +1002,8 @@ def render_methods(
         c.print(f"  {r['name']}: {r['summary']}; cannot handle: {r['cannot_handle']}", markup=False)
 
     st = Table(
-        title=f"How many samples? Uniform sweep from crank 0° vs exact values (dead band ±{dead_band_deg:g}°)",
+        title="How many samples? Uniform sweep from crank 0° vs exact values "
+        f"(dead band ±{dead_band_deg:g}°)",
         title_justify="left",
     )
     for h in (

@@ -811,7 +811,8 @@ def test_killed_run_leaves_no_partial_file(tmp_path, sig, workers, group):
     grid = tmp_path / "big.toml"
     grid.write_text(
         f'base = "{PROTOTYPE}"\n[vary]\n"linkage.rocker" = {{ start = 0.15, stop = 0.3, num = 100 }}\n'
-        f'"linkage.swing" = {{ start = 40, stop = 80, num = 100 }}\n"load.rope_force" = [30, 40, 50, 60, 70, 80]\n'
+        f'"linkage.swing" = {{ start = 40, stop = 80, num = 100 }}\n'
+        '"load.rope_force" = [30, 40, 50, 60, 70, 80]\n'
     )
     out = tmp_path / "rows.csv"
     p = subprocess.Popen(

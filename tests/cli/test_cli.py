@@ -632,7 +632,8 @@ def _bounds(section: str, key: str) -> list[str]:
     return out
 
 
-# name, file content (str or bytes), substrings that must appear in the one stderr line, (section, key) for range
+# name, file content (str or bytes), substrings that must appear in the one stderr line,
+# (section, key) for range
 BAD_FILES = [
     ("toml-syntax", _sub("swing = 60.0", "swing = 60.0 ="), ["line"], None),
     ("duplicate-key", _sub("b = 0.10", "b = 0.10\nb = 0.2"), ["b"], None),

@@ -1,8 +1,10 @@
-"""Optimal-transmission crank-rocker (the optimal-transmission paper): exactness, one-branch arc, kinematic verification.
+"""Optimal-transmission crank-rocker (the optimal-transmission paper): exactness, one-branch arc,
+kinematic verification.
 
 Reference values come from independent routes: a 40-digit mpmath golden-section search on the
 design circle in the classic centre/angle parametrisation (not the law-of-sines form of
-pumplink.mechanisms.crank_rocker), and mpmath evaluations of Eq. (4)-(6) of the optimal-transmission paper for the paper's designs.
+pumplink.mechanisms.crank_rocker), and mpmath evaluations of Eq. (4)-(6) of the optimal-transmission
+paper for the paper's designs.
 """
 
 import json
@@ -53,7 +55,7 @@ def mp_reference(K, phi_deg, r, scan=4000):
     for sgn in (-1, 1):
         oy = yc + sgn * R * mp.cos(th)
 
-        def design(tau):
+        def design(tau, oy=oy):
             ax, ay = R * mp.cos(tau), oy + R * mp.sin(tau)
             a1 = mp.hypot(ax + w, ay - yc)
             a2 = mp.hypot(ax - w, ay - yc)

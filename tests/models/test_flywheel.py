@@ -7,9 +7,9 @@ Expected values never come from the code under test.  They come from
   feasibility test done literally on a fine crank grid, using only grip positions from
   ``pumplink.mechanisms.fourbar.kinematic_state`` and the 50-digit dead centres of ``tests/reference.py``,
   with bisection on the peak force and an a-priori bound on its own grid error;
-* closed forms: ``pumplink.models.quasi_static.mean_force`` (F_mean = pi Mw / (2 H sin(swing/2)), docs/physics.md
-  §1) and the dead-centre asymptote W Fp -> Mw^2 / kappa derived below, kappa from the 50-digit
-  reference;
+* closed forms: ``pumplink.models.quasi_static.mean_force`` (F_mean = pi Mw / (2 H sin(swing/2)),
+  docs/physics.md §1) and the dead-centre asymptote W Fp -> Mw^2 / kappa derived below, kappa
+  from the 50-digit reference;
 * quadrature of the reported profile (Gauss-Legendre, split where the profile has kinks or
   jumps) and, for the time-domain cross-check, the energy balance in the crank angle.
 
@@ -71,7 +71,8 @@ class Case:
 
     @property
     def f_mean(self):
-        """F_mean from the closed form of pumplink.models.quasi_static (docs/physics.md), not from flywheel."""
+        """F_mean from the closed form of pumplink.models.quasi_static (docs/physics.md), not from
+        flywheel."""
         return float(mean_force(self.mw, grip_stroke(self.syn.handle_length, self.syn.swing)))
 
     def required(self, band):
@@ -353,7 +354,8 @@ def test_force_grows_like_one_over_the_band_near_zero():
 
 
 def test_force_grows_without_bound_as_the_band_vanishes():
-    """The limit W -> 0 of the docstring ("W -> 0 gives the quasi-static maximum, infinite") and of ("delta_allow -> 0 grows without bound").
+    """The limit W -> 0 of the docstring ("W -> 0 gives the quasi-static maximum, infinite") and of
+    ("delta_allow -> 0 grows without bound").
 
     Default design, hand asymptote W Fp -> Mw^2 / kappa = 310.40 N J (see :func:`_asymptote`; its
     O(W^2) correction is < 1e-9 for W < 1e-3 J).  The force must rise strictly as the band shrinks
