@@ -1,8 +1,9 @@
-"""Accuracy comparisons of the force methods and the sampling study.
+"""Accuracy and speed of the force methods, and the sampling study.
 
-Pure functions: sample sets, error statistics against the ``reference`` method, and what a
-uniform sweep of N samples reports for the peak and mean force.  No timing here (the
-``methods`` command times the methods).
+Sample sets, error statistics against the ``reference`` method, the timed comparison of every
+method (:func:`compare_methods`), and what a uniform sweep of N samples reports for the peak and
+mean force.  Results are plain dicts keyed by identifiers; the words are in
+:data:`pumplink.methods.POINT_LABELS` and the output layer.
 """
 
 from __future__ import annotations
@@ -11,15 +12,22 @@ import numpy as np
 
 from pumplink.mechanisms.angles import crank_grid
 from pumplink.mechanisms.fourbar import FourBar, grip_stroke, kinematic_state
-from pumplink.methods import DANGER_KINDS, DEAD_CENTRE, NEAR_DEAD_CENTRE, UNIFORM, MethodResult, danger_points
+from pumplink.methods import (
+    DANGER,
+    DANGER_KINDS,
+    DEAD_CENTRE,
+    METHODS,
+    NEAR_DEAD_CENTRE,
+    UNIFORM,
+    MethodResult,
+    danger_points,
+)
 from pumplink.models import quasi_static as _force
 
 #: Offsets from each dead centre [deg] at which the methods are compared.
 DEAD_CENTRE_OFFSETS_DEG = (1.0, 1e-2, 1e-4, 1e-6)
 #: Sample counts of the sampling study.
 SAMPLE_COUNTS = (12, 36, 72, 360, 3600)
-#: Name of the sample set made of every danger point (and 1e-9 rad either side).
-DANGER = "danger points"
 
 
 def sample_sets(lk: FourBar, dead_centre_extended, dead_centre_folded, n: int = 360) -> dict[str, np.ndarray]:
@@ -65,17 +73,75 @@ def error_stats(result: MethodResult, ref: MethodResult, tolerance: float) -> di
     }
 
 
-def failures(stats_by_set: dict[str, dict]) -> list[str]:
-    """Sentences for the JSON ``failures`` list: where a method flagged or went silently wrong."""
+def failures(stats_by_set: dict[str, dict]) -> list[dict]:
+    """Where a method flagged or went silently wrong: one record per finding, ``{"kind", "what",
+    "count", "n"}`` with ``what`` one of ``wrong`` (values off by more than the tolerance),
+    ``missed_singular`` (dead centres returned as finite forces), ``flagged`` (points with no
+    value; not reported for the exact dead centres, where no value is right)."""
     out = []
-    for name, s in stats_by_set.items():
-        if s["wrong"]:
-            out.append(f"{name}: {s['wrong']} of {s['n']} values silently wrong")
-        if s["missed_singular"]:
-            out.append(f"{name}: {s['missed_singular']} dead centres returned as finite forces")
-        if s["flagged"] and name != DEAD_CENTRE:
-            out.append(f"{name}: {s['flagged']} of {s['n']} points flagged (no value)")
+    for kind, s in stats_by_set.items():
+        for what in ("wrong", "missed_singular", "flagged"):
+            if s[what] and not (what == "flagged" and kind == DEAD_CENTRE):
+                out.append({"kind": kind, "what": what, "count": s[what], "n": s["n"]})
     return out
+
+
+def seconds_per_position(fn, args, n: int, repeats: int, budget: float = 1.0) -> float:
+    """Median wall time of ``fn(*args)`` per position [s] over ``repeats`` runs (fewer if slow)."""
+    import statistics
+    import time
+
+    times = []
+    start = time.perf_counter()
+    for _ in range(max(1, repeats)):
+        t0 = time.perf_counter()
+        fn(*args)
+        times.append(time.perf_counter() - t0)
+        if time.perf_counter() - start > budget:
+            break
+    return statistics.median(times) / n
+
+
+def compare_methods(
+    lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, names, samples: int, repeats: int
+) -> list[dict]:
+    """Time every method in ``names`` and compare it with the 50-digit reference on each sample set.
+
+    Returns one dict per method: ``name``, ``summary``, ``cannot_handle``, ``seconds_per_position``
+    (uniform sweep), ``max_rel_error_uniform``, ``max_rel_error_near_dead_centre``, ``failures``
+    (:func:`failures`) and ``samplings`` (per sample set: :func:`error_stats` plus the timing).
+    """
+    sets = sample_sets(lk, dead_centre_extended, dead_centre_folded, samples)
+    refs = {k: METHODS["reference"].function(lk, a, wheel_torque) for k, a in sets.items()}
+    rows = []
+    for name in names:
+        m = METHODS[name]
+        per_set = {}
+        for kind, angles in sets.items():
+            tol = m.tolerance.get(kind, max(m.tolerance[k] for k in m.tolerance))
+            stats = error_stats(m.function(lk, angles, wheel_torque), refs[kind], tol)
+            stats["seconds_per_position"] = seconds_per_position(
+                m.function, (lk, angles, wheel_torque), angles.size, repeats
+            )
+            per_set[kind] = stats
+        rows.append(
+            {
+                "name": name,
+                "summary": m.summary,
+                "cannot_handle": m.cannot,
+                "seconds_per_position": per_set[UNIFORM]["seconds_per_position"],
+                "max_rel_error_uniform": per_set[UNIFORM]["max_rel_error"],
+                "max_rel_error_near_dead_centre": per_set[NEAR_DEAD_CENTRE]["max_rel_error"],
+                "failures": failures(per_set),
+                "samplings": per_set,
+            }
+        )
+    return rows
+
+
+def silently_wrong(rows: list[dict]) -> bool:
+    """True if any method returned a wrong value without a flag (the ``methods`` command's exit 1)."""
+    return any(st["wrong"] or st["missed_singular"] for r in rows for st in r["samplings"].values())
 
 
 def sampled_mean_force(lk: FourBar, n: int, wheel_torque) -> float:

@@ -29,13 +29,27 @@ import numpy as np
 
 from pumplink.mechanisms.fourbar import SINGULAR_SIN, FourBar, kinematic_state
 
-UNIFORM = "uniform sweep"
-NEAR_DEAD_CENTRE = "near a dead centre (down to 1e-6 deg)"
-DEAD_CENTRE = "exactly at a dead centre"
-CRANK_PERPENDICULAR = "crank perpendicular to the frame line"
-ROCKER_PERPENDICULAR = "rocker perpendicular to the frame line"
-CRANK_PARALLEL_ROCKER = "crank parallel to the rocker"
-CRANK_ALONG_FRAME = "crank along the frame line"
+#: Kinds of crank positions a method is tested at (identifiers; :data:`POINT_LABELS` has the words).
+UNIFORM = "uniform"
+NEAR_DEAD_CENTRE = "near_dead_centre"
+DEAD_CENTRE = "dead_centre"
+CRANK_PERPENDICULAR = "crank_perpendicular"
+ROCKER_PERPENDICULAR = "rocker_perpendicular"
+CRANK_PARALLEL_ROCKER = "crank_parallel_rocker"
+CRANK_ALONG_FRAME = "crank_along_frame"
+#: Every danger point together (and 1e-9 rad either side), a sample set of the comparison.
+DANGER = "danger_points"
+#: What reports call each kind of position (and the keys of ``pumplink methods --format json``).
+POINT_LABELS = {
+    UNIFORM: "uniform sweep",
+    NEAR_DEAD_CENTRE: "near a dead centre (down to 1e-6 deg)",
+    DEAD_CENTRE: "exactly at a dead centre",
+    CRANK_PERPENDICULAR: "crank perpendicular to the frame line",
+    ROCKER_PERPENDICULAR: "rocker perpendicular to the frame line",
+    CRANK_PARALLEL_ROCKER: "crank parallel to the rocker",
+    CRANK_ALONG_FRAME: "crank along the frame line",
+    DANGER: "danger points",
+}
 POINT_KINDS = (
     UNIFORM,
     NEAR_DEAD_CENTRE,

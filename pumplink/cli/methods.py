@@ -11,23 +11,6 @@ from pumplink.cli.common import Format, FormatOpt, app
 from pumplink.errors import SpecError
 
 
-# ----------------------------------------------------------------------------- methods
-def _seconds_per_position(fn, args, n: int, repeats: int, budget: float = 1.0) -> float:
-    """Median wall time of ``fn(*args)`` per position [s] over ``repeats`` runs (fewer if slow)."""
-    import statistics
-    import time
-
-    times = []
-    start = time.perf_counter()
-    for _ in range(max(1, repeats)):
-        t0 = time.perf_counter()
-        fn(*args)
-        times.append(time.perf_counter() - t0)
-        if time.perf_counter() - start > budget and len(times) >= 1:
-            break
-    return statistics.median(times) / n
-
-
 @app.command()
 def methods(
     spec: Annotated[
@@ -83,7 +66,7 @@ def methods(
     from pumplink import accuracy
     from pumplink.analysis import design
     from pumplink.errors import InfeasibleDesign
-    from pumplink.methods import METHODS, NEAR_DEAD_CENTRE, UNIFORM
+    from pumplink.methods import METHODS
     from pumplink.output.charts import check_path, plot_methods, plot_sampling, pyplot
     from pumplink.output.tables import render_methods
     from pumplink.spec import default_spec, load_spec
@@ -108,31 +91,9 @@ def methods(
         raise InfeasibleDesign(f"{s.name}: {d.error}")
     syn, mw = d.synthesis, s.wheel_torque
     lk = syn.linkage
-    sets = accuracy.sample_sets(lk, syn.dead_centre_extended, syn.dead_centre_folded, samples)
-    refs = {k: METHODS["reference"].function(lk, a, mw) for k, a in sets.items()}
-    rows = []
-    for name in names:
-        m = METHODS[name]
-        per_set = {}
-        for kind, angles in sets.items():
-            tol = m.tolerance.get(kind, max(m.tolerance[k] for k in m.tolerance))
-            stats = accuracy.error_stats(m.function(lk, angles, mw), refs[kind], tol)
-            stats["seconds_per_position"] = _seconds_per_position(
-                m.function, (lk, angles, mw), angles.size, repeats
-            )
-            per_set[kind] = stats
-        rows.append(
-            {
-                "name": name,
-                "summary": m.summary,
-                "cannot_handle": m.cannot,
-                "seconds_per_position": per_set[UNIFORM]["seconds_per_position"],
-                "max_rel_error_uniform": per_set[UNIFORM]["max_rel_error"],
-                "max_rel_error_near_dead_centre": per_set[NEAR_DEAD_CENTRE]["max_rel_error"],
-                "failures": accuracy.failures(per_set),
-                "samplings": per_set,
-            }
-        )
+    rows = accuracy.compare_methods(
+        lk, syn.dead_centre_extended, syn.dead_centre_folded, mw, names, samples, repeats
+    )
     study = accuracy.sampling_study(
         lk,
         syn.dead_centre_extended,
@@ -148,5 +109,4 @@ def methods(
     if samples_plot is not None:
         plot_sampling(study, samples_plot, title=s.name, dead_band_deg=s.operator.dead_band)
         typer.echo(f"wrote {samples_plot}", err=True)
-    silent = any(st["wrong"] or st["missed_singular"] for r in rows for st in r["samplings"].values())
-    raise typer.Exit(1 if silent else 0)
+    raise typer.Exit(1 if accuracy.silently_wrong(rows) else 0)

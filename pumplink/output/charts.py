@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from pumplink.errors import SpecError
+from pumplink.methods import DANGER, DEAD_CENTRE, NEAR_DEAD_CENTRE, POINT_LABELS, UNIFORM
 
 PLOT_HINT = "install it with: pip install 'pumplink[plot]'"
 SUFFIXES = (".png", ".svg", ".pdf")
@@ -193,12 +194,7 @@ def speed_chart(sweep, path) -> Path:
 ERROR_FLOOR = 1e-17
 
 
-MARKERS = {
-    "uniform sweep": "o",
-    "near a dead centre (down to 1e-6 deg)": "s",
-    "exactly at a dead centre": "x",
-    "danger points": "^",
-}
+MARKERS = {UNIFORM: "o", NEAR_DEAD_CENTRE: "s", DEAD_CENTRE: "x", DANGER: "^"}
 
 
 COLOURS = {"vector": "tab:blue", "paper": "tab:orange", "numeric": "tab:green", "reference": "tab:gray"}
@@ -224,16 +220,16 @@ def plot_methods(rows: list[dict], path: Path, title: str = "") -> None:
         ax.annotate(
             r["name"],
             (
-                r["samplings"]["uniform sweep"]["seconds_per_position"],
-                max(r["samplings"]["uniform sweep"]["max_rel_error"] or ERROR_FLOOR, ERROR_FLOOR),
+                r["samplings"][UNIFORM]["seconds_per_position"],
+                max(r["samplings"][UNIFORM]["max_rel_error"] or ERROR_FLOOR, ERROR_FLOOR),
             ),
             textcoords="offset points",
             xytext=(6, 6),
             color=COLOURS.get(r["name"], "k"),
         )
     for kind, mk in MARKERS.items():
-        if kind != "exactly at a dead centre":
-            ax.scatter([], [], marker=mk, color="k", label=kind)
+        if kind != DEAD_CENTRE:
+            ax.scatter([], [], marker=mk, color="k", label=POINT_LABELS[kind])
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("time per crank position [s] (median)")

@@ -14,6 +14,7 @@ import numpy as np
 
 if TYPE_CHECKING:
     from pumplink.analysis import Design, ForceResult, SpeedSweep
+from pumplink.methods import POINT_LABELS
 from pumplink.output.formats import console, deg, num, write_csv
 from pumplink.output.formats import fmt as _f
 from pumplink.output.formats import write_json as _json
@@ -935,22 +936,33 @@ def _e(x) -> str:
     return "—" if x is None else ("0" if x == 0 else f"{x:.1e}")
 
 
+#: How each finding of the method comparison reads (``pumplink.accuracy.failures``).
+FAILURE_TEXT = {
+    "wrong": "{label}: {count} of {n} values silently wrong",
+    "missed_singular": "{label}: {count} dead centres returned as finite forces",
+    "flagged": "{label}: {count} of {n} points flagged (no value)",
+}
+
+
+def failure_sentences(records: list[dict]) -> list[str]:
+    """The method comparison's findings in words."""
+    return [FAILURE_TEXT[f["what"]].format(label=POINT_LABELS[f["kind"]], **f) for f in records]
+
+
 def json_rows(rows: list[dict]) -> list[dict]:
     """The JSON contract: name, seconds_per_position, max_rel_error_uniform,
-    max_rel_error_near_dead_centre, failures (plus summary, cannot_handle and per-sampling detail)."""
+    max_rel_error_near_dead_centre, failures (plus summary, cannot_handle and per-sampling detail,
+    keyed by the words of each sampling)."""
     return [
         {
-            k: r[k]
-            for k in (
-                "name",
-                "summary",
-                "cannot_handle",
-                "seconds_per_position",
-                "max_rel_error_uniform",
-                "max_rel_error_near_dead_centre",
-                "failures",
-                "samplings",
-            )
+            "name": r["name"],
+            "summary": r["summary"],
+            "cannot_handle": r["cannot_handle"],
+            "seconds_per_position": r["seconds_per_position"],
+            "max_rel_error_uniform": r["max_rel_error_uniform"],
+            "max_rel_error_near_dead_centre": r["max_rel_error_near_dead_centre"],
+            "failures": failure_sentences(r["failures"]),
+            "samplings": {POINT_LABELS[k]: v for k, v in r["samplings"].items()},
         }
         for r in rows
     ]
@@ -967,7 +979,7 @@ def render_methods(
         return write_csv(
             [
                 {k: v for k, v in r.items() if k not in ("samplings", "failures")}
-                | {"failures": "; ".join(r["failures"])}
+                | {"failures": "; ".join(failure_sentences(r["failures"]))}
                 for r in rows
             ],
             out,
@@ -980,7 +992,9 @@ def render_methods(
         title_justify="left",
     )
     kinds = list(rows[0]["samplings"]) if rows else []
-    for h in ["method", "time / position"] + [f"max err: {k}" for k in kinds] + ["failures / flags"]:
+    for h in (
+        ["method", "time / position"] + [f"max err: {POINT_LABELS[k]}" for k in kinds] + ["failures / flags"]
+    ):
         t.add_column(h, justify="left" if h in ("method", "failures / flags") else "right")
     for r in rows:
         cells = [r["name"], f"{r['seconds_per_position'] * 1e9:,.1f} ns"]
@@ -990,7 +1004,7 @@ def render_methods(
             if st["flagged"]:
                 cell += f" ({st['flagged']}/{st['n']} flagged)"
             cells.append(cell)
-        cells.append("\n".join(r["failures"]) or "none")
+        cells.append("\n".join(failure_sentences(r["failures"])) or "none")
         t.add_row(*cells)
     c.print(t)
     c.print(
