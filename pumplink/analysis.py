@@ -403,12 +403,7 @@ def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
     given = np.asarray(speeds_deg_s, float)
     w = np.radians(np.append(given, op.speed))  # the spec's own speed last
     lk = syn.linkage
-    rep = type(lk)(
-        *(
-            np.full(w.size, float(v))
-            for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle, lk.branch)
-        )
-    )
+    rep = type(lk)(*(np.full(w.size, float(v)) for v in lk.parameters))  # one design per speed
     cond = Conditions(w, np.radians(op.dead_band), j, op.speed_fluctuation)
     req = MODELS[FLYWHEEL].peak_force(rep, syn.dead_centre_extended, syn.dead_centre_folded, mw, cond)
     band = _fw.energy_band(j, w, op.speed_fluctuation)

@@ -327,24 +327,14 @@ def evaluate_designs(problem: Problem, x) -> Evaluation:
     live = ok & (win > 0)
     lk = syn.linkage
     if live.any():
-        sub = type(lk)(
-            *(
-                np.asarray(getattr(lk, f))[live]
-                for f in ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")
-            )
-        )
+        sub = lk.take(live)
         peak[live] = MODELS[QUASI_STATIC].peak_force(
             sub, syn.dead_centre_extended[live], syn.dead_centre_folded[live], mw, cond
         )
     required = np.full(ok.shape, np.nan)
     if problem.flywheel and ok.any():
         # the flywheel's least peak force at the spec's speed, as pumplink force
-        sub = type(lk)(
-            *(
-                np.asarray(getattr(lk, f))[ok]
-                for f in ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")
-            )
-        )
+        sub = lk.take(ok)
         required[ok] = MODELS[FLYWHEEL].peak_force(
             sub, syn.dead_centre_extended[ok], syn.dead_centre_folded[ok], mw, cond
         )

@@ -16,7 +16,7 @@ import numpy as np
 
 from pumplink import spec
 from pumplink.batch.files import Batch, axis_indices
-from pumplink.mechanisms.fourbar import FourBar, grip_stroke, infeasibility_reason, synthesize
+from pumplink.mechanisms.fourbar import grip_stroke, infeasibility_reason, synthesize
 from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC, Conditions
 from pumplink.models import flywheel as _fw
 from pumplink.models import quasi_static as _qs
@@ -141,15 +141,6 @@ def _rows(cond: Conditions, idx) -> Conditions:
     )
 
 
-def _take(lk: FourBar, idx) -> FourBar:
-    return FourBar(
-        *(
-            np.asarray(getattr(lk, f))[idx]
-            for f in ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "branch")
-        )
-    )
-
-
 def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batch_index: int = 0) -> Chunk:
     """Synthesis, force checks and verdict for variants ``start..stop-1`` of a batch.
 
@@ -193,14 +184,14 @@ def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batc
     cond = Conditions(speed, band, j, np.where(np.isnan(j), np.nan, get("operator.speed_fluctuation")))
     ok = np.nonzero(feasible)[0]
     if ok.size:
-        sub = _take(lk, ok)
+        sub = lk.take(ok)
         dce, dcf = syn.dead_centre_extended[ok], syn.dead_centre_folded[ok]
         mean[ok] = _qs.mean_force(mw[ok], grip_stroke(handle[ok], syn.swing[ok]))
         # one call per chunk: the refinement (scipy find_minimum) costs ~10 ms per call
         peak[ok] = MODELS[QUASI_STATIC].peak_force(sub, dce, dcf, mw[ok], _rows(cond, ok))
         for s0 in range(0, ok.size, SUB_DESIGNS):  # cache-sized blocks of designs
             s = slice(s0, s0 + SUB_DESIGNS)
-            part = _take(sub, s)
+            part = sub.take(s)
             sampled[ok[s]] = _qs.sampled_peak(part, samples, mw[ok][s], dce[s], dcf[s], band[ok][s])
     # The flywheel model, only for the variants that give inertia.
     fly = ~np.isnan(j)
@@ -210,7 +201,7 @@ def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batc
     rows = np.nonzero(fly & feasible)[0]
     for s0 in range(0, rows.size, FLYWHEEL_DESIGNS):  # bounded temporaries
         r = rows[s0 : s0 + FLYWHEEL_DESIGNS]
-        part = _take(lk, r)
+        part = lk.take(r)
         dce, dcf = syn.dead_centre_extended[r], syn.dead_centre_folded[r]
         required[r] = MODELS[FLYWHEEL].peak_force(part, dce, dcf, mw[r], _rows(cond, r))
         passing[r] = _fw.min_passing_speed(part, dce, dcf, mw[r], limit[r], j[r], delta[r])

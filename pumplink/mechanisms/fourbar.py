@@ -87,6 +87,25 @@ class FourBar:
     handle: np.ndarray | float
     branch: np.ndarray | float
 
+    @property
+    def parameters(self) -> tuple:
+        """The seven parameters in field order (pivot_x, pivot_y, crank, coupler, rocker, handle, branch)."""
+        return (self.pivot_x, self.pivot_y, self.crank, self.coupler, self.rocker, self.handle, self.branch)
+
+    def take(self, idx) -> FourBar:
+        """The designs ``idx`` of a four-bar held as arrays over designs."""
+        return FourBar(*(np.asarray(v)[idx] for v in self.parameters))
+
+
+def per_design(lk: FourBar, *extra):
+    """The four-bar's parameters and ``extra`` per-design values, broadcast together.
+
+    Returns ``(scalar, arrays)``: True when every input was a scalar, and the 7 + len(extra)
+    values as 1-D float arrays over designs (four-bar parameters first).
+    """
+    params = np.broadcast_arrays(*(np.asarray(v, float) for v in (*lk.parameters, *extra)))
+    return params[0].ndim == 0, [np.atleast_1d(p).ravel() for p in params]
+
 
 @dataclass(frozen=True)
 class Synthesis:

@@ -72,7 +72,7 @@ import numpy as np
 
 from pumplink.constants import DEFAULT_SPEED_FLUCTUATION, LINK_ENERGY_LIMIT, LINK_MASS_PER_METRE  # noqa: F401  (re-exported)
 from pumplink.mechanisms.angles import TWO_PI
-from pumplink.mechanisms.fourbar import FourBar, kinematic_state, loop_closure
+from pumplink.mechanisms.fourbar import FourBar, kinematic_state, loop_closure, per_design
 from pumplink.models import quasi_static as _qs
 
 #: Uniform grid points per revolution on which the extrema of U are located before refinement.
@@ -206,25 +206,7 @@ class _Prepared:
 
 
 def _prepare(lk: FourBar, dce, dcf, wheel_torque):
-    params = np.broadcast_arrays(
-        *(
-            np.asarray(v, float)
-            for v in (
-                lk.pivot_x,
-                lk.pivot_y,
-                lk.crank,
-                lk.coupler,
-                lk.rocker,
-                lk.handle,
-                lk.branch,
-                dce,
-                dcf,
-                wheel_torque,
-            )
-        )
-    )
-    scalar = params[0].ndim == 0
-    *geom, dce, dcf, mw = [np.atleast_1d(p).ravel() for p in params]
+    scalar, (*geom, dce, dcf, mw) = per_design(lk, dce, dcf, wheel_torque)
     with np.errstate(all="ignore"):
         xe = _grip_x(dce, *geom)
         xf = _grip_x(dcf, *geom)

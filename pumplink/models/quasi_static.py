@@ -10,7 +10,7 @@ import functools
 import numpy as np
 
 from pumplink.mechanisms.angles import TWO_PI, angular_distance, offset_table, shifted_directions
-from pumplink.mechanisms.fourbar import FourBar, force_kernel, kernel_work
+from pumplink.mechanisms.fourbar import FourBar, force_kernel, kernel_work, per_design
 
 #: Points per dead-band window on which the exact peak search starts (independent of the
 #: user's --samples); the best interior point is then refined by a bracketing minimiser.
@@ -81,27 +81,8 @@ def dead_band_peak_force(lk: FourBar, dead_centre_extended, dead_centre_folded, 
     """
     from scipy.optimize.elementwise import find_minimum  # lazy: keeps start-up fast
 
-    params = np.broadcast_arrays(
-        *(
-            np.asarray(v, float)
-            for v in (
-                lk.pivot_x,
-                lk.pivot_y,
-                lk.crank,
-                lk.coupler,
-                lk.rocker,
-                lk.handle,
-                lk.branch,
-                wheel_torque,
-                dead_centre_extended,
-                dead_centre_folded,
-                dead_band,
-            )
-        )
-    )
-    scalar = params[0].ndim == 0
-    params = [np.atleast_1d(p).ravel() for p in params]
-    *geom, dce, dcf, band = params  # geom: px, py, c, k, r, h, br, mw
+    scalar, params = per_design(lk, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band)
+    *geom, dce, dcf, band = params  # geom: the four-bar's seven parameters, then Mw
     start, length = _windows(dce, dcf, band)  # (D, 2)
     s = np.linspace(0.0, 1.0, PEAK_GRID)
     theta = start[..., None] + np.maximum(length, 0.0)[..., None] * s  # (D, 2, M)
@@ -175,26 +156,8 @@ def sampled_peak(
     -------
     peak : largest sampled |force| [N] per design (NaN where no sample lies outside the bands).
     """
-    params = np.broadcast_arrays(
-        *(
-            np.asarray(v, float)
-            for v in (
-                lk.pivot_x,
-                lk.pivot_y,
-                lk.crank,
-                lk.coupler,
-                lk.rocker,
-                lk.handle,
-                lk.branch,
-                wheel_torque,
-                dead_centre_extended,
-                dead_centre_folded,
-                dead_band,
-            )
-        )
-    )
-    scalar = params[0].ndim == 0
-    *geom, dce, dcf, band = [np.atleast_1d(p).ravel() for p in params]
+    scalar, params = per_design(lk, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band)
+    *geom, dce, dcf, band = params
     n_designs = dce.size
     out = np.full(n_designs, np.nan)
     if n <= 0 or n_designs == 0:

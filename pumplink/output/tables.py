@@ -442,7 +442,6 @@ def render_force(
 
 
 # -------------------------------------------------------------------------- model choice, verification, speed
-# -------------------------------------------------------------------------- model choice, verification, speed
 def explain_rows(effects) -> list[dict[str, Any]]:
     """The model-choice report as rows (JSON/CSV)."""
     return [
@@ -735,7 +734,6 @@ def render_transmission(row: dict[str, Any], fmt: str, out=None) -> None:
         )
 
 
-# ----------------------------------------------------------------------------- optimize
 # ----------------------------------------------------------------------------- optimize
 def optimize_row(res) -> dict[str, Any]:
     """JSON contract of ``pumplink optimize`` (spec units: m, deg, N).
