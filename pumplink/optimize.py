@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -145,6 +146,8 @@ class OptimizationResult:
     polished: bool
     seed: int | None
     message: str = field(default="")
+    spec_result: Any = None  # pumplink force's analysis of the spec's own design (ForceResult)
+    best_result: Any = None  # ... and of the optimum (its verdict decides the exit code)
 
 
 def parse_bounds(items: list[str] | None) -> dict[str, tuple[float, float]]:
@@ -378,8 +381,12 @@ def optimize(
     maxiter: int = 300,
     tol: float = 1e-8,
     polish: bool = True,
+    progress=None,
 ) -> OptimizationResult:
     """Global search (differential evolution, vectorised) then a local SLSQP polish.
+
+    ``progress``: optional callable given the number of generations done after each one (for a
+    progress bar; at most ``maxiter``).
 
     Raises
     ------
@@ -417,6 +424,7 @@ def optimize(
         tol=tol,
         polish=False,
         init="sobol",
+        callback=None if progress is None else (lambda intermediate_result: progress(1)),
     )
     x = np.asarray(res.x, float)
     e = evaluate_designs(problem, x[:, None])
@@ -476,10 +484,13 @@ def optimize(
         for k, v, lo, hi, s in zip(problem.names, x, problem.lower, problem.upper, span)
         if min(abs(v - lo), abs(hi - v)) <= 1e-6 * s
     )
+    from pumplink.analysis import force_analysis
+
+    best = _spec_with(problem, x)
     return OptimizationResult(
         problem,
         x,
-        _spec_with(problem, x),
+        best,
         e,
         at_spec,
         binding,
@@ -489,6 +500,9 @@ def optimize(
         polished,
         seed,
         str(res.message),
+        # the verdicts, exactly as pumplink force gives them on each spec (one verdict)
+        force_analysis(problem.spec, keep_samples=False, samples=0),
+        force_analysis(best, keep_samples=False, samples=0),
     )
 
 
