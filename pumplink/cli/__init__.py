@@ -20,6 +20,7 @@ from pumplink.cli import (  # noqa: F401, I001
     init,
     methods,
     optimize,
+    report,
     speed,
     synth,
     template,

@@ -208,7 +208,7 @@ def test_draw_infeasible_spec_exits_1_with_one_line(tmp_path):
     assert len(p.stderr.strip().splitlines()) == 1 and not (tmp_path / "d.png").exists()
 
 
-@pytest.mark.parametrize("command", ["draw", "template"])
+@pytest.mark.parametrize("command", ["draw", "template", "report"])
 def test_help_example_runs(tmp_path, command):
     """The example in --help, run as written in a folder holding the shipped specs."""
     shutil.copytree(ROOT / "configs", tmp_path / "configs")
@@ -219,3 +219,30 @@ def test_help_example_runs(tmp_path, command):
     p = run(*args, cwd=tmp_path)
     assert p.returncode == 0, (example, p.stderr)
     assert "wrote" in p.stderr
+
+
+# ----------------------------------------------------------------------------- report
+def test_report_is_one_self_contained_html_file(tmp_path):
+    import base64
+
+    out = tmp_path / "r.html"
+    p = run("report", "configs/prototype.toml", "--out", str(out))
+    assert p.returncode == 0, p.stderr
+    text = out.read_text(encoding="utf-8")
+    srcs = re.findall(r'src="([^"]*)"', text)
+    assert len(srcs) == 2 and all(s.startswith("data:image/png;base64,") for s in srcs)  # chart, drawing
+    for s in srcs:
+        assert base64.b64decode(s.split(",", 1)[1]).startswith(b"\x89PNG")
+    assert "<link" not in text and "<script" not in text  # nothing fetched from elsewhere
+    assert "PASS" in text and "model: quasi-static + dead band" in text
+    crank = reference_lengths_mm()["crank"]
+    assert f"{crank:.1f} mm" in text  # synthesis table and cut list
+    assert "cut list" in text.lower() and 'name = "Prototype"' in text.replace("&quot;", '"')
+
+
+def test_report_of_a_failing_design_is_written_and_exits_1(tmp_path):
+    out = tmp_path / "r.html"
+    p = run("report", "examples/well-12m-flywheel.toml", "--out", str(out))
+    assert p.returncode == 1 and "FAIL" in p.stderr
+    text = out.read_text(encoding="utf-8")
+    assert "FAIL" in text and "model: flywheel" in text
