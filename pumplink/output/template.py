@@ -232,6 +232,8 @@ def _page(plt, parts, page, k, n, paper, name, cut_rows):
         clip = Rectangle((x_left - 0.01, yc - ROW / 2), t.stop - t.start + 0.02, ROW, transform=ax.transData)
         _bar(ax, p, x0, yc, t.start, t.stop, clip)
         title = f"{p.name}: {p.centre_distance * 1000:.1f} mm between hole centres"
+        if p.end_label:
+            title += f", {p.end_label} at {p.end * 1000:.1f} mm"
         if t.count > 1:
             title += f"  (piece {t.index + 1} of {t.count})"
         tx = x_left + (OVERLAP + 2 if t.index else 0)  # clear of the alignment mark J
