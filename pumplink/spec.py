@@ -129,6 +129,12 @@ class Linkage(_Section):
         description="mass per metre of the handle and coupler [kg/m] for the link-energy estimate "
         "(default 1.56: 3/4-inch steel tube)",
     )
+    hole_diameter: float | None = Field(
+        default=None,
+        ge=0.001,
+        le=0.1,
+        description="diameter of the pin holes on the workshop template [m] (default 0.010)",
+    )
 
 
 class Load(_Section):
