@@ -13,7 +13,19 @@ import signal
 import sys
 
 # Importing a command module registers it; this order is the order of `pumplink --help`.
-from pumplink.cli import batch, force, init, methods, optimize, speed, synth, transmission  # noqa: F401, I001
+from pumplink.cli import (  # noqa: F401
+    batch,
+    force,
+    init,
+    methods,
+    optimize,
+    rocker,
+    slider,
+    slotted,
+    speed,
+    synth,
+    transmission,
+)
 from pumplink.cli.common import app, settings
 from pumplink.errors import PumplinkError
 
