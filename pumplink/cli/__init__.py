@@ -23,6 +23,7 @@ from pumplink.cli import (  # noqa: F401
     slider,
     slotted,
     speed,
+    structure,
     synth,
     transmission,
 )

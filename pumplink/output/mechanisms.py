@@ -126,3 +126,110 @@ def render_synthesis(row: dict[str, Any], labels: dict[str, str], fmt: str, out=
         else "SIMULATION: the mechanism does NOT do what was asked (see DIFFERS)",
         markup=False,
     )
+
+
+# ----------------------------------------------------------------------------- structure
+_ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VIII"}
+
+
+def _roman(n: int) -> str:
+    return _ROMAN.get(n, str(n))
+
+
+def structure_row(name: str, a, passive_links=()) -> dict[str, Any]:
+    """JSON contract of ``pumplink structure``.
+
+    Parameters
+    ----------
+    name : the mechanism's name;  a : :class:`~pumplink.mechanisms.structure.StructureAnalysis`;
+    passive_links : the links the input marked passive.
+    """
+    return {
+        "name": name,
+        "passive_links": list(passive_links),
+        "moving_links": a.moving_links,
+        "lower_pairs": a.lower_pairs,
+        "higher_pairs": a.higher_pairs,
+        "formula_mobility": a.formula_mobility,
+        "redundant_constraints": a.redundant_constraints,
+        "local_mobilities": a.local_mobilities,
+        "mobility": a.mobility,
+        "drivers": list(a.drivers),
+        "groups": [
+            {
+                "links": list(g.links),
+                "internal_joints": list(g.internal_joints),
+                "lead_joints": list(g.lead_joints),
+                "class": g.group_class,
+                "order": g.order,
+                "dyad_type": g.dyad_type,
+            }
+            for g in a.groups
+        ],
+        "mechanism_class": a.mechanism_class,
+        "decomposed": a.decomposed,
+        "reason": a.reason,
+    }
+
+
+def render_structure(row: dict[str, Any], fmt: str, out=None) -> None:
+    """`pumplink structure`: the counts, the drivers and the Assur groups in attachment order."""
+    out = out or sys.stdout
+    if fmt == "json":
+        return write_json(row, out)
+    counts = {k: row[k] for k in row if k not in ("groups", "drivers", "reason", "passive_links")}
+    counts["drivers"] = " ".join(row["drivers"])
+    counts["passive_links"] = " ".join(row["passive_links"])
+    if fmt == "csv":
+        rows = [
+            {
+                **counts,
+                "group": i,
+                "group_links": " ".join(g["links"]),
+                "group_internal_joints": " ".join(g["internal_joints"]),
+                "group_lead_joints": " ".join(g["lead_joints"]),
+                "group_class": g["class"],
+                "group_order": g["order"],
+                "group_dyad_type": g["dyad_type"] or "",
+            }
+            for i, g in enumerate(row["groups"], 1)
+        ] or [counts]
+        return write_csv(rows, out)
+    from rich.markup import escape
+    from rich.table import Table
+
+    c = console(out)
+    n, p1, p2 = row["moving_links"], row["lower_pairs"], row["higher_pairs"]
+    c.print(f"[bold]{escape(row['name'])}[/]: structure analysis")
+    c.print(f"n = {n} moving links, p1 = {p1} lower pairs (class V), p2 = {p2} higher pairs (class IV)")
+    c.print(f"W = 3n − 2p1 − p2 = 3·{n} − 2·{p1} − {p2} = {row['formula_mobility']} (Chebyshev)")
+    if row["passive_links"]:
+        c.print(f"passive link(s), left out of the decomposition: {escape(', '.join(row['passive_links']))}")
+    c.print(
+        f"redundant constraints q = {row['redundant_constraints']}, local mobilities = "
+        f"{row['local_mobilities']}: working mobility W0 = {row['mobility']}"
+    )
+    if row["drivers"]:
+        c.print(f"driving link(s): {escape(', '.join(row['drivers']))} (primary mechanisms, class I)")
+    if row["groups"]:
+        t = Table(title="Assur groups in the order they are attached", title_justify="left")
+        for h in ("#", "links", "internal pairs", "leads", "class", "order", "type"):
+            t.add_column(h, justify="right" if h in ("#", "class", "order") else "left")
+        for i, g in enumerate(row["groups"], 1):
+            t.add_row(
+                str(i),
+                escape(", ".join(g["links"])),
+                escape(", ".join(g["internal_joints"]) or "—"),
+                escape(", ".join(g["lead_joints"])),
+                _roman(g["class"]),
+                str(g["order"]),
+                g["dyad_type"] or "—",
+            )
+        c.print(t)
+    if row["decomposed"]:
+        c.print(f"mechanism class: {_roman(row['mechanism_class'])} (its highest group class)")
+    else:
+        c.print(
+            "\n".join(textwrap.wrap(f"NOT DECOMPOSED: {row['reason']}", 78, subsequent_indent="  ")),
+            markup=False,
+        )
