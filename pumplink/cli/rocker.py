@@ -55,7 +55,7 @@ def rocker(
 
     Example: [bold]pumplink rocker --time-ratio 1.25 --swing 50 --rocker 0.3 --frame 0.4[/]
 
-    Example: [bold]pumplink rocker --swing 50 --rocker 0.3 --pivot=-0.26,0.19 --format json[/]
+    Example: [bold]pumplink rocker --swing 50 --rocker 0.3 --pivot=-0.26,0.19 -f json[/]
     """
     import math
 

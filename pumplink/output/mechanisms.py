@@ -88,7 +88,8 @@ def render_synthesis(row: dict[str, Any], labels: dict[str, str], fmt: str, out=
     from rich.table import Table
 
     c = console(out)
-    c.print(f"[bold]{escape(row['mechanism'].capitalize())}[/], {escape(row['task'])}")
+    title = textwrap.wrap(f"{row['mechanism'].capitalize()}, {row['task']}", 78, subsequent_indent="  ")
+    c.print("[bold]" + escape(title[0]) + "[/]" + "".join("\n" + escape(x) for x in title[1:]))
     given = ", ".join(f"{labels['given'].get(k, k)} = {_g(v, 'ratio')}" for k, v in row["given"].items())
     c.print("\n".join(textwrap.wrap(f"given: {given}", 78, subsequent_indent="  ")), markup=False)
     t = Table(title="Lengths", title_justify="left")

@@ -146,7 +146,7 @@ def render_force(r, fmt: str, summary: bool = False, out=None) -> None:
             else "Sweep",
             title_justify="left",
         )
-        for h in ("crank [deg]", "slider [m]", "ds/dθ [m/rad]", "torque [N·m]", "force [N]", "λ [deg]"):
+        for h in ("crank [deg]", "slider [m]", "ds/dθ [m]", "torque [N·m]", "force [N]", "λ [deg]"):
             t.add_column(escape(h), justify="right")
         for s in samples[::step]:
             t.add_row(
@@ -222,7 +222,7 @@ def render_batch(variants, fmt: str, failed: list[bool], out=None) -> None:
 
     c = console(out)
     t = Table(title="Piston-pump variants", title_justify="left")
-    for h in ("variant", "mean [N]", "peak [N]", "λ [deg]", "verdict"):
+    for h in ("variant", "mean [N]", "peak [N]", "verdict"):
         t.add_column(escape(h), justify="left" if h == "variant" else "right")
     for r, bad in zip(rows, failed, strict=True):
         peak = r["least_peak_force_N"] if r["least_peak_force_N"] is not None else r["quasi_static_peak_N"]
@@ -230,13 +230,12 @@ def render_batch(variants, fmt: str, failed: list[bool], out=None) -> None:
             escape(r["variant"]),
             _f(r["mean_force_N"], "{:.1f}"),
             _f(peak, "{:.1f}"),
-            _f(r["largest_pressure_angle_deg"], "{:.1f}"),
             ("infeasible" if not r["feasible"] else "PASS" if r["passed"] else "FAIL") + ("*" if bad else ""),
         )
     c.print(t)
     best = min((r for r in rows if r["feasible"]), key=lambda r: r["mean_force_N"], default=None)
     c.print(
         f"{len(rows)} variants, {len(rows) - n_fail} pass the --fail-on checks, {n_fail} fail (*)"
-        + (f"; lowest mean force: {best['variant']}" if best else ""),
+        + (f"\nlowest mean force: {best['variant']}" if best else ""),
         markup=False,
     )
