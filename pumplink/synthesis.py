@@ -279,7 +279,7 @@ def rocker(
 ):
     """Crank-rocker from the rocker's two extreme positions (swing, rocker) and the crank pivot.
 
-    The crank pivot is chosen in one of three ways (docs/crank-rocker.md §5): ``pivot`` (a point:
+    The crank pivot is chosen in one of three ways (docs/crank-rocker.md §7): ``pivot`` (a point:
     it fixes K), ``frame`` (with K: the design-circle points at that distance from the rocker
     pivot; the best transmission of up to four), or neither (with K > 1: the optimum of the
     optimal-transmission paper).
@@ -293,7 +293,7 @@ def rocker(
         raise SpecError(f"--swing {math.degrees(swing):g} deg must be between 0 and 180 deg")
     notes = [
         "rocker pivot D at the origin, swing bisector +y, extreme positions C1 (-x side) and C2 "
-        "(docs/crank-rocker.md §5)"
+        "(docs/crank-rocker.md §7)"
     ]
     given = [("swing", "rocker swing", ANGLE, swing), ("rocker", "rocker length", LENGTH, rocker_length)]
     if pivot is not None:

@@ -118,7 +118,7 @@ def batch(
     from pumplink.cli import piston
 
     if piston.is_piston_input(inputs):  # mechanism = "crank-slider": docs/piston-pump.md
-        piston.batch(inputs, fmt.value, out, set(sel))
+        piston.batch(inputs, fmt.value, out, set(sel), junit, chunk)
     batches = _batch.load_inputs(inputs)
     tasks = _batch.plan(batches, k_n)
     total = sum(e - s for _, s, e in tasks)

@@ -26,9 +26,12 @@ def force(spec: Path, speed, samples: int, at, summary: bool, plot, explain: boo
     raise typer.Exit(0 if result.passed else 1)
 
 
-def batch(inputs: list[Path], fmt: str, out: Path | None, fail_on: set[str]):
+def batch(inputs: list[Path], fmt: str, out: Path | None, fail_on: set[str], junit=None, chunk=None):
     """``pumplink batch`` over piston-pump spec and batch files; exits 1 if a variant fails a
     --fail-on check (mean, peak, infeasible)."""
+    for flag, value in (("--junit", junit), ("--chunk", chunk)):
+        if value is not None:
+            raise SpecError(f"{flag} is for rope-pump batches; piston-pump batches run whole, without it")
     from pumplink.output.piston import render_batch
     from pumplink.piston import run_batch
 

@@ -46,7 +46,7 @@ def rocker(
     """Crank-rocker that swings the rocker between two extreme positions with time ratio K.
 
     The crank pivot lies on the design circle through the extreme positions C1, C2 (the angle
-    C1-A-C2 is 180°(K − 1)/(K + 1)); each point is another mechanism (docs/crank-rocker.md §5).
+    C1-A-C2 is 180°(K − 1)/(K + 1)); each point is another mechanism (docs/crank-rocker.md §7).
     Choose it with --frame (distance from the rocker pivot), --pivot X,Y (the point itself; K then
     follows from it), or neither: the best minimum transmission angle (the optimal-transmission
     paper, as `pumplink transmission`).  The result is run through a full crank turn and its

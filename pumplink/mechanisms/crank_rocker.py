@@ -429,7 +429,7 @@ def design_chart() -> DesignChart:
 
 
 # ----------------------------------------------------------------------------- general synthesis
-# The textbook's construction (docs/crank-rocker.md §5): given K and the rocker's two extreme
+# The textbook's construction (docs/crank-rocker.md §7): given K and the rocker's two extreme
 # positions, every crank pivot on the design circle gives a crank-rocker; the designer picks the
 # point.  Three ways to pick it: a given pivot point, a given frame length, or the optimum above.
 
@@ -479,7 +479,7 @@ def extreme_positions(swing, rocker):
 
 
 def crank_rocker_at_pivot(pivot_x, pivot_y, swing, rocker) -> CrankRocker:
-    """The crank-rocker with its crank pivot at A = (pivot_x, pivot_y) (docs/crank-rocker.md §5).
+    """The crank-rocker with its crank pivot at A = (pivot_x, pivot_y) (docs/crank-rocker.md §7).
 
     At the dead centres crank and coupler are collinear, so |A C_folded| = coupler - crank and
     |A C_extended| = coupler + crank: crank = | |A C2| - |A C1| | / 2, coupler = (|A C1| + |A C2|)/2
@@ -557,7 +557,7 @@ def crank_rockers_at_frame(
     time_ratio, swing, rocker, frame, samples: int = FRAME_SCAN_POINTS
 ) -> list[CrankRocker]:
     """Every admissible crank-rocker for K and phi whose crank pivot is ``frame`` from the rocker
-    pivot (docs/crank-rocker.md §5): the design circle meets the circle of radius ``frame`` about
+    pivot (docs/crank-rocker.md §7): the design circle meets the circle of radius ``frame`` about
     D in up to two points per arc.  Best effective minimum transmission angle first; empty if
     no admissible point has this frame length.
 
