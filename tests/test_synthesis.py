@@ -199,3 +199,14 @@ def test_rocker_pivot_point_fixes_k_and_is_checked():
         S.rocker(swing, 0.3, pivot=(0.0, 0.1))
     with pytest.raises(SpecError):
         S.rocker(swing, 0.3, 1.2, pivot=(0.0, 0.1))
+
+
+@settings(max_examples=15, deadline=None)
+@given(K=st.floats(1.0, 2.5), swing_deg=st.floats(10.0, 140.0), frac=st.floats(0.02, 0.98))
+def test_rocker_at_frame_property(K, swing_deg, frac):
+    """Any frame length inside the admissible range gives a crank-rocker that really swings
+    through the asked swing with the asked K (checked by measure_motion)."""
+    swing = math.radians(swing_deg)
+    lo, hi = cr.frame_range(K, swing, 1.0)
+    rep = S.rocker(swing, 1.0, K, frame=lo + frac * (hi - lo))
+    assert rep.agrees
