@@ -60,3 +60,9 @@ LINK_MASS_PER_METRE = 7850.0 * math.pi / 4.0 * (26.9e-3**2 - 21.7e-3**2)
 #: Link kinetic energy (or handle weight), as a fraction of the energy band, above which the
 #: flywheel model stops being enough (docs/models.md §3).
 LINK_ENERGY_LIMIT = 0.1
+
+#: Permissible largest pressure angle [deg], (preferred, acceptable for preliminary design), of the
+#: lever-mechanism textbook (§2.4): 30-45 deg where the driven link slides (a prismatic pair), 45-60
+#: deg for mechanisms with revolute pairs only (docs/mechanisms.md §4).
+PERMISSIBLE_PRESSURE_SLIDING_DEG = (30.0, 45.0)
+PERMISSIBLE_PRESSURE_REVOLUTE_DEG = (45.0, 60.0)

@@ -328,6 +328,11 @@ def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
             f"{source}: empty spec; expected [wheel], [linkage], [load] "
             "(write an example with `pumplink init`)"
         )
+    if "mechanism" in data:
+        raise SpecError(
+            f"{source}: a piston-pump spec (mechanism = {data['mechanism']!r}) runs through "
+            "`pumplink force` and `pumplink batch` only (docs/piston-pump.md)"
+        )
     try:
         return PumpSpec.model_validate(data)
     except ValidationError as exc:

@@ -86,6 +86,10 @@ def batch(
     does, 2 for bad input.
 
     Example: [bold]pumplink batch configs/ --junit report.xml[/]
+
+    Piston-pump specs and batch files (mechanism = "crank-slider") run alone, without --junit.
+
+    Example: [bold]pumplink batch configs/grids/piston-bore.toml[/]
     """
     import functools
     import os
@@ -112,6 +116,10 @@ def batch(
                     else f"folder {path.parent} does not exist"
                 )
             )
+    from pumplink.cli import piston
+
+    if piston.is_piston_input(inputs):  # mechanism = "crank-slider": docs/piston-pump.md
+        piston.batch(inputs, fmt.value, out, set(sel), junit, chunk)
     batches = _batch.load_inputs(inputs)
     tasks = _batch.plan(batches, k_n)
     total = sum(e - s for _, s, e in tasks)

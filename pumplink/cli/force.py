@@ -83,6 +83,11 @@ def force(
     Example: [bold]pumplink force pump.toml --speed 360 --at 90 --at 270 --format json[/]
 
     Example: [bold]pumplink force examples/well-12m-flywheel.toml --speed 540 --explain --verify[/]
+
+    A spec with mechanism = "crank-slider" is a piston pump turned by a hand crank
+    (docs/piston-pump.md): the same verdict on the handle force.
+
+    Example: [bold]pumplink force examples/piston-pump.toml --summary[/]
     """
     import math
 
@@ -99,6 +104,12 @@ def force(
             f"--samples {samples} keeps too many rows (at most {SAMPLE_LIMIT_KEPT:,}); "
             "add --summary to stream them"
         )
+    from pumplink.piston import is_piston_file
+
+    if spec is not None and is_piston_file(spec):  # mechanism = "crank-slider": docs/piston-pump.md
+        from pumplink.cli import piston
+
+        piston.force(spec, speed, samples, at, summary, plot, explain, verify, fmt.value)
     if plot is not None:
         from pumplink.output.charts import check_path, pyplot
 
