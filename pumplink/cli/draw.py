@@ -38,8 +38,10 @@ def draw(
         int, typer.Option(help="Frames of the animation: crank steps per revolution.", min=4, max=720)
     ] = 72,
 ) -> None:
-    """Draw the linkage to scale at both dead centres, with the grip path,
-    the swing, the frame placement L1, D1, b and every link length in mm.
+    """Draw the linkage to scale at both dead centres, dimensioned in mm.
+
+    With the grip path, the swing, the frame placement L1, D1, b and every
+    link length.
 
     The sheet is A4 landscape at the largest standard scale that fits
     (stated on the sheet).  --animate draws one revolution in --steps frames,

@@ -27,9 +27,11 @@ def init(
     ] = None,
     overwrite: Annotated[bool, typer.Option("--force", help="Overwrite an existing file.")] = False,
 ) -> None:
-    """Write a spec to edit: the built-in prototype design, every key commented with its unit
-    and allowed range, and the optional keys (axle height, wheel mass for the flywheel model,
-    load from head and pipe) commented out.  The design's name is the file's name.
+    """Write a commented spec to edit (or a shipped example).
+
+    The built-in prototype design, every key commented with its unit and allowed range, and
+    the optional keys (axle height, wheel mass for the flywheel model, load from head and
+    pipe) commented out.  The design's name is the file's name.
 
     Example: [bold]pumplink init my-pump.toml[/] then edit it and run [bold]pumplink force my-pump.toml[/]
 

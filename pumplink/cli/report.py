@@ -16,9 +16,11 @@ def report(
     spec: Annotated[Path, typer.Argument(help="TOML pump spec.", show_default=False)],
     out: Annotated[Path, typer.Option("--out", "-o", help="Report file (.html).")] = Path("report.html"),
 ) -> None:
-    """One HTML file to send to a client: the spec, the synthesis table,
-    the verdict with its model and checks, the force chart, the drawing and
-    the cut list (images embedded; needs pumplink\\[plot]).
+    """One self-contained HTML design report to send to a client.
+
+    The spec, the synthesis table, the verdict with its model and checks, the
+    force chart, the drawing and the cut list (images embedded; needs
+    pumplink\\[plot]).
 
     Exit 0 if the design passes, 1 if it fails (the report is written
     either way) or no crank-rocker exists, 2 for bad input.

@@ -38,8 +38,7 @@ def speed(
     strict: StrictOpt = False,
     fmt: FormatOpt = Format.table,
 ) -> None:
-    """Least peak operator force against mean wheel speed, and the slowest
-    speed that passes.
+    """Least peak operator force against mean wheel speed, and the verdict at each speed.
 
     The flywheel model (see [bold]pumplink force --help[/]): a faster wheel
     stores more energy (J·ω̄²·δ) to carry the linkage through the dead

@@ -26,8 +26,10 @@ def template(
     ] = Path("template.pdf"),
     paper: Annotated[Paper, typer.Option(help="Paper of the PDF pages (landscape).")] = Paper.A4,
 ) -> None:
-    """A 1:1 drilling template of each link: hole centres, the distance between
-    them in mm, hole diameter (linkage.hole_diameter, default 10 mm), link name.
+    """A 1:1 drilling template of each link (PDF, SVG or DXF).
+
+    Hole centres, the distance between them in mm, hole diameter
+    (linkage.hole_diameter, default 10 mm), link name.
 
     PDF: links longer than the paper are tiled over several pages with
     numbered alignment marks; every page has a 100 mm scale bar to check the
