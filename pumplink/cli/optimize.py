@@ -77,7 +77,7 @@ def optimize(
     judges them: PASS, PASS with warnings or FAIL.  Exit 0 if the optimum passes (1 with
     --strict if it warns), 1 if it fails or nothing is feasible.
 
-    Example: [bold]pumplink optimize configs/prototype.toml --vary D1=0:0.8 --vary swing=40:90 --write best.toml[/]
+    Example: [bold]pumplink optimize configs/prototype.toml --write best.toml[/]
     """  # noqa: E501 -- typer prints this docstring as the --help text, keeping its line breaks
     from pumplink.optimize import (
         GRIP_HEIGHT_M,

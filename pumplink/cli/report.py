@@ -43,5 +43,5 @@ def report(
     dr = drawing(s)
     r = force_analysis(s, keep_samples=False)
     report_html(r, force_curve(r), dr, tomli_w.dumps(spec_to_dict(s)), out)
-    sys.stderr.write(f"wrote {out} ({'PASS' if r.passed else 'FAIL'})\n")
+    sys.stderr.write(f"wrote {out} ({r.outcome})\n")
     raise typer.Exit(0 if r.passed else 1)

@@ -33,7 +33,7 @@ def _checks(r) -> list[dict[str, Any]]:
                 "limit": num(c.limit),
                 "relation": c.relation,
                 "unit": c.unit,
-                "severity": c.severity,
+                "result": str(c.result),
                 "passed": bool(c.passed),
             }
         )
@@ -169,9 +169,7 @@ def render_force(r, fmt: str, summary: bool = False, out=None) -> None:
             label,
             f"{_f(ch['value'], '{:.2f}')} {ch['unit']}",
             f"{ch['relation']} {ch['limit']:g} {ch['unit']}",
-            ("pass" if ch["passed"] else "FAIL")
-            if ch["severity"] == "fail"
-            else ("ok" if ch["passed"] else "warn"),
+            {"pass": "pass", "warn": "warning", "fail": "FAIL"}[ch["result"]],
         )
     lo, hi = row["permissible_pressure_angle_deg"]
     lam = row["largest_pressure_angle_deg"]

@@ -98,22 +98,23 @@ def synthesis_rows(r) -> list[tuple[str, str]]:
 def verdict_html(r) -> str:
     """The verdict line, the model line and the checks table."""
     peak = r.verdict_peak_force
-    if r.passed:
-        head = (
-            f'<p><span class="pass">PASS</span>: mean {r.mean_force:.1f} N and peak '
-            f"{fmt(peak, '{:.1f}', '∞')} N are within the {r.force_limit:g} N limit.</p>"
-        )
-    else:
-        head = (
-            f'<p><span class="fail">FAIL</span>: mean {r.mean_force:.1f} N, peak '
-            f"{fmt(peak, '{:.1f}', '∞')} N against the {r.force_limit:g} N limit.</p>"
-        )
-    rows = [("check", "value", "limit", "result")]
+    css = {"PASS": "pass", "PASS with warnings": "warn", "FAIL": "fail"}[r.outcome]
+    failing = ", ".join(check_label(c, r) for c in r.verdict.failures) if r.verdict is not None else ""
+    head = (
+        f'<p><span class="{css}">{html.escape(r.outcome)}</span>: mean {r.mean_force:.1f} N, peak '
+        f"{fmt(peak, '{:.1f}', '∞')} N against the {r.force_limit:g} N limit"
+        + (f"; fails on {html.escape(failing)}" if failing else "")
+        + ".</p>"
+    )
+    rows = [("check", "value", "warn if", "fail if", "result")]
     for c in r.checks:
         value = fmt(c.value, "{:.2f}", "∞" if c.value == math.inf else "—")
-        result = "pass" if c.passed else ("FAIL" if c.severity == "fail" else "warning")
-        rows.append((check_label(c, r), f"{value} {c.unit}", f"{c.relation} {c.limit:g} {c.unit}", result))
-    return head + f"<p>{html.escape(model_line(r))}</p>" + _table(rows, numeric=(1, 2))
+        bad = ">" if c.relation == "<=" else "<"
+        warn = "" if c.warn_limit is None else f"{bad} {c.warn_limit:g} {c.unit}"
+        fail = "" if c.fail_limit is None else f"{bad} {c.fail_limit:g} {c.unit}"
+        result = {"pass": "pass", "warn": "warning", "fail": "FAIL"}[c.result]
+        rows.append((check_label(c, r), f"{value} {c.unit}", warn, fail, result))
+    return head + f"<p>{html.escape(model_line(r))}</p>" + _table(rows, numeric=(1, 2, 3))
 
 
 def report_html(r, curve, dr, spec_toml: str, path) -> Path:
