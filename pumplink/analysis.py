@@ -469,8 +469,8 @@ class SpeedSweep:
     """Least peak operator force against mean wheel speed for one design (flywheel model).
 
     Arrays over ``speed`` [rad/s]: ``energy_band`` [J], ``least_peak_force`` [N], ``power`` [W],
-    ``passed`` (the verdict at each speed).  ``spec_speed_passed``: the verdict at the spec's own
-    speed (what ``pumplink force`` says).
+    ``passed`` (no check fails at that speed); :meth:`spec_speed_passes`: the verdict at the spec's
+    own speed (what ``pumplink force`` says).
     """
 
     design: Design
@@ -486,7 +486,6 @@ class SpeedSweep:
     least_peak_force: np.ndarray
     power: np.ndarray
     passed: np.ndarray
-    spec_speed_passed: bool
     verdict: Verdict | None = None  # every check at each speed (the spec's own speed last)
     grip_speed: np.ndarray | None = None  # peak grip speed at each speed [m/s]
 
@@ -567,7 +566,6 @@ def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
         req[:-1],
         mw * w[:-1],
         passed[:-1],
-        bool(passed[-1]),
         verdict,
         grip[:-1],
     )

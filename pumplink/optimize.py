@@ -44,7 +44,6 @@ from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_stroke, synthe
 from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC, Conditions
 from pumplink.models import quasi_static as _qs
 from pumplink.spec import PumpSpec, parse_spec, spec_to_dict
-from pumplink.verdict import assess
 
 #: Keys that may vary (the [linkage] table of the spec), with their units.
 VARIABLE_UNITS = {"L1": "m", "D1": "m", "b": "m", "rocker": "m", "handle": "m", "swing": "deg"}
@@ -110,7 +109,8 @@ class Evaluation:
 
     ``dead_band_peak_force`` is the windowed peak outside the dead bands, ``least_peak_force`` the
     flywheel's (NaN unless the spec gives inertia); ``verdict_peak_force`` is the one that
-    decides, and ``passed`` the verdict of :func:`pumplink.verdict.assess` (as ``pumplink force``).
+    decides.  The verdicts of the spec's design and of the optimum are those of ``pumplink force``
+    (:attr:`OptimizationResult.spec_result`, :attr:`OptimizationResult.best_result`).
     """
 
     objective: np.ndarray
@@ -122,7 +122,6 @@ class Evaluation:
     grip_high: np.ndarray  # [m]
     stroke: np.ndarray  # [m]
     least_peak_force: np.ndarray  # [N]
-    passed: np.ndarray  # the verdict: feasible, mean and verdict peak within the limit
     flywheel: bool = False
 
     @property
@@ -343,7 +342,6 @@ def evaluate_designs(problem: Problem, x) -> Evaluation:
         )
     verdict = required if problem.flywheel else peak
     mean = np.where(ok, mean, np.nan)
-    passed = assess(ok, mean, verdict, op.force_limit).passed
     obj = verdict if problem.objective == "peak" else mean
     obj = np.where(np.isfinite(obj), obj, INFEASIBLE_OBJECTIVE)
     return Evaluation(
@@ -356,7 +354,6 @@ def evaluate_designs(problem: Problem, x) -> Evaluation:
         grip_high,
         stroke,
         required,
-        np.asarray(passed),
         problem.flywheel,
     )
 

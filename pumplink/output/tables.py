@@ -102,23 +102,17 @@ def force_html(r: ForceResult) -> str:
     import html
 
     h = html.escape
-    d = force_summary(r)
-    head = f"<b>{h(d['name'])}</b>: {h(r.outcome)} at {r.speed_deg_s:g} deg/s ({h(r.model)})"
+    head = f"<b>{h(r.design.spec.name)}</b>: {h(r.outcome)} at {r.speed_deg_s:g} deg/s ({h(r.model)})"
     if not r.design.feasible:
         return f"<p>{head}: infeasible, {h(str(r.design.error))}</p>"
     rows = "".join(
-        f"<tr><td>{h(c['name'])}</td><td>{h(check_value_text(c))}</td><td>{h(c['result'])}</td></tr>"
-        for c in d["checks"]
+        f"<tr><td>{h(check_label(c, r))}</td><td>{h(check_value(c))}</td><td>{h(c.result)}</td></tr>"
+        for c in r.checks
     )
     return (
         f"<p>{head}</p><table><thead><tr><th>check</th><th>value</th><th>result</th></tr></thead>"
         f"<tbody>{rows}</tbody></table>"
     )
-
-
-def check_value_text(c: dict[str, Any]) -> str:
-    """A check row's value with its unit ('∞' for an infinite one)."""
-    return f"{_f(c['value'], '{:.4g}', '∞')} {c['unit']}"
 
 
 def check_label(c, r: ForceResult | None = None) -> str:
