@@ -288,11 +288,15 @@ def _refined_extrema(prep: _Prepared, force, rows=None, refine: bool = True):
     return x, u, base, local, a
 
 
-def _drawdown(x, u, base, local, a, stroke):
+def _drawdown(x, u, base, local, a, stroke, force, mw):
     """Largest drop of U over an arc shorter than a revolution [Eq. (3)], and that arc.
 
     Returns (drop [J], arc length [rad], travel over the arc [m]) per design; the travel is
     (base difference) + (local difference), exact when both ends lie near one dead centre.
+    The arc is the one where U drops most; its drop is then Mw (t - s) - Fp G(s, t) from the
+    arc's length and travel, not the difference of the two values of U: those are ~Fp S, up to
+    ~1e7 times the drop near the force cap, and their rounding (~1e-10 of the drop there) decided
+    whether Dinkelbach's iteration took its last step.
     """
     x2 = np.concatenate([x, x + TWO_PI], axis=1)
     u2 = np.concatenate([u, u + a[:, None]], axis=1)
@@ -301,12 +305,12 @@ def _drawdown(x, u, base, local, a, stroke):
     top = np.maximum.accumulate(u2, axis=1)
     j = np.argmax(top - u2, axis=1)
     idx = np.arange(x.shape[0])
-    drop = top[idx, j] - u2[idx, j]
     # the arc starts at the last node before j where U reached that running maximum
     cols = np.arange(u2.shape[1])
     i = np.argmax((u2 == top[idx, j][:, None]) & (cols[None, :] <= j[:, None]), axis=1)
     travel = (b2[idx, j] - b2[idx, i]) + (l2[idx, j] - l2[idx, i])
-    return drop, x2[idx, j] - x2[idx, i], travel
+    length = x2[idx, j] - x2[idx, i]
+    return mw * length - force * travel, length, travel  # Eq. (3): U(s) - U(t)
 
 
 def energy_deficit(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, peak_force):
@@ -332,7 +336,8 @@ def energy_deficit(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_
         rows = np.nonzero(ok & ~low)[0]
         if rows.size:
             x, u, b, loc, a = _refined_extrema(prep, fp[rows], rows)
-            out[rows] = _drawdown(x, u, b, loc, np.maximum(a, 0.0), prep.stroke[rows])[0]
+            a = np.maximum(a, 0.0)
+            out[rows] = _drawdown(x, u, b, loc, a, prep.stroke[rows], fp[rows], prep.mw[rows])[0]
     return float(out[0]) if scalar else out
 
 
@@ -382,7 +387,9 @@ def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool, cap):
         if active.size == 0:
             break
         x, u, b, loc, a = _refined_extrema(prep, lam[active], active, refine)
-        drop, length, travel = _drawdown(x, u, b, loc, np.maximum(a, 0.0), prep.stroke[active])
+        drop, length, travel = _drawdown(
+            x, u, b, loc, np.maximum(a, 0.0), prep.stroke[active], lam[active], prep.mw[active]
+        )
         new = (prep.mw[active] * length - band[active]) / travel  # Eq. (4): the arc's ratio
         grow = (drop > band[active]) & (new > lam[active])
         done = ~grow | (new - lam[active] <= RTOL * new)
@@ -507,7 +514,7 @@ def scene(
         )
     x, u, b, loc, a = _refined_extrema(prep, np.array([fp]))
     a0 = max(float(a[0]), 0.0)
-    drop = float(_drawdown(x, u, b, loc, np.array([a0]), prep.stroke)[0][0])
+    drop = float(_drawdown(x, u, b, loc, np.array([a0]), prep.stroke, fp, prep.mw[:1])[0][0])
     x, u = x[0], u[0]
     # local maxima of U (refined) and their running maximum over the previous revolution
     peaks = _local_maxima(x, u, a0)
