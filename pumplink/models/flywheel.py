@@ -57,11 +57,18 @@ quasi-static force equals Fp* (the operator's limit meets the load): the wheel d
 exactly on the arcs around the dead centres where |F_qs| > Fp*.  Limits: W -> inf gives F_mean;
 W -> 0 gives the quasi-static maximum, infinite.
 
-Numerics: U on a grid (uniform, plus nodes clustered geometrically at both dead centres, so the
-deficit arc around a dead centre is seen however short it is), every local extremum refined with
-scipy's bracketing minimiser, then the drawdown of Eq. (3) over the refined extrema.  Wiggles of
-|F_qs| narrower than one grid cell (2 pi / ``GRID``) are merged; their height is second order in
-the cell size.
+Numerics (the fast route, :func:`least_peak_force` and :func:`energy_deficit`): the extrema of U
+are where |g| crosses the level Mw / Fp (U' = Fp |g| - Mw).  |g| is tabulated per design at
+``GRID`` uniform nodes plus both dead centres (g = 0 there, so a deficit arc around a dead centre
+is bracketed however short it is); each crossing is located in the table and refined by a secant
+iteration on |g|, and the drawdown of Eq. (3) is taken over the crossings.  Within
+TRAVEL_INTEGRATION_ARC of a dead centre the grip travel is integrated (Gauss-Legendre on |g|),
+elsewhere it comes from positions.  Wiggles of |F_qs| narrower than one grid cell (2 pi / ``GRID``)
+are merged; their height is second order in the cell size.  The reference route
+(:func:`_reference_least_peak_force`) evaluates U on the grid plus nodes clustered geometrically
+at both dead centres and refines every local extremum of U with scipy's bracketing minimiser; the
+two agree to ~1e-10 (tests/models/test_flywheel_fast.py), and the fast route hands a design it
+cannot resolve to the reference route.
 """
 
 from __future__ import annotations
@@ -313,19 +320,11 @@ def _drawdown(x, u, base, local, a, stroke, force, mw):
     return mw * length - force * travel, length, travel  # Eq. (3): U(s) - U(t)
 
 
-def energy_deficit(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, peak_force):
-    """Least energy band W [J] an operator limited to ``peak_force`` needs: D(Fp) of Eq. (3).
-
-    The flywheel must be able to give up this much kinetic energy on the arcs where the
-    quasi-static force exceeds ``peak_force``; infinite when the peak is below F_mean (the
-    operator cannot do a cycle's work).  Broadcasts over designs.
-
-    Parameters
-    ----------
-    lk : linkage (scalars or 1-D arrays over designs).
-    dead_centre_extended, dead_centre_folded : dead-centre crank angles [rad].
-    wheel_torque : Mw [N m];  peak_force : the operator's largest |F| [N].
-    """
+def _reference_energy_deficit(
+    lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, peak_force
+):
+    """:func:`energy_deficit` by the reference route: U on the nodes of :func:`_nodes`, every local
+    extremum refined by scipy's bracketing minimiser (kept to check the fast route against)."""
     prep, scalar = _prepare(lk, dead_centre_extended, dead_centre_folded, wheel_torque)
     fp = np.broadcast_to(np.asarray(peak_force, float), prep.dce.shape).astype(float)
     out = np.full(prep.dce.shape, np.nan)
@@ -341,25 +340,12 @@ def energy_deficit(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_
     return float(out[0]) if scalar else out
 
 
-def least_peak_force(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, energy_band):
-    """Least peak operator force [N] for a periodic motion inside the energy band, Eq. (4).
-
-    Exact to solver tolerance (Dinkelbach's iteration on Eq. (3), every extremum refined).
-    Between F_mean (W -> inf: an infinite flywheel) and the quasi-static maximum (W -> 0: no
-    flywheel, infinite at the dead centres).
-
-    Parameters
-    ----------
-    lk : linkage (scalars or 1-D arrays over designs).
-    dead_centre_extended, dead_centre_folded : dead-centre crank angles [rad].
-    wheel_torque : Mw [N m].
-    energy_band : W = J w_bar^2 delta [J] (:func:`energy_band`).
-
-    Returns
-    -------
-    Fp* [N]: inf where the band is zero or Fp* exceeds FORCE_CAP_RATIO * F_mean, NaN for an
-    infeasible design.
-    """
+def _reference_least_peak_force(
+    lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, energy_band
+):
+    """:func:`least_peak_force` by the reference route: Dinkelbach's iteration on U at the nodes of
+    :func:`_nodes`, then with every local extremum refined by scipy's bracketing minimiser (kept to
+    check the fast route against)."""
     prep, scalar = _prepare(lk, dead_centre_extended, dead_centre_folded, wheel_torque)
     band = np.broadcast_to(np.asarray(energy_band, float), prep.dce.shape).astype(float)
     n = prep.dce.size
@@ -398,6 +384,351 @@ def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool, cap):
         lam[active[capped]] = np.inf
         active = active[~(done | capped)]
     return lam
+
+
+# ----------------------------------------------------------------------------- the fast route
+# The same Eq. (3)-(4), from the local extrema of U alone.  U' = u = Fp |g| - Mw, so U has its
+# local maxima where |g| falls through the level Mw / Fp and its minima where |g| rises through
+# it.  |g| is tabulated once per design on the uniform nodes of the grid plus the two dead centres
+# (where g = 0: every deficit arc around a dead centre is bracketed however short it is); for each
+# force the crossings of the level are located in that table and refined by a safeguarded secant
+# iteration on |g| itself, and the drawdown of Eq. (3) is taken over them, with the grip travel of
+# :func:`_travel_parts` as in the reference route.  Dinkelbach's iteration runs first on crossings
+# interpolated linearly in the table, then on refined ones; every arc's ratio in Eq. (4) is a lower
+# bound of Fp*, so the interpolated arcs cost no exactness, only steps.  Far below the answer, where
+# D(Fp) ~ 1/Fp (the dead-centre asymptote), a hyperbolic step replaces Dinkelbach's (Newton's) step.
+
+#: Designs per block of the fast route: its (block x GRID) tables stay in the CPU cache, and the
+#: scratch of the table's kernel is allocated once per call (no page faults per block).
+BLOCK = 512
+#: Designs per call of the table's kernel (its nine (rows x GRID) scratch arrays ~1.2 MB).
+KERNEL_ROWS = 64
+#: Dinkelbach's iteration moves from interpolated to refined crossings at this relative step.
+COARSE_RTOL = 1e-6
+#: A refined crossing is accepted when the secant step is below this fraction of its distance
+#: from the nearest dead centre (the arc's ratio is stationary in its ends, so its error is the
+#: square of this, relative).
+CROSSING_RTOL = 1e-10
+#: Most passes and secant steps; a design that needs more goes to the reference route.
+MAX_PASSES = 80
+MAX_SECANT = 50
+
+_H = TWO_PI / GRID
+_UNIFORM = (np.arange(GRID) + 0.5) * _H  # the uniform nodes of _nodes
+_COS_U, _SIN_U = np.cos(_UNIFORM), np.sin(_UNIFORM)
+_EPS = np.finfo(float).eps
+
+
+def _rate_table_into(geom, dce, out, work):
+    """|g| = |dPx/dt2| [m/rad] at the uniform nodes (rows, GRID) into ``out``: the formulas of
+    :func:`_grip_rate`, in place in ``work`` (9, rows, GRID), the crank direction by angle addition."""
+    px, py, c, k, r, hd, br = (v[:, None] for v in geom)
+    cd, sd = np.cos(dce)[:, None], np.sin(dce)[:, None]
+    cs, sn, p1, p2, e2, t, q, a, b = work
+    np.multiply(cd, _COS_U, out=cs)
+    np.multiply(sd, _SIN_U, out=a)
+    cs -= a  # cos(dce + phi)
+    np.multiply(sd, _COS_U, out=sn)
+    np.multiply(cd, _SIN_U, out=a)
+    sn += a  # sin(dce + phi)
+    np.multiply(cs, px, out=p1)
+    np.multiply(sn, py, out=a)
+    p1 += a  # P1
+    np.multiply(cs, py, out=p2)
+    np.multiply(sn, px, out=a)
+    p2 -= a  # P2
+    np.multiply(p1, -2.0 * c, out=e2)
+    e2 += px * px + py * py + c * c  # e^2
+    np.divide(0.5 * (k * k - r * r), e2, out=t)
+    t += 0.5
+    np.sqrt(e2, out=a)  # e; q by Heron's formula as fourbar._height
+    np.add(a, k, out=b)  # e + k
+    np.subtract(e2, k * k, out=q)
+    q /= b  # e - k
+    np.multiply(q, q, out=q)
+    np.subtract(r * r, q, out=q)
+    np.multiply(b, b, out=b)
+    b -= r * r
+    q *= b
+    np.sqrt(q, out=q)
+    q /= e2
+    q *= 0.5 * br
+    np.multiply(cs, -c, out=a)
+    a += px  # dx
+    np.multiply(sn, -c, out=b)
+    b += py  # dy
+    b *= t
+    a *= q
+    np.multiply(sn, c, out=cs)
+    cs += b
+    cs += a
+    cs -= py  # Ry = crank sn + t dy + q dx - py
+    p1 -= c
+    p1 *= q
+    p2 *= t
+    p2 += p1  # t P2 + q (P1 - crank)
+    cs *= p2
+    cs *= (hd / r) * c
+    q *= e2
+    cs /= q
+    np.abs(cs, out=out)
+
+
+@dataclass(frozen=True)
+class _Table:
+    """One block of designs for the fast route: per-design values (n,) and |g| at the nodes."""
+
+    geom: tuple  # px, py, crank, coupler, rocker, handle, branch
+    dce: np.ndarray
+    plus: np.ndarray
+    xe: np.ndarray
+    xf: np.ndarray
+    stroke: np.ndarray
+    mw: np.ndarray
+    phi: np.ndarray  # (n, GRID + 3): 0, uniform nodes with the folded dead centre plus, 2 pi
+    rate: np.ndarray  # (n, GRID + 3): |g| there (0 at the dead centres)
+
+
+def _table(geom, dce, dcf, mw, work) -> _Table:
+    n = dce.size
+    xe = _grip_x(dce, *geom)
+    xf = _grip_x(dcf, *geom)
+    plus = np.mod(dcf - dce, TWO_PI)
+    grid = np.empty((n, GRID))
+    for s0 in range(0, n, KERNEL_ROWS):
+        s = slice(s0, s0 + KERNEL_ROWS)
+        rows = min(n, s0 + KERNEL_ROWS) - s0
+        _rate_table_into(tuple(v[s] for v in geom), dce[s], grid[s], work[:, :rows])
+    # the folded dead centre among the uniform nodes: kp of them lie below it
+    kp = np.clip(np.ceil(plus / _H - 0.5), 0, GRID).astype(np.intp)
+    col = np.arange(GRID + 3)
+    idx = np.clip(np.where(col <= kp[:, None], col - 1, col - 2), 0, GRID - 1)
+    phi = _UNIFORM[idx]
+    rate = np.take_along_axis(grid, idx, axis=1)
+    at = np.arange(n)
+    phi[:, 0] = rate[:, 0] = 0.0
+    phi[at, kp + 1] = plus
+    rate[at, kp + 1] = 0.0
+    phi[:, -1] = TWO_PI
+    rate[:, -1] = 0.0
+    return _Table(geom, dce, plus, xe, xf, np.abs(xf - xe), mw, phi, rate)
+
+
+def _crossings(tab: _Table, rows, level, refine):
+    """The crossings of |g| through ``level`` (per row) in crank angle phi from the extended dead
+    centre, sorted per design: (design index into rows, phi, converged flag)."""
+    rate = tab.rate[rows]
+    above = rate > level[:, None]
+    d, c = np.nonzero(above[:, 1:] != above[:, :-1])
+    r = rows[d]
+    lo, hi = tab.phi[r, c], tab.phi[r, c + 1]
+    flo, fhi = tab.rate[r, c] - level[d], tab.rate[r, c + 1] - level[d]
+    x = lo + (hi - lo) * (flo / (flo - fhi))  # linear interpolation in the table
+    ok = np.ones(d.size, bool)
+    if refine.any():
+        sel = np.nonzero(refine[d])[0]
+        x[sel], ok[sel] = _secant(tab, r[sel], level[d[sel]], lo[sel], hi[sel], flo[sel], fhi[sel], x[sel])
+    return d, x, ok
+
+
+def _secant(tab: _Table, r, level, lo, hi, flo, fhi, x):
+    """Refine the crossings |g(phi)| = level in [lo, hi] from x: secant steps kept inside the
+    bracket (bisection otherwise), until a step is below CROSSING_RTOL of the distance from the
+    nearest dead centre.  Returns (phi, converged)."""
+    out = x.copy()
+    ok = np.zeros(x.size, bool)
+    act = np.arange(x.size)
+    plus = tab.plus[r]
+    near = np.minimum(np.minimum(x, TWO_PI - x), np.abs(x - plus))
+    tol = CROSSING_RTOL * near + 4.0 * _EPS * x
+    xp = fp = None
+    step_slope = (fhi - flo) / (hi - lo)  # first step: Newton with the table's slope
+    for _ in range(MAX_SECANT):
+        rr = r[act]
+        f = np.abs(_grip_rate(tab.dce[rr] + x, *(v[rr] for v in tab.geom))) - level
+        up = f > 0.0
+        lo_up = flo > 0.0
+        on_lo = up == lo_up
+        lo = np.where(on_lo, x, lo)
+        flo = np.where(on_lo, f, flo)
+        hi = np.where(on_lo, hi, x)
+        fhi = np.where(on_lo, fhi, f)
+        slope = step_slope if xp is None else (f - fp) / (x - xp)
+        nxt = x - f / slope
+        inside = (nxt > lo) & (nxt < hi)  # False for NaN
+        nxt = np.where(inside, nxt, 0.5 * (lo + hi))
+        conv = (np.abs(nxt - x) <= tol[act]) | (f == 0.0) | (hi - lo <= tol[act])
+        conv &= np.isfinite(f)
+        done = conv | ~np.isfinite(f)
+        out[act[conv]] = np.where(f == 0.0, x, nxt)[conv]
+        ok[act[conv]] = True
+        keep = ~done
+        act = act[keep]
+        if act.size == 0:
+            break
+        xp, fp = x[keep], f[keep]
+        x, lo, hi, flo, fhi, level = nxt[keep], lo[keep], hi[keep], flo[keep], fhi[keep], level[keep]
+    return out, ok
+
+
+def _fast_drawdown(tab: _Table, rows, force, refine):
+    """Eq. (3) at ``force`` (per row) over the extrema of U: (drop [J], arc length [rad], travel
+    [m], ok) per row; ok is False where the table shows no crossing or a refinement failed."""
+    level = tab.mw[rows] / force
+    d, x, conv = _crossings(tab, rows, level, refine)
+    n = rows.size
+    count = np.bincount(d, minlength=n)
+    ok = (count > 0) & (np.bincount(d, weights=~conv * 1.0, minlength=n) == 0)
+    if d.size == 0:
+        nan = np.full(n, np.nan)
+        return nan, nan, nan, ok
+    r = rows[d]
+    base, local = _travel_parts(
+        x, *(v[r] for v in tab.geom), tab.dce[r], tab.plus[r], tab.xe[r], tab.xf[r], tab.stroke[r]
+    )
+    u = force[d] * (base + local) - tab.mw[r] * x
+    # per design in rows of width max(count), the last extremum repeated (no new drop, same maximum)
+    start = np.cumsum(count) - count
+    col = np.minimum(np.arange(max(int(count.max()), 1))[None, :], np.maximum(count - 1, 0)[:, None])
+    g = np.minimum(start[:, None] + col, d.size - 1)
+    stroke, mw = tab.stroke[rows], tab.mw[rows]
+    a = np.maximum(2.0 * force * stroke - TWO_PI * mw, 0.0)  # drift U(phi + 2 pi) - U(phi)
+    drop, length, travel = _drawdown(x[g], u[g], base[g], local[g], a, stroke, force, mw)
+    return drop, length, travel, ok
+
+
+def _fast_least_peak_force(tab: _Table, band, f_mean):
+    """Fp* per design of a table with finite positive bands; NaN where the reference route must
+    answer (no crossing in the table, a refinement or the iteration did not converge)."""
+    n = band.size
+    cap = FORCE_CAP_RATIO * f_mean
+    lam = f_mean.copy()  # a lower bound of Fp*
+    trial = f_mean.copy()  # where the next pass evaluates Eq. (3)
+    fine = np.zeros(n, bool)
+    out = np.full(n, np.nan)
+    active = np.arange(n)
+    for _ in range(MAX_PASSES):
+        if active.size == 0:
+            break
+        t = trial[active]
+        w = band[active]
+        mw = tab.mw[active]
+        drop, length, travel, ok = _fast_drawdown(tab, active, t, fine[active])
+        ratio = (mw * length - w) / travel  # Eq. (4) on the worst arc at t: a lower bound of Fp*
+        ok &= np.isfinite(ratio) & (travel > 0)
+        below = drop > w  # D(t) > W: t < Fp*, a lower bound too (and ratio > t)
+        low = lam[active]
+        best = np.maximum(low, ratio)
+        # settled: a step below the tolerance, or no deficit at a lower bound (t is Fp*)
+        settled = (np.abs(ratio - t) <= np.where(fine[active], RTOL, COARSE_RTOL) * ratio) | (
+            ~below & (t <= low)
+        )
+        # hyperbolic step: D = alpha / Fp + beta through D(t) and D'(t) = -G; Newton's would be
+        # t (1 + x), this is t / (1 - x), exact where D ~ 1/Fp
+        x = (drop - w) / (travel * t)
+        hyper = np.where(x < 0.9, t / (1.0 - x), 10.0 * t)
+        trial[active] = np.where(below & ~settled, np.maximum(hyper, best), best)
+        lam[active] = np.where(ok, best, low)
+        done = settled & fine[active] & ok
+        out[active[done]] = best[done]
+        capped = ok & (best > cap[active])
+        out[active[capped]] = np.inf
+        fine[active[settled]] = True
+        active = active[ok & ~done & ~capped]
+    return out
+
+
+def _fast_route(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, value):
+    """Per-design arrays for the fast route and a generator of its tables over blocks of ``rows``."""
+    scalar, (*geom, dce, dcf, mw, value) = per_design(
+        lk, dead_centre_extended, dead_centre_folded, wheel_torque, value
+    )
+    stroke = np.abs(_grip_x(dcf, *geom) - _grip_x(dce, *geom))
+
+    def tables(rows):
+        work = np.empty((9, min(max(rows.size, 1), KERNEL_ROWS), GRID))
+        for b0 in range(0, rows.size, BLOCK):
+            idx = rows[b0 : b0 + BLOCK]
+            yield idx, _table(tuple(v[idx] for v in geom), dce[idx], dcf[idx], mw[idx], work)
+
+    return scalar, geom, dce, dcf, mw, value, stroke, tables
+
+
+def energy_deficit(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, peak_force):
+    """Least energy band W [J] an operator limited to ``peak_force`` needs: D(Fp) of Eq. (3).
+
+    The flywheel must be able to give up this much kinetic energy on the arcs where the
+    quasi-static force exceeds ``peak_force``; infinite when the peak is below F_mean (the
+    operator cannot do a cycle's work).  Broadcasts over designs.  The fast route (the extrema of U
+    from the table of |g|); the reference route answers for a design the table cannot resolve.
+
+    Parameters
+    ----------
+    lk : linkage (scalars or 1-D arrays over designs).
+    dead_centre_extended, dead_centre_folded : dead-centre crank angles [rad].
+    wheel_torque : Mw [N m];  peak_force : the operator's largest |F| [N].
+    """
+    scalar, geom, dce, dcf, mw, fp, stroke, tables = _fast_route(
+        lk, dead_centre_extended, dead_centre_folded, wheel_torque, peak_force
+    )
+    out = np.full(dce.shape, np.nan)
+    with np.errstate(all="ignore"):
+        ok = np.isfinite(stroke) & np.isfinite(fp)
+        low = ok & (fp < _qs.mean_force(mw, stroke) * (1 - 1e-15))
+        out[low] = np.inf
+        redo = []
+        for idx, tab in tables(np.nonzero(ok & ~low)[0]):
+            rows = np.arange(idx.size)
+            drop, _, _, good = _fast_drawdown(tab, rows, fp[idx], np.ones(idx.size, bool))
+            out[idx] = drop
+            redo.append(idx[~good])
+        redo = np.concatenate(redo) if redo else np.empty(0, np.intp)
+        if redo.size:
+            out[redo] = _reference_energy_deficit(
+                FourBar(*(v[redo] for v in geom)), dce[redo], dcf[redo], mw[redo], fp[redo]
+            )
+    return float(out[0]) if scalar else out
+
+
+def least_peak_force(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, energy_band):
+    """Least peak operator force [N] for a periodic motion inside the energy band, Eq. (4).
+
+    Exact to solver tolerance (Dinkelbach's iteration on Eq. (3) over the extrema of U, each
+    refined).  Between F_mean (W -> inf: an infinite flywheel) and the quasi-static maximum
+    (W -> 0: no flywheel, infinite at the dead centres).  The fast route (the extrema of U from the
+    table of |g|); the reference route answers for a design the table cannot resolve.
+
+    Parameters
+    ----------
+    lk : linkage (scalars or 1-D arrays over designs).
+    dead_centre_extended, dead_centre_folded : dead-centre crank angles [rad].
+    wheel_torque : Mw [N m].
+    energy_band : W = J w_bar^2 delta [J] (:func:`energy_band`).
+
+    Returns
+    -------
+    Fp* [N]: inf where the band is zero or Fp* exceeds FORCE_CAP_RATIO * F_mean, NaN for an
+    infeasible design.
+    """
+    scalar, geom, dce, dcf, mw, band, stroke, tables = _fast_route(
+        lk, dead_centre_extended, dead_centre_folded, wheel_torque, energy_band
+    )
+    out = np.full(dce.shape, np.nan)
+    with np.errstate(all="ignore"):
+        ok = np.isfinite(stroke) & (stroke > 0) & ~np.isnan(band)
+        f_mean = _qs.mean_force(mw, stroke)
+        out[ok & (band <= 0)] = np.inf
+        out[ok & (band == np.inf)] = f_mean[ok & (band == np.inf)]
+        redo = []
+        for idx, tab in tables(np.nonzero(ok & (band > 0) & np.isfinite(band))[0]):
+            out[idx] = _fast_least_peak_force(tab, band[idx], f_mean[idx])
+            redo.append(idx[np.isnan(out[idx])])
+        redo = np.concatenate(redo) if redo else np.empty(0, np.intp)
+        if redo.size:
+            out[redo] = _reference_least_peak_force(
+                FourBar(*(v[redo] for v in geom)), dce[redo], dcf[redo], mw[redo], band[redo]
+            )
+    return float(out[0]) if scalar else out
 
 
 def min_passing_speed(
