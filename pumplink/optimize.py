@@ -147,6 +147,7 @@ class OptimizationResult:
     message: str = field(default="")
     spec_result: Any = None  # pumplink force's analysis of the spec's own design (ForceResult)
     best_result: Any = None  # ... and of the optimum (its verdict decides the exit code)
+    force_evaluations: int = 0  # designs whose force was computed: those meeting every constraint
 
 
 def parse_bounds(items: list[str] | None) -> dict[str, tuple[float, float]]:
@@ -278,20 +279,28 @@ def _columns(problem: Problem, x: np.ndarray) -> dict[str, np.ndarray]:
     return cols
 
 
-def evaluate_designs(problem: Problem, x) -> Evaluation:
-    """Objective and constraint slacks for x of shape (variables, designs) (vectorised).
+@dataclass(frozen=True)
+class _Terms:
+    """The geometry of designs and their constraint slacks (no force model): see evaluate_designs."""
 
-    Slacks are in degrees (angles) or metres (heights, stroke); a design satisfies every
-    constraint iff all its slacks are >= 0.
-    """
+    syn: Any
+    ok: np.ndarray
+    slack: np.ndarray
+    mu: np.ndarray
+    grip_low: np.ndarray
+    grip_high: np.ndarray
+    stroke: np.ndarray
+    win: np.ndarray
+
+
+def _terms(problem: Problem, x) -> _Terms:
+    """Synthesis and constraint slacks for x of shape (variables, designs) (vectorised)."""
     p = _columns(problem, x)
     sw = np.radians(p["swing"])
     h = p["handle"]
     syn = synthesize(p["L1"], p["D1"], p["b"], p["rocker"], sw, h)
     ok = syn.feasible
-    spec = problem.spec
-    mw = spec.wheel_torque
-    band = math.radians(spec.operator.dead_band)
+    band = math.radians(problem.spec.operator.dead_band)
 
     margin = np.minimum(syn.psi2, np.pi - syn.psi1) - 2 * CHANGE_POINT_MARGIN
     margin = np.where(syn.frame_length > 1e-6, margin, -1.0)
@@ -316,8 +325,22 @@ def evaluate_designs(problem: Problem, x) -> Evaluation:
     )
     if problem.flywheel:
         slack = slack[:-1]  # the dead-band window: quasi-static model only
+    return _Terms(syn, ok, slack, mu, grip_low, grip_high, stroke, win)
 
-    mean = _qs.mean_force(mw, grip_stroke(h, sw))
+
+def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
+    """Objective and constraint slacks for x of shape (variables, designs) (vectorised).
+
+    Slacks are in degrees (angles) or metres (heights, stroke); a design satisfies every
+    constraint iff all its slacks are >= 0.  ``search``: only the force the objective needs (the
+    flywheel's or the dead-band peak, neither for the mean objective); the other stays NaN.
+    """
+    tm = _terms(problem, x)
+    syn, ok = tm.syn, tm.ok
+    spec = problem.spec
+    mw = spec.wheel_torque
+    band = math.radians(spec.operator.dead_band)
+    mean = _qs.mean_force(mw, tm.stroke)
     op = spec.operator
     cond = Conditions(
         float(np.radians(float(op.speed))),
@@ -325,16 +348,17 @@ def evaluate_designs(problem: Problem, x) -> Evaluation:
         np.nan if spec.inertia is None else spec.inertia,
         op.speed_fluctuation,
     )
+    objective_peak = problem.objective == "peak"
     peak = np.full(ok.shape, np.nan)
-    live = ok & (win > 0)
+    live = ok & (tm.win > 0)
     lk = syn.linkage
-    if live.any():
+    if live.any() and not (search and (problem.flywheel or not objective_peak)):
         sub = lk.take(live)
         peak[live] = MODELS[QUASI_STATIC].peak_force(
             sub, syn.dead_centre_extended[live], syn.dead_centre_folded[live], mw, cond
         )
     required = np.full(ok.shape, np.nan)
-    if problem.flywheel and ok.any():
+    if problem.flywheel and ok.any() and not (search and not objective_peak):
         # the flywheel's least peak force at the spec's speed, as pumplink force
         sub = lk.take(ok)
         required[ok] = MODELS[FLYWHEEL].peak_force(
@@ -342,17 +366,17 @@ def evaluate_designs(problem: Problem, x) -> Evaluation:
         )
     verdict = required if problem.flywheel else peak
     mean = np.where(ok, mean, np.nan)
-    obj = verdict if problem.objective == "peak" else mean
+    obj = verdict if objective_peak else mean
     obj = np.where(np.isfinite(obj), obj, INFEASIBLE_OBJECTIVE)
     return Evaluation(
         obj,
         peak,
         mean,
-        slack,
-        np.where(ok, np.degrees(mu), np.nan),
-        grip_low,
-        grip_high,
-        stroke,
+        tm.slack,
+        np.where(ok, np.degrees(tm.mu), np.nan),
+        tm.grip_low,
+        tm.grip_high,
+        tm.stroke,
         required,
         problem.flywheel,
     )
@@ -394,23 +418,30 @@ def optimize(
     from scipy.optimize import NonlinearConstraint, differential_evolution, minimize
 
     cache: dict[bytes, Evaluation] = {}
-    count = [0]
+    count = [0, 0]  # designs looked at (their constraints), and those whose force was computed
+    n = len(problem.names)
 
-    def ev(x):
-        x = np.asarray(x, float)
-        x2 = x.reshape(len(problem.names), -1)
+    def ev(x, looked_at=True):
+        x2 = np.asarray(x, float).reshape(n, -1)
         key = x2.tobytes()
         if key not in cache:
             if len(cache) > 4:
                 cache.clear()
-            cache[key] = evaluate_designs(problem, x2)
-            count[0] += x2.shape[1]
+            cache[key] = evaluate_designs(problem, x2, search=True)
+            count[0] += x2.shape[1] if looked_at else 0
+            count[1] += x2.shape[1]
         return cache[key]
 
-    n = len(problem.names)
-    con = NonlinearConstraint(lambda x: ev(x).slack, 0.0, np.inf)
+    def slack(x):
+        # DE asks for the constraints of every trial design first, then for the objective of only
+        # those that meet them all: the constraints need the geometry, no force model
+        x2 = np.asarray(x, float).reshape(n, -1)
+        count[0] += x2.shape[1]
+        return _terms(problem, x2).slack
+
+    con = NonlinearConstraint(slack, 0.0, np.inf)
     res = differential_evolution(
-        lambda x: ev(x).objective,
+        lambda x: ev(x, looked_at=False).objective,
         list(zip(problem.lower, problem.upper)),
         constraints=con,
         vectorized=True,
@@ -454,7 +485,7 @@ def optimize(
             return float(ev(problem.lower + z * scale).objective[0])
 
         def g(z):
-            return ev(problem.lower + z * scale).slack[:, 0]
+            return ev(problem.lower + z * scale).slack[:, 0]  # SLSQP asks f and g at the same points
 
         z0 = (x - problem.lower) / scale
         loc = minimize(
@@ -500,6 +531,7 @@ def optimize(
         # the verdicts, exactly as pumplink force gives them on each spec (one verdict)
         force_analysis(problem.spec, keep_samples=False, samples=0),
         force_analysis(best, keep_samples=False, samples=0),
+        count[1],
     )
 
 

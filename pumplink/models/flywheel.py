@@ -404,7 +404,7 @@ BLOCK = 512
 #: Designs per call of the table's kernel (its nine (rows x GRID) scratch arrays ~1.2 MB).
 KERNEL_ROWS = 64
 #: Dinkelbach's iteration moves from interpolated to refined crossings at this relative step.
-COARSE_RTOL = 1e-6
+COARSE_RTOL = 1e-3
 #: A refined crossing is accepted when the secant step is below this fraction of its distance
 #: from the nearest dead centre (the arc's ratio is stationary in its ends, so its error is the
 #: square of this, relative).
@@ -489,10 +489,8 @@ class _Table:
     rate: np.ndarray  # (n, GRID + 3): |g| there (0 at the dead centres)
 
 
-def _table(geom, dce, dcf, mw, work) -> _Table:
+def _table(geom, dce, dcf, mw, xe, xf, work) -> _Table:
     n = dce.size
-    xe = _grip_x(dce, *geom)
-    xf = _grip_x(dcf, *geom)
     plus = np.mod(dcf - dce, TWO_PI)
     grid = np.empty((n, GRID))
     for s0 in range(0, n, KERNEL_ROWS):
@@ -627,7 +625,7 @@ def _fast_least_peak_force(tab: _Table, band, f_mean):
         # t (1 + x), this is t / (1 - x), exact where D ~ 1/Fp
         x = (drop - w) / (travel * t)
         hyper = np.where(x < 0.9, t / (1.0 - x), 10.0 * t)
-        trial[active] = np.where(below & ~settled, np.maximum(hyper, best), best)
+        trial[active] = np.where(below & ~(settled & fine[active]), np.maximum(hyper, best), best)
         lam[active] = np.where(ok, best, low)
         done = settled & fine[active] & ok
         out[active[done]] = best[done]
@@ -643,13 +641,16 @@ def _fast_route(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_tor
     scalar, (*geom, dce, dcf, mw, value) = per_design(
         lk, dead_centre_extended, dead_centre_folded, wheel_torque, value
     )
-    stroke = np.abs(_grip_x(dcf, *geom) - _grip_x(dce, *geom))
+    with np.errstate(all="ignore"):  # NaN for an infeasible design
+        xe = _grip_x(dce, *geom)
+        xf = _grip_x(dcf, *geom)
+    stroke = np.abs(xf - xe)
 
     def tables(rows):
         work = np.empty((9, min(max(rows.size, 1), KERNEL_ROWS), GRID))
         for b0 in range(0, rows.size, BLOCK):
-            idx = rows[b0 : b0 + BLOCK]
-            yield idx, _table(tuple(v[idx] for v in geom), dce[idx], dcf[idx], mw[idx], work)
+            i = rows[b0 : b0 + BLOCK]
+            yield i, _table(tuple(v[i] for v in geom), dce[i], dcf[i], mw[i], xe[i], xf[i], work)
 
     return scalar, geom, dce, dcf, mw, value, stroke, tables
 
