@@ -139,13 +139,16 @@ def _grip_rate(theta, px, py, crank, coupler, rocker, handle, branch):
     return (handle / rocker) * ry * crank * w / (q * e2)
 
 
-def _travel_parts(phi, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke):
+def _travel_parts(
+    phi, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke, integrate=True
+):
     """Grip travel G = base + local [m] from the extended dead centre to crank angle dce + phi.
 
     ``base`` is G at the nearest dead centre (0, S or 2S, plus 2S per full turn of the unrolled
     phi); ``local`` the signed travel from it.  Px is monotone between the dead centres, so away
     from them local comes from positions; within TRAVEL_INTEGRATION_ARC it is integrated from the rate.
     Differences of G near one dead centre are then (local - local): no cancellation.
+    ``integrate=False``: from positions everywhere (absolute error ~1e-16 m; enough to rank arcs).
     """
     turns = np.floor(phi / TWO_PI)
     p = phi - turns * TWO_PI
@@ -158,7 +161,7 @@ def _travel_parts(phi, px, py, crank, coupler, rocker, handle, branch, dce, plus
     ref = np.where(at_fold, xf, xe)
     local = np.sign(s) * np.abs(x - ref)
     near = np.abs(s) < TRAVEL_INTEGRATION_ARC
-    if np.any(near):
+    if integrate and np.any(near):
         geom = [np.broadcast_to(v, s.shape)[near] for v in (px, py, crank, coupler, rocker, handle, branch)]
         dc = np.broadcast_to(np.where(at_fold, dce + plus, dce), s.shape)[near]
         sn = s[near]
@@ -295,6 +298,18 @@ def _refined_extrema(prep: _Prepared, force, rows=None, refine: bool = True):
     return x, u, base, local, a
 
 
+def _worst_arc(u, a):
+    """Columns (i, j) of the largest drop of U in the sequence u over two periods, [u, u + a]."""
+    u2 = np.concatenate([u, u + a[:, None]], axis=1)
+    top = np.maximum.accumulate(u2, axis=1)
+    j = np.argmax(top - u2, axis=1)
+    idx = np.arange(u.shape[0])
+    # the arc starts at the first node before j where U reached that running maximum
+    cols = np.arange(u2.shape[1])
+    i = np.argmax((u2 == top[idx, j][:, None]) & (cols[None, :] <= j[:, None]), axis=1)
+    return i, j
+
+
 def _drawdown(x, u, base, local, a, stroke, force, mw):
     """Largest drop of U over an arc shorter than a revolution [Eq. (3)], and that arc.
 
@@ -306,15 +321,10 @@ def _drawdown(x, u, base, local, a, stroke, force, mw):
     whether Dinkelbach's iteration took its last step.
     """
     x2 = np.concatenate([x, x + TWO_PI], axis=1)
-    u2 = np.concatenate([u, u + a[:, None]], axis=1)
     b2 = np.concatenate([base, base + 2.0 * stroke[:, None]], axis=1)
     l2 = np.concatenate([local, local], axis=1)
-    top = np.maximum.accumulate(u2, axis=1)
-    j = np.argmax(top - u2, axis=1)
+    i, j = _worst_arc(u, a)
     idx = np.arange(x.shape[0])
-    # the arc starts at the last node before j where U reached that running maximum
-    cols = np.arange(u2.shape[1])
-    i = np.argmax((u2 == top[idx, j][:, None]) & (cols[None, :] <= j[:, None]), axis=1)
     travel = (b2[idx, j] - b2[idx, i]) + (l2[idx, j] - l2[idx, i])
     length = x2[idx, j] - x2[idx, i]
     return mw * length - force * travel, length, travel  # Eq. (3): U(s) - U(t)
@@ -400,7 +410,7 @@ def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool, cap):
 
 #: Designs per block of the fast route: its (block x GRID) tables stay in the CPU cache, and the
 #: scratch of the table's kernel is allocated once per call (no page faults per block).
-BLOCK = 512
+BLOCK = 2048
 #: Designs per call of the table's kernel (its nine (rows x GRID) scratch arrays ~1.2 MB).
 KERNEL_ROWS = 64
 #: Dinkelbach's iteration moves from interpolated to refined crossings at this relative step.
@@ -531,8 +541,8 @@ def _crossings(tab: _Table, rows, level, refine):
 
 def _secant(tab: _Table, r, level, lo, hi, flo, fhi, x):
     """Refine the crossings |g(phi)| = level in [lo, hi] from x: secant steps kept inside the
-    bracket (bisection otherwise), until a step is below CROSSING_RTOL of the distance from the
-    nearest dead centre.  Returns (phi, converged)."""
+    bracket (else the Illinois false position), until a step is below CROSSING_RTOL of the distance
+    from the nearest dead centre.  Returns (phi, converged)."""
     out = x.copy()
     ok = np.zeros(x.size, bool)
     act = np.arange(x.size)
@@ -540,32 +550,37 @@ def _secant(tab: _Table, r, level, lo, hi, flo, fhi, x):
     near = np.minimum(np.minimum(x, TWO_PI - x), np.abs(x - plus))
     tol = CROSSING_RTOL * near + 4.0 * _EPS * x
     xp = fp = None
-    step_slope = (fhi - flo) / (hi - lo)  # first step: Newton with the table's slope
+    slope = (fhi - flo) / (hi - lo)  # first step: Newton with the table's slope
+    side = np.zeros(x.size, np.int8)  # the bracket's end moved last: 1 lo, -1 hi
     for _ in range(MAX_SECANT):
         rr = r[act]
         f = np.abs(_grip_rate(tab.dce[rr] + x, *(v[rr] for v in tab.geom))) - level
-        up = f > 0.0
-        lo_up = flo > 0.0
-        on_lo = up == lo_up
+        on_lo = (f > 0.0) == (flo > 0.0)
+        # Illinois: an end kept twice in a row has its value halved (false position then converges)
+        fhi = np.where(on_lo & (side == 1), 0.5 * fhi, fhi)
+        flo = np.where(~on_lo & (side == -1), 0.5 * flo, flo)
+        side = np.where(on_lo, 1, -1).astype(np.int8)
         lo = np.where(on_lo, x, lo)
         flo = np.where(on_lo, f, flo)
         hi = np.where(on_lo, hi, x)
         fhi = np.where(on_lo, fhi, f)
-        slope = step_slope if xp is None else (f - fp) / (x - xp)
-        nxt = x - f / slope
+        if xp is not None:
+            slope = (f - fp) / (x - xp)
+        step = f / slope
+        # converged on the secant step itself: a point on the root may lie on the bracket's end
+        conv = ((np.abs(step) <= tol[act]) | (f == 0.0) | (hi - lo <= tol[act])) & np.isfinite(f)
+        nxt = x - step
+        out[act[conv]] = np.clip(np.where(f == 0.0, x, nxt), lo, hi)[conv]
         inside = (nxt > lo) & (nxt < hi)  # False for NaN
-        nxt = np.where(inside, nxt, 0.5 * (lo + hi))
-        conv = (np.abs(nxt - x) <= tol[act]) | (f == 0.0) | (hi - lo <= tol[act])
-        conv &= np.isfinite(f)
+        nxt = np.where(inside, nxt, lo - flo * (hi - lo) / (fhi - flo))
         done = conv | ~np.isfinite(f)
-        out[act[conv]] = np.where(f == 0.0, x, nxt)[conv]
         ok[act[conv]] = True
         keep = ~done
         act = act[keep]
         if act.size == 0:
             break
         xp, fp = x[keep], f[keep]
-        x, lo, hi, flo, fhi, level = nxt[keep], lo[keep], hi[keep], flo[keep], fhi[keep], level[keep]
+        x, lo, hi, flo, fhi, level, side = (v[keep] for v in (nxt, lo, hi, flo, fhi, level, side))
     return out, ok
 
 
@@ -581,18 +596,25 @@ def _fast_drawdown(tab: _Table, rows, force, refine):
         nan = np.full(n, np.nan)
         return nan, nan, nan, ok
     r = rows[d]
-    base, local = _travel_parts(
-        x, *(v[r] for v in tab.geom), tab.dce[r], tab.plus[r], tab.xe[r], tab.xf[r], tab.stroke[r]
-    )
+    args = (*(v[r] for v in tab.geom), tab.dce[r], tab.plus[r], tab.xe[r], tab.xf[r], tab.stroke[r])
+    base, local = _travel_parts(x, *args, integrate=False)  # enough to rank the arcs
     u = force[d] * (base + local) - tab.mw[r] * x
     # per design in rows of width max(count), the last extremum repeated (no new drop, same maximum)
+    width = max(int(count.max()), 1)
     start = np.cumsum(count) - count
-    col = np.minimum(np.arange(max(int(count.max()), 1))[None, :], np.maximum(count - 1, 0)[:, None])
+    col = np.minimum(np.arange(width)[None, :], np.maximum(count - 1, 0)[:, None])
     g = np.minimum(start[:, None] + col, d.size - 1)
     stroke, mw = tab.stroke[rows], tab.mw[rows]
     a = np.maximum(2.0 * force * stroke - TWO_PI * mw, 0.0)  # drift U(phi + 2 pi) - U(phi)
-    drop, length, travel = _drawdown(x[g], u[g], base[g], local[g], a, stroke, force, mw)
-    return drop, length, travel, ok
+    i, j = _worst_arc(u[g], a)
+    # the worst arc's ends, unrolled (the second period is one turn on), their travel exactly
+    at = np.arange(n)
+    ends = np.concatenate([g[at, i % width], g[at, j % width]])
+    phi = x[ends] + TWO_PI * np.concatenate([i // width, j // width])
+    eb, el = _travel_parts(phi, *(v[ends] for v in args))
+    length = phi[n:] - phi[:n]
+    travel = (eb[n:] - eb[:n]) + (el[n:] - el[:n])
+    return mw * length - force * travel, length, travel, ok  # Eq. (3): U(s) - U(t)
 
 
 def _fast_least_peak_force(tab: _Table, band, f_mean):
