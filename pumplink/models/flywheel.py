@@ -408,13 +408,18 @@ def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool, cap):
 # bound of Fp*, so the interpolated arcs cost no exactness, only steps.  Far below the answer, where
 # D(Fp) ~ 1/Fp (the dead-centre asymptote), a hyperbolic step replaces Dinkelbach's (Newton's) step.
 
-#: Designs per block of the fast route: its (block x GRID) tables stay in the CPU cache, and the
-#: scratch of the table's kernel is allocated once per call (no page faults per block).
+#: Designs per block of the fast route: bounded (block x GRID) tables (~4 MB), few Python-level
+#: passes per design; the scratch of the table's kernel is allocated once per call.
 BLOCK = 2048
 #: Designs per call of the table's kernel (its nine (rows x GRID) scratch arrays ~1.2 MB).
 KERNEL_ROWS = 64
 #: Dinkelbach's iteration moves from interpolated to refined crossings at this relative step.
 COARSE_RTOL = 1e-3
+#: ... and stops at this relative step on refined crossings.  The grip travel from positions just
+#: outside TRAVEL_INTEGRATION_ARC is rounded to ~1e-13 of itself, so the arc's ratio is too: at RTOL
+#: the rounding decided when to stop (two extra passes for some designs).  Near the answer the
+#: error of a Dinkelbach step is the square of the step, so 1e-12 costs no accuracy.
+FINE_RTOL = 1e-12
 #: A refined crossing is accepted when the secant step is below this fraction of its distance
 #: from the nearest dead centre (the arc's ratio is stationary in its ends, so its error is the
 #: square of this, relative).
@@ -640,7 +645,7 @@ def _fast_least_peak_force(tab: _Table, band, f_mean):
         low = lam[active]
         best = np.maximum(low, ratio)
         # settled: a step below the tolerance, or no deficit at a lower bound (t is Fp*)
-        settled = (np.abs(ratio - t) <= np.where(fine[active], RTOL, COARSE_RTOL) * ratio) | (
+        settled = (np.abs(ratio - t) <= np.where(fine[active], FINE_RTOL, COARSE_RTOL) * ratio) | (
             ~below & (t <= low)
         )
         # hyperbolic step: D = alpha / Fp + beta through D(t) and D'(t) = -G; Newton's would be
