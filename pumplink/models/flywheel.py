@@ -1057,12 +1057,17 @@ def link_energy(lk: FourBar, crank_angle, mean_speed, mass_per_length=LINK_MASS_
     T = m (vA^2 + vA.vB + vB^2) / 6.  The crank is part of the wheel.
     """
     th = np.asarray(crank_angle, float)
-    st = kinematic_state(lk, th, 1.0)
     w = mean_speed
-    c = lk.crank
-    vax, vay = -w * c * np.sin(th), w * c * np.cos(th)
-    w4 = st.rocker_rate * w
-    rx, ry = st.coupler_x - lk.pivot_x, st.coupler_y - lk.pivot_y
+    px, py, c = lk.pivot_x, lk.pivot_y, lk.crank
+    cs, sn = np.cos(th), np.sin(th)
+    with np.errstate(all="ignore"):  # the coupler point and rocker rate of kinematic_state, no more
+        p1, p2, e2, t, q = loop_closure(lk, cs, sn)
+        dx, dy = px - c * cs, py - c * sn
+        rx = c * cs + t * dx - q * dy - px
+        ry = c * sn + t * dy + q * dx - py
+        rate = -c * (t * p2 + q * (p1 - c)) / (q * e2)  # omega4 / omega2
+    vax, vay = -w * c * sn, w * c * cs
+    w4 = rate * w
     vbx, vby = -w4 * ry, w4 * rx
     coupler = (
         mass_per_length
