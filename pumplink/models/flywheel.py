@@ -500,41 +500,42 @@ class _Table:
     xf: np.ndarray
     stroke: np.ndarray
     mw: np.ndarray
-    phi: np.ndarray  # (n, GRID + 3): 0, uniform nodes with the folded dead centre plus, 2 pi
-    rate: np.ndarray  # (n, GRID + 3): |g| there (0 at the dead centres)
+    kp: np.ndarray  # uniform nodes below the folded dead centre
+    rate: np.ndarray  # (n, GRID + 3): |g| at 0, the uniform nodes with plus among them, 2 pi
 
 
 def _table(geom, dce, dcf, mw, xe, xf, work) -> _Table:
     n = dce.size
     plus = np.mod(dcf - dce, TWO_PI)
-    grid = np.empty((n, GRID))
+    # the folded dead centre among the uniform nodes: kp of them lie below it, at columns 1..kp;
+    # it is column kp + 1 and the others follow; the extended one is column 0 and GRID + 2
+    kp = np.clip(np.ceil(plus / _H - 0.5), 0, GRID).astype(np.intp)
+    rate = np.empty((n, GRID + 3))
     for s0 in range(0, n, KERNEL_ROWS):
         s = slice(s0, s0 + KERNEL_ROWS)
         rows = min(n, s0 + KERNEL_ROWS) - s0
-        _rate_table_into(tuple(v[s] for v in geom), dce[s], grid[s], work[:, :rows])
-    # the folded dead centre among the uniform nodes: kp of them lie below it
-    kp = np.clip(np.ceil(plus / _H - 0.5), 0, GRID).astype(np.intp)
-    col = np.arange(GRID + 3)
-    idx = np.clip(np.where(col <= kp[:, None], col - 1, col - 2), 0, GRID - 1)
-    phi = _UNIFORM[idx]
-    rate = np.take_along_axis(grid, idx, axis=1)
-    at = np.arange(n)
-    phi[:, 0] = rate[:, 0] = 0.0
-    phi[at, kp + 1] = plus
-    rate[at, kp + 1] = 0.0
-    phi[:, -1] = TWO_PI
-    rate[:, -1] = 0.0
-    return _Table(geom, dce, plus, xe, xf, np.abs(xf - xe), mw, phi, rate)
+        _rate_table_into(tuple(v[s] for v in geom), dce[s], rate[s, 2 : GRID + 2], work[:, :rows])
+    np.copyto(rate[:, 1 : GRID + 1], rate[:, 2 : GRID + 2], where=np.arange(GRID) < kp[:, None])
+    rate[:, 0] = rate[:, -1] = 0.0
+    rate[np.arange(n), kp + 1] = 0.0
+    return _Table(geom, dce, plus, xe, xf, np.abs(xf - xe), mw, kp, rate)
+
+
+def _node_phi(tab: _Table, r, c):
+    """Crank angle phi [rad] of column c of the table for designs r."""
+    kp = tab.kp[r]
+    u = _UNIFORM[np.clip(np.where(c <= kp, c - 1, c - 2), 0, GRID - 1)]
+    return np.where(c == 0, 0.0, np.where(c == kp + 1, tab.plus[r], np.where(c == GRID + 2, TWO_PI, u)))
 
 
 def _crossings(tab: _Table, rows, level, refine):
     """The crossings of |g| through ``level`` (per row) in crank angle phi from the extended dead
     centre, sorted per design: (design index into rows, phi, converged flag)."""
-    rate = tab.rate[rows]
+    rate = tab.rate if rows.size == tab.rate.shape[0] else tab.rate[rows]  # rows: all, or a subset
     above = rate > level[:, None]
     d, c = np.nonzero(above[:, 1:] != above[:, :-1])
     r = rows[d]
-    lo, hi = tab.phi[r, c], tab.phi[r, c + 1]
+    lo, hi = _node_phi(tab, r, c), _node_phi(tab, r, c + 1)
     flo, fhi = tab.rate[r, c] - level[d], tab.rate[r, c + 1] - level[d]
     x = lo + (hi - lo) * (flo / (flo - fhi))  # linear interpolation in the table
     ok = np.ones(d.size, bool)
