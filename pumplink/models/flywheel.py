@@ -489,17 +489,15 @@ def _rate_table_into(geom, dce, out, work):
     np.abs(cs, out=out)
 
 
+#: Rows of the parameter matrix of a table: the four-bar's seven parameters (FourBar order), then
+_DCE, _PLUS, _XE, _XF, _STROKE, _MW = 7, 8, 9, 10, 11, 12
+
+
 @dataclass(frozen=True)
 class _Table:
-    """One block of designs for the fast route: per-design values (n,) and |g| at the nodes."""
+    """One block of designs for the fast route: per-design values and |g| at the nodes."""
 
-    geom: tuple  # px, py, crank, coupler, rocker, handle, branch
-    dce: np.ndarray
-    plus: np.ndarray
-    xe: np.ndarray
-    xf: np.ndarray
-    stroke: np.ndarray
-    mw: np.ndarray
+    params: np.ndarray  # (13, n): px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, S, Mw
     kp: np.ndarray  # uniform nodes below the folded dead centre
     rate: np.ndarray  # (n, GRID + 3): |g| at 0, the uniform nodes with plus among them, 2 pi
 
@@ -518,49 +516,51 @@ def _table(geom, dce, dcf, mw, xe, xf, work) -> _Table:
     np.copyto(rate[:, 1 : GRID + 1], rate[:, 2 : GRID + 2], where=np.arange(GRID) < kp[:, None])
     rate[:, 0] = rate[:, -1] = 0.0
     rate[np.arange(n), kp + 1] = 0.0
-    return _Table(geom, dce, plus, xe, xf, np.abs(xf - xe), mw, kp, rate)
+    params = np.stack([*geom, dce, plus, xe, xf, np.abs(xf - xe), mw])
+    return _Table(params, kp, rate)
 
 
-def _node_phi(tab: _Table, r, c):
-    """Crank angle phi [rad] of column c of the table for designs r."""
-    kp = tab.kp[r]
+def _node_phi(kp, plus, c):
+    """Crank angle phi [rad] of column c of a table (kp, plus: of each column's design)."""
     u = _UNIFORM[np.clip(np.where(c <= kp, c - 1, c - 2), 0, GRID - 1)]
-    return np.where(c == 0, 0.0, np.where(c == kp + 1, tab.plus[r], np.where(c == GRID + 2, TWO_PI, u)))
+    return np.where(c == 0, 0.0, np.where(c == kp + 1, plus, np.where(c == GRID + 2, TWO_PI, u)))
 
 
 def _crossings(tab: _Table, rows, level, refine):
     """The crossings of |g| through ``level`` (per row) in crank angle phi from the extended dead
-    centre, sorted per design: (design index into rows, phi, converged flag)."""
+    centre, sorted per design: (design index into rows, phi, converged flag, the crossings'
+    parameter columns)."""
     rate = tab.rate if rows.size == tab.rate.shape[0] else tab.rate[rows]  # rows: all, or a subset
     above = rate > level[:, None]
     d, c = np.nonzero(above[:, 1:] != above[:, :-1])
     r = rows[d]
-    lo, hi = _node_phi(tab, r, c), _node_phi(tab, r, c + 1)
-    flo, fhi = tab.rate[r, c] - level[d], tab.rate[r, c + 1] - level[d]
+    par = tab.params[:, r]
+    kp, plus = tab.kp[r], par[_PLUS]
+    lo, hi = _node_phi(kp, plus, c), _node_phi(kp, plus, c + 1)
+    lv = level[d]
+    flo, fhi = tab.rate[r, c] - lv, tab.rate[r, c + 1] - lv
     x = lo + (hi - lo) * (flo / (flo - fhi))  # linear interpolation in the table
     ok = np.ones(d.size, bool)
     if refine.any():
         sel = np.nonzero(refine[d])[0]
-        x[sel], ok[sel] = _secant(tab, r[sel], level[d[sel]], lo[sel], hi[sel], flo[sel], fhi[sel], x[sel])
-    return d, x, ok
+        x[sel], ok[sel] = _secant(par[:, sel], lv[sel], lo[sel], hi[sel], flo[sel], fhi[sel], x[sel])
+    return d, x, ok, par
 
 
-def _secant(tab: _Table, r, level, lo, hi, flo, fhi, x):
-    """Refine the crossings |g(phi)| = level in [lo, hi] from x: secant steps kept inside the
-    bracket (else the Illinois false position), until a step is below CROSSING_RTOL of the distance
-    from the nearest dead centre.  Returns (phi, converged)."""
+def _secant(par, level, lo, hi, flo, fhi, x):
+    """Refine the crossings |g(phi)| = level in [lo, hi] from x (``par``: their parameter columns):
+    secant steps kept inside the bracket (else the Illinois false position), until a step is below
+    CROSSING_RTOL of the distance from the nearest dead centre.  Returns (phi, converged)."""
     out = x.copy()
     ok = np.zeros(x.size, bool)
     act = np.arange(x.size)
-    plus = tab.plus[r]
-    near = np.minimum(np.minimum(x, TWO_PI - x), np.abs(x - plus))
+    near = np.minimum(np.minimum(x, TWO_PI - x), np.abs(x - par[_PLUS]))
     tol = CROSSING_RTOL * near + 4.0 * _EPS * x
     xp = fp = None
     slope = (fhi - flo) / (hi - lo)  # first step: Newton with the table's slope
     side = np.zeros(x.size, np.int8)  # the bracket's end moved last: 1 lo, -1 hi
     for _ in range(MAX_SECANT):
-        rr = r[act]
-        f = np.abs(_grip_rate(tab.dce[rr] + x, *(v[rr] for v in tab.geom))) - level
+        f = np.abs(_grip_rate(par[_DCE] + x, *par[:7])) - level
         on_lo = (f > 0.0) == (flo > 0.0)
         # Illinois: an end kept twice in a row has its value halved (false position then converges)
         fhi = np.where(on_lo & (side == 1), 0.5 * fhi, fhi)
@@ -574,50 +574,49 @@ def _secant(tab: _Table, r, level, lo, hi, flo, fhi, x):
             slope = (f - fp) / (x - xp)
         step = f / slope
         # converged on the secant step itself: a point on the root may lie on the bracket's end
-        conv = ((np.abs(step) <= tol[act]) | (f == 0.0) | (hi - lo <= tol[act])) & np.isfinite(f)
+        conv = ((np.abs(step) <= tol) | (f == 0.0) | (hi - lo <= tol)) & np.isfinite(f)
         nxt = x - step
         out[act[conv]] = np.clip(np.where(f == 0.0, x, nxt), lo, hi)[conv]
         inside = (nxt > lo) & (nxt < hi)  # False for NaN
         nxt = np.where(inside, nxt, lo - flo * (hi - lo) / (fhi - flo))
         done = conv | ~np.isfinite(f)
         ok[act[conv]] = True
+        if done.all():
+            break
         keep = ~done
         act = act[keep]
-        if act.size == 0:
-            break
         xp, fp = x[keep], f[keep]
-        x, lo, hi, flo, fhi, level, side = (v[keep] for v in (nxt, lo, hi, flo, fhi, level, side))
+        x, lo, hi, flo, fhi, level, side, tol = (v[keep] for v in (nxt, lo, hi, flo, fhi, level, side, tol))
+        par = par[:, keep]
     return out, ok
 
 
 def _fast_drawdown(tab: _Table, rows, force, refine):
     """Eq. (3) at ``force`` (per row) over the extrema of U: (drop [J], arc length [rad], travel
     [m], ok) per row; ok is False where the table shows no crossing or a refinement failed."""
-    level = tab.mw[rows] / force
-    d, x, conv = _crossings(tab, rows, level, refine)
+    mw = tab.params[_MW, rows]
+    d, x, conv, par = _crossings(tab, rows, mw / force, refine)
     n = rows.size
     count = np.bincount(d, minlength=n)
     ok = (count > 0) & (np.bincount(d, weights=~conv * 1.0, minlength=n) == 0)
     if d.size == 0:
         nan = np.full(n, np.nan)
         return nan, nan, nan, ok
-    r = rows[d]
-    args = (*(v[r] for v in tab.geom), tab.dce[r], tab.plus[r], tab.xe[r], tab.xf[r], tab.stroke[r])
-    base, local = _travel_parts(x, *args, integrate=False)  # enough to rank the arcs
-    u = force[d] * (base + local) - tab.mw[r] * x
+    base, local = _travel_parts(x, *par[:12], integrate=False)  # enough to rank the arcs
+    u = force[d] * (base + local) - par[_MW] * x
     # per design in rows of width max(count), the last extremum repeated (no new drop, same maximum)
     width = max(int(count.max()), 1)
     start = np.cumsum(count) - count
     col = np.minimum(np.arange(width)[None, :], np.maximum(count - 1, 0)[:, None])
     g = np.minimum(start[:, None] + col, d.size - 1)
-    stroke, mw = tab.stroke[rows], tab.mw[rows]
+    stroke = tab.params[_STROKE, rows]
     a = np.maximum(2.0 * force * stroke - TWO_PI * mw, 0.0)  # drift U(phi + 2 pi) - U(phi)
     i, j = _worst_arc(u[g], a)
     # the worst arc's ends, unrolled (the second period is one turn on), their travel exactly
     at = np.arange(n)
     ends = np.concatenate([g[at, i % width], g[at, j % width]])
     phi = x[ends] + TWO_PI * np.concatenate([i // width, j // width])
-    eb, el = _travel_parts(phi, *(v[ends] for v in args))
+    eb, el = _travel_parts(phi, *par[:12, ends])
     length = phi[n:] - phi[:n]
     travel = (eb[n:] - eb[:n]) + (el[n:] - el[:n])
     return mw * length - force * travel, length, travel, ok  # Eq. (3): U(s) - U(t)
@@ -638,7 +637,7 @@ def _fast_least_peak_force(tab: _Table, band, f_mean):
             break
         t = trial[active]
         w = band[active]
-        mw = tab.mw[active]
+        mw = tab.params[_MW, active]
         drop, length, travel, ok = _fast_drawdown(tab, active, t, fine[active])
         ratio = (mw * length - w) / travel  # Eq. (4) on the worst arc at t: a lower bound of Fp*
         ok &= np.isfinite(ratio) & (travel > 0)
