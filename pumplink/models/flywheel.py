@@ -403,10 +403,11 @@ def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool, cap):
 # (where g = 0: every deficit arc around a dead centre is bracketed however short it is); for each
 # force the crossings of the level are located in that table and refined by a safeguarded secant
 # iteration on |g| itself, and the drawdown of Eq. (3) is taken over them, with the grip travel of
-# :func:`_travel_parts` as in the reference route.  Dinkelbach's iteration runs first on crossings
-# interpolated linearly in the table, then on refined ones; every arc's ratio in Eq. (4) is a lower
-# bound of Fp*, so the interpolated arcs cost no exactness, only steps.  Far below the answer, where
-# D(Fp) ~ 1/Fp (the dead-centre asymptote), a hyperbolic step replaces Dinkelbach's (Newton's) step.
+# :func:`_travel_parts` as in the reference route.  Dinkelbach's iteration starts at the dead-centre
+# asymptote and runs first on crossings interpolated linearly in the table, then on refined ones;
+# every arc's ratio in Eq. (4) is a lower bound of Fp*, so the starting value and the interpolated
+# arcs cost no exactness, only steps.  Far below the answer, where D(Fp) ~ 1/Fp (the dead-centre
+# asymptote), a hyperbolic step replaces Dinkelbach's (Newton's) step.
 
 #: Designs per block of the fast route: bounded (block x GRID) tables (~4 MB), few Python-level
 #: passes per design; the scratch of the table's kernel is allocated once per call.
@@ -503,6 +504,7 @@ class _Table:
 
 
 def _table(geom, dce, dcf, mw, xe, xf, work) -> _Table:
+    """The table of a block of designs (arrays (n,); xe, xf: the grip's Px at the dead centres)."""
     n = dce.size
     plus = np.mod(dcf - dce, TWO_PI)
     # the folded dead centre among the uniform nodes: kp of them lie below it, at columns 1..kp;
