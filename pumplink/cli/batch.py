@@ -94,7 +94,7 @@ def batch(
 
     from pumplink import batch as _batch
     from pumplink.output import batchfiles as rb
-    from pumplink.output.formats import progress
+    from pumplink.output.formats import check_output, progress
 
     t0 = time.perf_counter()
     sel = _batch.parse_fail_on(fail_on)
@@ -102,15 +102,8 @@ def batch(
     if fmt.value == "table" and out is not None:
         raise SpecError("--out writes rows: give --format csv or --format json with it")
     for opt, path in (("--out", out), ("--junit", junit)):  # before any work: fail fast, exit 2
-        if path is not None and (path.is_dir() or not path.parent.is_dir()):
-            raise SpecError(
-                f"{opt} {path}: "
-                + (
-                    "is a folder; give a file name"
-                    if path.is_dir()
-                    else f"folder {path.parent} does not exist"
-                )
-            )
+        if path is not None:
+            check_output(path, opt)
     batches = _batch.load_inputs(inputs)
     tasks = _batch.plan(batches, k_n)
     total = sum(e - s for _, s, e in tasks)

@@ -8,14 +8,21 @@ from __future__ import annotations
 
 import contextlib
 import csv
+import errno
 import json
 import math
+import os
+import stat
 import sys
+import tempfile
 import time
 from collections.abc import Callable, Iterable, Iterator
+from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from pumplink.errors import SpecError
 
 FORMATS = ("table", "json", "csv")
 
@@ -67,6 +74,104 @@ def progress(
     finally:
         if state["bar"] is not None:
             state["bar"].stop()
+
+
+# ----------------------------------------------------------------------------- output files
+def check_output(path, option: str = "--out") -> Path:
+    """Fail fast (exit 2, one line) when ``path`` cannot be an output file: a folder, or a
+    folder that does not exist or cannot be written.  Checked before any work is done."""
+    path = Path(path)
+    target = Path(os.path.realpath(path))
+    if target.is_dir():
+        raise SpecError(f"{option} {path}: is a folder; give a file name")
+    if not target.parent.is_dir():
+        raise SpecError(f"{option} {path}: folder {target.parent} does not exist")
+    special = target.exists() and not stat.S_ISREG(target.stat().st_mode)
+    if not os.access(target if special else target.parent, os.W_OK):
+        what = target if special else f"folder {target.parent}"
+        raise SpecError(f"{option} {path}: {what} is not writable")
+    return path
+
+
+def _open_unnamed(folder: Path) -> int | None:
+    """A file in ``folder`` with no name (Linux O_TMPFILE): nothing is left behind if the
+    process is killed before it is linked.  None where the system or file system lacks it."""
+    flag = getattr(os, "O_TMPFILE", 0)
+    if not flag or not Path("/proc/self/fd").is_dir():
+        return None
+    try:
+        return os.open(folder, flag | os.O_WRONLY, 0o666)  # the umask applies, as for any new file
+    except OSError:
+        return None
+
+
+_WRITE_ERRORS = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EIO, errno.EROFS, errno.EACCES, errno.EPERM)
+
+
+@contextlib.contextmanager
+def atomic_write(path, binary: bool = False) -> Iterator[Any]:
+    """A file that appears at ``path`` complete or not at all.
+
+    The data go to a temporary file in the target's folder - unnamed where the system allows
+    (Linux O_TMPFILE), so that even a SIGKILL leaves nothing - then replace the target in one
+    ``os.replace``.  A symbolic link is followed (the link stays, its target is replaced).  A
+    target that is not a regular file (``/dev/null``, a FIFO, a terminal) is written in place:
+    a device is never renamed over.  A full disk or a read-only folder is a
+    :class:`~pumplink.errors.SpecError` naming the path (one line, exit 2), and the temporary file
+    is removed.
+    """
+    path = Path(path)
+    target = Path(os.path.realpath(path))
+    if target.is_dir():
+        raise SpecError(f"{path}: is a folder; give a file name to write")
+    mode, kw = ("wb", {}) if binary else ("w", {"encoding": "utf-8", "newline": ""})
+    if target.exists() and not stat.S_ISREG(target.stat().st_mode):  # a device or a pipe
+        with _write_errors(path), open(target, mode, **kw) as f:
+            yield f
+        return
+    try:
+        fd = _open_unnamed(target.parent)
+        tmp = None
+        if fd is None:
+            fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the file a normal file's mode
+    except OSError as exc:
+        raise SpecError(
+            f"{path}: cannot be written ({exc.strerror}); check that the folder "
+            f"{target.parent} exists and is writable"
+        ) from None
+    try:
+        with _write_errors(path), os.fdopen(fd, mode, **kw) as f:
+            yield f
+            f.flush()
+            os.fsync(f.fileno())
+            if tmp is None:  # give the unnamed file a name next to the target, then move it
+                tmp = tempfile.mktemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+                root = os.open("/", os.O_RDONLY)
+                try:  # a dir_fd makes CPython call linkat(AT_SYMLINK_FOLLOW), which /proc needs
+                    os.link(f"/proc/self/fd/{f.fileno()}", tmp, src_dir_fd=root, follow_symlinks=True)
+                finally:
+                    os.close(root)
+            with _write_errors(path):
+                os.replace(tmp, target)
+    except BaseException:
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
+        raise
+
+
+@contextlib.contextmanager
+def _write_errors(path) -> Iterator[None]:
+    """A full disk, a quota, a file-size limit, a read-only or failing device: SpecError."""
+    try:
+        yield
+    except OSError as exc:
+        if exc.errno not in _WRITE_ERRORS:
+            raise
+        raise SpecError(f"{path}: cannot be written ({exc.strerror}); nothing was written") from None
 
 
 # ----------------------------------------------------------------------------- text output

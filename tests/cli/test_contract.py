@@ -8,8 +8,10 @@ wrong exit code or a clobbered file.  The expected behaviour is the contract in 
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -88,3 +90,131 @@ def test_a_full_disk_on_stdout_is_one_line_exit_2(fmt):
         p = run("force", "--summary", "--format", fmt, stdout=full)
     assert p.returncode == 2, p.stderr
     assert p.stderr.count("\n") == 1 and "No space left on device" in p.stderr, p.stderr
+
+
+# ----------------------------------------------------------------------------- output paths
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["force", "--plot", "/nonexistent/dir/x.png"],
+        ["speed", "examples/well-12m-flywheel.toml", "--plot", "/nonexistent/dir/x.png"],
+        ["batch", "configs", "--format", "csv", "--out", "/nonexistent/dir/x.csv"],
+        ["batch", "configs", "--junit", "/nonexistent/dir/x.xml"],
+        ["optimize", "configs/prototype.toml", "--write", "/nonexistent/dir/x.toml"],
+        ["transmission", "--chart", "/nonexistent/dir/x.png"],
+    ],
+)
+def test_an_output_in_a_missing_folder_is_one_line_before_any_work(args):
+    t0 = time.monotonic()
+    line = one_error_line(run(*args))
+    assert "/nonexistent/dir" in line and "does not exist" in line, line
+    assert time.monotonic() - t0 < 30  # refused up front (optimize would take minutes)
+
+
+@pytest.mark.parametrize("opt", ["--out", "--junit"])
+def test_a_full_device_as_output_is_one_line(opt):
+    extra = ["--format", "csv"] if opt == "--out" else []
+    line = one_error_line(run("batch", "configs", *extra, opt, "/dev/full"))
+    assert "/dev/full" in line and "No space left on device" in line
+
+
+def _fsize_limit(limit: int):
+    def apply():  # a file-size limit fails writes like a full disk (EFBIG), without a full disk
+        import resource
+
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    return apply
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["batch", "configs", "--format", "csv", "--out", "{d}/rows.csv"],
+        ["batch", "configs", "--junit", "{d}/rows.xml"],
+        ["force", "--plot", "{d}/curve.png"],
+    ],
+)
+def test_a_write_that_fails_midway_is_one_line_and_leaves_nothing(tmp_path, args):
+    p = subprocess.run(
+        [*CMD, *(a.format(d=tmp_path) for a in args)],
+        capture_output=True,
+        text=True,
+        env=env(),
+        cwd=ROOT,
+        preexec_fn=_fsize_limit(500),
+        timeout=120,
+    )
+    assert p.returncode == 2, p.stderr
+    assert "Traceback" not in p.stderr and "cannot be written (File too large)" in p.stderr, p.stderr
+    assert list(tmp_path.iterdir()) == []  # no partial file, no temp file
+
+
+@pytest.mark.parametrize("opt", ["--out", "--junit"])
+def test_a_device_output_is_written_in_place_never_replaced(tmp_path, opt):
+    # as root, an atomic rename over /dev/null once replaced the device with a regular file;
+    # a FIFO here stands for any non-regular file (and needs no root)
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    extra = ["--format", "csv"] if opt == "--out" else []
+    p = subprocess.Popen(
+        [*CMD, "batch", "configs", *extra, opt, str(fifo)],
+        cwd=ROOT,
+        env=env(),
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    with open(fifo) as reader:
+        text = reader.read()
+    assert p.wait(timeout=120) == 0, p.stderr.read()
+    assert ("prototype" in text) and fifo.is_fifo()
+    assert sorted(f.name for f in tmp_path.iterdir()) == ["fifo"]
+
+
+def test_dev_null_stays_a_device():
+    p = run("batch", "configs", "--format", "csv", "--out", "/dev/null", "--junit", "/dev/null")
+    assert p.returncode == 0, p.stderr
+    assert Path("/dev/null").is_char_device()
+
+
+def test_a_symlinked_output_replaces_the_target_and_keeps_the_link(tmp_path):
+    link, real = tmp_path / "link.csv", tmp_path / "real.csv"
+    real.write_text("old\n")
+    link.symlink_to(real.name)
+    assert run("batch", "configs", "--format", "csv", "--out", link).returncode == 0
+    assert link.is_symlink() and real.read_text().startswith("name,")
+    assert sorted(f.name for f in tmp_path.iterdir()) == ["link.csv", "real.csv"]
+
+
+def test_a_sigkilled_batch_leaves_no_file_at_all(tmp_path):
+    grid = tmp_path / "big.toml"
+    grid.write_text(
+        f'base = "{ROOT / "configs" / "prototype.toml"}"\n[vary]\n'
+        '"linkage.rocker" = { start = 0.15, stop = 0.3, num = 100 }\n'
+        '"linkage.swing" = { start = 40, stop = 80, num = 100 }\n'
+    )
+    out = tmp_path / "out"
+    out.mkdir()
+    p = subprocess.Popen(
+        [*CMD, "batch", grid, "--format", "csv", "--out", out / "rows.csv", "--samples", "4000"],
+        cwd=ROOT,
+        env=env(),
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and p.poll() is None and not _holds_file_in(p.pid, out):
+        time.sleep(0.05)
+    assert p.poll() is None, "the run finished before it could be killed"
+    p.kill()  # SIGKILL: no handler runs, no clean-up: the temp file must have no name
+    p.wait(timeout=30)
+    assert list(out.iterdir()) == []
+
+
+def _holds_file_in(pid: int, folder: Path) -> bool:
+    try:
+        return any(os.readlink(fd).startswith(str(folder)) for fd in Path(f"/proc/{pid}/fd").iterdir())
+    except OSError:
+        return False
