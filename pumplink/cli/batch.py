@@ -11,6 +11,9 @@ import typer
 from pumplink.cli.common import Format, app
 from pumplink.errors import SpecError
 
+#: Runs of at least this many variants print their size and estimated time before they start.
+LARGE_BATCH = 100_000
+
 
 @app.command()
 def batch(
@@ -50,7 +53,10 @@ def batch(
             "--junit", help="Also write JUnit XML, one testcase per variant (atomically).", show_default=False
         ),
     ] = None,
-    workers: Annotated[int, typer.Option(help="Worker processes (0: one per CPU).", min=0, max=256)] = 1,
+    workers: Annotated[
+        int,
+        typer.Option(help="Worker processes (0: one per CPU; never more than the tasks).", min=0, max=256),
+    ] = 1,
     fail_on: Annotated[
         str,
         typer.Option(
@@ -94,7 +100,7 @@ def batch(
 
     from pumplink import batch as _batch
     from pumplink.output import batchfiles as rb
-    from pumplink.output.formats import check_output, progress
+    from pumplink.output.formats import check_output, duration, progress
 
     t0 = time.perf_counter()
     sel = _batch.parse_fail_on(fail_on)
@@ -105,9 +111,15 @@ def batch(
         if path is not None:
             check_output(path, opt)
     batches = _batch.load_inputs(inputs)
-    tasks = _batch.plan(batches, k_n)
+    tasks = _batch.plan(batches, k_n, _batch.run_module.task_designs(samples))
     total = sum(e - s for _, s, e in tasks)
-    n_workers = workers or os.cpu_count() or 1
+    n_workers = max(1, min(workers or os.cpu_count() or 1, len(tasks)))  # no idle processes
+    if total >= LARGE_BATCH:  # say what is coming before a long run starts
+        secs = _batch.run_module.estimate_seconds(batches, tasks, samples, n_workers)
+        sys.stderr.write(
+            f"batch: {total:,} variants in {len(tasks):,} tasks on {n_workers} worker"
+            f"{'s' if n_workers > 1 else ''}; estimated {duration(secs)} (Ctrl-C stops it, writing nothing)\n"
+        )
 
     def _terminate(signum, frame):  # SIGTERM: unwind like Ctrl-C so no temp file is left behind
         raise KeyboardInterrupt

@@ -213,6 +213,17 @@ def console(file=None):
     return Console(file=file, highlight=False, width=None if tty else 200, soft_wrap=False)
 
 
+def duration(seconds: float) -> str:
+    """A time for people: '40 s', '12 min', '3 h 20 min', '5.2 days'."""
+    if seconds < 60:
+        return f"{seconds:.0f} s"
+    if seconds < 3600:
+        return f"{seconds / 60:.0f} min"
+    if seconds < 86400 * 2:
+        return f"{seconds // 3600:.0f} h {seconds % 3600 / 60:.0f} min"
+    return f"{seconds / 86400:.1f} days"
+
+
 def fmt(x, fmt="{:.3f}", none="—") -> str:
     """``x`` formatted, or ``none`` for None, NaN and inf."""
     return none if x is None or not math.isfinite(float(x)) else fmt.format(float(x))
