@@ -24,7 +24,8 @@ from pumplink.errors import SHOWN_CHARS, PumplinkError, one_line
 __all__ = ["app", "main"]
 
 
-def _interrupt(signum, frame):  # SIGTERM unwinds like Ctrl-C: temp files removed, exit 130
+def _interrupt(signum, frame):  # Ctrl-C and SIGTERM unwind: temp files removed, exit 130
+    settings["interrupted"] = True
     raise KeyboardInterrupt
 
 
@@ -82,19 +83,43 @@ def main(argv: list[str] | None = None) -> None:
     """Console-script entry point: every failure is one line on stderr and an exit code.
 
     0 pass, 1 fail or infeasible, 2 unusable input or an output that cannot be written (usage
-    errors included), 130 interrupted (Ctrl-C or SIGTERM).
+    errors included), 130 interrupted (Ctrl-C or SIGTERM, from the first line of this function).
     """
+    signal.signal(signal.SIGINT, _interrupt)
+    signal.signal(signal.SIGTERM, _interrupt)
+    try:
+        code = _run(sys.argv[1:] if argv is None else list(argv))
+    except KeyboardInterrupt:
+        code = 130
+    if code == 130:  # said here, unless the command said why itself (a killed batch worker)
+        _interrupted(say=settings.get("interrupted", False))
+    sys.exit(code)
+
+
+def _interrupted(say: bool = True) -> None:
+    """Exit 130 now.  ``os._exit``: CPython marks a KeyboardInterrupt raised inside ``eval`` (as
+    typer evaluates annotations) as unhandled even when it is caught, and would then end the
+    process by SIGINT instead of the exit code.  Clean-up (temp files, worker pools) has run in
+    the ``finally`` blocks on the way here; stdout is discarded, as the run is incomplete."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    _quiet_stdout()
+    with contextlib.suppress(OSError, ValueError):
+        if say:
+            sys.stderr.write("interrupted; no output file written\n")
+        sys.stderr.flush()
+    os._exit(130)
+
+
+def _run(args: list[str]) -> int:
     from typer._click import exceptions as ce
     from typer.exceptions import Abort
 
-    signal.signal(signal.SIGINT, signal.default_int_handler)
-    signal.signal(signal.SIGTERM, _interrupt)
     if hasattr(signal, "SIGPIPE"):  # `pumplink ... | head` ends quietly, like any Unix filter (not exit 1)
         signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     for stream in (sys.stdout, sys.stderr):  # a non-UTF-8 terminal or pipe gets '?' for θ, ±, ∞, not a crash
         if hasattr(stream, "reconfigure"):
             stream.reconfigure(errors="replace")
-    args = sys.argv[1:] if argv is None else list(argv)
     settings["debug"] = "--debug" in args[:1]
     try:
         code = app(args=args, prog_name="pumplink", standalone_mode=False)
@@ -102,31 +127,30 @@ def main(argv: list[str] | None = None) -> None:
     except PumplinkError as exc:
         if settings["debug"]:
             raise
-        _fail(str(exc), exc.exit_code)
+        return _fail(str(exc), exc.exit_code)
     except ce.NoArgsIsHelpError as exc:  # `pumplink` alone: the help (typer has printed it), exit 2
         if exc.format_message().strip():
             sys.stderr.write(exc.format_message() + "\n")
-        sys.exit(2)
+        return 2
     except ce.UsageError as exc:
         if settings["debug"]:
             raise
-        _fail(_option_error(exc, args), 2)
-    except (KeyboardInterrupt, Abort):
-        _quiet_stdout()
-        sys.stderr.write("interrupted\n")
-        sys.exit(130)
+        return _fail(_option_error(exc, args), 2)
+    except Abort:
+        settings["interrupted"] = True
+        return 130
     except BrokenPipeError:
         _quiet_stdout()
-        sys.exit(0)
+        return 0
     except OSError as exc:  # writing the output: a full disk (ENOSPC), a read-only or lost device
         if settings["debug"]:
             raise
         _quiet_stdout()
         where = f"{exc.filename}: " if exc.filename else "standard output: "
-        _fail(f"{where}cannot be written ({exc.strerror or exc})", 2)
-    sys.exit(code if isinstance(code, int) else 0)
+        return _fail(f"{where}cannot be written ({exc.strerror or exc})", 2)
+    return code if isinstance(code, int) else 0
 
 
-def _fail(message: str, code: int) -> None:
+def _fail(message: str, code: int) -> int:
     sys.stderr.write(f"error: {one_line(message)}\n")
-    sys.exit(code)
+    return code

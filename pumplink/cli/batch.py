@@ -94,7 +94,6 @@ def batch(
     """
     import functools
     import os
-    import signal
     import time
     from concurrent.futures.process import BrokenProcessPool
 
@@ -121,10 +120,6 @@ def batch(
             f"{'s' if n_workers > 1 else ''}; estimated {duration(secs)} (Ctrl-C stops it, writing nothing)\n"
         )
 
-    def _terminate(signum, frame):  # SIGTERM: unwind like Ctrl-C so no temp file is left behind
-        raise KeyboardInterrupt
-
-    previous = signal.signal(signal.SIGTERM, _terminate)
     try:
         with progress(total, "batch") as advance:
             post = functools.partial(
@@ -138,16 +133,11 @@ def batch(
             summary, rows = rb.write_stream(
                 batches, results, total, fmt.value, out, junit, sel, samples, k_n, advance
             )
-    except KeyboardInterrupt:
-        sys.stderr.write("interrupted; no output file written\n")
-        raise typer.Exit(130) from None
     except BrokenProcessPool:  # a worker was killed (SIGKILL, out of memory)
         sys.stderr.write(
             "interrupted: a worker process was killed (out of memory?); no output file written\n"
         )
         raise typer.Exit(130) from None
-    finally:
-        signal.signal(signal.SIGTERM, previous)
     if fmt.value == "table":
         rb.render_table(summary, rows)
     else:

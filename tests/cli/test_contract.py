@@ -218,3 +218,88 @@ def _holds_file_in(pid: int, folder: Path) -> bool:
         return any(os.readlink(fd).startswith(str(folder)) for fd in Path(f"/proc/{pid}/fd").iterdir())
     except OSError:
         return False
+
+
+# ----------------------------------------------------------------------------- values at the edges
+def _json(*args) -> dict:
+    import json
+
+    p = run(*args, "--format", "json")
+    assert p.returncode in (0, 1), p.stderr
+    return json.loads(p.stdout)
+
+
+def test_a_huge_crank_angle_is_reduced_exactly_in_degrees():
+    # 1e50 is an integer in binary64, and 10**50 mod 360 = 320 exactly (integer arithmetic);
+    # reducing after converting to radians gave -513.19 N and a wrong dead-band flag
+    assert int(1e50) % 360 == 320
+    far, near = (_json("force", "--at", a)["samples"][0] for a in ("1e50", "320"))
+    assert far == near and round(far["force_N"], 2) == 42.07
+
+
+@pytest.mark.parametrize(
+    "given,deg_s", [("60rpm", 360.0), ("90 RPM", 540.0), ("360deg/s", 360.0), ("240", 240.0)]
+)
+def test_speed_takes_units(given, deg_s):
+    assert _json("force", "--summary", "--speed", given)["speed_deg_s"] == deg_s
+
+
+def test_speed_in_rad_per_s():
+    got = _json("force", "--summary", "--speed", "3.141592653589793rad/s")["speed_deg_s"]
+    assert abs(got - 180.0) < 1e-12
+
+
+@pytest.mark.parametrize(
+    "value,words", [("60furlongs", "unknown unit"), ("1300rpm", "1200 rpm"), ("nanrpm", "not a finite")]
+)
+def test_speed_units_errors_are_one_line(value, words):
+    assert words in one_error_line(run("force", "--speed", value))
+
+
+@pytest.mark.parametrize(
+    "args,code,words",
+    [
+        (["--time-ratio", "1e6"], 1, "no crank-rocker"),
+        (["--time-ratio", "100", "--format", "json"], 1, "no crank-rocker"),
+        (["--swing", "0.001"], 0, None),
+        (["--swing", "1e-300"], 2, "--swing 1e-300: the rocker swing is out of range"),
+        (["--swing", "179.9999"], 0, None),
+        (["--swing", "180"], 2, "--swing 180: the rocker swing is out of range"),
+        (["--rocker", "1e300"], 2, "--rocker"),
+        (["--time-ratio", "1e300", "--swing", "0.5"], 1, "no crank-rocker"),
+    ],
+)
+def test_transmission_at_extreme_inputs_answers_or_says_why(args, code, words):
+    p = run("transmission", *args)
+    assert p.returncode == code and "Traceback" not in p.stderr, (p.returncode, p.stderr)
+    if words is None:
+        assert "γmin" in p.stdout and "—" not in p.stdout.split("γmin")[1][:40]
+    else:
+        assert words in one_error_line(p, code)
+
+
+def test_optimize_seed_minus_one_is_one_line():
+    assert "--seed -1" in one_error_line(run("optimize", "configs/prototype.toml", "--seed", "-1"))
+
+
+# ----------------------------------------------------------------------------- signals
+def _catches_sigterm(pid: int) -> bool:
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    caught = int(next(line for line in status.splitlines() if line.startswith("SigCgt:")).split()[1], 16)
+    return bool(caught >> (signal.SIGTERM - 1) & 1)
+
+
+@pytest.mark.parametrize("args", [["force", "--samples", "100000000", "--summary"], ["speed", "nope.toml"]])
+def test_sigterm_as_soon_as_it_is_handled_exits_130(args):
+    # once the handler was installed only inside `batch`: SIGTERM elsewhere gave 143
+    p = subprocess.Popen([*CMD, *args], cwd=ROOT, env=env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 30
+    while not _catches_sigterm(p.pid) and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.001)
+    p.send_signal(signal.SIGTERM)
+    _, err = p.communicate(timeout=60)
+    assert p.returncode == 130, (p.returncode, err)
+    assert b"Traceback" not in err
