@@ -24,6 +24,7 @@ import numpy as np
 from pumplink.batch import FLYWHEEL_LABEL as FLYWHEEL
 from pumplink.batch import QUASI_STATIC_LABEL as QUASI_STATIC
 from pumplink.batch import Batch, Chunk, variant_name, variant_names
+from pumplink.errors import escape_control
 from pumplink.output.formats import atomic_write
 
 #: Per-variant columns after the name, the source and the varied keys (CSV order).  The
@@ -232,7 +233,8 @@ def render_chunk(
 
 # ----------------------------------------------------------------------------- files
 def _junit_case(name: str, classname: str, failure: str | None, skipped: str | None) -> str:
-    head = f'    <testcase classname={quoteattr(classname)} name={quoteattr(name)} time="0"'
+    # file paths may hold control characters, which XML 1.0 cannot carry even escaped
+    head = f'    <testcase classname={quoteattr(escape_control(classname))} name={quoteattr(name)} time="0"'
     if failure is not None:
         return (
             f'{head}>\n      <failure message={quoteattr(failure)} type="pumplink">'
@@ -350,8 +352,9 @@ def write_stream(
         def flush_suite():
             if current < 0:
                 return
+            source = escape_control(batches[current].source)
             jfile.write(
-                f'  <testsuite name={quoteattr(batches[current].source)} tests="{counts["tests"]}" '
+                f'  <testsuite name={quoteattr(source)} tests="{counts["tests"]}" '
                 f'failures="{counts["failures"]}" errors="0" skipped="{counts["skipped"]}">\n'
             )
             suite.seek(0)

@@ -303,3 +303,16 @@ def test_sigterm_as_soon_as_it_is_handled_exits_130(args):
     _, err = p.communicate(timeout=60)
     assert p.returncode == 130, (p.returncode, err)
     assert b"Traceback" not in err
+
+
+def test_junit_parses_when_a_file_name_has_control_characters(tmp_path):
+    import xml.etree.ElementTree as ET
+
+    folder = tmp_path / "in"
+    folder.mkdir()
+    text = (ROOT / "configs" / "prototype.toml").read_text(encoding="utf-8")
+    (folder / "p\x1bq.toml").write_text(text, encoding="utf-8")  # the spec names itself
+    report = tmp_path / "r.xml"
+    assert run("batch", folder, "--junit", report).returncode == 0
+    suites = ET.parse(report).getroot()  # XML 1.0 cannot carry \x1b even as &#27;
+    assert [s.get("name") for s in suites] == [str(folder / "p\\x1bq.toml")]
