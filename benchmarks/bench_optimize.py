@@ -1,5 +1,5 @@
 """Wall time of the design searches: `optimize` on every configs/*.toml spec and the
-exact seed-001 transmission optimum.  Medians of repeated runs in this one process (the machine
+exact optimal-transmission crank-rocker.  Medians of repeated runs in this one process (the machine
 is shared, so absolute seconds are noisy; compare side by side).
 
 Run: .venv/bin/python benchmarks/bench_optimize.py   (or `make bench`)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import sys
+from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -148,8 +149,18 @@ def _speed_range(r: ForceResult):
 
 def sample_rows(r: ForceResult) -> list[dict[str, Any]]:
     """One dict per sampled crank angle (JSON/CSV)."""
+    return list(iter_sample_rows(r))
+
+
+#: Samples converted to rows at a time by :func:`iter_sample_rows` (memory: one block).
+ROW_BLOCK = 4096
+
+
+def iter_sample_rows(r: ForceResult) -> Iterator[dict[str, Any]]:
+    """:func:`sample_rows` one row at a time, converted in blocks, so that a million samples
+    stream to JSON or CSV without a million dicts in memory."""
     if r.samples is None:
-        return []
+        return
     s = r.samples
     cols = {
         "crank_deg": np.degrees(s.crank_angle),
@@ -165,15 +176,16 @@ def sample_rows(r: ForceResult) -> list[dict[str, Any]]:
             np.broadcast_to(r.speed if r.wheel_speed is None else r.wheel_speed, s.force.shape)
         ),
     }
-    lists = {k: v.tolist() for k, v in cols.items()}
-    sing, band = s.singular.tolist(), r.in_dead_band.tolist()
-    rows = []
-    for i in range(len(sing)):
-        row = {k: (v[i] if math.isfinite(v[i]) else None) for k, v in lists.items()}
-        row["singular"] = sing[i]
-        row["in_dead_band"] = band[i]
-        rows.append(row)
-    return rows
+    n = len(s.singular)
+    for b0 in range(0, n, ROW_BLOCK):
+        b = slice(b0, b0 + ROW_BLOCK)
+        lists = {k: np.asarray(v)[b].tolist() for k, v in cols.items()}
+        sing, band = s.singular[b].tolist(), r.in_dead_band[b].tolist()
+        for i in range(len(sing)):
+            row = {k: (v[i] if math.isfinite(v[i]) else None) for k, v in lists.items()}
+            row["singular"] = sing[i]
+            row["in_dead_band"] = band[i]
+            yield row
 
 
 #: ``pumplink synth`` shows designs side by side (one column each) up to this many; more
@@ -340,11 +352,11 @@ def render_force(
         obj["strict"] = strict
         obj["advice"] = [advice_row(a) for a in advice]
         obj.update(extra or {})
-        if not summary:
-            obj["samples"] = sample_rows(r)
+        if not summary:  # streamed: a million samples must not be a million dicts at once
+            return _json(obj, out, stream=("samples", iter_sample_rows(r)))
         return _json(obj, out)
     if fmt == "csv":
-        return write_csv([force_summary(r)] if summary or r.samples is None else sample_rows(r), out)
+        return write_csv([force_summary(r)] if summary or r.samples is None else iter_sample_rows(r), out)
 
     from rich import box
     from rich.markup import escape
