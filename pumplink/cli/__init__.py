@@ -33,6 +33,7 @@ from pumplink.cli import (  # noqa: F401, I001 -- in the order of `pumplink --he
     slotted,
     rocker,
     structure,
+    schema,
 )
 from pumplink.cli.common import app, settings
 from pumplink.errors import SHOWN_CHARS, PumplinkError, one_line
