@@ -1,4 +1,4 @@
-"""Issue #2 benchmarks: sweep throughput, the 5 M-sample summary end to end, start-up time.
+"""Benchmarks of the core: sweep throughput, the 5 M-sample summary end to end, start-up time.
 
 Medians over repeated runs in one process (subprocesses for the end-to-end commands).
 Targets: >= 30 M crank positions/s for kinematics + force; `pumplink --help` and

@@ -1,5 +1,5 @@
 """Wall time of the design searches: `optimize` on every configs/*.toml spec and the
-exact seed-001 transmission optimum.  Medians of repeated runs (the machine is shared, so
+exact optimal-transmission crank-rocker.  Medians of repeated runs (the machine is shared, so
 absolute seconds are noisy; compare side by side: the flywheel search next to the quasi-static
 one, and next to the same search on the reference route of the flywheel model).
 

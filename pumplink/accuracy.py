@@ -103,16 +103,29 @@ def seconds_per_position(fn, args, n: int, repeats: int, budget: float = 1.0) ->
 
 
 def compare_methods(
-    lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, names, samples: int, repeats: int
+    lk: FourBar,
+    dead_centre_extended,
+    dead_centre_folded,
+    wheel_torque,
+    names,
+    samples: int,
+    repeats: int,
+    advance=None,
 ) -> list[dict]:
     """Time every method in ``names`` and compare it with the 50-digit reference on each sample set.
 
     Returns one dict per method: ``name``, ``summary``, ``cannot_handle``, ``seconds_per_position``
     (uniform sweep), ``max_rel_error_uniform``, ``max_rel_error_near_dead_centre``, ``failures``
     (:func:`failures`) and ``samplings`` (per sample set: :func:`error_stats` plus the timing).
+    ``advance(1)``, when given, is called after each of the ``(len(names) + 1) * len(sets)``
+    steps (the reference on each set, then each method on each set), for a progress bar.
     """
+    step = advance or (lambda n: None)
     sets = sample_sets(lk, dead_centre_extended, dead_centre_folded, samples)
-    refs = {k: METHODS["reference"].function(lk, a, wheel_torque) for k, a in sets.items()}
+    refs = {}
+    for k, a in sets.items():
+        refs[k] = METHODS["reference"].function(lk, a, wheel_torque)
+        step(1)
     rows = []
     for name in names:
         m = METHODS[name]
@@ -124,6 +137,7 @@ def compare_methods(
                 m.function, (lk, angles, wheel_torque), angles.size, repeats
             )
             per_set[kind] = stats
+            step(1)
         rows.append(
             {
                 "name": name,

@@ -268,7 +268,9 @@ def force_analysis(
     # Kept samples: the given --at angles, else the uniform sweep.  The sampled peak of a
     # uniform sweep always comes from the one streamed route (so --summary does not change it).
     if at_deg is not None:
-        theta = np.radians(np.asarray(at_deg, float))
+        # reduced in degrees first, exactly (fmod is exact): 1e50 deg is 320 deg, while radians(1e50)
+        # has lost every digit of the angle within a turn
+        theta = np.radians(np.fmod(np.asarray(at_deg, float), 360.0))
     elif keep_samples:
         theta = np.arange(samples) * (2 * np.pi / samples)
     else:

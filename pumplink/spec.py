@@ -8,11 +8,14 @@ from __future__ import annotations
 
 import difflib
 import math
+import os
+import re
+import stat
 import tomllib
 from pathlib import Path
 from typing import Any
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from pumplink.constants import (
     DEFAULT_EFFICIENCY,
@@ -21,7 +24,10 @@ from pumplink.constants import (
     GRAVITY,
     WATER_DENSITY,
 )
-from pumplink.errors import SpecError
+from pumplink.errors import SHOWN_CHARS, SpecError, escape_control, has_control, shown
+
+#: Most of the other problems of a spec listed after the first one in an error message.
+MORE_KEYS = 8
 
 
 # ----------------------------------------------------------------------------- spec physics
@@ -121,7 +127,11 @@ class Linkage(_Section):
     b: float = Field(ge=0, le=10, description="width of the pump stand [m]")
     rocker: float = Field(ge=0.001, le=10, description="rocker length l4 [m]")
     handle: float = Field(ge=0.001, le=20, description="handle length H, rocker pivot to hand grip [m]")
-    swing: float = Field(ge=1, lt=180, description="total handle swing [deg], symmetric about vertical")
+    swing: float = Field(
+        ge=2 * math.pi,  # below: radians, said by _swing_in_degrees
+        lt=180,
+        description="total handle swing [deg], symmetric about vertical",
+    )
     mass_per_length: float | None = Field(
         default=None,
         gt=0,
@@ -136,15 +146,34 @@ class Linkage(_Section):
         description="diameter of the pin holes on the workshop template [m] (default 0.010)",
     )
 
+    @model_validator(mode="before")
+    @classmethod
+    def _swing_in_degrees(cls, data: Any) -> Any:
+        # A swing below 2 pi is almost surely radians (1.047 for 60 deg): a 1.8 mm crank that
+        # fails with no hint otherwise.  Said before the range check, with the fix.
+        swing = data.get("swing") if isinstance(data, dict) else None
+        if (
+            isinstance(swing, (int, float))
+            and not isinstance(swing, bool)
+            and 0 < swing < 2 * math.pi
+            and math.degrees(swing) >= 1  # not a slip of 1e-100, which the range error names
+        ):
+            deg = f"{round(math.degrees(swing), 1):g}"
+            raise ValueError(
+                f"linkage.swing = {swing!r} looks like radians: did you mean {deg}°? The swing is in "
+                f"degrees, {2 * math.pi:g} <= swing < 180 (write swing = {deg})"
+            )
+        return data
+
 
 class Load(_Section):
     rope_force: float | None = Field(
         default=None,
-        gt=0,
+        ge=0.001,  # 1 mN: below, the flywheel's energy balance loses every digit (denormal torques)
         le=10_000,
         description="rope force Fw at the wheel rim [N] (or give head and pipe_diameter)",
     )
-    head: float | None = Field(default=None, gt=0, le=200, description="pumping head [m]")
+    head: float | None = Field(default=None, ge=0.001, le=200, description="pumping head [m]")
     pipe_diameter: float | None = Field(default=None, ge=0.001, le=0.5, description="rising-main bore [m]")
     efficiency: float | None = Field(
         default=None,
@@ -206,6 +235,19 @@ class Operator(_Section):
 
 class PumpSpec(_Section):
     name: str = Field(default="pump", min_length=1, max_length=200, description="design name")
+
+    @field_validator("name")
+    @classmethod
+    def _printable_name(cls, name: str) -> str:
+        # names go into tables, JUnit XML and file names: a newline or an escape sequence breaks
+        # the XML and recolours (or clears) the terminal
+        if has_control(name):
+            raise ValueError(
+                f"name = {shown(name)} contains a control character (newline, tab, escape, ...); "
+                "give a name of printable characters"
+            )
+        return name
+
     wheel: Wheel = Field(description="the [wheel] table: radius [m]")
     linkage: Linkage = Field(description="the [linkage] table: L1, D1, b, rocker, handle, swing")
     load: Load = Field(description="the [load] table: rope_force [N], or head [m] with pipe_diameter [m]")
@@ -286,33 +328,33 @@ def _sections(model: Any) -> str:
 
 def _describe(err: dict) -> str:
     loc = tuple(str(p) for p in err["loc"])
-    key = ".".join(loc)
+    key = escape_control(".".join(loc))[:SHOWN_CHARS]
     kind = err["type"]
-    value = err.get("input")
+    value = shown(err.get("input"))
     info = _field_info(loc)
     if kind == "missing":
         what = f" ({info.description})" if info is not None else ""
         return f"missing key '{key}'{what}"
     if kind == "extra_forbidden":
         parent = _field_info(loc[:-1]).annotation if len(loc) > 1 else PumpSpec
-        where = f"[{'.'.join(loc[:-1])}]" if len(loc) > 1 else "the top level"
-        close = difflib.get_close_matches(loc[-1], list(parent.model_fields), n=1)
+        where = f"[{escape_control('.'.join(loc[:-1]))}]" if len(loc) > 1 else "the top level"
+        close = difflib.get_close_matches(loc[-1][:SHOWN_CHARS], list(parent.model_fields), n=1)
         hint = f" (did you mean '{close[0]}'?)" if close else ""
-        return f"unknown key '{key}' = {value!r}{hint}; allowed keys in {where}: {_sections(parent)}"
+        return f"unknown key '{key}' = {value}{hint}; allowed keys in {where}: {_sections(parent)}"
     if kind == "model_type":
-        return f"'{key}' = {value!r} must be a table ([{key}]) with keys {_sections(info.annotation)}"
+        return f"'{key}' = {value} must be a table ([{key}]) with keys {_sections(info.annotation)}"
     if kind == "value_error":
         return str(err["msg"]).removeprefix("Value error, ")
     if kind == "finite_number":
-        return f"'{key}' = {value!r} is not a finite number; {_allowed(info)}"
+        return f"'{key}' = {value} is not a finite number; {_allowed(info)}"
     if kind in ("float_type", "string_type", "float_parsing"):
         want = "text" if kind == "string_type" else "a number"
-        return f"'{key}' = {value!r} ({type(value).__name__}) is not {want}; {_allowed(info)}"
+        return f"'{key}' = {value} ({type(err.get('input')).__name__}) is not {want}; {_allowed(info)}"
     if kind in ("string_too_short", "string_too_long"):
-        return f"'{key}' = {value!r} has the wrong length; {_allowed(info)}"
+        return f"'{key}' = {value} has the wrong length; {_allowed(info)}"
     if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
-        return f"'{key}' = {value!r} is out of range; {_allowed(info)}"
-    return f"'{key}' = {value!r}: {err['msg']}"
+        return f"'{key}' = {value} is out of range; {_allowed(info)}"
+    return f"'{key}' = {value}: {err['msg']}"
 
 
 def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
@@ -339,39 +381,125 @@ def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
         # An unknown key is usually a typo that also causes a "missing" error: report it first.
         errs = sorted(exc.errors(), key=lambda e: e["type"] != "extra_forbidden")
         first = _describe(errs[0])
-        more = (
-            f" (and {len(errs) - 1} more: "
-            f"{', '.join('.'.join(map(str, e['loc'])) or 'load' for e in errs[1:])})"
-            if len(errs) > 1
-            else ""
-        )
+        others = [escape_control(".".join(map(str, e["loc"])) or "load")[:SHOWN_CHARS] for e in errs[1:]]
+        if len(others) > MORE_KEYS:
+            others = [*others[:MORE_KEYS], "..."]
+        more = f" (and {len(errs) - 1} more: {', '.join(others)})" if len(errs) > 1 else ""
         raise SpecError(f"{source}: {first}{more}.") from None
 
 
+#: Largest input file read [bytes]: a spec is under 1 kB; a batch axis of a million values written
+#: out as a list is about 8 MB.  Anything larger is refused before it is read.
+MAX_INPUT_BYTES = 10_000_000
+
+#: Deepest nesting of arrays and inline tables, and most parts of one dotted key, in an input
+#: file: a spec is 2 deep, a batch 3.  Deeper input is refused before it is parsed (the TOML
+#: parser recurses per level, and a dotted key of n parts costs it n^2 memory).
+MAX_NESTING = 32
+
+# Strings and comments (skipped: their brackets and dots are text) and the characters that nest
+# or split keys.  A multi-line string first, so that """ is not read as "" and a quote.
+_TOML_TOKENS = re.compile(
+    r'"""(?:[^\\]|\\.)*?"""|\'\'\'.*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*|[\[\]{}=,\n.]',
+    re.S,
+)
+
+
+def _check_nesting(text: str, path: Path) -> None:
+    """Refuse TOML nested deeper than :data:`MAX_NESTING` (brackets, braces or dotted-key parts)
+    before the parser sees it.  A conservative scan: strings and comments are skipped, a dot run
+    ends at any of ``= , [ ] { }`` or a line end (so ``[0.1, 0.2]`` counts one dot per value)."""
+    depth = dots = 0
+    for m in _TOML_TOKENS.finditer(text):
+        c = m.group()
+        if c in "[{":
+            depth += 1
+            dots = 0
+            if depth > MAX_NESTING:
+                line = text.count("\n", 0, m.start()) + 1
+                raise SpecError(
+                    f"{path}: nested more than {MAX_NESTING} levels deep (line {line}); "
+                    "a spec is 2 levels deep, a batch file 3"
+                )
+        elif c in "]}":
+            depth = max(depth - 1, 0)
+            dots = 0
+        elif c == ".":
+            dots += 1
+            if dots >= MAX_NESTING:  # parts = dots + 1
+                line = text.count("\n", 0, m.start()) + 1
+                raise SpecError(
+                    f"{path}: a dotted key of more than {MAX_NESTING} parts (line {line}); "
+                    "spec keys have 2 parts, e.g. linkage.swing"
+                )
+        elif c in "=,\n":
+            dots = 0
+
+
+def _not_utf8(path: Path, data: bytes, exc: UnicodeDecodeError, expected: str) -> SpecError:
+    line = data.count(b"\n", 0, exc.start) + 1
+    col = exc.start - (data.rfind(b"\n", 0, exc.start) + 1) + 1
+    return SpecError(
+        f"{path}: not UTF-8 text (byte 0x{data[exc.start]:02x} at line {line}, column {col}; "
+        f"saved as Windows-1252 or Latin-1?), expected {expected}; re-save it as UTF-8 (in the "
+        f"editor: Save As, encoding UTF-8; or: iconv -f cp1252 -t utf-8 {path.name} > utf8-{path.name})"
+    )
+
+
 def read_toml(path: str | Path, expected: str = "a TOML spec") -> dict[str, Any]:
-    """Read a UTF-8 TOML file into a mapping.
+    """Read a UTF-8 TOML file into a mapping (a leading byte-order mark is allowed).
+
+    Only a regular file of at most :data:`MAX_INPUT_BYTES` is read (not a device such as
+    /dev/zero, a pipe or a socket), and only when nested at most :data:`MAX_NESTING` deep.
 
     Raises
     ------
     SpecError
-        Missing, unreadable or non-UTF-8 file, or invalid TOML; ``expected`` names what the
-        file should have been.
+        Missing, unreadable, non-regular, too large, too deep or non-UTF-8 file, or invalid TOML;
+        ``expected`` names what the file should have been.
     """
     path = Path(path)
     try:
-        text = path.read_bytes().decode("utf-8")
+        # O_NONBLOCK: opening a FIFO must not wait for a writer; no effect on a regular file
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
     except FileNotFoundError:
         raise SpecError(f"{path}: no such file (write an example spec with `pumplink init {path}`)") from None
     except IsADirectoryError:
         raise SpecError(f"{path}: is a folder, expected {expected} file") from None
-    except UnicodeDecodeError:
-        raise SpecError(f"{path}: not a UTF-8 text file, expected {expected}") from None
     except OSError as exc:
         raise SpecError(f"{path}: cannot be read ({exc.strerror})") from None
+    try:
+        st = os.fstat(fd)
+        if stat.S_ISDIR(st.st_mode):
+            raise SpecError(f"{path}: is a folder, expected {expected} file")
+        if not stat.S_ISREG(st.st_mode):
+            raise SpecError(
+                f"{path}: is not a regular file (a device, pipe or socket), expected {expected} file"
+            )
+        if st.st_size > MAX_INPUT_BYTES:
+            raise SpecError(
+                f"{path}: {st.st_size:,} bytes, larger than {MAX_INPUT_BYTES:,}; expected {expected} "
+                "(a spec is under 1 kB; use ranges { start, stop, num } for long batch axes)"
+            )
+        with os.fdopen(os.dup(fd), "rb") as f:
+            data = f.read(MAX_INPUT_BYTES + 1)
+    except OSError as exc:
+        raise SpecError(f"{path}: cannot be read ({exc.strerror})") from None
+    finally:
+        os.close(fd)
+    if len(data) > MAX_INPUT_BYTES:  # grew while being read
+        raise SpecError(f"{path}: larger than {MAX_INPUT_BYTES:,} bytes; expected {expected}")
+    try:
+        text = data.decode("utf-8").removeprefix("\ufeff")  # a BOM, as Windows editors write
+    except UnicodeDecodeError as exc:
+        raise _not_utf8(path, data, exc, expected) from None
+    _check_nesting(text, path)
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise SpecError(f"{path}: not valid TOML: {exc}") from None
+    except RecursionError:  # cannot happen below MAX_NESTING; kept as a last guard
+        raise SpecError(f"{path}: nested too deeply to read, expected {expected}") from None
 
 
 def spec_from_file_data(data: Any, path: str | Path) -> PumpSpec:

@@ -284,3 +284,18 @@ def test_methods_command_errors(tmp_path):
     )
     assert r.returncode == 2 and "pip install 'pumplink[plot]'" in r.stderr
     assert not (tmp_path / "x.png").exists()
+
+
+def test_compare_methods_reports_each_step_for_the_progress_bar():
+    """``pumplink methods`` shows a progress bar: one step per (reference + method) and sample set,
+    ending exactly at the total it announced."""
+    d = design(default_spec())
+    syn = d.synthesis
+    steps = []
+    names = ["vector", "paper"]
+    rows = accuracy.compare_methods(
+        syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, 1.0, names, 36, 1, steps.append
+    )
+    n_sets = len(accuracy.sample_sets(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, 36))
+    assert [r["name"] for r in rows] == names
+    assert steps == [1] * ((len(names) + 1) * n_sets)

@@ -283,7 +283,7 @@ finite = dict(allow_nan=False, allow_infinity=False)
 @st.composite
 def valid_specs(draw):
     d = {
-        "name": draw(st.text(min_size=1, max_size=40)),
+        "name": draw(st.text(st.characters(blacklist_categories=("Cc",)), min_size=1, max_size=40)),
         "wheel": {"radius": draw(st.floats(0.001, 5, **finite))},
         "linkage": {
             "L1": draw(st.floats(0, 10, **finite)),
@@ -291,7 +291,7 @@ def valid_specs(draw):
             "b": draw(st.floats(0, 10, **finite)),
             "rocker": draw(st.floats(0.001, 10, **finite)),
             "handle": draw(st.floats(0.001, 20, **finite)),
-            "swing": draw(st.floats(1, 180, exclude_max=True, **finite)),
+            "swing": draw(st.floats(2 * math.pi, 180, exclude_max=True, **finite)),
         },
     }
     if draw(st.booleans()):

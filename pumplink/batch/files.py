@@ -41,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.errors import SpecError
+from pumplink.errors import SpecError, has_control, shown
 from pumplink.spec import PumpSpec, load_spec, parse_spec, read_toml, spec_from_file_data, spec_to_dict
 
 #: Checks ``--fail-on`` can select (the default selects all three, as ``pumplink force`` does).
@@ -72,6 +72,10 @@ LINSPACE_DIGITS = 12
 
 
 _TOP_KEYS = ("name", "base", "vary")
+
+
+#: Longest batch name (the prefix of every variant name), as for a spec's name.
+MAX_NAME_CHARS = 200
 
 
 def _leaf_keys() -> tuple[str, ...]:
@@ -144,6 +148,14 @@ def _is_number(v: Any) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool)
 
 
+def _is_finite(v: Any) -> bool:
+    """A finite float: False for NaN, inf and integers beyond the float range (10**400)."""
+    try:
+        return math.isfinite(v)
+    except OverflowError:
+        return False
+
+
 def _value_label(v: float) -> str:
     text = repr(float(v))
     return text[:-2] if text.endswith(".0") else text
@@ -157,11 +169,11 @@ def _axis_values(key: str, raw: Any, where: str) -> np.ndarray:
         for v in raw:
             if not _is_number(v):
                 raise SpecError(
-                    f"{where}: [vary] '{key}' has {v!r} ({type(v).__name__}), not a number; "
+                    f"{where}: [vary] '{key}' has {shown(v)} ({type(v).__name__}), not a number; "
                     f"give a list of numbers such as [0.2, 0.25]"
                 )
-            if not math.isfinite(v):
-                raise SpecError(f"{where}: [vary] '{key}' has {v!r}, not a finite number")
+            if not _is_finite(v):
+                raise SpecError(f"{where}: [vary] '{key}' has {shown(v)}, not a finite number")
         if len(raw) > MAX_AXIS_VALUES:
             raise SpecError(
                 f"{where}: [vary] '{key}' has {len(raw)} values, more than {MAX_AXIS_VALUES:,}; "
@@ -183,16 +195,16 @@ def _axis_values(key: str, raw: Any, where: str) -> np.ndarray:
                 )
         start, stop, num = raw["start"], raw["stop"], raw["num"]
         for part, v in (("start", start), ("stop", stop)):
-            if not _is_number(v) or not math.isfinite(v):
-                raise SpecError(f"{where}: [vary] '{key}' range {part} = {v!r} is not a finite number")
+            if not _is_number(v) or not _is_finite(v):
+                raise SpecError(f"{where}: [vary] '{key}' range {part} = {shown(v)} is not a finite number")
         if not isinstance(num, int) or isinstance(num, bool):
             raise SpecError(
-                f"{where}: [vary] '{key}' range num = {num!r} is not an integer; give the "
+                f"{where}: [vary] '{key}' range num = {shown(num)} is not an integer; give the "
                 f"number of values, ends included (e.g. num = 7)"
             )
         if not 1 <= num <= MAX_AXIS_VALUES:
             raise SpecError(
-                f"{where}: [vary] '{key}' range num = {num} is out of range; allowed: "
+                f"{where}: [vary] '{key}' range num = {shown(num)} is out of range; allowed: "
                 f"1 <= num <= {MAX_AXIS_VALUES:,}"
             )
         if num > 1 and start == stop:
@@ -200,10 +212,14 @@ def _axis_values(key: str, raw: Any, where: str) -> np.ndarray:
                 f"{where}: [vary] '{key}' range has start = stop = {start!r} with num = {num}; "
                 f"give num = 1 or different ends"
             )
-        vals = np.linspace(float(start), float(stop), num)
-        return np.array([float(f"{v:.{LINSPACE_DIGITS}g}") for v in vals.tolist()])
+        vals = np.linspace(float(start), float(stop), num).tolist()
+        lo, hi = min(start, stop), max(start, stop)
+        # the ends exactly as written (one ulp below a limit stays below it), the values between
+        # rounded to LINSPACE_DIGITS and kept inside the ends
+        inner = [min(max(float(f"{v:.{LINSPACE_DIGITS}g}"), lo), hi) for v in vals[1:-1]]
+        return np.array([vals[0], *inner, vals[-1]][:num], dtype=float)
     raise SpecError(
-        f"{where}: [vary] '{key}' = {raw!r} must be a list of numbers or a range "
+        f"{where}: [vary] '{key}' = {shown(raw)} must be a list of numbers or a range "
         f"{{ start = ..., stop = ..., num = ... }}"
     )
 
@@ -241,8 +257,11 @@ def parse_batch(data: Any, source: str, folder: Path | None = None, stem: str | 
             hint = f" (did you mean '{close[0]}'?)" if close else ""
             raise SpecError(f"{source}: unknown key '{k}' in a batch file{hint}; allowed: name, base, [vary]")
     label = data.get("name", stem or Path(source).stem)
-    if not isinstance(label, str) or not label.strip():
-        raise SpecError(f"{source}: 'name' = {label!r} must be non-empty text (the prefix of variant names)")
+    if not isinstance(label, str) or not label.strip() or len(label) > MAX_NAME_CHARS or has_control(label):
+        raise SpecError(
+            f"{source}: 'name' = {shown(label)} must be text of 1 to {MAX_NAME_CHARS} printable characters "
+            "(no newline, tab or escape: it is the prefix of variant names)"
+        )
     if "base" not in data:
         raise SpecError(
             f"{source}: missing key 'base'; give base = \"spec.toml\" or the spec inline as [base]"
@@ -255,20 +274,24 @@ def parse_batch(data: Any, source: str, folder: Path | None = None, stem: str | 
         try:
             spec = load_spec(path)
         except SpecError as exc:
-            raise SpecError(f"{source}: base = {raw_base!r}: {exc}") from None
+            raise SpecError(f"{source}: base = {shown(raw_base)}: {exc}") from None
     elif isinstance(raw_base, dict):
         base = dict(raw_base)
         base.setdefault("name", label)
         spec = parse_spec(base, source=f"{source} [base]")
     else:
-        raise SpecError(f"{source}: 'base' = {raw_base!r} must be a spec file name (text) or a [base] table")
+        raise SpecError(
+            f"{source}: 'base' = {shown(raw_base)} must be a spec file name (text) or a [base] table"
+        )
     base = spec_to_dict(spec)
 
     vary = data.get("vary")
     if vary is None:
         raise SpecError(f'{source}: missing [vary] table; add e.g. [vary] "linkage.rocker" = [0.2, 0.25]')
     if not isinstance(vary, dict):
-        raise SpecError(f"{source}: 'vary' = {vary!r} must be a table ([vary]) of \"section.key\" = values")
+        raise SpecError(
+            f"{source}: 'vary' = {shown(vary)} must be a table ([vary]) of \"section.key\" = values"
+        )
     if not vary:
         raise SpecError(f'{source}: [vary] is empty; add an axis such as "linkage.rocker" = [0.2, 0.25]')
     for key in vary:

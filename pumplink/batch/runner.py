@@ -1,7 +1,8 @@
 """Batch evaluation: variants in chunks, vectorised over designs, through the one verdict.
 
-Chunks are planned in variant order and evaluated in this process or on any
-``concurrent.futures.Executor`` of worker processes; the rows come back in order.  The numbers
+Chunks are planned in variant order and evaluated in this process or on a pool of worker
+processes (loky, which notices a worker that dies - SIGKILL, the out-of-memory killer - and
+raises instead of waiting for it forever); the rows come back in order.  The numbers
 per variant are bit-for-bit those of :func:`pumplink.analysis.force_analysis` (``pumplink force
 --summary``) on the same variant: the same kernels, vectorised over designs.
 """
@@ -372,26 +373,27 @@ def run(
 ) -> Iterator[tuple[Chunk, Any]]:
     """Evaluate slice ``chunk`` of the run, yielding ``(Chunk, post(batch, chunk))`` in variant order.
 
-    With ``workers`` > 1 the chunks are evaluated by that many processes
-    (``concurrent.futures.ProcessPoolExecutor``), at most 2 per worker in flight, so memory stays
-    bounded whatever the grid size.  ``post`` (a picklable module-level function, e.g. the row
+    With ``workers`` > 1 the chunks are evaluated by that many processes (at most one per task;
+    ``loky.ProcessPoolExecutor``: a worker killed mid-run raises ``BrokenProcessPool`` here
+    instead of hanging), at most 2 tasks per worker in flight, so memory stays bounded whatever
+    the grid size.  ``post`` (a picklable module-level function, e.g. the row
     formatting) runs in the worker too, so it is parallel as well.
     """
-    if designs is None:  # about TASK_SAMPLES crank samples per task, whatever --samples is
-        designs = max(64, min(CHUNK_DESIGNS, TASK_SAMPLES // max(samples, 1)))
+    if designs is None:
+        designs = task_designs(samples)
     tasks = plan(batches, chunk, designs)
-    if workers <= 1 or len(tasks) <= 1:
+    workers = min(workers, len(tasks))  # never more processes than tasks
+    if workers <= 1:
         for t in tasks:
             yield _evaluate_one(batches, t, samples, post)
         return
     from collections import deque
-    from concurrent.futures import ProcessPoolExecutor
 
-    import scipy.optimize.elementwise  # noqa: F401  imported once here, inherited by forked workers
+    from loky import ProcessPoolExecutor
 
     pool = ProcessPoolExecutor(max_workers=workers, initializer=_init_worker, initargs=(tuple(batches),))
+    pending: deque = deque()
     try:
-        pending: deque = deque()
         it = iter(tasks)
         for t in it:
             pending.append(pool.submit(_task, t, samples, post))
@@ -404,7 +406,39 @@ def run(
                 pending.append(pool.submit(_task, nxt, samples, post))
             yield result
     finally:
-        # Ctrl-C, SIGTERM or an error: drop the queued chunks and let the running ones finish
-        # (tasks are sized to take well under a second at ordinary --samples).  Killing a worker
-        # instead can cut a result message in half and leave the pool's reader thread blocked.
-        pool.shutdown(wait=True, cancel_futures=True)
+        # Ctrl-C, SIGTERM, a dead worker or an error: drop the queued chunks and let the running
+        # ones finish (tasks are sized to take well under a second at ordinary --samples).
+        for f in pending:
+            f.cancel()
+        pool.shutdown(wait=True)
+
+
+def task_designs(samples: int) -> int:
+    """Designs per task: about :data:`TASK_SAMPLES` crank samples per task, whatever --samples is."""
+    return max(64, min(CHUNK_DESIGNS, TASK_SAMPLES // max(samples, 1)))
+
+
+#: Variants timed per batch for :func:`estimate_seconds` (enough to amortise a call's overhead).
+PROBE_DESIGNS = 256
+
+
+def estimate_seconds(
+    batches: Sequence[Batch], tasks: Sequence[tuple[int, int, int]], samples: int, workers: int
+) -> float:
+    """Wall time [s] the run ``tasks`` will take on ``workers`` processes, estimated by timing the
+    first :data:`PROBE_DESIGNS` variants of each batch (fewer for the flywheel, whose variants
+    cost ~0.5 ms each) and scaling by the number of variants of that batch in the run."""
+    import time
+
+    counts: dict[int, list[int]] = {}
+    for i, s, e in tasks:
+        c = counts.setdefault(i, [s, 0])
+        c[1] += e - s
+    total = 0.0
+    for i, (start, n) in counts.items():
+        probe = min(n, PROBE_DESIGNS // 4 if batches[i].flywheel else PROBE_DESIGNS)
+        evaluate_chunk(batches[i], start, start + 1, samples, i)  # untimed: first-call imports
+        t0 = time.perf_counter()
+        evaluate_chunk(batches[i], start, start + probe, samples, i)
+        total += (time.perf_counter() - t0) / probe * n
+    return total / max(1, min(workers, len(tasks)))

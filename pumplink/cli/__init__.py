@@ -9,6 +9,10 @@ scipy) happen inside the commands so ``--help`` starts fast.
 
 from __future__ import annotations
 
+import contextlib
+import math
+import os
+import re
 import signal
 import sys
 
@@ -29,29 +33,141 @@ from pumplink.cli import (  # noqa: F401, I001 -- in the order of `pumplink --he
     slotted,
     rocker,
     structure,
+    schema,
 )
 from pumplink.cli.common import app, settings
-from pumplink.errors import PumplinkError
+from pumplink.errors import SHOWN_CHARS, PumplinkError, one_line
 
 __all__ = ["app", "main"]
 
 
-def main() -> None:
-    """Console-script entry point: PumplinkError -> one line on stderr and its exit code."""
+def _interrupt(signum, frame):  # Ctrl-C and SIGTERM unwind: temp files removed, exit 130
+    settings["interrupted"] = True
+    raise KeyboardInterrupt
+
+
+def _option_error(exc, args: list[str]) -> str:
+    """A usage error (bad option value, unknown option, missing argument) as one line in the
+    style of the spec errors: the option, the value given, what is allowed, where to look."""
+    from typer._click import exceptions as ce
+
+    ctx = getattr(exc, "ctx", None)
+    where = f" (see `{ctx.command_path} --help`)" if ctx is not None else ""
+    param = getattr(exc, "param", None)
+    opts = [o for o in getattr(param, "opts", []) if o.startswith("-")]
+    if not isinstance(exc, ce.BadParameter) or isinstance(exc, ce.MissingParameter) or not opts:
+        return f"{exc.format_message().rstrip('.')}{where}"
+    name = max(opts, key=len)
+    raw = _raw_value(opts, args)
+    reason = re.sub(r"^Value error, ", "", exc.message).rstrip(".")
+    for words, sym in (
+        ("greater than or equal to", ">="),
+        ("greater than", ">"),
+        ("less than or equal to", "<="),
+        ("less than", "<"),
+    ):
+        reason = re.sub(rf"^Input should be {words} (\S+)$", rf"must be {sym} \1", reason)
+    reason = re.sub(r"^Input should be a valid (\w+).*", r"is not a valid \1", reason)
+    try:
+        if raw is not None and not math.isfinite(float(raw)):
+            reason = "is not a finite number"
+    except ValueError:
+        pass
+    given = f" {one_line(raw, SHOWN_CHARS)}" if raw is not None else ""
+    return f"{name}{given}: {reason}{where}"
+
+
+def _raw_value(opts: list[str], args: list[str]) -> str | None:
+    """The text the user gave for the option ``opts`` (the last occurrence), or None."""
+    value = None
+    for i, a in enumerate(args):
+        for o in opts:
+            if a == o and i + 1 < len(args):
+                value = args[i + 1]
+            elif a.startswith(o + "="):
+                value = a[len(o) + 1 :]
+    return value
+
+
+def _quiet_stdout() -> None:
+    """Point fd 1 at /dev/null so the interpreter's final flush cannot fail a second time."""
+    with contextlib.suppress(OSError, ValueError):
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Console-script entry point: every failure is one line on stderr and an exit code.
+
+    0 pass, 1 fail or infeasible, 2 unusable input or an output that cannot be written (usage
+    errors included), 130 interrupted (Ctrl-C or SIGTERM, from the first line of this function).
+    """
+    signal.signal(signal.SIGINT, _interrupt)
+    signal.signal(signal.SIGTERM, _interrupt)
+    try:
+        code = _run(sys.argv[1:] if argv is None else list(argv))
+    except KeyboardInterrupt:
+        code = 130
+    if code == 130:  # said here, unless the command said why itself (a killed batch worker)
+        _interrupted(say=settings.get("interrupted", False))
+    sys.exit(code)
+
+
+def _interrupted(say: bool = True) -> None:
+    """Exit 130 now.  ``os._exit``: CPython marks a KeyboardInterrupt raised inside ``eval`` (as
+    typer evaluates annotations) as unhandled even when it is caught, and would then end the
+    process by SIGINT instead of the exit code.  Clean-up (temp files, worker pools) has run in
+    the ``finally`` blocks on the way here; stdout is discarded, as the run is incomplete."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    _quiet_stdout()
+    with contextlib.suppress(OSError, ValueError):
+        if say:
+            sys.stderr.write("interrupted; no output file written\n")
+        sys.stderr.flush()
+    os._exit(130)
+
+
+def _run(args: list[str]) -> int:
+    from typer._click import exceptions as ce
+    from typer.exceptions import Abort
+
     if hasattr(signal, "SIGPIPE"):  # `pumplink ... | head` ends quietly, like any Unix filter (not exit 1)
         signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     for stream in (sys.stdout, sys.stderr):  # a non-UTF-8 terminal or pipe gets '?' for θ, ±, ∞, not a crash
         if hasattr(stream, "reconfigure"):
             stream.reconfigure(errors="replace")
+    settings["debug"] = "--debug" in args[:1]
     try:
-        app()
+        code = app(args=args, prog_name="pumplink", standalone_mode=False)
+        sys.stdout.flush()  # a full disk or a closed pipe is reported here, not at exit
     except PumplinkError as exc:
         if settings["debug"]:
             raise
-        sys.stderr.write(f"error: {exc}\n")
-        sys.exit(exc.exit_code)
-    except KeyboardInterrupt:
-        sys.stderr.write("interrupted\n")
-        sys.exit(130)
+        return _fail(str(exc), exc.exit_code)
+    except ce.NoArgsIsHelpError as exc:  # `pumplink` alone: the help (typer has printed it), exit 2
+        if exc.format_message().strip():
+            sys.stderr.write(exc.format_message() + "\n")
+        return 2
+    except ce.UsageError as exc:
+        if settings["debug"]:
+            raise
+        return _fail(_option_error(exc, args), 2)
+    except Abort:
+        settings["interrupted"] = True
+        return 130
     except BrokenPipeError:
-        sys.exit(0)
+        _quiet_stdout()
+        return 0
+    except OSError as exc:  # writing the output: a full disk (ENOSPC), a read-only or lost device
+        if settings["debug"]:
+            raise
+        _quiet_stdout()
+        where = f"{exc.filename}: " if exc.filename else "standard output: "
+        return _fail(f"{where}cannot be written ({exc.strerror or exc})", 2)
+    return code if isinstance(code, int) else 0
+
+
+def _fail(message: str, code: int) -> int:
+    sys.stderr.write(f"error: {one_line(message)}\n")
+    return code

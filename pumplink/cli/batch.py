@@ -11,6 +11,9 @@ import typer
 from pumplink.cli.common import Format, StrictOpt, app
 from pumplink.errors import SpecError
 
+#: Runs of at least this many variants print their size and estimated time before they start.
+LARGE_BATCH = 100_000
+
 
 @app.command()
 def batch(
@@ -50,7 +53,10 @@ def batch(
             "--junit", help="Also write JUnit XML, one testcase per variant (atomically).", show_default=False
         ),
     ] = None,
-    workers: Annotated[int, typer.Option(help="Worker processes (0: one per CPU).", min=0, max=256)] = 1,
+    workers: Annotated[
+        int,
+        typer.Option(help="Worker processes (0: one per CPU; never more than the tasks).", min=0, max=256),
+    ] = 1,
     fail_on: Annotated[
         str,
         typer.Option(
@@ -93,13 +99,12 @@ def batch(
     """
     import functools
     import os
-    import signal
     import time
     from concurrent.futures.process import BrokenProcessPool
 
     from pumplink import batch as _batch
     from pumplink.output import batchfiles as rb
-    from pumplink.output.formats import progress
+    from pumplink.output.formats import check_output, duration, progress
 
     t0 = time.perf_counter()
     sel = _batch.parse_fail_on(fail_on + (",warnings" if strict else ""))
@@ -107,28 +112,23 @@ def batch(
     if fmt.value == "table" and out is not None:
         raise SpecError("--out writes rows: give --format csv or --format json with it")
     for opt, path in (("--out", out), ("--junit", junit)):  # before any work: fail fast, exit 2
-        if path is not None and (path.is_dir() or not path.parent.is_dir()):
-            raise SpecError(
-                f"{opt} {path}: "
-                + (
-                    "is a folder; give a file name"
-                    if path.is_dir()
-                    else f"folder {path.parent} does not exist"
-                )
-            )
+        if path is not None:
+            check_output(path, opt)
     from pumplink.cli import piston
 
     if piston.is_piston_input(inputs):  # mechanism = "crank-slider": docs/piston-pump.md
         piston.batch(inputs, fmt.value, out, set(sel), junit, chunk)
     batches = _batch.load_inputs(inputs)
-    tasks = _batch.plan(batches, k_n)
+    tasks = _batch.plan(batches, k_n, _batch.run_module.task_designs(samples))
     total = sum(e - s for _, s, e in tasks)
-    n_workers = workers or os.cpu_count() or 1
+    n_workers = max(1, min(workers or os.cpu_count() or 1, len(tasks)))  # no idle processes
+    if total >= LARGE_BATCH:  # say what is coming before a long run starts
+        secs = _batch.run_module.estimate_seconds(batches, tasks, samples, n_workers)
+        sys.stderr.write(
+            f"batch: {total:,} variants in {len(tasks):,} tasks on {n_workers} worker"
+            f"{'s' if n_workers > 1 else ''}; estimated {duration(secs)} (Ctrl-C stops it, writing nothing)\n"
+        )
 
-    def _terminate(signum, frame):  # SIGTERM: unwind like Ctrl-C so no temp file is left behind
-        raise KeyboardInterrupt
-
-    previous = signal.signal(signal.SIGTERM, _terminate)
     try:
         with progress(total, "batch") as advance:
             post = functools.partial(
@@ -142,16 +142,11 @@ def batch(
             summary, rows = rb.write_stream(
                 batches, results, total, fmt.value, out, junit, sel, samples, k_n, advance
             )
-    except KeyboardInterrupt:
-        sys.stderr.write("interrupted; no output file written\n")
-        raise typer.Exit(130) from None
     except BrokenProcessPool:  # a worker was killed (SIGKILL, out of memory)
         sys.stderr.write(
             "interrupted: a worker process was killed (out of memory?); no output file written\n"
         )
         raise typer.Exit(130) from None
-    finally:
-        signal.signal(signal.SIGTERM, previous)
     if fmt.value == "table":
         rb.render_table(summary, rows)
     else:

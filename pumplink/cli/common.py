@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+import re
 from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
@@ -16,7 +18,7 @@ app = typer.Typer(
     rich_markup_mode="rich",
     pretty_exceptions_enable=False,
     context_settings={"help_option_names": ["-h", "--help"]},
-    add_completion=False,
+    add_completion=True,
 )
 
 
@@ -44,6 +46,53 @@ StrictOpt = Annotated[
 
 #: The spec a command uses when none is given and it exists in the working directory.
 LOCAL_SPEC = Path("pump.toml")
+
+
+#: Units a wheel speed may be given in on the command line, to deg/s.
+SPEED_UNITS = {"deg/s": 1.0, "rpm": 6.0, "rad/s": 180.0 / math.pi}
+
+#: Largest wheel speed [deg/s] (the spec's operator.speed limit: 20 rev/s).
+SPEED_MAX = 7200.0
+
+
+def parse_speed(text: str | float) -> float:
+    """A wheel speed with an optional unit -> deg/s: ``360``, ``360deg/s``, ``60rpm``, ``6.28rad/s``.
+
+    Raises ``typer.BadParameter`` (one line, exit 2) for an unknown unit, a value that is not a
+    finite number, or one outside 0 < speed <= 7200 deg/s.
+    """
+    if isinstance(text, (int, float)):
+        value, unit = float(text), "deg/s"
+    else:
+        m = re.fullmatch(r"\s*([^a-zA-Z/\s]*(?:inf|nan|infinity)?)\s*([a-zA-Z/]*)\s*", text, re.I)
+        number, unit = (m.group(1), m.group(2).lower()) if m else (text, "")
+        unit = unit or "deg/s"
+        if not number.strip():
+            raise typer.BadParameter("is not a number; give e.g. 360, 360deg/s, 60rpm or 6.28rad/s")
+        if unit not in SPEED_UNITS:
+            raise typer.BadParameter(f"unknown unit '{unit}'; give deg/s (the default), rpm or rad/s")
+        try:
+            value = float(number)
+        except ValueError:
+            raise typer.BadParameter("is not a number; give e.g. 360, 360deg/s, 60rpm or 6.28rad/s") from None
+    if not math.isfinite(value):
+        raise typer.BadParameter("is not a finite number")
+    deg_s = value * SPEED_UNITS[unit]
+    if not 0 < deg_s <= SPEED_MAX:
+        raise typer.BadParameter(
+            f"is out of range; allowed: 0 < speed <= {SPEED_MAX:g} deg/s ({SPEED_MAX / 6:g} rpm)"
+        )
+    return deg_s
+
+
+def speed_option(*names: str, help: str):
+    """A wheel-speed option that takes units (:func:`parse_speed`)."""
+    return typer.Option(
+        *names,
+        parser=parse_speed,
+        metavar="SPEED",
+        help=f"{help} In \\[deg/s], or with a unit: 60rpm, 6.28rad/s.",
+    )
 
 
 def _version(value: bool) -> None:

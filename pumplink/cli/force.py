@@ -8,7 +8,15 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import SAMPLE_LIMIT_KEPT, Format, FormatOpt, StrictOpt, app, spec_or_default
+from pumplink.cli.common import (
+    SAMPLE_LIMIT_KEPT,
+    Format,
+    FormatOpt,
+    StrictOpt,
+    app,
+    spec_or_default,
+    speed_option,
+)
 from pumplink.errors import SpecError
 
 
@@ -22,8 +30,7 @@ def force(
         ),
     ] = None,
     speed: Annotated[
-        Optional[float],
-        typer.Option(help="Wheel speed \\[deg/s] (default: the spec's operator.speed).", min=1e-9, max=7200),
+        Optional[float], speed_option(help="Wheel speed (default: the spec's operator.speed).")
     ] = None,
     samples: Annotated[
         int, typer.Option(help="Uniform crank samples over one revolution.", min=1, max=1_000_000_000)

@@ -53,8 +53,9 @@ def init(
         return
     if path.exists() and not overwrite:
         raise SpecError(f"{path} exists; choose another path or add --force to overwrite it")
-    try:
-        path.write_text(text, encoding="utf-8")
-    except OSError as exc:
-        raise SpecError(f"{path}: cannot be written ({exc.strerror})") from None
+    from pumplink.output.formats import atomic_write, check_output
+
+    check_output(path, "init")
+    with atomic_write(path) as f:
+        f.write(text)
     typer.echo(f"wrote {path}; edit it, then run: pumplink force {path}", err=True)

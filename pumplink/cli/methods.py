@@ -91,9 +91,13 @@ def methods(
         raise InfeasibleDesign(f"{s.name}: {d.error}")
     syn, mw = d.synthesis, s.wheel_torque
     lk = syn.linkage
-    rows = accuracy.compare_methods(
-        lk, syn.dead_centre_extended, syn.dead_centre_folded, mw, names, samples, repeats
-    )
+    from pumplink.output.formats import progress
+
+    n_sets = len(accuracy.sample_sets(lk, syn.dead_centre_extended, syn.dead_centre_folded, 1))
+    with progress((len(names) + 1) * n_sets, "methods") as advance:
+        rows = accuracy.compare_methods(
+            lk, syn.dead_centre_extended, syn.dead_centre_folded, mw, names, samples, repeats, advance
+        )
     study = accuracy.sampling_study(
         lk,
         syn.dead_centre_extended,

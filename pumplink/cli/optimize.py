@@ -47,7 +47,10 @@ def optimize(
         ),
     ] = Objective.peak,
     seed: Annotated[
-        int, typer.Option(help="Random seed of the differential evolution (same seed, same answer).")
+        int,
+        typer.Option(
+            help="Random seed of the differential evolution (same seed, same answer).", min=0, max=2**32 - 1
+        ),
     ] = 0,
     axle_height: Annotated[
         Optional[float],
@@ -96,6 +99,10 @@ def optimize(
     st = parse_range("stroke", stroke, STROKE_M)
     if write is not None and write.exists() and not overwrite:
         raise SpecError(f"{write} exists; choose another path or add --force to overwrite it")
+    if write is not None:
+        from pumplink.output.formats import check_output
+
+        check_output(write, "--write")
     problem = make_problem(load_specs([spec])[0], bounds, objective.value, axle_height, gh, st)
     from pumplink.output.formats import progress
 
@@ -107,10 +114,9 @@ def optimize(
         import tomli_w
 
         from pumplink.optimize import best_spec_dict
+        from pumplink.output.formats import atomic_write
 
-        try:
-            write.write_text(tomli_w.dumps(best_spec_dict(result)), encoding="utf-8")
-        except OSError as exc:
-            raise SpecError(f"{write}: cannot be written ({exc.strerror})") from None
+        with atomic_write(write) as f:
+            f.write(tomli_w.dumps(best_spec_dict(result)))
         typer.echo(f"wrote {write}; check it with: pumplink force {write}", err=True)
     raise typer.Exit(0 if res_passes(result, strict) else 1)

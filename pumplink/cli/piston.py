@@ -48,7 +48,9 @@ def batch(inputs: list[Path], fmt: str, out: Path | None, fail_on: set[str], jun
         )
         failed.append(bool(bad))
     if out is not None:
-        with open(out, "w", encoding="utf-8", newline="") as fh:
+        from pumplink.output.formats import atomic_write
+
+        with atomic_write(out) as fh:
             render_batch(variants, fmt, failed, out=fh)
     else:
         render_batch(variants, fmt, failed)

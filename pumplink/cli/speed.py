@@ -8,7 +8,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, StrictOpt, app, load_specs
+from pumplink.cli.common import Format, FormatOpt, StrictOpt, app, load_specs, speed_option
 from pumplink.errors import SpecError
 
 
@@ -20,13 +20,9 @@ def speed(
             help="TOML pump spec with the wheel's inertia (wheel.mass or wheel.inertia).", show_default=False
         ),
     ],
-    lo: Annotated[
-        float, typer.Option("--from", help="Lowest mean wheel speed \\[deg/s].", min=1e-6, max=7200)
-    ] = 120.0,
-    hi: Annotated[
-        float, typer.Option("--to", help="Highest mean wheel speed \\[deg/s].", min=1e-6, max=7200)
-    ] = 720.0,
-    step: Annotated[float, typer.Option(help="Speed step \\[deg/s].", min=1e-3, max=7200)] = 30.0,
+    lo: Annotated[float, speed_option("--from", help="Lowest mean wheel speed.")] = 120.0,
+    hi: Annotated[float, speed_option("--to", help="Highest mean wheel speed.")] = 720.0,
+    step: Annotated[float, speed_option("--step", help="Speed step.")] = 30.0,
     plot: Annotated[
         Optional[Path],
         typer.Option(

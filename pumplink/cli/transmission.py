@@ -8,7 +8,13 @@ from typing import Annotated, Optional
 import typer
 
 from pumplink.cli.common import Format, FormatOpt, app
-from pumplink.errors import SpecError
+from pumplink.errors import InfeasibleDesign, SpecError
+
+#: Rocker lengths the command accepts (any unit): beyond them the lengths' squares overflow.
+ROCKER_RANGE = (1e-6, 1e6)
+
+#: Smallest swing [deg] the command accepts: below, the design circle's arc is lost to rounding.
+SWING_MIN_DEG = 0.001
 
 
 @app.command()
@@ -63,7 +69,22 @@ def transmission(
     for name, v in (("--time-ratio", time_ratio), ("--swing", swing), ("--rocker", rocker)):
         if not math.isfinite(v):
             raise SpecError(f"{name} {v!r} is not a finite number")
+    if not SWING_MIN_DEG <= swing < 180:
+        raise SpecError(
+            f"--swing {swing:g}: the rocker swing is out of range; allowed: "
+            f"{SWING_MIN_DEG:g} <= value < 180 [deg]; give e.g. 40"
+        )
+    if not ROCKER_RANGE[0] <= rocker <= ROCKER_RANGE[1]:
+        raise SpecError(
+            f"--rocker {rocker:g}: the rocker length is out of range; allowed: "
+            f"{ROCKER_RANGE[0]:g} <= value <= {ROCKER_RANGE[1]:g} (any unit: give e.g. 50 for millimetres)"
+        )
     opt = cr.optimal_crank_rocker(time_ratio, math.radians(swing), rocker)
+    if not math.isfinite(opt.transmission):  # no point of the design circle gives a crank-rocker
+        raise InfeasibleDesign(
+            f"no crank-rocker found for time ratio K = {time_ratio:g} and swing {swing:g}° (extreme "
+            f"included angle θ = {math.degrees(opt.theta):.4g}°); give a time ratio closer to 1"
+        )
     sim = cr.measure_motion(cr.optimum_linkage(opt))
     comps = (
         cr.published_comparisons() if compare and cr.is_published_example(time_ratio, swing, rocker) else []

@@ -11,11 +11,10 @@ from __future__ import annotations
 import contextlib
 import json
 import math
-import os
 import shutil
 import sys
 import tempfile
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Any
 from xml.sax.saxutils import escape, quoteattr
@@ -25,7 +24,8 @@ import numpy as np
 from pumplink.batch import FLYWHEEL_LABEL as FLYWHEEL
 from pumplink.batch import QUASI_STATIC_LABEL as QUASI_STATIC
 from pumplink.batch import Batch, Chunk, variant_name, variant_names
-from pumplink.errors import SpecError
+from pumplink.errors import escape_control
+from pumplink.output.formats import atomic_write
 from pumplink.output.tables import CHECK_LABELS
 
 #: Per-variant columns after the name, the source and the varied keys (CSV order).  The
@@ -297,36 +297,9 @@ def render_chunk(
 
 
 # ----------------------------------------------------------------------------- files
-@contextlib.contextmanager
-def atomic_write(path: Path) -> Iterator[Any]:
-    """A text file that appears at ``path`` complete or not at all (temp file + os.replace)."""
-    path = Path(path)
-    if path.is_dir():
-        raise SpecError(f"{path}: is a folder; give a file name to write")
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    except OSError as exc:
-        raise SpecError(
-            f"{path}: cannot be written ({exc.strerror}); check that the folder "
-            f"{path.parent} exists and is writable"
-        ) from None
-    try:
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the file a normal file's mode
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
-            yield f
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
-
-
 def _junit_case(name: str, classname: str, failure: str | None, skipped: str | None) -> str:
-    head = f'    <testcase classname={quoteattr(classname)} name={quoteattr(name)} time="0"'
+    # file paths may hold control characters, which XML 1.0 cannot carry even escaped
+    head = f'    <testcase classname={quoteattr(escape_control(classname))} name={quoteattr(name)} time="0"'
     if failure is not None:
         return (
             f'{head}>\n      <failure message={quoteattr(failure)} type="pumplink">'
@@ -459,8 +432,9 @@ def write_stream(
         def flush_suite():
             if current < 0:
                 return
+            source = escape_control(batches[current].source)
             jfile.write(
-                f'  <testsuite name={quoteattr(batches[current].source)} tests="{counts["tests"]}" '
+                f'  <testsuite name={quoteattr(source)} tests="{counts["tests"]}" '
                 f'failures="{counts["failures"]}" errors="0" skipped="{counts["skipped"]}">\n'
             )
             suite.seek(0)

@@ -29,24 +29,32 @@ def pyplot():
 
 
 def save(fig, path, **kwargs) -> None:
-    """``fig.savefig(path)``; a path that cannot be written is a SpecError (one line, exit 2)."""
+    """``fig.savefig(path)``, atomically (:func:`~pumplink.output.formats.atomic_write`: complete
+    or not at all, a device written in place); a path that cannot be written is a SpecError
+    (one line, exit 2)."""
+    from pumplink.output.formats import atomic_write
+
     try:
-        fig.savefig(path, **kwargs)
+        with atomic_write(path, binary=True) as f:
+            fig.savefig(f, format=Path(path).suffix.lower().lstrip("."), **kwargs)
     except OSError as exc:
+        raise SpecError(f"{path}: cannot be written ({exc.strerror or exc})") from None
+    finally:
         import matplotlib.pyplot as plt
 
         plt.close(fig)
-        raise SpecError(f"{path}: cannot be written ({exc.strerror or exc})") from None
 
 
-def check_path(path) -> Path:
-    """Validate a chart path's extension before any work is done."""
+def check_path(path, option: str = "--plot") -> Path:
+    """Validate a chart path (its extension, and that it can be written) before any work is done."""
+    from pumplink.output.formats import check_output
+
     path = Path(path)
     if path.suffix.lower() not in SUFFIXES:
         raise SpecError(
-            f"--plot {path}: unknown chart type '{path.suffix}'; use a file ending in .png, .svg or .pdf"
+            f"{option} {path}: unknown chart type '{path.suffix}'; use a file ending in .png, .svg or .pdf"
         )
-    return path
+    return check_output(path, option)
 
 
 def force_curve(result, curve, path) -> Path:

@@ -7,6 +7,7 @@ through the one loader :func:`pumplink.output.charts.pyplot`.
 from __future__ import annotations
 
 import math
+import tempfile
 import textwrap
 from pathlib import Path
 
@@ -14,6 +15,7 @@ import numpy as np
 
 from pumplink.errors import SpecError
 from pumplink.output.charts import check_path, pyplot, save
+from pumplink.output.formats import atomic_write, check_output
 
 MM_PER_INCH = 25.4
 #: The drawing sheet: A4 landscape [mm], the drawing area on it (left, bottom, width, height) [mm]
@@ -259,7 +261,7 @@ def check_animation_path(path) -> Path:
         raise SpecError(
             f"--animate {path}: unknown animation type '{path.suffix}'; use a file ending in .gif"
         )
-    return path
+    return check_output(path, "--animate")
 
 
 def animation(dr, mo, path, fps: int = 12) -> Path:
@@ -335,10 +337,12 @@ def animation(dr, mo, path, fps: int = 12) -> Path:
         return [*moving, arrow, head, text]
 
     anim = FuncAnimation(fig, frame, frames=len(mo.crank_angle), blit=False)
-    try:
-        anim.save(path, writer=PillowWriter(fps=fps))
-    except OSError as exc:
+    try:  # Pillow wants a file name: render in a private folder, then write atomically
+        with tempfile.TemporaryDirectory() as tmp:
+            gif = Path(tmp) / "animation.gif"
+            anim.save(gif, writer=PillowWriter(fps=fps))
+            with atomic_write(path, binary=True) as f:
+                f.write(gif.read_bytes())
+    finally:
         plt.close(fig)
-        raise SpecError(f"{path}: cannot be written ({exc.strerror or exc})") from None
-    plt.close(fig)
     return path

@@ -8,15 +8,21 @@ from __future__ import annotations
 
 import contextlib
 import csv
+import errno
 import json
 import math
 import os
+import stat
 import sys
+import tempfile
 import time
 from collections.abc import Callable, Iterable, Iterator
+from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from pumplink.errors import SpecError
 
 FORMATS = ("table", "json", "csv")
 
@@ -72,10 +78,122 @@ def progress(
             state["bar"].stop()
 
 
+# ----------------------------------------------------------------------------- output files
+def check_output(path, option: str = "--out") -> Path:
+    """Fail fast (exit 2, one line) when ``path`` cannot be an output file: a folder, or a
+    folder that does not exist or cannot be written.  Checked before any work is done."""
+    path = Path(path)
+    target = Path(os.path.realpath(path))
+    if target.is_dir():
+        raise SpecError(f"{option} {path}: is a folder; give a file name")
+    if not target.parent.is_dir():
+        raise SpecError(f"{option} {path}: folder {target.parent} does not exist")
+    special = target.exists() and not stat.S_ISREG(target.stat().st_mode)
+    if not os.access(target if special else target.parent, os.W_OK):
+        what = target if special else f"folder {target.parent}"
+        raise SpecError(f"{option} {path}: {what} is not writable")
+    return path
+
+
+def _open_unnamed(folder: Path) -> int | None:
+    """A file in ``folder`` with no name (Linux O_TMPFILE): nothing is left behind if the
+    process is killed before it is linked.  None where the system or file system lacks it."""
+    flag = getattr(os, "O_TMPFILE", 0)
+    if not flag or not Path("/proc/self/fd").is_dir():
+        return None
+    try:
+        return os.open(folder, flag | os.O_WRONLY, 0o666)  # the umask applies, as for any new file
+    except OSError:
+        return None
+
+
+_WRITE_ERRORS = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EIO, errno.EROFS, errno.EACCES, errno.EPERM)
+
+
+@contextlib.contextmanager
+def atomic_write(path, binary: bool = False) -> Iterator[Any]:
+    """A file that appears at ``path`` complete or not at all.
+
+    The data go to a temporary file in the target's folder - unnamed where the system allows
+    (Linux O_TMPFILE), so that even a SIGKILL leaves nothing - then replace the target in one
+    ``os.replace``.  A symbolic link is followed (the link stays, its target is replaced).  A
+    target that is not a regular file (``/dev/null``, a FIFO, a terminal) is written in place:
+    a device is never renamed over.  A full disk or a read-only folder is a
+    :class:`~pumplink.errors.SpecError` naming the path (one line, exit 2), and the temporary file
+    is removed.
+    """
+    path = Path(path)
+    target = Path(os.path.realpath(path))
+    if target.is_dir():
+        raise SpecError(f"{path}: is a folder; give a file name to write")
+    mode, kw = ("wb", {}) if binary else ("w", {"encoding": "utf-8", "newline": ""})
+    if target.exists() and not stat.S_ISREG(target.stat().st_mode):  # a device or a pipe
+        with _write_errors(path), open(target, mode, **kw) as f:
+            yield f
+        return
+    try:
+        fd = _open_unnamed(target.parent)
+        tmp = None
+        if fd is None:
+            fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the file a normal file's mode
+    except OSError as exc:
+        raise SpecError(
+            f"{path}: cannot be written ({exc.strerror}); check that the folder "
+            f"{target.parent} exists and is writable"
+        ) from None
+    try:
+        with _write_errors(path), os.fdopen(fd, mode, **kw) as f:
+            yield f
+            f.flush()
+            os.fsync(f.fileno())
+            if tmp is None:  # give the unnamed file a name next to the target, then move it
+                tmp = tempfile.mktemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+                root = os.open("/", os.O_RDONLY)
+                try:  # a dir_fd makes CPython call linkat(AT_SYMLINK_FOLLOW), which /proc needs
+                    os.link(f"/proc/self/fd/{f.fileno()}", tmp, src_dir_fd=root, follow_symlinks=True)
+                finally:
+                    os.close(root)
+            with _write_errors(path):
+                os.replace(tmp, target)
+    except BaseException:
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
+        raise
+
+
+@contextlib.contextmanager
+def _write_errors(path) -> Iterator[None]:
+    """A full disk, a quota, a file-size limit, a read-only or failing device: SpecError."""
+    try:
+        yield
+    except OSError as exc:
+        if exc.errno not in _WRITE_ERRORS:
+            raise
+        raise SpecError(f"{path}: cannot be written ({exc.strerror}); nothing was written") from None
+
+
 # ----------------------------------------------------------------------------- text output
-def write_json(obj, out) -> None:
+def write_json(obj, out, stream: tuple[str, Iterable[Any]] | None = None) -> None:
+    """``obj`` as indented JSON; ``stream=(key, items)`` appends ``key`` as a list written one
+    item at a time (memory: one item), byte for byte what ``json.dumps`` would write."""
     # ASCII JSON (\u escapes): valid whatever the terminal's or pipe's encoding.
-    out.write(json.dumps(obj, indent=2, allow_nan=False) + "\n")
+    if stream is None:
+        out.write(json.dumps(obj, indent=2, allow_nan=False) + "\n")
+        return
+    key, items = stream
+    head = json.dumps({**obj, key: []}, indent=2, allow_nan=False)
+    assert head.endswith(": []\n}")
+    out.write(head[: -len("]\n}")])
+    first = True
+    for item in items:
+        text = json.dumps(item, indent=2, allow_nan=False).replace("\n", "\n    ")
+        out.write(("\n    " if first else ",\n    ") + text)
+        first = False
+    out.write("]\n}\n" if first else "\n  ]\n}\n")
 
 
 def _flatten(row: dict[str, Any], prefix: str = "") -> dict[str, Any]:
@@ -93,13 +211,18 @@ def _flatten(row: dict[str, Any], prefix: str = "") -> dict[str, Any]:
 
 
 def write_csv(rows: Iterable[dict[str, Any]], out) -> None:
-    """CSV with a header from the first row; nested keys flattened with '_'."""
-    rows = [_flatten(r) for r in rows]
-    if not rows:
+    """CSV with a header from the first row; nested keys flattened with '_' (streamed: one row at
+    a time in memory)."""
+    it = iter(rows)
+    first = next(it, None)
+    if first is None:
         return
-    w = csv.DictWriter(out, fieldnames=list(rows[0]), lineterminator="\n")
+    first = _flatten(first)
+    w = csv.DictWriter(out, fieldnames=list(first), lineterminator="\n")
     w.writeheader()
-    w.writerows(rows)
+    w.writerow(first)
+    for r in it:
+        w.writerow(_flatten(r))
 
 
 #: Width of tables and text when the output is not a terminal and ``COLUMNS`` is not set.
@@ -126,6 +249,17 @@ def console(file=None):
     if w is None and not tty:
         w = DEFAULT_WIDTH
     return Console(file=file, highlight=False, width=w, soft_wrap=False)
+
+
+def duration(seconds: float) -> str:
+    """A time for people: '40 s', '12 min', '3 h 20 min', '5.2 days'."""
+    if seconds < 60:
+        return f"{seconds:.0f} s"
+    if seconds < 3600:
+        return f"{seconds / 60:.0f} min"
+    if seconds < 86400 * 2:
+        return f"{seconds // 3600:.0f} h {seconds % 3600 / 60:.0f} min"
+    return f"{seconds / 86400:.1f} days"
 
 
 def fmt(x, fmt="{:.3f}", none="—") -> str:

@@ -12,6 +12,7 @@ from typing import Any
 
 from pumplink.output.formats import console, deg, num, write_csv, write_json
 from pumplink.output.formats import fmt as _f
+from pumplink.output.tables import check_row
 
 #: Rows of the condensed sweep in the table (every k-th sample).
 TABLE_ROWS = 24
@@ -24,20 +25,9 @@ _CHECK_LABELS = {
 
 
 def _checks(r) -> list[dict[str, Any]]:
-    out = []
-    for c in r.verdict.checks if r.verdict is not None else ():
-        out.append(
-            {
-                "check": c.key,
-                "value": num(c.value),
-                "limit": num(c.limit),
-                "relation": c.relation,
-                "unit": c.unit,
-                "result": str(c.result),
-                "passed": bool(c.passed),
-            }
-        )
-    return out
+    """The verdict's checks in the rope pump's JSON shape (``pumplink.output.tables.check_row``)."""
+    checks = r.verdict.checks if r.verdict is not None else ()
+    return [{**check_row(c), "name": _CHECK_LABELS.get(c.key, c.key)} for c in checks]
 
 
 def summary_row(r) -> dict[str, Any]:
@@ -71,8 +61,9 @@ def summary_row(r) -> dict[str, Any]:
         "energy_band_J": None if r.energy_band is None else num(r.energy_band),
         "least_peak_force_N": None if r.least_peak_force is None else num(r.least_peak_force),
         "force_limit_N": s.operator.force_limit,
+        "verdict": r.verdict.outcome if r.verdict is not None else "FAIL",
+        "pass": r.passed,
         "checks": _checks(r),
-        "passed": r.passed,
     }
 
 
@@ -104,7 +95,7 @@ def _verdict_line(row) -> str:
         return f"VERDICT: FAIL — infeasible: {row['error']}"
     peak = row["least_peak_force_N"] if row["least_peak_force_N"] is not None else row["quasi_static_peak_N"]
     limit = row["force_limit_N"]
-    if row["passed"]:
+    if row["pass"]:
         mean = row["mean_force_N"]
         return f"VERDICT: PASS — mean {mean:.1f} N and peak {peak:.1f} N are within the {limit:g} N limit"
     over = [f"{w} {v:.1f} N" for w, v in (("mean", row["mean_force_N"]), ("peak", peak)) if v > limit]
@@ -162,13 +153,13 @@ def render_force(r, fmt: str, summary: bool = False, out=None) -> None:
     for h in ("check", "value", "limit", "result"):
         t.add_column(h, justify="left" if h == "check" else "right")
     for ch in row["checks"]:
-        label = _CHECK_LABELS.get(ch["check"], ch["check"])
-        if ch["check"] == "peak_force":
+        label = ch["name"]
+        if ch["key"] == "peak_force":
             label += " (flywheel)" if row["least_peak_force_N"] is not None else " (quasi-st.)"
         t.add_row(
             label,
             f"{_f(ch['value'], '{:.2f}')} {ch['unit']}",
-            f"{ch['relation']} {ch['limit']:g} {ch['unit']}",
+            f"{ch['relation']} {ch['fail_limit']:g} {ch['unit']}",
             {"pass": "pass", "warn": "warning", "fail": "FAIL"}[ch["result"]],
         )
     lo, hi = row["permissible_pressure_angle_deg"]
@@ -228,7 +219,7 @@ def render_batch(variants, fmt: str, failed: list[bool], out=None) -> None:
             escape(r["variant"]),
             _f(r["mean_force_N"], "{:.1f}"),
             _f(peak, "{:.1f}"),
-            ("infeasible" if not r["feasible"] else "PASS" if r["passed"] else "FAIL") + ("*" if bad else ""),
+            ("infeasible" if not r["feasible"] else "PASS" if r["pass"] else "FAIL") + ("*" if bad else ""),
         )
     c.print(t)
     best = min((r for r in rows if r["feasible"]), key=lambda r: r["mean_force_N"], default=None)

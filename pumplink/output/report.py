@@ -16,10 +16,9 @@ from pathlib import Path
 import numpy as np
 
 from pumplink.errors import SpecError
-from pumplink.output.batchfiles import atomic_write
 from pumplink.output.charts import force_curve
 from pumplink.output.drawings import linkage_drawing
-from pumplink.output.formats import fmt
+from pumplink.output.formats import atomic_write, check_output, fmt
 from pumplink.output.tables import check_label, model_line
 from pumplink.output.template import cut_list_rows
 
@@ -41,7 +40,7 @@ def check_report_path(path) -> Path:
     path = Path(path)
     if path.suffix.lower() not in REPORT_SUFFIXES:
         raise SpecError(f"--out {path}: unknown report type '{path.suffix}'; use a file ending in .html")
-    return path
+    return check_output(path, "--out")
 
 
 def _png(draw, *args) -> str:

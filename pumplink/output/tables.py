@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import sys
+from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -148,8 +149,18 @@ def _speed_range(r: ForceResult):
 
 def sample_rows(r: ForceResult) -> list[dict[str, Any]]:
     """One dict per sampled crank angle (JSON/CSV)."""
+    return list(iter_sample_rows(r))
+
+
+#: Samples converted to rows at a time by :func:`iter_sample_rows` (memory: one block).
+ROW_BLOCK = 4096
+
+
+def iter_sample_rows(r: ForceResult) -> Iterator[dict[str, Any]]:
+    """:func:`sample_rows` one row at a time, converted in blocks, so that a million samples
+    stream to JSON or CSV without a million dicts in memory."""
     if r.samples is None:
-        return []
+        return
     s = r.samples
     cols = {
         "crank_deg": np.degrees(s.crank_angle),
@@ -165,15 +176,16 @@ def sample_rows(r: ForceResult) -> list[dict[str, Any]]:
             np.broadcast_to(r.speed if r.wheel_speed is None else r.wheel_speed, s.force.shape)
         ),
     }
-    lists = {k: v.tolist() for k, v in cols.items()}
-    sing, band = s.singular.tolist(), r.in_dead_band.tolist()
-    rows = []
-    for i in range(len(sing)):
-        row = {k: (v[i] if math.isfinite(v[i]) else None) for k, v in lists.items()}
-        row["singular"] = sing[i]
-        row["in_dead_band"] = band[i]
-        rows.append(row)
-    return rows
+    n = len(s.singular)
+    for b0 in range(0, n, ROW_BLOCK):
+        b = slice(b0, b0 + ROW_BLOCK)
+        lists = {k: np.asarray(v)[b].tolist() for k, v in cols.items()}
+        sing, band = s.singular[b].tolist(), r.in_dead_band[b].tolist()
+        for i in range(len(sing)):
+            row = {k: (v[i] if math.isfinite(v[i]) else None) for k, v in lists.items()}
+            row["singular"] = sing[i]
+            row["in_dead_band"] = band[i]
+            yield row
 
 
 #: ``pumplink synth`` shows designs side by side (one column each) up to this many; more
@@ -292,8 +304,8 @@ def render_designs(designs: list[Design], fmt: str, out=None) -> None:
 def _bar(value, limit, width=12) -> str:
     if value is None or not math.isfinite(value):
         return "[red]" + "▶" * width + "[/]"
-    n = int(round(min(float(width), abs(value) / limit * width / 1.5)))  # full bar at 1.5x the limit
-    mark = "█" * n
+    full = abs(value) / limit * width / 1.5 >= width  # full bar at 1.5x the limit, then an arrow
+    mark = "█" * (width - 1) + "▶" if full else "█" * int(round(abs(value) / limit * width / 1.5))
     return f"[red]{mark}[/]" if abs(value) > limit else f"[green]{mark}[/]"
 
 
@@ -340,11 +352,11 @@ def render_force(
         obj["strict"] = strict
         obj["advice"] = [advice_row(a) for a in advice]
         obj.update(extra or {})
-        if not summary:
-            obj["samples"] = sample_rows(r)
+        if not summary:  # streamed: a million samples must not be a million dicts at once
+            return _json(obj, out, stream=("samples", iter_sample_rows(r)))
         return _json(obj, out)
     if fmt == "csv":
-        return write_csv([force_summary(r)] if summary or r.samples is None else sample_rows(r), out)
+        return write_csv([force_summary(r)] if summary or r.samples is None else iter_sample_rows(r), out)
 
     from rich import box
     from rich.markup import escape
@@ -377,8 +389,14 @@ def render_force(
             title=f"Operator force over the crank cycle ({kind}, {r.samples_n} samples"
             f"{', condensed' if s.crank_angle.size > 28 else ''})",
             title_justify="left",
+            min_width=min(c.width, 78),  # the title on one line
             caption="θ2 crank angle; Fh quasi-static force"
-            + ("; F the operator's force, ω the wheel speed" if fly else "")
+            + (
+                "; F the operator's force, ω the wheel speed (ω max: at its top speed); DC ext/fold: "
+                "the extended/folded dead centre"
+                if fly
+                else ""
+            )
             + "; bar full at 1.5× the limit; v grip speed; φ handle from vertical; "
             "γ transmission angle",
             caption_justify="left",
@@ -391,7 +409,9 @@ def render_force(
         )
         heads += ["v [m/s]", "φ [°]", "γ [°]", "note"]
         for h in heads:
-            t.add_column(escape(h), justify="left" if h.startswith(("|", "note")) else "right")
+            t.add_column(
+                escape(h), justify="left" if h.startswith(("|", "note")) else "right", no_wrap=h == "note"
+            )
         rows = []
         hs = r.handle_speed
 
@@ -399,7 +419,7 @@ def render_force(
             f = st.force[i]
             qs = "∞" if st.singular[i] else _f(f, "{:+.1f}")
             if fly:
-                mid = [_f(op, "{:+.1f}"), _bar(op, r.force_limit, 10), _f(np.degrees(w), "{:.1f}")]
+                mid = [_f(op, "{:+.1f}"), _bar(op, r.force_limit, 8), _f(np.degrees(w), "{:.1f}")]
             else:
                 mid = [_bar(None if st.singular[i] else float(f), r.force_limit, 12)]
             rows.append(
@@ -419,7 +439,7 @@ def render_force(
             if s.singular[i]:
                 note = "[bold]DC[/]"
             elif fly:
-                note = "[dim]top speed[/]" if r.on_ceiling[i] else ""
+                note = "[dim]ω max[/]" if r.on_ceiling[i] else ""
             else:
                 note = "[dim]dead band[/]" if r.in_dead_band[i] else ""
             add(s, i, hs[i], note, *((r.operator_force[i], r.wheel_speed[i]) if fly else ()))
@@ -428,7 +448,7 @@ def render_force(
             speeds = r.mark_grip_speed
             if fly:
                 ws, ops = r.mark_wheel_speed, r.mark_operator_force
-                for i, label in enumerate(("DC extended", "DC folded")):
+                for i, label in enumerate(("DC ext", "DC fold")):
                     add(m, i, speeds[i], f"[bold]{label}[/]", ops[i], ws[i])
             else:
                 for i, label in enumerate(("DC extended", "DC folded", "peak (exact)")):
@@ -1192,62 +1212,80 @@ def render_methods(
             ],
             out,
         )
+    from rich import box
+    from rich.markup import escape
     from rich.table import Table
 
     c = console(out)
-    t = Table(
-        title=f"{name}: force methods against the 50-digit reference (relative error of Fh)",
-        title_justify="left",
-    )
     kinds = list(rows[0]["samplings"]) if rows else []
-    for h in (
-        ["method", "time / position"] + [f"max err: {POINT_LABELS[k]}" for k in kinds] + ["failures / flags"]
-    ):
-        t.add_column(h, justify="left" if h in ("method", "failures / flags") else "right")
+    short = {
+        "uniform": "uniform",
+        "near_dead_centre": "near DC",
+        "dead_centre": "at DC",
+        "danger_points": "danger",
+    }
+    t = Table(
+        title=f"{name}: force methods vs the 50-digit reference",
+        title_justify="left",
+        caption="largest relative error of Fh on each sample set: uniform sweep; near DC (1° down to "
+        "1e-6° from a dead centre); at DC; danger points; — = every point flagged",
+        caption_justify="left",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+    )
+    for h in ["method", "time/pos. [ns]"] + [short.get(k, k) for k in kinds] + ["verdict"]:
+        t.add_column(escape(h), justify="left" if h in ("method", "verdict") else "right")
+    notes = []
     for r in rows:
-        cells = [r["name"], f"{r['seconds_per_position'] * 1e9:,.1f} ns"]
+        cells = [r["name"], f"{r['seconds_per_position'] * 1e9:,.0f}"]
         for k in kinds:
             st = r["samplings"][k]
-            cell = _e(st["max_rel_error"])
-            if st["flagged"]:
-                cell += f" ({st['flagged']}/{st['n']} flagged)"
-            cells.append(cell)
-        cells.append("\n".join(failure_sentences(r["failures"])) or "none")
+            cells.append(_e(st["max_rel_error"]) + ("*" if st["flagged"] else ""))
+        sentences = failure_sentences(r["failures"])
+        wrong = any(st["wrong"] or st["missed_singular"] for st in r["samplings"].values())
+        cells.append("[red]WRONG[/]" if wrong else "flags" if sentences else "[green]ok[/]")
         t.add_row(*cells)
+        notes += [f"  {r['name']}: {x}" for x in sentences]
     c.print(t)
     c.print(
-        'flagged = NaN with a flag (dead centre: "∞ (dead centre)"), never a made-up number; '
-        "'silently wrong' = an unflagged value off by more than the method's registered tolerance.",
+        '* some points flagged: NaN with a flag (dead centre: "∞ (dead centre)"), never a made-up '
+        "number. WRONG = an unflagged value off by more than the method's registered tolerance.",
         markup=False,
     )
+    for line in notes:
+        c.print(line, markup=False)
     for r in rows:
         c.print(f"  {r['name']}: {r['summary']}; cannot handle: {r['cannot_handle']}", markup=False)
 
     st = Table(
-        title="How many samples? Uniform sweep from crank 0° vs exact values "
-        f"(dead band ±{dead_band_deg:g}°)",
+        title=f"How many samples? A uniform sweep from crank 0° vs exact (dead band ±{dead_band_deg:g}°)",
         title_justify="left",
+        caption="max |Fh|: the sweep's largest force with no band; peak: outside the band; "
+        "err: relative error of the sampled value",
+        caption_justify="left",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
     )
     for h in (
         "N",
-        "sweep max |Fh| (no band)",
-        "sampled peak outside band",
-        "exact peak",
-        "peak error",
-        "sampled mean",
-        "exact mean",
-        "mean error",
+        "max |Fh| [N]",
+        "peak [N]",
+        "exact [N]",
+        "err",
+        "mean [N]",
+        "exact [N]",
+        "err",
     ):
-        st.add_column(h, justify="right")
+        st.add_column(escape(h), justify="right")
     for s in study:
         st.add_row(
             str(s["n"]),
-            f"{s['sampled_max']:.1f} N" if s["sampled_max"] is not None else "—",
-            f"{s['sampled_peak']:.2f} N" if s["sampled_peak"] is not None else "—",
-            f"{s['exact_peak']:.2f} N",
+            f"{s['sampled_max']:.1f}" if s["sampled_max"] is not None else "—",
+            f"{s['sampled_peak']:.2f}" if s["sampled_peak"] is not None else "—",
+            f"{s['exact_peak']:.2f}",
             _e(s["peak_error"]),
-            f"{s['sampled_mean']:.4f} N",
-            f"{s['exact_mean']:.4f} N",
+            f"{s['sampled_mean']:.4f}",
+            f"{s['exact_mean']:.4f}",
             _e(s["mean_error"]),
         )
     c.print(st)

@@ -12,13 +12,14 @@ Renderers only: hole centres, diameters and lengths come from :class:`pumplink.d
 
 from __future__ import annotations
 
+import io
 import math
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
 from pumplink.errors import SpecError
 from pumplink.output.charts import pyplot
+from pumplink.output.formats import atomic_write, check_output
 
 MM_PER_INCH = 25.4
 #: Paper sizes, landscape (width, height) [mm]: ISO 216 A4 and A3, US letter (8.5 x 11 in).
@@ -54,7 +55,7 @@ def check_template_path(path) -> Path:
     path = Path(path)
     if path.suffix.lower() not in TEMPLATE_SUFFIXES:
         raise SpecError(f"--out {path}: unknown template type '{path.suffix}'; use .pdf, .svg or .dxf")
-    return path
+    return check_output(path, "--out")
 
 
 def _bar_mm(p) -> tuple[float, float]:
@@ -273,18 +274,6 @@ def _page(plt, parts, page, k, n, paper, name, cut_rows):
     return fig
 
 
-def _replace(tmp: Path, path: Path) -> None:
-    try:
-        os.replace(tmp, path)
-    except OSError as exc:
-        tmp.unlink(missing_ok=True)
-        raise SpecError(f"{path}: cannot be written ({exc.strerror or exc})") from None
-
-
-def _tmp(path: Path) -> Path:
-    return path.with_name(f".{path.name}.tmp{os.getpid()}{path.suffix}")
-
-
 def template_pdf(parts, path, paper: str, name: str, tube_given: bool) -> int:
     """Write the tiled PDF template (written to a temporary file, then renamed); returns pages."""
     plt = pyplot()
@@ -292,26 +281,23 @@ def template_pdf(parts, path, paper: str, name: str, tube_given: bool) -> int:
 
     path = Path(path)
     pages = layout(parts, paper)
-    tmp = _tmp(path)
-    try:
-        with PdfPages(tmp, metadata={"Title": f"{name}: drilling template", "Creator": "pumplink"}) as pdf:
-            for k, page in enumerate(pages, 1):
-                fig = _page(
-                    plt,
-                    parts,
-                    page,
-                    k,
-                    len(pages),
-                    paper,
-                    name,
-                    cut_list_rows(parts, tube_given) if k == 1 else None,
-                )
-                pdf.savefig(fig)
-                plt.close(fig)
-    except OSError as exc:
-        Path(tmp).unlink(missing_ok=True)
-        raise SpecError(f"{path}: cannot be written ({exc.strerror or exc})") from None
-    _replace(tmp, path)
+    with (
+        atomic_write(path, binary=True) as f,
+        PdfPages(f, metadata={"Title": f"{name}: drilling template", "Creator": "pumplink"}) as pdf,
+    ):
+        for k, page in enumerate(pages, 1):
+            fig = _page(
+                plt,
+                parts,
+                page,
+                k,
+                len(pages),
+                paper,
+                name,
+                cut_list_rows(parts, tube_given) if k == 1 else None,
+            )
+            pdf.savefig(fig)
+            plt.close(fig)
     return len(pages)
 
 
@@ -344,14 +330,11 @@ def template_svg(parts, path, name: str) -> None:
             weight="bold",
             va="top",
         )
-    tmp = _tmp(path)
     try:
-        fig.savefig(tmp)
-    except OSError as exc:
+        with atomic_write(path, binary=True) as f:
+            fig.savefig(f, format="svg")
+    finally:
         plt.close(fig)
-        raise SpecError(f"{path}: cannot be written ({exc.strerror or exc})") from None
-    plt.close(fig)
-    _replace(tmp, path)
 
 
 def template_dxf(parts, path, name: str) -> None:
@@ -383,13 +366,10 @@ def template_dxf(parts, path, name: str) -> None:
             height=4.0,
             dxfattribs=attr,
         ).set_placement((lo, yc + w + 3))
-    tmp = _tmp(path)
-    try:
-        doc.saveas(tmp)
-    except OSError as exc:
-        Path(tmp).unlink(missing_ok=True)
-        raise SpecError(f"{path}: cannot be written ({exc.strerror or exc})") from None
-    _replace(tmp, path)
+    text = io.StringIO()
+    doc.write(text)
+    with atomic_write(path) as f:
+        f.write(text.getvalue())
 
 
 def write_template(parts, path, paper: str, name: str, tube_given: bool) -> int:

@@ -7,6 +7,7 @@ independent reference.  CLI tests go through the real entry point (``python -m p
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import json
@@ -775,6 +776,20 @@ def _leftovers(folder: Path) -> list[str]:
     return sorted(p.name for p in folder.iterdir() if p.name.endswith(".tmp"))
 
 
+def _writing(pid: int, folder: Path, size: int = 20_000) -> bool:
+    """True when process ``pid`` holds a file open in ``folder`` with more than ``size`` bytes:
+    the output being written (unnamed, O_TMPFILE, or a hidden temp file)."""
+    fds = Path(f"/proc/{pid}/fd")
+    try:
+        for fd in fds.iterdir():
+            with contextlib.suppress(OSError):
+                if os.readlink(fd).startswith(str(folder)) and os.stat(fd).st_size > size:
+                    return True
+    except OSError:
+        return False
+    return False
+
+
 @pytest.mark.parametrize("exc", [KeyboardInterrupt, RuntimeError])
 def test_interrupted_stream_leaves_no_partial_file(tmp_path, monkeypatch, exc):
     from pumplink.output import batchfiles as rb
@@ -846,8 +861,7 @@ def test_killed_run_leaves_no_partial_file(tmp_path, sig, workers, group):
     )
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline:  # wait until rows are being written to the temp file
-        tmp = [f for f in tmp_path.iterdir() if f.name.startswith(".rows.csv.") and f.stat().st_size > 20_000]
-        if tmp or p.poll() is not None:
+        if _writing(p.pid, tmp_path) or p.poll() is not None:
             break
         time.sleep(0.05)
     assert p.poll() is None, "the run finished before it could be interrupted"

@@ -94,3 +94,54 @@ def test_every_readme_command_runs_in_order(tmp_path):
         expected = 1 if line.startswith(EXPECTED_FAIL) else 0
         assert p.returncode == expected, (line, p.stderr[-500:])
         assert "Traceback" not in p.stderr
+
+
+def readme_inline_examples() -> list[str]:
+    """The concrete `pumplink ...` commands quoted inline in the README's prose: every one with an
+    argument or option, except those with placeholders (SPEC, FILE, N, [...], ...) or shell
+    templating, which are syntax summaries rather than commands."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    out = []
+    for span in dict.fromkeys(" ".join(m.split()) for m in re.findall(r"`(pumplink\s[^`]*)`", text)):
+        words = span.split()
+        if len(words) < 2 or len(words) == 2 and not words[1].startswith("-"):
+            continue  # a command's name (`pumplink batch`), not an example
+        if re.search(r"\.\.\.|\[|\$\{|\b[A-Z][A-Z_]+\b|\|", span):
+            continue
+        out.append(span)
+    return out
+
+
+#: Inline README commands that a FAIL (exit 1) is what the text says.
+INLINE_FAIL = (
+    *EXPECTED_FAIL,
+    "pumplink slider --stroke 1 --rod-ratio 3 --time-ratio 2",  # outside the realisability condition
+)
+
+
+def test_readme_inline_examples_are_found():
+    found = readme_inline_examples()
+    assert "pumplink force configs/prototype.toml --summary" in found
+    assert not any("SPEC" in s for s in found)
+
+
+@pytest.mark.parametrize("line", readme_inline_examples())
+def test_every_readme_inline_example_runs(line, workdir):
+    """Each inline example, alone in a fresh copy (with a docs/ folder for the ones that write
+    the README's pictures), gives the exit code its text implies and no traceback."""
+    (workdir / "docs").mkdir(exist_ok=True)
+    # in bash with HOME in the copy: `pumplink --install-completion` edits that HOME's .bashrc
+    env = {
+        **os.environ,
+        "PATH": f"{BIN}{os.pathsep}{os.environ.get('PATH', '')}",
+        "COLUMNS": "80",
+        "HOME": str(workdir),
+    }
+    p = subprocess.run(
+        ["bash", "-c", line], cwd=workdir, env=env, capture_output=True, text=True, timeout=600
+    )
+    expected = 1 if line.startswith(INLINE_FAIL) else 0
+    assert p.returncode == expected, (line, p.stderr[-500:])
+    assert "Traceback" not in p.stderr
+    if "--install-completion" in line:
+        assert "pumplink" in (workdir / ".bashrc").read_text(encoding="utf-8")

@@ -151,7 +151,7 @@ def test_structure_errors_name_the_key(tmp_path):
 
 def test_piston_force_and_batch():
     out = json.loads(run("force", "examples/piston-pump.toml", "--summary", "-f", "json").stdout)
-    assert out["passed"] and out["mechanism"] == "crank-slider"
+    assert out["pass"] and out["verdict"] == "PASS" and out["mechanism"] == "crank-slider"
     p = run("batch", "configs/grids/piston-bore.toml", "-f", "json")
     rows = json.loads(p.stdout)
     assert p.returncode == 1 and rows["total"] == 8 and rows["failed"] == 3
