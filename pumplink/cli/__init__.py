@@ -35,7 +35,7 @@ from pumplink.cli import (  # noqa: F401, I001 -- in the order of `pumplink --he
     structure,
     schema,
 )
-from pumplink.cli.common import app, settings
+from pumplink.cli.common import app, command_group, settings
 from pumplink.errors import SHOWN_CHARS, PumplinkError, one_line
 
 __all__ = ["app", "main"]
@@ -139,7 +139,7 @@ def _run(args: list[str]) -> int:
             stream.reconfigure(errors="replace")
     settings["debug"] = "--debug" in args[:1]
     try:
-        code = app(args=args, prog_name="pumplink", standalone_mode=False)
+        code = command_group(app)(args=args, prog_name="pumplink", standalone_mode=False)
         sys.stdout.flush()  # a full disk or a closed pipe is reported here, not at exit
     except PumplinkError as exc:
         if settings["debug"]:
