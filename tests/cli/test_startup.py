@@ -1,8 +1,9 @@
 """Start-up guard: the commands a person waits for import only what they use.
 
-Importing ``scipy.optimize`` alone costs about 0.3 s; matplotlib, mpmath, loky and the optional
-extras (dask, pyarrow, numba) are for other commands.  Each case runs the real entry point in a
-fresh interpreter, checks the command did its work, and lists the heavy modules it loaded.
+Importing ``scipy.optimize`` alone costs about 0.3 s; matplotlib, mpmath, loky, the optional
+extras (dask, pyarrow, numba) and pumplink's design search, batch, method study and piston pump
+are for other commands.  Each case runs the real entry point in a fresh interpreter, checks the
+command did its work, and lists the modules of that list it loaded.
 """
 
 from __future__ import annotations
@@ -28,6 +29,12 @@ HEAVY = [
     "distributed",
     "pyarrow",
     "numba",
+    # pumplink's own modules for other commands and mechanisms
+    "pumplink.optimize",
+    "pumplink.batch",
+    "pumplink.methods",
+    "pumplink.accuracy",
+    "pumplink.piston",
 ]
 
 PROBE = """
