@@ -11,6 +11,7 @@ line starting with ``RESULT``: figure, target, met yes/no.  Run with `make bench
 
 from __future__ import annotations
 
+import math
 import os
 import statistics
 import subprocess
@@ -21,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _record import record  # noqa: E402
 from bench_core import EXE, ROOT, machine, median_time  # noqa: E402
 
 from pumplink.analysis import design  # noqa: E402
@@ -33,10 +35,14 @@ EXAMPLE = ROOT / "examples" / "well-12m-flywheel.toml"
 DEAD_BAND = np.radians(20)
 
 
-def result(what: str, figure: str, target: str, met: bool, beside: str = "") -> None:
-    """One line per target: the figure, the target and whether it is met."""
+def result(
+    what: str, figure: str, target: str, met: bool, beside: str = "", value: float = math.nan, unit: str = ""
+) -> None:
+    """One line per target: the figure, the target and whether it is met (and the figure for
+    `make bench`'s summary table, benchmarks/_record.py)."""
     extra = f"  [{beside}]" if beside else ""
     print(f"RESULT {what}: {figure} (target {target}) met: {'yes' if met else 'NO'}{extra}")
+    record(what, value, unit, target, met, beside)
 
 
 def wall_and_cpu(fn, repeat):
@@ -87,6 +93,8 @@ def main() -> None:
         t1 <= 2e-3,
         f"reference route {r1 * 1e3:.1f} ms: {r1 / t1:.0f}x faster; quasi-static peak {tq * 1e3:.2f} ms: "
         f"flywheel / quasi-static {t1 / tq:.1f}x",
+        value=t1 * 1e3,
+        unit="ms",
     )
 
     # 10,000 designs in one vectorised call: the example over 10,000 bands, and 10,000 random designs
@@ -105,6 +113,8 @@ def main() -> None:
         n / tn >= 20_000,
         f"reference route {k / rn:,.0f}/s: {(n / tn) / (k / rn):.0f}x faster; "
         f"quasi-static peak {n / tqn:,.0f}/s: flywheel / quasi-static {tn / tqn:.1f}x",
+        value=n / tn,
+        unit="designs/s",
     )
     (rlk, rdce, rdcf), rmw, rband = random_designs(14_000)
     m = rdce.size
@@ -116,6 +126,8 @@ def main() -> None:
         ">= 20,000/s",
         m / tr >= 20_000,
         f"quasi-static peak {m / trq:,.0f}/s: flywheel / quasi-static {tr / trq:.1f}x",
+        value=m / tr,
+        unit="designs/s",
     )
     fast = fw.least_peak_force(rlk, rdce, rdcf, rmw, rband)
     ref = fw._reference_least_peak_force(rlk, rdce, rdcf, rmw, rband)
@@ -128,6 +140,8 @@ def main() -> None:
         "<= 1e-9",
         same and rel <= 1e-9,
         f"{int(np.sum(np.isinf(ref)))} beyond the cap (inf) in both" if same else "inf/NaN pattern differs",
+        value=rel,
+        unit="relative",
     )
     stroke = np.abs(fw._grip_x(rdcf, *rlk.parameters) - fw._grip_x(rdce, *rlk.parameters))
     limit = mean_force(rmw, stroke) * 10.0 ** np.random.default_rng(1).uniform(0.0, 2.0, m)  # to 100 F_mean

@@ -20,6 +20,7 @@ import tomllib
 from pathlib import Path
 
 import numpy as np
+from _record import record
 
 from pumplink.mechanisms.crank_rocker import optimal_crank_rocker
 from pumplink.models import flywheel as fw
@@ -40,10 +41,14 @@ def median_time(fn, repeats=REPEATS):
     return statistics.median(times), out
 
 
-def result(what: str, figure: str, target: str, met: bool, beside: str = "") -> None:
-    """One line per target: the figure, the target and whether it is met."""
+def result(
+    what: str, figure: str, target: str, met: bool, beside: str = "", value: float = math.nan, unit: str = ""
+) -> None:
+    """One line per target: the figure, the target and whether it is met (and the figure for
+    `make bench`'s summary table, benchmarks/_record.py)."""
     extra = f"  [{beside}]" if beside else ""
     print(f"RESULT {what}: {figure} (target {target}) met: {'yes' if met else 'NO'}{extra}")
+    record(what, value, unit, target, met, beside)
 
 
 def main():
@@ -80,6 +85,8 @@ def main():
         wall <= 3.0,
         f"search in process {fly_t:.2f} s; the quasi-static prototype.toml search {ref_t:.2f} s: "
         f"flywheel / quasi-static {fly_t / ref_t:.1f}x",
+        value=wall,
+        unit="s",
     )
 
     # the same search with the reference route of the flywheel model (the previous kernel), once
@@ -101,6 +108,8 @@ def main():
         "<= 1e-6",
         dpeak <= 1e-6 and dx <= 1e-6,
         f"reference route search {slow_t:.1f} s in process: {slow_t / fly_t:.0f}x slower",
+        value=max(dpeak, dx),
+        unit="relative",
     )
 
 

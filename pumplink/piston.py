@@ -36,7 +36,7 @@ from pumplink.mechanisms import crank_slider as cs
 from pumplink.models import FLYWHEEL, choose_model
 from pumplink.models import flywheel as _fw
 from pumplink.models import piston as _pm
-from pumplink.spec import read_toml
+from pumplink.spec import batch_base, is_piston_data, read_toml
 from pumplink.verdict import Verdict, assess
 
 #: The mechanism kinds a spec may name (the rope pump's four-bar has no key).
@@ -108,31 +108,6 @@ class PistonSpec(_Section):
 
 
 # ----------------------------------------------------------------------------- reading
-def is_piston_data(data: Any) -> bool:
-    """True when a spec mapping names a mechanism kind (else it is a rope-pump spec)."""
-    return isinstance(data, dict) and "mechanism" in data
-
-
-def _batch_base(data: dict, path: Path) -> Any:
-    base = data.get("base")
-    if isinstance(base, str):
-        return read_toml(path.parent / base, expected="a TOML spec")
-    return base
-
-
-def is_piston_file(path: str | Path) -> bool:
-    """True for a piston-pump spec file, or a batch file whose base is one.  Unreadable files are
-    not piston files (the rope-pump path reports their errors)."""
-    path = Path(path)
-    if not path.is_file():
-        return False
-    try:
-        data = read_toml(path)
-        return is_piston_data(data) or (isinstance(data, dict) and is_piston_data(_batch_base(data, path)))
-    except SpecError:
-        return False
-
-
 def _describe(err: dict) -> str:
     key = ".".join(str(p) for p in err["loc"]) or "the spec"
     kind = err["type"]
@@ -357,7 +332,7 @@ def expand_batch(path: str | Path) -> list[tuple[str, dict[str, float], PistonSp
         raise SpecError(
             f"{path}: unknown key '{sorted(unknown)[0]}' in a batch file; allowed: name, base, vary"
         )
-    base = _batch_base(data, path)
+    base = batch_base(data, path)
     label = str(data.get("name", path.stem))
     parse_piston({"name": label, **base}, source=f"{path} [base]")
     vary = data.get("vary", {})

@@ -502,6 +502,33 @@ def read_toml(path: str | Path, expected: str = "a TOML spec") -> dict[str, Any]
         raise SpecError(f"{path}: nested too deeply to read, expected {expected}") from None
 
 
+def is_piston_data(data: Any) -> bool:
+    """True when a spec mapping names a mechanism kind (else it is a rope-pump spec); the piston
+    pump's models are in :mod:`pumplink.piston`, imported only for such a spec."""
+    return isinstance(data, dict) and "mechanism" in data
+
+
+def batch_base(data: dict, path: Path) -> Any:
+    """The mapping a batch file's ``base`` names (read from its TOML file), else ``base`` as given."""
+    base = data.get("base")
+    if isinstance(base, str):
+        return read_toml(path.parent / base, expected="a TOML spec")
+    return base
+
+
+def is_piston_file(path: str | Path) -> bool:
+    """True for a piston-pump spec file, or a batch file whose base is one.  Unreadable files are
+    not piston files (the rope-pump path reports their errors)."""
+    path = Path(path)
+    if not path.is_file():
+        return False
+    try:
+        data = read_toml(path)
+        return is_piston_data(data) or (isinstance(data, dict) and is_piston_data(batch_base(data, path)))
+    except SpecError:
+        return False
+
+
 def spec_from_file_data(data: Any, path: str | Path) -> PumpSpec:
     """Validate the mapping read from ``path``; the name defaults to the file stem."""
     path = Path(path)

@@ -111,7 +111,7 @@ def force(
             f"--samples {samples} keeps too many rows (at most {SAMPLE_LIMIT_KEPT:,}); "
             "add --summary to stream them"
         )
-    from pumplink.piston import is_piston_file
+    from pumplink.spec import is_piston_file
 
     if spec is not None and is_piston_file(spec):  # mechanism = "crank-slider": docs/piston-pump.md
         from pumplink.cli import piston

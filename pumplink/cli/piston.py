@@ -59,7 +59,7 @@ def batch(inputs: list[Path], fmt: str, out: Path | None, fail_on: set[str], jun
 
 def is_piston_input(inputs: list[Path]) -> bool:
     """True when the inputs are piston-pump files; mixing them with rope-pump files is an error."""
-    from pumplink.piston import is_piston_file
+    from pumplink.spec import is_piston_file
 
     kinds = {is_piston_file(p) for p in inputs}
     if kinds == {True, False}:

@@ -15,7 +15,6 @@ import numpy as np
 
 if TYPE_CHECKING:
     from pumplink.analysis import Design, ForceResult, SpeedSweep
-from pumplink.methods import POINT_LABELS
 from pumplink.output.formats import console, deg, num, write_csv
 from pumplink.output.formats import fmt as _f
 from pumplink.output.formats import write_json as _json
@@ -1174,6 +1173,8 @@ FAILURE_TEXT = {
 
 def failure_sentences(records: list[dict]) -> list[str]:
     """The method comparison's findings in words."""
+    from pumplink.methods import POINT_LABELS  # here: `force` and `synth` need no method study
+
     return [FAILURE_TEXT[f["what"]].format(label=POINT_LABELS[f["kind"]], **f) for f in records]
 
 
@@ -1181,6 +1182,8 @@ def json_rows(rows: list[dict]) -> list[dict]:
     """The JSON contract: name, seconds_per_position, max_rel_error_uniform,
     max_rel_error_near_dead_centre, failures (plus summary, cannot_handle and per-sampling detail,
     keyed by the words of each sampling)."""
+    from pumplink.methods import POINT_LABELS
+
     return [
         {
             "name": r["name"],
