@@ -525,3 +525,181 @@ def band_margin(
         h, _ = _pairs(*pts, pb.mw, pb.stroke, lam)
     out = h.max(axis=1)
     return float(out[0]) if scalar else out
+
+
+# ----------------------------------------------------------------------------- one design in detail
+@dataclass(frozen=True)
+class Scene:
+    """The dynamics of one design at one mean speed (SI units, radians).
+
+    Attributes
+    ----------
+    least_peak_force : the peak force Fp of the reported motion [N] (Fp* unless given).
+    mean_force : F_mean [N];  mean_speed, min_speed, max_speed : w_bar, w_lo, w_hi [rad/s].
+    The reported motion is the largest one of docs/models.md §3, e = min(upper, Q + past minimum
+    of (upper - Q), P + future minimum of (upper - P)): the operator pushes Fp with the grip,
+    rides the top of the band, or brakes with Fp against the grip's motion.
+    """
+
+    linkage: FourBar
+    dead_centre_extended: float
+    dead_centre_folded: float
+    wheel_torque: float
+    inertia: float
+    masses: Masses
+    gravity: float
+    mean_speed: float
+    speed_fluctuation: float
+    least_peak_force: float
+    mean_force: float
+    min_speed: float
+    max_speed: float
+    points: tuple  # refined extrema (x, base, local, up, lo) of the four functions at Fp, each (K,)
+    stroke: float  # grip stroke S [m]
+    travel: tuple  # the grip-travel arguments of pumplink.models.flywheel for this design
+
+
+def scene(
+    lk: FourBar,
+    dead_centre_extended: float,
+    dead_centre_folded: float,
+    wheel_torque: float,
+    inertia: float,
+    masses: Masses,
+    mean_speed: float,
+    speed_fluctuation: float,
+    gravity: float = GRAVITY,
+    force: float | None = None,
+) -> Scene:
+    """Solve one design: Fp* (or take ``force``), and the data of the reported motion."""
+    args = (lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses, mean_speed)
+    pb, _ = _problem(*args, speed_fluctuation, gravity)
+    fp = float(_solve(pb)[0]) if force is None else float(force)
+    pts = ()
+    if np.isfinite(fp):
+        pts = tuple(v[0] for v in _refined_points(pb, np.array([fp]), np.array([0])))
+    return Scene(
+        lk,
+        float(dead_centre_extended),
+        float(dead_centre_folded),
+        float(wheel_torque),
+        float(inertia),
+        masses,
+        gravity,
+        float(mean_speed),
+        float(speed_fluctuation),
+        fp,
+        float(_qs.mean_force(wheel_torque, pb.stroke[0])),
+        float(pb.w_lo[0]),
+        float(pb.w_hi[0]),
+        pts,
+        float(pb.stroke[0]),
+        tuple(v[0] for v in pb.prep.args()),
+    )
+
+
+def _profile(sc: Scene, crank_angle):
+    """Energy e, regime (-1 brake, 0 ride, +1 push), upper, its rate, V, I and g at crank angles."""
+    th = np.atleast_1d(np.asarray(crank_angle, float))
+    fp, mw, s = sc.least_peak_force, sc.wheel_torque, sc.stroke
+    phi = np.mod(th - sc.dead_centre_extended, TWO_PI)
+    base, local = _fw._travel_parts(phi, *sc.travel)
+    g_phi = base + local
+    tm = terms(sc.linkage, th, sc.masses, sc.gravity)
+    i = sc.inertia + tm.inertia
+    up = tm.potential + 0.5 * i * sc.max_speed**2
+    dup = tm.potential_rate + 0.5 * tm.inertia_rate * sc.max_speed**2
+    x, kb, kl, kup, _klo = sc.points
+    gk = kb + kl
+    a = 2.0 * fp * s - TWO_PI * mw
+    b = -2.0 * fp * s - TWO_PI * mw
+    al = kup - (fp * gk - mw * x)  # upper - Q at the points
+    de = kup - (-fp * gk - mw * x)  # upper - P
+    col = phi[:, None]
+    past = np.where(x[None, :] < col, al, al + a).min(axis=1)  # t in (phi - 2 pi, phi)
+    future = np.where(x[None, :] > col, de, de - b).min(axis=1)  # t in (phi, phi + 2 pi)
+    cand = np.stack([fp * g_phi - mw * phi + past, up, -fp * g_phi - mw * phi + future])
+    regime = 1 - np.argmin(cand, axis=0)
+    return cand.min(axis=0), regime, dup, tm.potential, i, tm.grip_rate
+
+
+def operator_force(sc: Scene, crank_angle):
+    """The reported operator force F(t) [N], +x positive (0 at a dead centre, where g = 0)."""
+    _e, regime, dup, _v, _i, g = _profile(sc, crank_angle)
+    with np.errstate(all="ignore"):
+        ride = (dup + sc.wheel_torque) / g  # Eq. (7) along the top of the band
+        f = np.where(regime == 0, ride, regime * sc.least_peak_force * np.sign(g))
+    out = np.where(g == 0, 0.0, f)
+    return out if np.ndim(crank_angle) else float(out[0])
+
+
+def wheel_speed(sc: Scene, crank_angle):
+    """Wheel speed w(t) [rad/s] of the reported motion: sqrt(2 (e - V) / I)."""
+    e, _r, _d, v, i, _g = _profile(sc, crank_angle)
+    with np.errstate(invalid="ignore"):
+        out = np.sqrt(2.0 * (e - v) / i)
+    return out if np.ndim(crank_angle) else float(out[0])
+
+
+def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> _fw.TimeIntegration:
+    """Integrate I t'' + I'/2 t'^2 + V' = F g - Mw (Eq. (7) in time, scipy ``solve_ivp``) under the
+    reported force profile F(t) (open loop), from the reported speed at the extended dead centre."""
+    from scipy.integrate import solve_ivp
+
+    t0 = sc.dead_centre_extended
+    w0 = wheel_speed(sc, t0)
+    mw = sc.wheel_torque
+
+    def rhs(_t, y):
+        tm = terms(sc.linkage, y[0], sc.masses, sc.gravity)
+        f = operator_force(sc, y[0])
+        i = sc.inertia + tm.inertia
+        return [y[1], (f * tm.grip_rate - mw - tm.potential_rate - 0.5 * tm.inertia_rate * y[1] ** 2) / i]
+
+    def turn(_t, y):
+        return np.sin(0.5 * (y[0] - t0))
+
+    turn.terminal = cycles + 1
+    horizon = 4.0 * cycles * TWO_PI / sc.min_speed
+    sol = solve_ivp(
+        rhs,
+        (0.0, horizon),
+        [t0, w0],
+        method="DOP853",
+        rtol=rtol,
+        atol=1e-12 * sc.max_speed,
+        events=turn,
+        dense_output=True,
+        max_step=TWO_PI / 64 / sc.max_speed,
+    )
+    times = sol.t_events[0]
+    times = times[times > 1e-9 * horizon][:cycles]
+    if times.size == 0:  # the wheel stopped or turned back: no revolution completed
+        nan = float("nan")
+        return _fw.TimeIntegration(0, np.array([w0]), np.inf, nan, nan, nan, nan, np.inf)
+    speeds = np.array([w0] + [float(sol.sol(t)[1]) for t in times])
+    last0, last1 = (times[-2] if times.size > 1 else 0.0), times[-1]
+    w = sol.sol(np.linspace(last0, last1, 40001))[1]
+    wmax, wmin = float(w.max()), float(w.min())
+    mean = 0.5 * (wmax + wmin)
+    return _fw.TimeIntegration(
+        int(times.size),
+        speeds,
+        float(np.max(np.abs(speeds - speeds[0])) / speeds[0]),
+        wmax,
+        wmin,
+        mean,
+        TWO_PI / (last1 - last0),
+        (wmax - wmin) / mean,
+    )
+
+
+def agrees(sc: Scene, sim: _fw.TimeIntegration, rtol: float = 1e-6) -> bool:
+    """The time integration is periodic, inside the band and at the mean speed, to ``rtol``."""
+    return bool(
+        sim.cycles > 0
+        and sim.periodicity <= rtol
+        and abs(sim.mean_speed - sc.mean_speed) <= rtol * sc.mean_speed
+        and sim.min_speed >= sc.min_speed * (1 - rtol)
+        and sim.max_speed <= sc.max_speed * (1 + rtol)
+    )

@@ -212,3 +212,22 @@ def test_vectorised_equals_one_at_a_time():
             lk, dce, dcf, spec.wheel_torque, spec.inertia, dy.bar_masses(lk, 1.56, arms[i]), speeds[i], 0.2
         )
         assert many[i] == pytest.approx(one, rel=1e-12)
+
+
+# ----------------------------------------------------------------------------- time domain
+def test_solve_ivp_confirms_the_profile_and_rejects_a_weaker_operator():
+    """At Fp* the reported profile, integrated open loop, is periodic inside the band at the mean
+    speed (to 1e-6); at Fp* (1 - 1e-3) the best motion leaves the band (negative control)."""
+    spec, syn, lk, dce, dcf = _case()
+    ms = dy.bar_masses(lk, 1.56, 4.0)
+    args = (lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 2 * np.pi, 0.2)
+    sc = dy.scene(*args)
+    th = np.linspace(0, 2 * np.pi, 721)
+    assert np.nanmax(np.abs(dy.operator_force(sc, th))) <= sc.least_peak_force * (1 + 1e-12)
+    sim = dy.integrate_motion(sc, cycles=3)
+    assert dy.agrees(sc, sim)
+    assert sim.mean_speed == pytest.approx(2 * np.pi, rel=1e-6)
+    weak = dy.scene(*args, force=sc.least_peak_force * (1 - 1e-3))
+    sim = dy.integrate_motion(weak, cycles=3)
+    assert not dy.agrees(weak, sim)
+    assert sim.min_speed < weak.min_speed * (1 - 1e-5)
