@@ -59,6 +59,15 @@ def force(
             "check it is periodic with the mean speed and δ.",
         ),
     ] = False,
+    model: Annotated[
+        Optional[str],
+        typer.Option(
+            "--model",
+            help="Force a model: quasi-static, flywheel or dynamics (default: the least model that is "
+            "enough, see --explain).",
+            show_default=False,
+        ),
+    ] = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Operator force over the crank cycle, the checks and the 100 N verdict.
@@ -101,6 +110,8 @@ def force(
     from pumplink.output.formats import progress
 
     s = load_spec(spec) if spec is not None else default_spec()
+    if model is not None and model not in ("quasi-static", "flywheel", "dynamics"):
+        raise SpecError(f"--model {model!r} is not a model; give quasi-static, flywheel or dynamics")
     if verify and s.inertia is None:
         raise SpecError(
             f"--verify checks the flywheel model, but {s.name} gives no inertia; add wheel.mass [kg] "
@@ -114,7 +125,9 @@ def force(
             advance(k - done[0])
             done[0] = k
 
-        result = force_analysis(s, speed, samples, at_deg=at or None, keep_samples=not summary, progress=tick)
+        result = force_analysis(
+            s, speed, samples, at_deg=at or None, keep_samples=not summary, progress=tick, model=model
+        )
     extra, agrees = {}, True
     if explain and result.design.feasible:
         from pumplink.analysis import explain as explain_model

@@ -623,6 +623,12 @@ def _profile(sc: Scene, crank_angle):
     return cand.min(axis=0), regime, dup, tm.potential, i, tm.grip_rate
 
 
+def regime(sc: Scene, crank_angle):
+    """-1 where the operator brakes with Fp, 0 where the motion rides the top of the band, +1 where
+    the operator pushes Fp with the grip."""
+    return _profile(sc, crank_angle)[1]
+
+
 def operator_force(sc: Scene, crank_angle):
     """The reported operator force F(t) [N], +x positive (0 at a dead centre, where g = 0)."""
     _e, regime, dup, _v, _i, g = _profile(sc, crank_angle)

@@ -238,6 +238,18 @@ def _condensed_indices(r: ForceResult, max_rows: int = 24) -> list[int]:
 
 def model_line(r: ForceResult) -> str:
     """Which model decided the verdict, in words."""
+    if r.dynamics:
+        op = r.design.spec.operator
+        arms = (
+            f"arms {op.arm_mass_kg:g} kg at the grip"
+            if op.arms_in_verdict
+            else "hand force (arms not included)"
+        )
+        return (
+            f"model: full dynamics, J = {r.inertia:.3f} kg·m² plus the coupler and handle masses and "
+            f"their weight, δ ≤ {r.speed_fluctuation:g} at a mean {r.speed_deg_s:g} deg/s; {arms}"
+            + (f"; muscular effort with the arms {r.effort_peak_force:.1f} N" if r.effort_peak_force else "")
+        )
     if r.flywheel:
         return (
             f"model: flywheel, J = {r.inertia:.3f} kg·m², δ ≤ {r.speed_fluctuation:g} at a mean "
