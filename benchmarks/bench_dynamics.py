@@ -36,9 +36,7 @@ def main() -> None:
     speeds = np.radians(np.linspace(200.0, 700.0, n))
     msn = dy.bar_masses(rep, 1.56, np.linspace(0.0, 5.0, n))
     tn = median_time(lambda: dy.least_peak_force(rep, dce, dcf, mw, j, msn, speeds, 0.2), 3)
-    print(
-        f"least peak force, {n:,} designs vectorised: {tn:.3f} s ({n / tn:,.0f} designs/s; target 10,000)"
-    )
+    print(f"least peak force, {n:,} designs vectorised: {tn:.3f} s ({n / tn:,.0f} designs/s; target 10,000)")
 
 
 if __name__ == "__main__":

@@ -19,9 +19,11 @@ from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.mechanisms.fourbar import (
     State,
     Synthesis,
+    grip_heights,
     grip_stroke,
     infeasibility_reason,
     kinematic_state,
+    peak_rocker_rate,
     synthesize,
 )
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, Conditions, choose_model
@@ -39,7 +41,7 @@ AUTO_DYNAMICS = False
 VERIFY_RTOL = 1e-6
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Design:
     """A spec and its dead-centre synthesis (scalars)."""
 
@@ -50,6 +52,21 @@ class Design:
     @property
     def feasible(self) -> bool:
         return self.error is None
+
+    def __repr__(self) -> str:
+        s = self.synthesis
+        if not self.feasible:
+            return f"<Design {self.spec.name!r}: infeasible ({self.error})>"
+        return (
+            f"<Design {self.spec.name!r}: crank {float(s.crank_length):.4f} m, coupler "
+            f"{float(s.coupler_length):.4f} m, K = {float(s.time_ratio):.4f}>"
+        )
+
+    def to_dict(self) -> dict:
+        """The JSON contract of ``pumplink synth --format json`` for this design."""
+        from pumplink.output.tables import design_row
+
+        return design_row(self)
 
     @property
     def handle_stroke(self) -> float:
@@ -64,7 +81,7 @@ class Design:
         return min(syn.transmission_min, np.pi - syn.transmission_max)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class ForceResult:
     """Force analysis of one design at one wheel speed (SI units, radians).
 
@@ -114,9 +131,44 @@ class ForceResult:
     def dynamics(self) -> bool:
         return self.model == MODELS[DYNAMICS].label
 
+    def __repr__(self) -> str:
+        if not self.design.feasible:
+            return f"<ForceResult {self.design.spec.name!r}: infeasible ({self.design.error})>"
+        how = "flywheel" if self.flywheel else "dead band"
+        fails = ", ".join(c.key for c in self.verdict.failures)
+        return (
+            f"<ForceResult {self.design.spec.name!r}: {self.outcome}{f' ({fails})' if fails else ''}, "
+            f"peak {self.verdict_peak_force:.1f} N ({how}), mean {self.mean_force:.1f} N, "
+            f"limit {self.force_limit:g} N at {self.speed_deg_s:g} deg/s>"
+        )
+
+    def to_dict(self, samples: bool = False) -> dict:
+        """The JSON contract of ``pumplink force --format json`` (``--summary`` unless ``samples``)."""
+        from pumplink.output.tables import force_summary, sample_rows
+
+        out = force_summary(self)
+        if samples:
+            out["samples"] = sample_rows(self)
+        return out
+
+    def _repr_html_(self) -> str:
+        from pumplink.output.tables import force_html
+
+        return force_html(self)
+
     @property
     def passed(self) -> bool:
+        """True when no check fails (PASS or PASS with warnings); False for an infeasible design."""
         return bool(self.verdict is not None and self.verdict.passed)
+
+    @property
+    def outcome(self) -> str:
+        """'PASS', 'PASS with warnings' or 'FAIL' (docs/models.md §4)."""
+        return "FAIL" if self.verdict is None else str(self.verdict.outcome)
+
+    def passed_strict(self, strict: bool) -> bool:
+        """:attr:`passed`, or with ``strict`` (``--strict``) True only without warnings."""
+        return bool(self.verdict is not None and self.verdict.passed_strict(strict))
 
     @property
     def checks(self) -> tuple[Check, ...]:
@@ -335,15 +387,21 @@ def force_analysis(
         share = (
             100.0 * link / fly["energy_band"] if fly["energy_band"] > 0 else np.inf
         )  # J = 0: no band at all
-    verdict = assess(
+    verdict = judge(
         True,
         mean,
         verdict_peak,
         op.force_limit,
-        link_energy_share=share,
-        transmission_angle=np.degrees(d.transmission_angle),
-        power=mw * speed,
-        axle_height=spec.wheel.axle_height,
+        share,
+        d.transmission_angle,
+        mw * speed,
+        peak_rocker_rate(lk)
+        * top_speed(speed, op.speed_fluctuation if model.key in (FLYWHEEL, DYNAMICS) else None)
+        * spec.linkage.handle,
+        spec.linkage.handle,
+        syn.swing,
+        spec.linkage.D1,
+        spec.wheel.axle_height,
     )
     return ForceResult(
         d,
@@ -365,6 +423,54 @@ def force_analysis(
         model=model.label,
         link_energy=link,
         **fly,
+    )
+
+
+def top_speed(mean_speed, speed_fluctuation=None):
+    """The wheel's highest speed [rad/s]: the mean for the quasi-static model, ω̄(1 + δ/2) with the
+    flywheel (docs/models.md §2); the peak grip speed is judged at it (docs/models.md §4)."""
+    if speed_fluctuation is None:
+        return mean_speed
+    return mean_speed * (1.0 + 0.5 * np.asarray(speed_fluctuation, float))
+
+
+def judge(
+    feasible,
+    mean,
+    peak,
+    force_limit,
+    link_energy_share,
+    transmission_angle,
+    power,
+    grip_speed,
+    handle,
+    swing,
+    D1,
+    axle_height,
+) -> Verdict:
+    """The verdict of :func:`pumplink.verdict.assess` from a design's quantities, the same for
+    ``force``, ``speed``, ``batch`` and ``optimize`` (scalars or arrays over designs).
+
+    Parameters
+    ----------
+    transmission_angle : min(γmin, π − γmax) [rad];  power : Mw ω̄ [W];
+    grip_speed : peak grip speed at the mean wheel speed [m/s];  handle : H [m];
+    swing : [rad];  D1 : [m];  axle_height : [m] or None (no height checks);
+    link_energy_share : [%] or None (quasi-static model).
+    """
+    heights = None if axle_height is None else grip_heights(axle_height, D1, handle, swing)
+    return assess(
+        feasible,
+        mean,
+        peak,
+        force_limit,
+        link_energy_share=link_energy_share,
+        transmission_angle=np.degrees(transmission_angle),
+        power=power,
+        grip_speed=grip_speed,
+        stroke=grip_stroke(handle, swing),
+        grip_height=heights,
+        axle_height=axle_height,
     )
 
 
@@ -439,8 +545,8 @@ class SpeedSweep:
     """Least peak operator force against mean wheel speed for one design (flywheel model).
 
     Arrays over ``speed`` [rad/s]: ``energy_band`` [J], ``least_peak_force`` [N], ``power`` [W],
-    ``passed`` (the verdict at each speed).  ``spec_speed_passed``: the verdict at the spec's own
-    speed (what ``pumplink force`` says).
+    ``passed`` (no check fails at that speed); :meth:`spec_speed_passes`: the verdict at the spec's
+    own speed (what ``pumplink force`` says).
     """
 
     design: Design
@@ -456,7 +562,17 @@ class SpeedSweep:
     least_peak_force: np.ndarray
     power: np.ndarray
     passed: np.ndarray
-    spec_speed_passed: bool
+    verdict: Verdict | None = None  # every check at each speed (the spec's own speed last)
+    grip_speed: np.ndarray | None = None  # peak grip speed at each speed [m/s]
+
+    @property
+    def outcome(self) -> np.ndarray:
+        """'PASS', 'PASS with warnings' or 'FAIL' at each speed."""
+        return np.asarray(self.verdict.outcome)[:-1]
+
+    def spec_speed_passes(self, strict: bool = False) -> bool:
+        """The verdict at the spec's own speed (as ``pumplink force``), strict or not."""
+        return bool(np.asarray(self.verdict.passed_strict(strict))[-1])
 
 
 def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
@@ -492,7 +608,26 @@ def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
             lk, syn.dead_centre_extended, syn.dead_centre_folded, mw, op.force_limit, j, op.speed_fluctuation
         )
     )
-    passed = assess(True, mean, req, op.force_limit).passed
+    mpl = spec.linkage.mass_per_length or LINK_MASS_PER_METRE
+    link_1 = float(np.nanmax(_fw.link_energy(lk, _link_grid(), 1.0, mpl)))  # at 1 rad/s; scales as w^2
+    with np.errstate(divide="ignore"):
+        share = np.where(band > 0, 100.0 * link_1 * w * w / band, np.inf)
+    grip = peak_rocker_rate(lk) * top_speed(w, op.speed_fluctuation) * spec.linkage.handle
+    verdict = judge(
+        True,
+        mean,
+        req,
+        op.force_limit,
+        share,
+        d.transmission_angle,
+        mw * w,
+        grip,
+        spec.linkage.handle,
+        syn.swing,
+        spec.linkage.D1,
+        spec.wheel.axle_height,
+    )
+    passed = np.asarray(verdict.passed)
     return SpeedSweep(
         d,
         j,
@@ -507,7 +642,8 @@ def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
         req[:-1],
         mw * w[:-1],
         passed[:-1],
-        bool(passed[-1]),
+        verdict,
+        grip[:-1],
     )
 
 
@@ -672,3 +808,93 @@ def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
             "as an estimate, or lighten the handle (linkage.mass_per_length) or add wheel mass."
         )
     return tuple(effects), why
+
+
+# ----------------------------------------------------------------------------- advice after a FAIL
+@dataclass(frozen=True)
+class Suggestion:
+    """One change to one spec key and what it does to the verdict (:func:`suggest`)."""
+
+    key: str  # dotted spec key, e.g. "linkage.handle"
+    old: float
+    new: float
+    unit: str
+    peak_force: float  # the verdict's peak force after the change [N]
+    outcome: str  # PASS / PASS with warnings / FAIL after the change
+    level: int
+    excess: float  # how far the failing checks still are beyond their limits (0: none fail)
+    failing: tuple[str, ...] = ()  # keys of the checks that still fail
+
+
+#: The knobs :func:`suggest` turns: dotted key, unit, and the candidate changes, each a factor
+#: (relative) or, for the frame placement, a step [m].
+KNOBS = (
+    ("linkage.handle", "m", ("x", 0.85, 1.15)),
+    ("linkage.swing", "deg", ("x", 0.85, 1.15)),
+    ("linkage.rocker", "m", ("x", 0.85, 1.15)),
+    ("linkage.L1", "m", ("+", -0.05, 0.05)),
+    ("linkage.D1", "m", ("+", -0.05, 0.05)),
+    ("operator.speed", "deg/s", ("x", 0.75, 0.85, 1.15)),
+    ("wheel.mass", "kg", ("x", 1.5, 2.0)),
+    ("wheel.inertia", "kg m^2", ("x", 1.5, 2.0)),
+)
+
+
+def _excess(verdict: Verdict) -> float:
+    """Sum over failing checks of the relative distance beyond the fail limit (inf: unbounded)."""
+    total = 0.0
+    for c in verdict.failures:
+        v, lim = float(c.value), float(c.fail_limit)
+        if not math.isfinite(v):
+            return math.inf
+        total += (v - lim) / abs(lim) if c.relation == "<=" else (lim - v) / abs(lim)
+    return total
+
+
+def suggest(spec: PumpSpec, result: ForceResult, count: int = 2) -> list[Suggestion]:
+    """The ``count`` single changes to the spec that help a failing design most.
+
+    Each knob of :data:`KNOBS` that the spec has is changed alone, the design is analysed again
+    (the same model and checks as ``pumplink force``), and the changes are ranked by the
+    verdict they give, then by how far the failing checks remain beyond their limits (the sum of
+    relative excesses).  Only changes that improve on the spec are returned, at most one per key.
+    Empty for a design that does not fail.
+    """
+    from pumplink.spec import parse_spec, spec_to_dict
+
+    if result.verdict is None or result.passed:
+        return []
+    base = (int(result.verdict.level), _excess(result.verdict))
+    found: dict[str, Suggestion] = {}
+    for key, unit, (kind, *steps) in KNOBS:
+        table, field = key.split(".")
+        data = spec_to_dict(spec)
+        old = data.get(table, {}).get(field)
+        if old is None:
+            continue
+        for step in steps:
+            new = old * step if kind == "x" else old + step
+            new = float(f"{new:.4g}")
+            data[table][field] = new
+            try:
+                r = force_analysis(parse_spec(data), keep_samples=False, samples=0)
+            except (SpecError, InfeasibleDesign):
+                continue
+            if r.verdict is None:
+                continue
+            s = Suggestion(
+                key,
+                float(old),
+                new,
+                unit,
+                r.verdict_peak_force,
+                r.outcome,
+                int(r.verdict.level),
+                _excess(r.verdict),
+                tuple(c.key for c in r.verdict.failures),
+            )
+            if (s.level, s.excess) < base and (
+                key not in found or (s.level, s.excess) < (found[key].level, found[key].excess)
+            ):
+                found[key] = s
+    return sorted(found.values(), key=lambda s: (s.level, s.excess))[:count]

@@ -19,11 +19,33 @@ DEFAULT_EFFICIENCY = 0.75
 #: Largest acceptable operator force [N]: UK HSE push/pull guidance, about 100 N for men to keep
 #: a load moving (docs/models.md §4).
 FORCE_LIMIT_N = 100.0
-#: Sustained human power for hours [W] (human-power literature, docs/physics.md §5).
+#: Sustained human power for hours [W] (human-power literature, docs/physics.md §5): above it
+#: the verdict warns.
 SUSTAINED_POWER_W = 75.0
+#: Human power for about an hour, upper end [W] (the same literature: 50-150 W for an hour): above
+#: it no operator keeps the pump going and the design fails (docs/models.md §4).
+HOUR_POWER_W = 150.0
 #: Smallest transmission angle [deg]: the lever-mechanism textbook's permissible pressure angle of
 #: 40-45 deg for a rotating driven link (the crank), i.e. transmission within 45..135 deg.
 MIN_TRANSMISSION_DEG = 45.0
+#: Transmission angle below which the design fails [deg]: a pressure angle above 60 deg, beyond
+#: the largest of the lever-mechanism textbook's permissible 45-60 deg for linkages with only
+#: turning pairs; at 30 deg the coupler already carries twice the handle's tangential force, and
+#: joint friction grows with it until the linkage jams (docs/models.md §4).
+FAIL_TRANSMISSION_DEG = 30.0
+#: Peak grip speed above which the verdict warns [m/s]: trained rowers' handle speed in the
+#: drive, about 2.5 m/s, kept up for minutes, not hours (docs/models.md §4).
+GRIP_SPEED_WARN_M_S = 2.5
+#: Peak grip speed above which the design fails [m/s]: on a 1-1.4 m stroke the grip then
+#: accelerates at ~2 v^2 / stroke >= 23 m/s^2, and ~5 kg of hands and forearms need more than the
+#: 100 N force limit just to follow it (docs/models.md §4).
+GRIP_SPEED_FAIL_M_S = 4.0
+#: Ergonomic grip height above the ground over the swing [m]: efficient push height ~0.84 m, range
+#: 0.5-0.9 m (ergonomics studies, docs/physics.md §5); checked (warn) when the axle height is known.
+GRIP_HEIGHT_RANGE_M = (0.5, 0.9)
+#: Longest comfortable horizontal grip stroke [m]: the pump paper's prototype (Delta theta = 60 deg,
+#: H = 1 m) has 1.0 m; a longer stroke makes a standing operator step or lean (warn).
+STROKE_LIMIT_M = 1.0
 #: Wheel-axle height range of the pump paper [m] (axle 40-70 cm above the ground).
 AXLE_HEIGHT_RANGE_M = (0.40, 0.70)
 
@@ -46,3 +68,8 @@ LINK_ENERGY_LIMIT = 0.1
 ARM_MASS_FRACTION = 2.0 * (0.006 + 0.016 + 0.5 * 0.028)
 ARM_BODY_MASS_KG = 60.0
 DEFAULT_ARM_MASS = ARM_MASS_FRACTION * ARM_BODY_MASS_KG
+#: Permissible largest pressure angle [deg], (preferred, acceptable for preliminary design), of the
+#: lever-mechanism textbook (§2.4): 30-45 deg where the driven link slides (a prismatic pair), 45-60
+#: deg for mechanisms with revolute pairs only (docs/mechanisms.md §4).
+PERMISSIBLE_PRESSURE_SLIDING_DEG = (30.0, 45.0)
+PERMISSIBLE_PRESSURE_REVOLUTE_DEG = (45.0, 60.0)

@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -43,7 +44,6 @@ from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_stroke, synthe
 from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC, Conditions
 from pumplink.models import quasi_static as _qs
 from pumplink.spec import PumpSpec, parse_spec, spec_to_dict
-from pumplink.verdict import assess
 
 #: Keys that may vary (the [linkage] table of the spec), with their units.
 VARIABLE_UNITS = {"L1": "m", "D1": "m", "b": "m", "rocker": "m", "handle": "m", "swing": "deg"}
@@ -109,7 +109,8 @@ class Evaluation:
 
     ``dead_band_peak_force`` is the windowed peak outside the dead bands, ``least_peak_force`` the
     flywheel's (NaN unless the spec gives inertia); ``verdict_peak_force`` is the one that
-    decides, and ``passed`` the verdict of :func:`pumplink.verdict.assess` (as ``pumplink force``).
+    decides.  The verdicts of the spec's design and of the optimum are those of ``pumplink force``
+    (:attr:`OptimizationResult.spec_result`, :attr:`OptimizationResult.best_result`).
     """
 
     objective: np.ndarray
@@ -121,7 +122,6 @@ class Evaluation:
     grip_high: np.ndarray  # [m]
     stroke: np.ndarray  # [m]
     least_peak_force: np.ndarray  # [N]
-    passed: np.ndarray  # the verdict: feasible, mean and verdict peak within the limit
     flywheel: bool = False
 
     @property
@@ -145,6 +145,8 @@ class OptimizationResult:
     polished: bool
     seed: int | None
     message: str = field(default="")
+    spec_result: Any = None  # pumplink force's analysis of the spec's own design (ForceResult)
+    best_result: Any = None  # ... and of the optimum (its verdict decides the exit code)
 
 
 def parse_bounds(items: list[str] | None) -> dict[str, tuple[float, float]]:
@@ -340,7 +342,6 @@ def evaluate_designs(problem: Problem, x) -> Evaluation:
         )
     verdict = required if problem.flywheel else peak
     mean = np.where(ok, mean, np.nan)
-    passed = assess(ok, mean, verdict, op.force_limit).passed
     obj = verdict if problem.objective == "peak" else mean
     obj = np.where(np.isfinite(obj), obj, INFEASIBLE_OBJECTIVE)
     return Evaluation(
@@ -353,7 +354,6 @@ def evaluate_designs(problem: Problem, x) -> Evaluation:
         grip_high,
         stroke,
         required,
-        np.asarray(passed),
         problem.flywheel,
     )
 
@@ -378,8 +378,12 @@ def optimize(
     maxiter: int = 300,
     tol: float = 1e-8,
     polish: bool = True,
+    progress=None,
 ) -> OptimizationResult:
     """Global search (differential evolution, vectorised) then a local SLSQP polish.
+
+    ``progress``: optional callable given the number of generations done after each one (for a
+    progress bar; at most ``maxiter``).
 
     Raises
     ------
@@ -417,6 +421,7 @@ def optimize(
         tol=tol,
         polish=False,
         init="sobol",
+        callback=None if progress is None else (lambda intermediate_result: progress(1)),
     )
     x = np.asarray(res.x, float)
     e = evaluate_designs(problem, x[:, None])
@@ -476,10 +481,13 @@ def optimize(
         for k, v, lo, hi, s in zip(problem.names, x, problem.lower, problem.upper, span)
         if min(abs(v - lo), abs(hi - v)) <= 1e-6 * s
     )
+    from pumplink.analysis import force_analysis
+
+    best = _spec_with(problem, x)
     return OptimizationResult(
         problem,
         x,
-        _spec_with(problem, x),
+        best,
         e,
         at_spec,
         binding,
@@ -489,6 +497,9 @@ def optimize(
         polished,
         seed,
         str(res.message),
+        # the verdicts, exactly as pumplink force gives them on each spec (one verdict)
+        force_analysis(problem.spec, keep_samples=False, samples=0),
+        force_analysis(best, keep_samples=False, samples=0),
     )
 
 

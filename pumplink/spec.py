@@ -143,6 +143,12 @@ class Linkage(_Section):
         description="handle mass [kg], a uniform bar from the rocker pivot to the grip (full dynamics; "
         "default mass_per_length * max(handle, rocker))",
     )
+    hole_diameter: float | None = Field(
+        default=None,
+        ge=0.001,
+        le=0.1,
+        description="diameter of the pin holes on the workshop template [m] (default 0.010)",
+    )
 
 
 class Load(_Section):
@@ -353,6 +359,11 @@ def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
             f"{source}: empty spec; expected [wheel], [linkage], [load] "
             "(write an example with `pumplink init`)"
         )
+    if "mechanism" in data:
+        raise SpecError(
+            f"{source}: a piston-pump spec (mechanism = {data['mechanism']!r}) runs through "
+            "`pumplink force` and `pumplink batch` only (docs/piston-pump.md)"
+        )
     try:
         return PumpSpec.model_validate(data)
     except ValidationError as exc:
@@ -397,6 +408,11 @@ def read_toml(path: str | Path, expected: str = "a TOML spec") -> dict[str, Any]
 def spec_from_file_data(data: Any, path: str | Path) -> PumpSpec:
     """Validate the mapping read from ``path``; the name defaults to the file stem."""
     path = Path(path)
+    if isinstance(data, dict) and ("vary" in data or "base" in data):
+        raise SpecError(
+            f"{path}: this is a batch file (it has "
+            f"{'vary' if 'vary' in data else 'base'}); run it with `pumplink batch {path}`"
+        )
     if isinstance(data, dict) and data and "name" not in data:
         data = {"name": path.stem, **data}
     return parse_spec(data, source=str(path))
@@ -416,3 +432,50 @@ def load_spec(path: str | Path) -> PumpSpec:
 def spec_to_dict(spec: PumpSpec) -> dict[str, Any]:
     """The spec as a plain mapping for tomli-w (optional keys left out when unset)."""
     return spec.model_dump(exclude_none=True)
+
+
+#: The commented spec ``pumplink init`` writes: the default design with every key's unit and
+#: allowed range, and the optional keys commented out.  ``{name}`` is filled in.
+SPEC_TEMPLATE = """\
+# A pumplink spec: the rope pump's wheel, the four-bar linkage, the load and the operator.
+# Units: metres, degrees, newtons, kilograms, seconds.  Check it with:  pumplink force {path}
+# The keys are explained in docs/physics.md §1 (with a sketch of L1, D1 and b).
+name = "{name}"
+
+[wheel]
+radius = 0.25          # wheel radius rw [m], 0.001-5 (a 20" tyre rim: about 0.25)
+# axle_height = 0.55   # axle height above the ground [m], 0-5: adds grip-height checks
+# mass = 4.0           # wheel mass [kg] as a rim, J = mass rw^2: turns on the flywheel model,
+#                      # where the wheel speed decides the verdict (docs/models.md §2)
+# inertia = 0.25       # or the wheel's moment of inertia [kg m^2] instead of mass
+
+[linkage]
+L1 = 0.40              # rocker pivot beyond the stand, horizontally [m], 0-10
+D1 = 0.20              # rocker pivot below the axle [m], -10..10 (negative: above)
+b = 0.10               # width of the pump stand [m], 0-10
+rocker = 0.20          # rocker length l4 [m], 0.001-10
+handle = 1.00          # handle length H, rocker pivot to grip [m], 0.001-20
+swing = 60.0           # total handle swing [deg], 1-179, symmetric about vertical (not radians)
+# mass_per_length = 1.56  # handle and coupler tube [kg/m] (default: 3/4" steel tube)
+
+[load]
+rope_force = 45.0      # rope force at the wheel rim Fw [N], 0-10000; or instead:
+# head = 10.0          # pumping head [m], 0-200
+# pipe_diameter = 0.023  # rising-main bore [m], 0.001-0.5
+# efficiency = 0.75    # rope-pump efficiency [-], 0.05-1 (with head and pipe_diameter)
+# moving_mass = 4.0    # rope and water moving with the rim [kg] (flywheel model)
+
+[operator]
+force_limit = 100.0    # largest acceptable push/pull [N], 1-10000 (women: 70; UK HSE guidance)
+speed = 360.0          # wheel speed [deg/s], 0-7200 (360 deg/s = 60 rpm)
+dead_band = 20.0       # crank angle each side of a dead centre left to the wheel [deg], 0-89
+# speed_fluctuation = 0.2  # largest (w_max - w_min) / w_mean [-], 0-1 (flywheel model)
+"""
+
+
+def spec_template(name: str, path: str = "pump.toml") -> str:
+    """The commented spec of :data:`SPEC_TEMPLATE` with this design ``name`` (TOML-quoted)."""
+    import json
+
+    quoted = json.dumps(name, ensure_ascii=False)[1:-1]  # a TOML basic string is JSON-compatible
+    return SPEC_TEMPLATE.replace("{name}", quoted).replace("{path}", path)

@@ -1,19 +1,28 @@
-"""The one verdict: which checks a design passes, and PASS or FAIL, for one design or many.
+"""The one verdict: which checks a design passes, and PASS, PASS with warnings or FAIL.
 
 Every command that judges a design (``force``, ``speed``, ``batch``, ``optimize``) calls
-:func:`assess`; nothing else decides PASS/FAIL.  The checks and their limits, with sources, are in
-docs/models.md §4.  Inputs are floats or numpy arrays over designs (broadcast together); a
-check's ``passed`` is False for an infeasible design and for a NaN value.
+:func:`assess`; nothing else decides.  The checks, their limits and why each one fails or only
+warns are in docs/models.md §4.  Inputs are floats or numpy arrays over designs (broadcast
+together).  Each check has a *level* per design: 0 pass, 1 warn, 2 fail; the verdict's level
+is the largest (an infeasible design, and a NaN value, fail).
 
-Checks (``Check.key``), in the order they are reported:
+Checks (``Check.key``), in the order they are reported, with the level a value beyond each
+limit gets:
 
-* ``mean_force`` (fail): the constant push/pull that does the cycle's work <= the force limit.
-* ``peak_force`` (fail): the peak force of the model that decides (docs/models.md §1-2) <= limit.
-* ``link_energy_share`` (warn): the flywheel model's neglected link kinetic energy, as a share of
-  the energy band, <= ``LINK_ENERGY_LIMIT`` (docs/models.md §3).
-* ``transmission_angle`` (warn): min(γmin, 180° − γmax) >= ``MIN_TRANSMISSION_DEG``.
-* ``power`` (warn): Mw ω <= ``SUSTAINED_POWER_W``.
-* ``axle_height`` (warn): within the pump paper's ``AXLE_HEIGHT_RANGE_M``.
+* ``mean_force``: the constant push/pull that does the cycle's work; fail above the force limit.
+* ``peak_force``: the peak force of the model that decides (docs/models.md §1-2); fail above
+  the force limit.
+* ``link_energy_share``: the flywheel model's neglected link kinetic energy, as a share of the
+  energy band; warn above ``LINK_ENERGY_LIMIT`` (docs/models.md §3).
+* ``transmission_angle``: min(γmin, 180° − γmax); warn below ``MIN_TRANSMISSION_DEG``, fail below
+  ``FAIL_TRANSMISSION_DEG``.
+* ``power``: Mw ω̄; warn above ``SUSTAINED_POWER_W``, fail above ``HOUR_POWER_W``.
+* ``grip_speed``: the grip's peak speed at the mean wheel speed; warn above
+  ``GRIP_SPEED_WARN_M_S``, fail above ``GRIP_SPEED_FAIL_M_S``.
+* ``stroke``: the horizontal grip stroke; warn above ``STROKE_LIMIT_M``.
+* ``grip_height``: lowest and highest grip height over the swing (with the axle height); warn
+  outside ``GRIP_HEIGHT_RANGE_M``.
+* ``axle_height``: warn outside the pump paper's ``AXLE_HEIGHT_RANGE_M``.
 """
 
 from __future__ import annotations
@@ -22,43 +31,98 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pumplink.constants import AXLE_HEIGHT_RANGE_M, LINK_ENERGY_LIMIT, MIN_TRANSMISSION_DEG, SUSTAINED_POWER_W
+from pumplink.constants import (
+    AXLE_HEIGHT_RANGE_M,
+    FAIL_TRANSMISSION_DEG,
+    GRIP_HEIGHT_RANGE_M,
+    GRIP_SPEED_FAIL_M_S,
+    GRIP_SPEED_WARN_M_S,
+    HOUR_POWER_W,
+    LINK_ENERGY_LIMIT,
+    MIN_TRANSMISSION_DEG,
+    STROKE_LIMIT_M,
+    SUSTAINED_POWER_W,
+)
 
-FAIL = "fail"
-WARN = "warn"
+#: Levels of a check or a verdict.
+PASS, WARN, FAIL = 0, 1, 2
+#: A level's word in JSON/CSV (``result`` of a check).
+RESULTS = ("pass", "warn", "fail")
+#: A verdict's words, by level.
+OUTCOMES = ("PASS", "PASS with warnings", "FAIL")
 
 
 @dataclass(frozen=True)
 class Check:
-    """One verdict line: ``value`` compared with ``limit`` by ``relation`` ('<=' or '>=').
+    """One verdict line: ``value`` against ``warn_limit`` / ``fail_limit`` by ``relation``.
 
-    Scalars for one design, arrays over designs otherwise.  ``severity`` is ``"fail"`` (decides
-    the verdict) or ``"warn"`` (reported only).
+    ``relation`` is '<=' or '>=' (per design where a check has a limit on each side, like the
+    heights); a limit of None does not apply to this check.  ``level`` is 0 pass, 1 warn, 2 fail.
+    Scalars for one design, arrays over designs otherwise.
     """
 
     key: str
     value: np.ndarray | float
-    limit: np.ndarray | float
     relation: np.ndarray | str
     unit: str
-    severity: str
-    passed: np.ndarray | bool
+    warn_limit: np.ndarray | float | None
+    fail_limit: np.ndarray | float | None
+    level: np.ndarray | int
+
+    @property
+    def passed(self) -> np.ndarray | bool:
+        """True where this check does not fail the design (it may warn)."""
+        return _scalar(np.asarray(self.level) < FAIL)
+
+    @property
+    def result(self) -> np.ndarray | str:
+        """'pass', 'warn' or 'fail' (per design)."""
+        return _scalar(np.asarray(RESULTS, dtype=object)[np.asarray(self.level)])
+
+    @property
+    def limit(self) -> np.ndarray | float:
+        """The limit the value was judged against: the fail limit where it failed, else the warn
+        limit (the fail limit for a check without one)."""
+        if self.warn_limit is None:
+            return self.fail_limit
+        if self.fail_limit is None:
+            return self.warn_limit
+        return _scalar(np.where(np.asarray(self.level) == FAIL, self.fail_limit, self.warn_limit))
 
 
 @dataclass(frozen=True)
 class Verdict:
-    """The checks in report order and the verdict: feasible and every ``fail`` check passed."""
+    """The checks in report order and the verdict's level (0 PASS, 1 PASS with warnings, 2 FAIL)."""
 
     checks: tuple[Check, ...]
-    passed: np.ndarray | bool
+    level: np.ndarray | int
 
     def __getitem__(self, key: str) -> Check:
         return next(c for c in self.checks if c.key == key)
 
     @property
+    def passed(self) -> np.ndarray | bool:
+        """True where no check fails (PASS or PASS with warnings)."""
+        return _scalar(np.asarray(self.level) < FAIL)
+
+    def passed_strict(self, strict: bool = True) -> np.ndarray | bool:
+        """With ``strict``, True only where no check fails or warns (``--strict``)."""
+        return _scalar(np.asarray(self.level) == PASS) if strict else self.passed
+
+    @property
+    def outcome(self) -> np.ndarray | str:
+        """'PASS', 'PASS with warnings' or 'FAIL' (per design)."""
+        return _scalar(np.asarray(OUTCOMES, dtype=object)[np.asarray(self.level)])
+
+    @property
     def warnings(self) -> tuple[Check, ...]:
-        """The ``warn`` checks that did not pass (scalar verdicts)."""
-        return tuple(c for c in self.checks if c.severity == WARN and not c.passed)
+        """The checks that warn (one design)."""
+        return tuple(c for c in self.checks if c.level == WARN)
+
+    @property
+    def failures(self) -> tuple[Check, ...]:
+        """The checks that fail (one design)."""
+        return tuple(c for c in self.checks if c.level == FAIL)
 
 
 def _scalar(x):
@@ -66,20 +130,34 @@ def _scalar(x):
     return a.item() if a.ndim == 0 else a
 
 
-def _check(key, value, limit, relation, unit, severity, feasible, ok=None) -> Check:
+def _beyond(value, limit, relation):
+    """True where ``value`` is on the wrong side of ``limit`` (NaN value: True)."""
     with np.errstate(invalid="ignore"):
-        if ok is None:
-            ok = np.asarray(value) <= limit if relation == "<=" else np.asarray(value) >= limit
-        passed = np.asarray(feasible, bool) & ok
-    return Check(
-        key,
-        _scalar(np.asarray(value, float)),
-        _scalar(np.asarray(limit, float)),
-        _scalar(relation),
-        unit,
-        severity,
-        _scalar(passed),
-    )
+        ok = np.where(np.asarray(relation) == "<=", value <= limit, value >= limit)
+    return ~ok
+
+
+def _check(key, value, relation, unit, feasible, warn=None, fail=None) -> Check:
+    v = np.asarray(value, float)
+    level = np.zeros(np.broadcast_shapes(v.shape, np.shape(feasible)), int)
+    if warn is not None:
+        level = np.where(_beyond(v, warn, relation), WARN, level)
+    if fail is not None:
+        level = np.where(_beyond(v, fail, relation), FAIL, level)
+    level = np.where(np.asarray(feasible, bool), level, FAIL)
+
+    def lim(x):
+        return None if x is None else _scalar(np.asarray(x, float))
+
+    return Check(key, _scalar(v), _scalar(relation), unit, lim(warn), lim(fail), _scalar(level))
+
+
+def _range(key, value, bounds, unit, feasible) -> Check:
+    """A warn check of ``value`` inside ``bounds`` = (lo, hi): the limit shown is the side it is on."""
+    lo, hi = bounds
+    v = np.asarray(value, float)
+    low = v < lo
+    return _check(key, v, np.where(low, ">=", "<="), unit, feasible, warn=np.where(low, lo, hi))
 
 
 def assess(
@@ -91,9 +169,12 @@ def assess(
     link_energy_share=None,
     transmission_angle=None,
     power=None,
+    grip_speed=None,
+    stroke=None,
+    grip_height=None,
     axle_height=None,
 ) -> Verdict:
-    """Decide the checks and the verdict (PASS iff feasible and every ``fail`` check passes).
+    """Decide the checks and the verdict.
 
     Parameters
     ----------
@@ -103,47 +184,62 @@ def assess(
     force_limit : the operator's force limit [N].
     link_energy_share : neglected link kinetic energy / energy band [%] (flywheel model only).
     transmission_angle : min(γmin, 180° − γmax) [deg].
-    power : Mw ω [W].
+    power : Mw ω̄ [W].
+    grip_speed : the grip's peak speed at the mean wheel speed [m/s].
+    stroke : horizontal grip stroke 2 H sin(Δθ/2) [m].
+    grip_height : (lowest, highest) grip height above the ground over the swing [m]; only known
+        with the axle height.
     axle_height : wheel-axle height above the ground [m].
 
     Optional checks are left out when their input is None.
     """
     checks = [
-        _check("mean_force", mean_force, force_limit, "<=", "N", FAIL, feasible),
-        _check("peak_force", peak_force, force_limit, "<=", "N", FAIL, feasible),
+        _check("mean_force", mean_force, "<=", "N", feasible, fail=force_limit),
+        _check("peak_force", peak_force, "<=", "N", feasible, fail=force_limit),
     ]
     if link_energy_share is not None:
         checks.append(
             _check(
-                "link_energy_share", link_energy_share, 100.0 * LINK_ENERGY_LIMIT, "<=", "%", WARN, feasible
+                "link_energy_share", link_energy_share, "<=", "%", feasible, warn=100.0 * LINK_ENERGY_LIMIT
             )
         )
     if transmission_angle is not None:
         checks.append(
             _check(
-                "transmission_angle", transmission_angle, MIN_TRANSMISSION_DEG, ">=", "deg", WARN, feasible
+                "transmission_angle",
+                transmission_angle,
+                ">=",
+                "deg",
+                feasible,
+                warn=MIN_TRANSMISSION_DEG,
+                fail=FAIL_TRANSMISSION_DEG,
             )
         )
     if power is not None:
-        checks.append(_check("power", power, SUSTAINED_POWER_W, "<=", "W", WARN, feasible))
-    if axle_height is not None:
-        lo, hi = AXLE_HEIGHT_RANGE_M
-        h = np.asarray(axle_height, float)
-        low = h < lo
+        checks.append(_check("power", power, "<=", "W", feasible, warn=SUSTAINED_POWER_W, fail=HOUR_POWER_W))
+    if grip_speed is not None:
         checks.append(
             _check(
-                "axle_height",
-                h,
-                np.where(low, lo, hi),
-                np.where(low, ">=", "<="),
-                "m",
-                WARN,
+                "grip_speed",
+                grip_speed,
+                "<=",
+                "m/s",
                 feasible,
-                ok=(h >= lo) & (h <= hi),
+                warn=GRIP_SPEED_WARN_M_S,
+                fail=GRIP_SPEED_FAIL_M_S,
             )
         )
-    passed = np.asarray(feasible, bool)
+    if stroke is not None:
+        checks.append(_check("stroke", stroke, "<=", "m", feasible, warn=STROKE_LIMIT_M))
+    if grip_height is not None:
+        low, high = (np.asarray(h, float) for h in grip_height)
+        lo, hi = GRIP_HEIGHT_RANGE_M
+        # the side that is out of range (the low end first), else the highest point
+        value = np.where(low < lo, low, high)
+        checks.append(_range("grip_height", value, (lo, hi), "m", feasible))
+    if axle_height is not None:
+        checks.append(_range("axle_height", axle_height, AXLE_HEIGHT_RANGE_M, "m", feasible))
+    level = np.where(np.asarray(feasible, bool), PASS, FAIL)
     for c in checks:
-        if c.severity == FAIL:
-            passed = passed & c.passed
-    return Verdict(tuple(checks), _scalar(passed))
+        level = np.maximum(level, c.level)
+    return Verdict(tuple(checks), _scalar(level))

@@ -21,8 +21,10 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def specs() -> list[Path]:
-    """Every spec and batch file shipped in configs/ and examples/ (sorted)."""
-    return sorted(ROOT.glob("configs/**/*.toml")) + sorted(ROOT.glob("examples/*.toml"))
+    """Every spec and batch file shipped in configs/ and examples/ (sorted); not the mechanism
+    files of configs/mechanisms/ (input of `pumplink structure`, not pump specs)."""
+    found = sorted(ROOT.glob("configs/**/*.toml")) + sorted(ROOT.glob("examples/*.toml"))
+    return [p for p in found if "mechanisms" not in p.relative_to(ROOT).parts]
 
 
 def commands() -> dict[str, list[str]]:

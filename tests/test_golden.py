@@ -27,23 +27,41 @@ CASES = {
         "configs/village-10m.toml",
         "configs/women-operators-6m.toml",
     ],
+    "force_village_summary.txt": ["force", "configs/village-10m.toml", "--summary"],
+    "batch_configs.txt": ["batch", "configs/"],
+    "transmission_default.txt": ["transmission"],
 }
 
 
-@pytest.mark.parametrize("name", sorted(CASES))
-def test_rendered_table_matches_golden(name):
-    env = {**os.environ, "NO_COLOR": "1", "COLUMNS": "200"}
-    out = subprocess.run(
-        [sys.executable, "-m", "pumplink", *CASES[name]],
+def _run(args, columns: int):
+    env = {**os.environ, "NO_COLOR": "1", "COLUMNS": str(columns)}
+    return subprocess.run(
+        [sys.executable, "-m", "pumplink", *args],
         cwd=ROOT,
         env=env,
         capture_output=True,
         text=True,
         check=False,
     )
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_rendered_table_matches_golden(name):
+    out = _run(CASES[name], 80)
     assert out.returncode == 0, out.stderr
     assert "\x1b[" not in out.stdout  # no ANSI escapes when piped / NO_COLOR
     path = GOLDEN / name
     if os.environ.get("PUMPLINK_REGEN_GOLDEN"):
         path.write_text(out.stdout, encoding="utf-8")
     assert out.stdout == path.read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("columns", [80, 120])
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_tables_fit_the_terminal_without_truncation(name, columns):
+    """A designer's terminal: every line fits, and no value is cut to '…' (Rich's truncation)."""
+    out = _run(CASES[name], columns)
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.splitlines()
+    assert max(len(line) for line in lines) <= columns
+    assert "…" not in out.stdout.replace("0.1 … 0.4", "")

@@ -1,8 +1,9 @@
 """The one verdict (pumplink.verdict.assess): hand-checkable cases, arrays against scalars, and
 every command's verdict coming from it.
 
-Expected outcomes follow from the definitions in docs/models.md §4 (a check passes iff the
-design is feasible and value <= limit, or >= for the transmission angle), worked by hand.
+Expected outcomes follow from the definitions in docs/models.md §4 (a check fails where the
+design is infeasible or the value is beyond its fail limit, warns beyond its warn limit; the
+verdict is the worst), worked by hand.
 """
 
 import math
@@ -33,35 +34,70 @@ def test_pass_needs_feasible_and_every_fail_check():
 
 
 def test_warnings_never_fail_a_design():
+    # every value beyond its warn limit but inside its fail limit (docs/models.md §4)
     v = assess(
         True,
         50.0,
         80.0,
         100.0,
-        transmission_angle=12.0,
-        power=154.0,
-        axle_height=0.9,
-        link_energy_share=230.0,
+        transmission_angle=40.0,  # warn below 45, fail below 30
+        power=120.0,  # warn above 75, fail above 150
+        grip_speed=3.0,  # warn above 2.5, fail above 4
+        stroke=1.2,  # warn above 1.0
+        grip_height=(0.6, 1.1),  # warn above 0.9
+        axle_height=0.9,  # warn above 0.7
+        link_energy_share=230.0,  # warn above 10 %
     )
-    assert v.passed is True
-    assert [c.key for c in v.warnings] == ["link_energy_share", "transmission_angle", "power", "axle_height"]
+    assert v.passed is True and v.level == 1 and v.outcome == "PASS with warnings"
+    assert v.passed_strict() is False and v.passed_strict(False) is True
+    assert [c.key for c in v.warnings] == [
+        "link_energy_share",
+        "transmission_angle",
+        "power",
+        "grip_speed",
+        "stroke",
+        "grip_height",
+        "axle_height",
+    ]
     assert v["transmission_angle"].relation == ">=" and v["transmission_angle"].limit == 45.0
     assert v["power"].limit == 75.0 and v["link_energy_share"].limit == 10.0
+    assert v["grip_height"].value == 1.1 and v["grip_height"].limit == 0.9
 
 
 @pytest.mark.parametrize(
-    ("height", "limit", "relation", "ok"),
+    ("key", "value", "fail_limit"),
     [
-        (0.30, 0.40, ">=", False),
-        (0.40, 0.70, "<=", True),
-        (0.55, 0.70, "<=", True),
-        (0.70, 0.70, "<=", True),
-        (0.71, 0.70, "<=", False),
+        ("transmission_angle", 12.0, 30.0),  # the issue's 11.65 deg case: a jam risk, fails
+        ("power", 154.0, 150.0),  # more than a person gives for an hour
+        ("grip_speed", 7.6, 4.0),  # nobody follows a handle at 7.6 m/s
     ],
 )
-def test_axle_height_names_the_limit_it_breaks(height, limit, relation, ok):
+def test_checks_with_a_fail_limit_fail_the_design(key, value, fail_limit):
+    v = assess(True, 50.0, 80.0, 100.0, **{key: value})
+    assert v.passed is False and v.outcome == "FAIL"
+    c = v[key]
+    assert c.result == "fail" and c.limit == fail_limit and [f.key for f in v.failures] == [key]
+
+
+def test_a_clean_design_is_a_plain_pass():
+    v = assess(True, 35.0, 86.0, 100.0, transmission_angle=53.4, power=70.7, grip_speed=2.0, stroke=1.0)
+    assert v.level == 0 and v.outcome == "PASS" and v.passed_strict() is True and v.warnings == ()
+
+
+@pytest.mark.parametrize(
+    ("height", "limit", "relation", "result"),
+    [
+        (0.30, 0.40, ">=", "warn"),
+        (0.40, 0.70, "<=", "pass"),
+        (0.55, 0.70, "<=", "pass"),
+        (0.70, 0.70, "<=", "pass"),
+        (0.71, 0.70, "<=", "warn"),
+    ],
+)
+def test_axle_height_names_the_limit_it_breaks(height, limit, relation, result):
     c = assess(True, 1.0, 1.0, 100.0, axle_height=height)["axle_height"]
-    assert (c.limit, c.relation, c.passed) == (limit, relation, ok)
+    assert (c.limit, c.relation, c.result) == (limit, relation, result)
+    assert c.passed  # a warning never fails the design
 
 
 def test_optional_checks_are_left_out():
@@ -94,10 +130,10 @@ def test_arrays_decide_as_each_design_alone(rows):
 
 
 def test_every_command_decides_through_assess(monkeypatch, tmp_path):
-    """force, speed, batch and optimize all call pumplink.verdict.assess: replace it with one that
-    fails every design and each of them reports FAIL."""
+    """force, speed, batch and optimize all decide through pumplink.verdict.assess (via
+    pumplink.analysis.judge): replace it with one that fails every design and each of them
+    reports FAIL."""
     import pumplink.analysis
-    import pumplink.batch.runner
     import pumplink.optimize
     import pumplink.verdict as verdict
     from pumplink.spec import default_spec
@@ -106,10 +142,9 @@ def test_every_command_decides_through_assess(monkeypatch, tmp_path):
 
     def never(feasible, *a, **k):
         v = real(feasible, *a, **k)
-        return verdict.Verdict(v.checks, np.zeros_like(np.asarray(v.passed)) if np.ndim(v.passed) else False)
+        return verdict.Verdict(v.checks, np.full(np.shape(v.level), verdict.FAIL) if np.ndim(v.level) else 2)
 
-    for module in (pumplink.analysis, pumplink.batch.runner, pumplink.optimize):
-        monkeypatch.setattr(module, "assess", never)
+    monkeypatch.setattr(pumplink.analysis, "assess", never)
     spec = default_spec()
     assert real(True, 1.0, 1.0, 100.0).passed  # the real one passes such a design
     assert not pumplink.analysis.force_analysis(spec, keep_samples=False).passed
@@ -118,7 +153,7 @@ def test_every_command_decides_through_assess(monkeypatch, tmp_path):
     chunk = batch.evaluate_chunk(batch.spec_batch(spec, "default"), 0, 1, 0)
     assert not chunk.passed.any()
     problem = pumplink.optimize.make_problem(spec)
-    e = pumplink.optimize.evaluate_designs(problem, np.array([[0.2], [0.4], [0.2], [60.0]]))
-    assert not e.passed.any()
+    result = pumplink.optimize.optimize(problem, maxiter=30, polish=False)
+    assert not result.best_result.passed and not result.spec_result.passed
     fly = spec.model_copy(update={"wheel": spec.wheel.model_copy(update={"mass": 4.0})})
     assert not pumplink.analysis.speed_sweep(fly, [360.0]).passed.any()

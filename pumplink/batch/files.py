@@ -47,7 +47,11 @@ from pumplink.spec import PumpSpec, load_spec, parse_spec, read_toml, spec_from_
 #: Checks ``--fail-on`` can select (the default selects all three, as ``pumplink force`` does).
 #: ``peak`` is the verdict's peak: the flywheel's least peak force where the variant gives
 #: inertia, else the windowed peak outside the dead bands.
-FAIL_CHECKS = ("mean", "peak", "infeasible")
+#: ``checks`` is every other check that can fail a design (transmission angle, power, grip
+#: speed); ``warnings`` makes a warning fail the run too (as ``--strict``).  ``all`` is the
+#: verdict: the first four.
+FAIL_CHECKS = ("mean", "peak", "infeasible", "checks", "warnings")
+VERDICT_CHECKS = FAIL_CHECKS[:4]
 
 
 #: Spec keys that give the inertia and so turn on the flywheel model (``PumpSpec.inertia``).
@@ -340,17 +344,20 @@ def load_inputs(paths: Sequence[str | Path]) -> list[Batch]:
 
 
 def parse_fail_on(text: str) -> tuple[str, ...]:
-    """``--fail-on``: comma-separated subset of mean, peak, infeasible; ``all`` or ``none``."""
+    """``--fail-on``: comma-separated subset of :data:`FAIL_CHECKS`; ``all`` (the verdict: a
+    variant that FAILs) or ``none``."""
     parts = [p.strip() for p in text.split(",") if p.strip()]
-    if parts == ["none"]:
-        return ()
-    if parts == ["all"]:
-        return FAIL_CHECKS
+    if "none" in parts:
+        parts = [p for p in parts if p != "none"]
+        if not parts:
+            return ()
+    if "all" in parts:
+        parts = [p for p in parts if p != "all"] + list(VERDICT_CHECKS)
     bad = [p for p in parts if p not in FAIL_CHECKS]
     if bad or not parts:
         raise SpecError(
             f"--fail-on {text!r}: unknown check {bad[0] if bad else '(empty)'!r}; give a comma-separated "
-            f"list of {', '.join(FAIL_CHECKS)}, or all, or none"
+            f"list of {', '.join(FAIL_CHECKS)}, or all (the verdict), or none"
         )
     return tuple(c for c in FAIL_CHECKS if c in parts)
 

@@ -15,12 +15,20 @@ from typing import Any
 import numpy as np
 
 from pumplink import spec
+from pumplink.analysis import judge, top_speed
 from pumplink.batch.files import Batch, axis_indices
-from pumplink.mechanisms.fourbar import grip_stroke, infeasibility_reason, synthesize
+from pumplink.constants import LINK_MASS_PER_METRE
+from pumplink.mechanisms.fourbar import (
+    FourBar,
+    grip_stroke,
+    infeasibility_reason,
+    peak_rocker_rate,
+    synthesize,
+)
 from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC, Conditions
 from pumplink.models import flywheel as _fw
 from pumplink.models import quasi_static as _qs
-from pumplink.verdict import assess
+from pumplink.verdict import FAIL, WARN, Verdict
 
 #: The ``model`` column's words for the two models a batch variant can be decided by.
 FLYWHEEL_LABEL = MODELS[FLYWHEEL].label
@@ -82,6 +90,14 @@ class Chunk:
     speed_fluctuation: np.ndarray  # delta_allow [-]
     least_peak_force: np.ndarray  # least peak force with the flywheel [N] (inf: no energy band)
     min_passing_speed: np.ndarray  # [rad/s] (inf: no speed passes)
+    grip_speed: np.ndarray | None = None  # peak grip speed at the wheel's top speed [m/s]
+    stroke: np.ndarray | None = None  # horizontal grip stroke [m]
+    verdict: Verdict | None = None  # every check, per variant (:func:`pumplink.verdict.assess`)
+
+    @property
+    def level(self) -> np.ndarray:
+        """The verdict per variant: 0 PASS, 1 PASS with warnings, 2 FAIL."""
+        return np.asarray(self.verdict.level)
 
     @property
     def verdict_peak_force(self) -> np.ndarray:
@@ -92,7 +108,9 @@ class Chunk:
         return self.stop - self.start
 
     def failed(self, fail_on: Sequence[str]) -> np.ndarray:
-        """True where a variant fails one of the checks selected by ``--fail-on``."""
+        """True where a variant fails one of the checks selected by ``--fail-on``: ``mean``,
+        ``peak``, ``infeasible``, ``checks`` (any other check that fails) and ``warnings`` (any
+        check that warns, as ``--strict``)."""
         out = np.zeros(len(self), bool)
         if "infeasible" in fail_on:
             out |= ~self.feasible
@@ -100,6 +118,12 @@ class Chunk:
             out |= self.feasible & ~self.mean_ok
         if "peak" in fail_on:
             out |= self.feasible & ~self.peak_ok
+        for c in self.verdict.checks:
+            level = np.asarray(c.level)
+            if "checks" in fail_on and c.key not in ("mean_force", "peak_force"):
+                out |= self.feasible & (level == FAIL)
+            if "warnings" in fail_on:
+                out |= self.feasible & (level == WARN)
         return out
 
 
@@ -205,7 +229,46 @@ def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batc
         dce, dcf = syn.dead_centre_extended[r], syn.dead_centre_folded[r]
         required[r] = MODELS[FLYWHEEL].peak_force(part, dce, dcf, mw[r], _rows(cond, r))
         passing[r] = _fw.min_passing_speed(part, dce, dcf, mw[r], limit[r], j[r], delta[r])
-    verdict = assess(feasible, mean, np.where(fly, required, peak), limit)
+    # The rest of the verdict's inputs, as pumplink force computes them (analysis.force_analysis).
+    share = None
+    if fly.any():
+        mpl = (
+            _field(batch, cols, "linkage.mass_per_length", n)
+            if batch.given("linkage.mass_per_length")
+            else None
+        )
+        mpl = np.full(n, LINK_MASS_PER_METRE) if mpl is None else np.nan_to_num(mpl, nan=LINK_MASS_PER_METRE)
+        link = np.full(n, np.nan)
+        grid = np.arange(720) * (np.pi / 360)  # analysis._link_grid
+        for s0 in range(0, rows.size, FLYWHEEL_DESIGNS // 8):
+            r = rows[s0 : s0 + FLYWHEEL_DESIGNS // 8]
+            part = FourBar(*(np.asarray(v)[r][:, None] for v in lk.parameters))
+            e = _fw.link_energy(part, grid[None, :], speed[r][:, None], mpl[r][:, None])
+            link[r] = np.nanmax(e, axis=1)
+        band_j = _fw.energy_band(j, speed, delta)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            share = np.where(fly, np.where(band_j > 0, 100.0 * link / band_j, np.inf), np.nan)
+    rate = np.full(n, np.nan)
+    if ok.size:
+        rate[ok] = peak_rocker_rate(sub)
+    top = np.where(fly, top_speed(speed, np.where(fly, delta, 0.0)), speed)
+    grip_speed = rate * top * handle
+    axle = _field(batch, cols, "wheel.axle_height", n) if batch.given("wheel.axle_height") else None
+    tmin, tmax = np.asarray(syn.transmission_min), np.asarray(syn.transmission_max)
+    verdict = judge(
+        feasible,
+        mean,
+        np.where(fly, required, peak),
+        limit,
+        share,
+        np.minimum(tmin, np.pi - tmax),
+        power,
+        grip_speed,
+        handle,
+        swing,
+        D1,
+        axle,
+    )
     mean_ok, peak_ok = verdict["mean_force"].passed, verdict["peak_force"].passed
 
     reasons: list = [None] * n
@@ -244,6 +307,9 @@ def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batc
         speed_fluctuation=delta,
         least_peak_force=required,
         min_passing_speed=passing,
+        grip_speed=grip_speed,
+        stroke=grip_stroke(handle, swing),
+        verdict=verdict,
     )
 
 

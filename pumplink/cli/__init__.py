@@ -13,7 +13,23 @@ import signal
 import sys
 
 # Importing a command module registers it; this order is the order of `pumplink --help`.
-from pumplink.cli import batch, force, init, methods, optimize, speed, synth, transmission  # noqa: F401, I001
+from pumplink.cli import (  # noqa: F401, I001 -- in the order of `pumplink --help`
+    synth,
+    force,
+    speed,
+    init,
+    batch,
+    optimize,
+    draw,
+    template,
+    report,
+    methods,
+    transmission,
+    slider,
+    slotted,
+    rocker,
+    structure,
+)
 from pumplink.cli.common import app, settings
 from pumplink.errors import PumplinkError
 

@@ -8,7 +8,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, app
+from pumplink.cli.common import Format, StrictOpt, app
 from pumplink.errors import SpecError
 
 
@@ -55,14 +55,13 @@ def batch(
         str,
         typer.Option(
             "--fail-on",
-            help="Checks that make the run fail (exit 1): any of "
-            "mean,peak,infeasible; or all, or none. peak is the "
-            "verdict's peak: the least peak force with the flywheel "
-            "where the variant gives inertia (wheel.mass, "
-            "wheel.inertia or load.moving_mass), else the peak "
-            "outside the dead bands.",
+            help="What makes the run fail (exit 1): any of mean, peak, infeasible, checks (any "
+            "other check that fails: transmission angle, power, grip speed), warnings; all (= "
+            "a variant whose verdict is FAIL) or none. peak is the verdict's peak: the flywheel's "
+            "least peak force where the variant gives inertia, else the peak outside the dead bands.",
         ),
-    ] = "mean,peak,infeasible",
+    ] = "all",
+    strict: StrictOpt = False,
     chunk: Annotated[
         Optional[str],
         typer.Option(
@@ -81,10 +80,16 @@ def batch(
 
     One row per variant (lengths, feasibility, forces, verdict) and a summary (counts, lowest
     peak force).  The verdict is that of pumplink force: the flywheel model where the variant
-    gives inertia, else quasi-static with the dead band (the model column says which).  Exit 0 if
-    no variant fails a --fail-on check, 1 if one does, 2 for bad input.
+    gives inertia, else quasi-static with the dead band (the model column says which): PASS, PASS
+    with warnings or FAIL, with each check's result in its own column.  Exit 0 if no variant
+    fails a --fail-on check (default: no variant FAILs; --strict: none warns either), 1 if one
+    does, 2 for bad input.
 
     Example: [bold]pumplink batch configs/ --junit report.xml[/]
+
+    Piston-pump specs and batch files (mechanism = "crank-slider") run alone, without --junit.
+
+    Example: [bold]pumplink batch configs/grids/piston-bore.toml[/]
     """
     import functools
     import os
@@ -97,7 +102,7 @@ def batch(
     from pumplink.output.formats import progress
 
     t0 = time.perf_counter()
-    sel = _batch.parse_fail_on(fail_on)
+    sel = _batch.parse_fail_on(fail_on + (",warnings" if strict else ""))
     k_n = _batch.parse_chunk(chunk)
     if fmt.value == "table" and out is not None:
         raise SpecError("--out writes rows: give --format csv or --format json with it")
@@ -111,6 +116,10 @@ def batch(
                     else f"folder {path.parent} does not exist"
                 )
             )
+    from pumplink.cli import piston
+
+    if piston.is_piston_input(inputs):  # mechanism = "crank-slider": docs/piston-pump.md
+        piston.batch(inputs, fmt.value, out, set(sel), junit, chunk)
     batches = _batch.load_inputs(inputs)
     tasks = _batch.plan(batches, k_n)
     total = sum(e - s for _, s, e in tasks)

@@ -35,6 +35,16 @@ FormatOpt = Annotated[Format, typer.Option("--format", "-f", help="Output: table
 
 SAMPLE_LIMIT_KEPT = 1_000_000
 
+StrictOpt = Annotated[
+    bool,
+    typer.Option(
+        "--strict", help="Warnings fail too: exit 1 unless the verdict is a clean PASS (for CI gates)."
+    ),
+]
+
+#: The spec a command uses when none is given and it exists in the working directory.
+LOCAL_SPEC = Path("pump.toml")
+
 
 def _version(value: bool) -> None:
     if value:
@@ -59,3 +69,16 @@ def load_specs(paths: list[Path]):
     from pumplink.spec import load_spec
 
     return [load_spec(p) for p in paths]
+
+
+def spec_or_default(path: Path | None):
+    """The spec at ``path``; without one, ``./pump.toml`` if it exists (saying so on stderr), else
+    the built-in design."""
+    from pumplink.spec import default_spec, load_spec
+
+    if path is not None:
+        return load_spec(path)
+    if LOCAL_SPEC.is_file():
+        typer.echo(f"using ./{LOCAL_SPEC} (give a spec file to use another)", err=True)
+        return load_spec(LOCAL_SPEC)
+    return default_spec()

@@ -8,7 +8,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import SAMPLE_LIMIT_KEPT, Format, FormatOpt, app
+from pumplink.cli.common import SAMPLE_LIMIT_KEPT, Format, FormatOpt, StrictOpt, app, spec_or_default
 from pumplink.errors import SpecError
 
 
@@ -16,7 +16,10 @@ from pumplink.errors import SpecError
 def force(
     spec: Annotated[
         Optional[Path],
-        typer.Argument(help="TOML pump spec; omit for the built-in default design.", show_default=False),
+        typer.Argument(
+            help="TOML pump spec; omit it to use ./pump.toml if present, else the built-in design.",
+            show_default=False,
+        ),
     ] = None,
     speed: Annotated[
         Optional[float],
@@ -68,6 +71,7 @@ def force(
             show_default=False,
         ),
     ] = None,
+    strict: StrictOpt = False,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Operator force over the crank cycle, the checks and the 100 N verdict.
@@ -79,18 +83,25 @@ def force(
     operator.speed_fluctuation: the speed changes the answer.  Without it the
     force is [bold]quasi-static[/] (Eq. 3 of the pump paper), infinite at the
     two dead centres, so the peak is taken outside ±operator.dead_band of
-    them, exactly, whatever --samples. Exit 0 if the design passes, 1 if it
-    fails, is infeasible or --verify disagrees.
+    them, exactly, whatever --samples.  The verdict is PASS, PASS with
+    warnings or FAIL (docs/models.md §4); after a FAIL the one or two single
+    changes that help most are printed.  Exit 0 on PASS and PASS with
+    warnings (1 with --strict), 1 on FAIL, an infeasible design or a
+    --verify disagreement.
 
     Example: [bold]pumplink force pump.toml --speed 360 --at 90 --at 270 --format json[/]
 
     Example: [bold]pumplink force examples/well-12m-flywheel.toml --speed 540 --explain --verify[/]
+
+    A spec with mechanism = "crank-slider" is a piston pump turned by a hand crank
+    (docs/piston-pump.md): the same verdict on the handle force.
+
+    Example: [bold]pumplink force examples/piston-pump.toml --summary[/]
     """
     import math
 
     from pumplink.analysis import force_analysis
     from pumplink.output.tables import render_force
-    from pumplink.spec import default_spec, load_spec
 
     if at and any(not math.isfinite(a) for a in at):
         raise SpecError(
@@ -102,6 +113,12 @@ def force(
             f"--samples {samples} keeps too many rows (at most {SAMPLE_LIMIT_KEPT:,}); "
             "add --summary to stream them"
         )
+    from pumplink.piston import is_piston_file
+
+    if spec is not None and is_piston_file(spec):  # mechanism = "crank-slider": docs/piston-pump.md
+        from pumplink.cli import piston
+
+        piston.force(spec, speed, samples, at, summary, plot, explain, verify, fmt.value)
     if plot is not None:
         from pumplink.output.charts import check_path, pyplot
 
@@ -109,7 +126,7 @@ def force(
         pyplot()  # fail early (exit 2) when matplotlib is missing
     from pumplink.output.formats import progress
 
-    s = load_spec(spec) if spec is not None else default_spec()
+    s = spec_or_default(spec)
     if model is not None and model not in ("quasi-static", "flywheel", "dynamics"):
         raise SpecError(f"--model {model!r} is not a model; give quasi-static, flywheel or dynamics")
     if verify and s.inertia is None:
@@ -148,7 +165,10 @@ def force(
             f"verify: nothing to integrate; no finite peak force keeps the wheel turning "
             f"(energy band J·ω̄²·δ = {result.energy_band:.3g} J)\n"
         )
-    render_force(result, fmt.value, summary=summary, extra=extra)
+    from pumplink.analysis import suggest
+
+    advice = suggest(s, result) if result.design.feasible else []
+    render_force(result, fmt.value, summary=summary, extra=extra, strict=strict, advice=advice)
     if fmt.value != "json":  # the reports follow the table; with CSV on stdout they go to stderr
         from pumplink.output.tables import render_explain, render_verify
 
@@ -163,4 +183,4 @@ def force(
 
         force_curve(result, curve(result), plot)
         sys.stderr.write(f"wrote {plot}\n")
-    raise typer.Exit(0 if result.passed and agrees else 1)
+    raise typer.Exit(0 if result.passed_strict(strict) and agrees else 1)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Optional
 
 import typer
 
@@ -17,17 +17,37 @@ def init(
     path: Annotated[Path, typer.Argument(help="Where to write the spec ('-' for stdout).")] = Path(
         "pump.toml"
     ),
+    example: Annotated[
+        Optional[str],
+        typer.Option(
+            "--example",
+            help="Write one of the shipped examples instead (e.g. village-10m); --example list names them.",
+            show_default=False,
+        ),
+    ] = None,
     overwrite: Annotated[bool, typer.Option("--force", help="Overwrite an existing file.")] = False,
 ) -> None:
-    """Write the built-in default spec (a realistic prototype) as TOML to edit.
+    """Write a commented spec to edit (or a shipped example).
+
+    The built-in prototype design, every key commented with its unit and allowed range, and
+    the optional keys (axle height, wheel mass for the flywheel model, load from head and
+    pipe) commented out.  The design's name is the file's name.
 
     Example: [bold]pumplink init my-pump.toml[/] then edit it and run [bold]pumplink force my-pump.toml[/]
+
+    Example: [bold]pumplink init village.toml --example village-10m[/]
     """
-    import tomli_w
+    from pumplink.examples import example_names, example_text
+    from pumplink.spec import spec_template
 
-    from pumplink.spec import DEFAULT_SPEC
-
-    text = tomli_w.dumps(DEFAULT_SPEC)
+    if example == "list":
+        for name, title in example_names().items():
+            typer.echo(f"{name:24} {title}")
+        return
+    if example is not None:
+        text = example_text(example)
+    else:
+        text = spec_template("pump" if str(path) == "-" else path.stem, str(path))
     if str(path) == "-":
         sys.stdout.write(text)
         return

@@ -59,7 +59,7 @@ def methods(
     crank parallel to the rocker, crank along the frame line).  Exit 0 if no method returns a
     silently wrong value, 1 otherwise.
 
-    Example: [bold]pumplink methods --plot docs/methods.png --samples-plot sampling.svg --format json[/]
+    Example: [bold]pumplink methods --plot methods.png --samples-plot sampling.svg --format json[/]
     """
     import numpy as np
 

@@ -8,7 +8,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, app, load_specs
+from pumplink.cli.common import Format, FormatOpt, StrictOpt, app, load_specs
 from pumplink.errors import SpecError
 
 
@@ -16,6 +16,11 @@ from pumplink.errors import SpecError
 class Objective(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
     peak = "peak"
     mean = "mean"
+
+
+def res_passes(result, strict: bool) -> bool:
+    """The optimum's verdict decides the exit code (with --strict, warnings fail too)."""
+    return result.best_result.passed_strict(strict)
 
 
 @app.command()
@@ -61,16 +66,18 @@ def optimize(
     overwrite: Annotated[
         bool, typer.Option("--force", help="Overwrite the --write file if it exists.")
     ] = False,
+    strict: StrictOpt = False,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Search frame placement, rocker and swing for the least operator force.
 
     Differential evolution over the vectorised force kernel, then a local polish, subject to: a
     crank-rocker exists, transmission angle >= 45°, grip height and stroke in the ergonomic
-    ranges.  The verdict is that of pumplink force (the model key says which model decided).
-    Exit 0 if the optimum passes the force limit, 1 if it fails or nothing is feasible.
+    ranges.  The spec's own design and the optimum are then judged exactly as pumplink force
+    judges them: PASS, PASS with warnings or FAIL.  Exit 0 if the optimum passes (1 with
+    --strict if it warns), 1 if it fails or nothing is feasible.
 
-    Example: [bold]pumplink optimize configs/prototype.toml --vary D1=0:0.8 --vary swing=40:90 --write best.toml[/]
+    Example: [bold]pumplink optimize configs/prototype.toml --write best.toml[/]
     """  # noqa: E501 -- typer prints this docstring as the --help text, keeping its line breaks
     from pumplink.optimize import (
         GRIP_HEIGHT_M,
@@ -90,9 +97,12 @@ def optimize(
     if write is not None and write.exists() and not overwrite:
         raise SpecError(f"{write} exists; choose another path or add --force to overwrite it")
     problem = make_problem(load_specs([spec])[0], bounds, objective.value, axle_height, gh, st)
-    result = run(problem, seed=seed)
+    from pumplink.output.formats import progress
+
+    with progress(300, "optimize (generations)") as advance:
+        result = run(problem, seed=seed, progress=advance)
     row = optimize_row(result)
-    render_optimize(row, fmt.value)
+    render_optimize(row, fmt.value, strict=strict)
     if write is not None:
         import tomli_w
 
@@ -103,4 +113,4 @@ def optimize(
         except OSError as exc:
             raise SpecError(f"{write}: cannot be written ({exc.strerror})") from None
         typer.echo(f"wrote {write}; check it with: pumplink force {write}", err=True)
-    raise typer.Exit(0 if row["optimum"]["passes_force_limit"] else 1)
+    raise typer.Exit(0 if res_passes(result, strict) else 1)

@@ -8,7 +8,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, app, load_specs
+from pumplink.cli.common import Format, FormatOpt, StrictOpt, app, load_specs
 from pumplink.errors import SpecError
 
 
@@ -35,16 +35,18 @@ def speed(
             show_default=False,
         ),
     ] = None,
+    strict: StrictOpt = False,
     fmt: FormatOpt = Format.table,
 ) -> None:
-    """Least peak operator force against mean wheel speed, and the slowest speed
-    that passes.
+    """Least peak operator force against mean wheel speed, and the verdict at each speed.
 
     The flywheel model (see [bold]pumplink force --help[/]): a faster wheel
     stores more energy (J·ω̄²·δ) to carry the linkage through the dead
     centres, so the operator's peak force falls toward the mean force, while
-    the power Mw·ω̄ rises.  Exit 0 if the spec's own speed passes, 1 if not, 2
-    if the spec gives no inertia.
+    the power Mw·ω̄ and the grip speed rise.  Each speed gets the verdict of
+    pumplink force (PASS, PASS with warnings, FAIL).  Exit 0 if the spec's
+    own speed passes (1 with --strict if it warns), 1 if not, 2 if the spec
+    gives no inertia.
 
     Example: [bold]pumplink speed examples/well-12m-flywheel.toml --plot speed.png[/]
     """
@@ -67,11 +69,15 @@ def speed(
         pyplot()
     s = load_specs([spec])[0]
     speeds = [float(f"{v:.12g}") for v in lo + step * np.arange(n)]  # 420, not 420.00000000000006
-    sw = speed_sweep(s, speeds)
+    from pumplink.output.formats import progress
+
+    with progress(1, "speed sweep", delay=0.0 if n > 200 else 1.0) as advance:
+        sw = speed_sweep(s, speeds)
+        advance(1)
     render_speed(sw, fmt.value)
     if plot is not None:
         from pumplink.output.charts import speed_chart
 
         speed_chart(sw, plot)
         sys.stderr.write(f"wrote {plot}\n")
-    raise typer.Exit(0 if sw.spec_speed_passed else 1)
+    raise typer.Exit(0 if sw.spec_speed_passes(strict) else 1)

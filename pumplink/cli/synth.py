@@ -19,7 +19,7 @@ def synth(
 
     One row per spec (Table 1 of the pump paper).  Exit 1 if any design is infeasible.
 
-    Example: [bold]pumplink synth configs/prototype.toml configs/*.toml --format json[/]
+    Example: [bold]pumplink synth configs/prototype.toml configs/village-10m.toml --format json[/]
     """
     from pumplink.analysis import design
     from pumplink.output.tables import render_designs

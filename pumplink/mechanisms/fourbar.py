@@ -206,6 +206,62 @@ def grip_stroke(handle, swing):
     return 2.0 * handle * np.sin(0.5 * swing)
 
 
+def grip_heights(axle_height, D1, handle, swing):
+    """Lowest and highest grip height above the ground over the swing [m] (docs/physics.md §1).
+
+    The rocker pivot is D1 below the axle and the handle swings symmetrically about the
+    vertical, so the grip is lowest at the ends of the swing, H cos(swing/2) above the pivot,
+    and highest, H above it, when the handle is upright.
+
+    Parameters
+    ----------
+    axle_height : wheel-axle height above the ground [m];  D1 : pivot depth below the axle [m];
+    handle : H [m];  swing : total handle swing [rad].
+    """
+    pivot = np.asarray(axle_height, float) - D1
+    return pivot + handle * np.cos(0.5 * np.asarray(swing, float)), pivot + handle
+
+
+#: Crank angles per revolution on which :func:`peak_rocker_rate` starts its search.
+RATE_GRID = 180
+
+
+def _abs_rate(theta, px, py, c, k, r, h, br):
+    return np.abs(_kinematic_state(FourBar(px, py, c, k, r, h, br), theta, 1.0).rocker_rate)
+
+
+def peak_rocker_rate(lk: FourBar):
+    """Largest |d theta4 / d theta2| over a revolution [-]: the grip's peak speed is this times
+    the wheel speed times H (docs/physics.md §4).
+
+    A crank-rocker's rocker rate is smooth and finite over the whole revolution (it is zero at
+    the dead centres), so the maximum is interior: found on a grid of :data:`RATE_GRID` points
+    and refined with scipy's bracketing minimiser to solver tolerance.  NaN for an infeasible
+    design.
+    """
+    from scipy.optimize.elementwise import find_minimum  # lazy: keeps start-up fast
+
+    scalar, geom = per_design(lk)
+    step = 2.0 * np.pi / RATE_GRID
+    theta = np.arange(RATE_GRID) * step
+    g2 = [p[:, None] for p in geom]
+    with np.errstate(all="ignore"):
+        val = _abs_rate(theta[None, :], *g2)
+        val = np.where(np.isnan(val), -np.inf, val)
+        j = np.argmax(val, axis=1)
+        mid = theta[j]
+        res = find_minimum(
+            lambda x, *a: -_abs_rate(x, *a),
+            (mid - step, mid, mid + step),
+            args=tuple(geom),
+            tolerances=dict(xatol=1e-13, xrtol=1e-15),
+        )
+    best = np.take_along_axis(val, j[:, None], 1)[:, 0]
+    peak = np.where(res.success, np.maximum(-res.f_x, best), best)
+    peak = np.where(np.isfinite(geom[2]) & np.isfinite(peak), peak, np.nan)
+    return float(peak[0]) if scalar else peak
+
+
 def transmission_range(frame, crank, coupler, rocker):
     """Extreme transmission angles of a crank-rocker [rad] (docs/crank-rocker.md, Eq. 4-5) of the
     optimal-transmission paper.

@@ -26,6 +26,7 @@ from pumplink.batch import FLYWHEEL_LABEL as FLYWHEEL
 from pumplink.batch import QUASI_STATIC_LABEL as QUASI_STATIC
 from pumplink.batch import Batch, Chunk, variant_name, variant_names
 from pumplink.errors import SpecError
+from pumplink.output.tables import CHECK_LABELS
 
 #: Per-variant columns after the name, the source and the varied keys (CSV order).  The
 #: flywheel scene's columns are named as in ``pumplink force --format json``
@@ -34,9 +35,23 @@ SCENE_COLUMNS = (
     "model",
     "inertia_kg_m2",
     "speed_fluctuation",
-    "required_peak_force_N",
+    "least_peak_force_N",
     "min_passing_speed_deg_s",
 )
+#: The verdict's checks (``pumplink.verdict``), one column each: pass, warn, fail, or empty where
+#: the check does not apply to the variant (``check_<key>``).
+CHECK_KEYS = (
+    "mean_force",
+    "peak_force",
+    "link_energy_share",
+    "transmission_angle",
+    "power",
+    "grip_speed",
+    "stroke",
+    "grip_height",
+    "axle_height",
+)
+CHECK_COLUMNS = tuple(f"check_{k}" for k in CHECK_KEYS)
 FIXED_COLUMNS = (
     "frame_length",
     "crank_length",
@@ -48,12 +63,18 @@ FIXED_COLUMNS = (
     "transmission_max_deg",
     "mean_force_N",
     "peak_force_N",
+    "dead_band_peak_force_N",
     "sampled_peak_force_N",
     "power_W",
+    "grip_speed_m_s",
+    "stroke_m",
     "force_limit_N",
     *SCENE_COLUMNS,
+    "verdict",
     "pass",
     "failed",
+    "warnings",
+    *CHECK_COLUMNS,
 )
 #: Rows shown by ``--format table``: all if the run has at most this many, else the failures.
 TABLE_ROWS = 100
@@ -76,12 +97,46 @@ def _floats(a) -> list:
     return [v if math.isfinite(v) else None for v in np.asarray(a, float).tolist()]
 
 
-def _failed_text(c: Chunk) -> list[str]:
-    feas, m, p = c.feasible.tolist(), c.mean_ok.tolist(), c.peak_ok.tolist()
-    out = []
-    for f, mo, po in zip(feas, m, p):
-        out.append("infeasible" if not f else ";".join(x for x, ok in (("mean", mo), ("peak", po)) if not ok))
+#: Words of a check's level in the ``check_<key>`` columns.
+_RESULTS = np.array(["pass", "warn", "fail"], dtype=object)
+#: Words of the verdict's level.
+_OUTCOMES = np.array(["PASS", "PASS with warnings", "FAIL"], dtype=object)
+
+
+def _check_results(c: Chunk) -> dict[str, list[str]]:
+    """``check_<key>`` columns: pass / warn / fail, '' where the check does not apply."""
+    n = len(c)
+    out = {col: [""] * n for col in CHECK_COLUMNS}
+    for ch in c.verdict.checks:
+        words = _RESULTS[np.broadcast_to(np.asarray(ch.level), (n,))]
+        out[f"check_{ch.key}"] = np.where(c.feasible, words, "").tolist()
     return out
+
+
+def _listed(c: Chunk, level: int) -> list[str]:
+    """Per variant, the keys of the checks at ``level`` joined by ';' ('infeasible' for failures
+    of an infeasible design)."""
+    n = len(c)
+    keys = [[] for _ in range(n)]
+    for ch in c.verdict.checks:
+        hit = np.broadcast_to(np.asarray(ch.level) == level, (n,)) & c.feasible
+        for i in np.nonzero(hit)[0].tolist():
+            keys[i].append(ch.key)
+    if level == 2:  # the force checks by their --fail-on names, as before the other checks existed
+        short = {"mean_force": "mean", "peak_force": "peak"}
+        return [
+            "infeasible" if not f else ";".join(short.get(x, x) for x in k)
+            for f, k in zip(c.feasible.tolist(), keys)
+        ]
+    return [";".join(k) for k in keys]
+
+
+def _failed_text(c: Chunk) -> list[str]:
+    return _listed(c, 2)
+
+
+def _outcomes(c: Chunk) -> list[str]:
+    return _OUTCOMES[np.broadcast_to(c.level, (len(c),))].tolist()
 
 
 def _models(c: Chunk) -> list[str]:
@@ -101,17 +156,23 @@ def chunk_columns(batch: Batch, c: Chunk) -> dict[str, list]:
         "transmission_min_deg": _floats(np.degrees(c.transmission_min)),
         "transmission_max_deg": _floats(np.degrees(c.transmission_max)),
         "mean_force_N": _floats(c.mean_force),
-        "peak_force_N": _floats(c.dead_band_peak_force),
+        "peak_force_N": _floats(c.verdict_peak_force),
+        "dead_band_peak_force_N": _floats(c.dead_band_peak_force),
         "sampled_peak_force_N": _floats(c.sampled_peak),
         "power_W": _floats(c.power),
+        "grip_speed_m_s": _floats(c.grip_speed),
+        "stroke_m": _floats(c.stroke),
         "force_limit_N": _floats(c.force_limit),
         "model": _models(c),
         "inertia_kg_m2": _floats(c.inertia),
         "speed_fluctuation": _floats(c.speed_fluctuation),
-        "required_peak_force_N": _floats(c.least_peak_force),
+        "least_peak_force_N": _floats(c.least_peak_force),
         "min_passing_speed_deg_s": _floats(np.degrees(c.min_passing_speed)),
+        "verdict": _outcomes(c),
         "pass": c.passed.tolist(),
         "failed": _failed_text(c),
+        "warnings": _listed(c, 1),
+        **_check_results(c),
     }
 
 
@@ -176,9 +237,12 @@ def csv_text(batch: Batch, c: Chunk, vkeys: Sequence[str]) -> str:
         _csv_floats(np.degrees(c.transmission_min)),
         _csv_floats(np.degrees(c.transmission_max)),
         _csv_floats(c.mean_force),
+        _csv_floats(c.verdict_peak_force),
         _csv_floats(c.dead_band_peak_force),
         _csv_floats(c.sampled_peak),
         _csv_floats(c.power),
+        _csv_floats(c.grip_speed),
+        _csv_floats(c.stroke),
         _csv_floats(c.force_limit),
     ]
     if c.flywheel.any():
@@ -191,7 +255,8 @@ def csv_text(batch: Batch, c: Chunk, vkeys: Sequence[str]) -> str:
         ]
     else:  # quasi-static only: no scene columns to format
         cols += [[_csv_cell(QUASI_STATIC)] * n] + [[""] * n] * 4
-    cols += [[bools[x] for x in c.passed.tolist()], _failed_text(c)]
+    cols += [[_csv_cell(o) for o in _outcomes(c)], [bools[x] for x in c.passed.tolist()], _failed_text(c)]
+    cols += [_listed(c, 1), *_check_results(c).values()]
     return "".join(line + "\n" for line in map(",".join, zip(*cols)))
 
 
@@ -204,7 +269,7 @@ def junit_text(batch: Batch, c: Chunk, fail_on: Sequence[str]) -> tuple[str, int
     """The chunk's JUnit testcases, with the number of failures and skipped."""
     cols = {
         "mean_force_N": _floats(c.mean_force),
-        "peak_force_N": _floats(c.dead_band_peak_force),
+        "peak_force_N": _floats(c.verdict_peak_force),
         "force_limit_N": _floats(c.force_limit),
     }
     cls = f"pumplink.batch.{Path(batch.source).stem}"
@@ -305,6 +370,18 @@ def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequ
                     if pk is None
                     else f"peak force {pk:.2f} N > limit {lim[i]:g} N"
                 )
+        for ch in c.verdict.checks:
+            level = int(np.broadcast_to(np.asarray(ch.level), (len(c),))[i])
+            if ch.key in ("mean_force", "peak_force") or level == 0:
+                continue
+            if (level == 2 and "checks" in fail_on) or (level == 1 and "warnings" in fail_on):
+                value = float(np.broadcast_to(np.asarray(ch.value), (len(c),))[i])
+                limit = ch.fail_limit if level == 2 else ch.warn_limit
+                limit = float(np.broadcast_to(np.asarray(limit), (len(c),))[i])
+                rel = np.broadcast_to(np.asarray(ch.relation), (len(c),))[i]
+                side = ">" if rel == "<=" else "<"
+                word = "fails" if level == 2 else "warns"
+                bad.append(f"{ch.key} {value:.4g} {ch.unit} {side} {limit:g} {ch.unit} ({word})")
         out.append(("; ".join(bad) if bad else None, None))
     return out
 
@@ -314,6 +391,7 @@ def _new_summary(total: int, fail_on, samples, chunk) -> dict[str, Any]:
     return {
         "variants": total,
         "pass": 0,
+        "pass_with_warnings": 0,
         "fail": 0,
         "infeasible": 0,
         "failed_selected": 0,
@@ -328,6 +406,7 @@ def _update_summary(s: dict, batch: Batch, c: Chunk, fail_on) -> None:
     """Add a chunk to the counts; ``best`` is the variant with the lowest verdict peak
     (``peak_force_N`` there is the peak that decided: the flywheel's where ``model`` is flywheel)."""
     s["pass"] += int(c.passed.sum())
+    s["pass_with_warnings"] += int((c.level == 1).sum())
     s["infeasible"] += int((~c.feasible).sum())
     s["fail"] += int((c.feasible & ~c.passed).sum())
     s["failed_selected"] += int(c.failed(fail_on).sum())
@@ -341,6 +420,7 @@ def _update_summary(s: dict, batch: Batch, c: Chunk, fail_on) -> None:
                 "model": FLYWHEEL if c.flywheel[i] else QUASI_STATIC,
                 "peak_force_N": float(peak[i]),
                 "mean_force_N": float(c.mean_force[i]),
+                "verdict": str(_OUTCOMES[int(np.broadcast_to(c.level, (len(c),))[i])]),
                 "pass": bool(c.passed[i]),
             }
 
@@ -409,8 +489,15 @@ def write_stream(
                 pick = np.nonzero(show)[0][: TABLE_ROWS - len(table_rows)].tolist()
                 if pick:
                     cc = chunk_columns(b, c)
+                    vals = c.values.tolist()
                     table_rows.extend(
-                        {"name": cc["name"][i], **{k: cc[k][i] for k in FIXED_COLUMNS}} for i in pick
+                        {
+                            "name": cc["name"][i],
+                            "label": b.label,
+                            "vary": dict(zip(b.keys, vals[i])),
+                            **{k: cc[k][i] for k in FIXED_COLUMNS},
+                        }
+                        for i in pick
                     )
             if jfile is not None:
                 if c.batch != current:
@@ -460,7 +547,13 @@ def summary_line(s: dict[str, Any], elapsed: float | None = None, wrote: Sequenc
 
 
 def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
-    """``--format table``: the rows (or the failures of a large run) and the summary."""
+    """``--format table``: the rows (or the failures of a large run) and the summary.
+
+    Laid out for an 80-column terminal: a row number, the design (when several specs are run),
+    one short column per varied key, the forces, the smallest transmission angle, the peak grip
+    speed and the verdict; what fails or warns is listed below the table by row number.
+    """
+    from rich import box
     from rich.table import Table
 
     from pumplink.output.formats import console
@@ -475,61 +568,67 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
             else f"Failing variants (first {len(rows)} of {s['failed_selected']}; "
             "all rows with --format csv --out FILE)"
         )
-        t = Table(title=title, title_justify="left")
-        mixed = any(r["model"] == FLYWHEEL for r in rows)  # the model column only when a flywheel decides
-        heads = (
-            "variant",
-            "crank l2 [m]",
-            "coupler l3 [m]",
-            "K",
-            "γ min–max [deg]",
-            "mean [N]",
-            "peak [N]",
-            *(("model",) if mixed else ()),
-            "limit [N]",
-            "power [W]",
-            "result",
-        )
-        for h in heads:
-            t.add_column(
-                h.replace("[", "\\["), justify="left" if h in ("variant", "model", "result") else "right"
-            )
+        keys: list[str] = []
         for r in rows:
+            keys.extend(k for k in r["vary"] if k not in keys)
+        several = len({r["label"] for r in rows}) > 1 or not keys
+        fly = any(r["model"] == FLYWHEEL for r in rows)
+        t = Table(
+            title=title,
+            title_justify="left",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
+            caption="peak: the verdict's peak force"
+            + (" (with the flywheel where the spec gives inertia)" if fly else " outside the dead bands")
+            + "; γ smallest transmission angle; v peak grip speed; warn: PASS with warnings",
+            caption_justify="left",
+        )
+        t.add_column("#", justify="right")
+        for k in keys:
+            t.add_column(escape_markup(k.split(".")[-1]), justify="right")
+        for h in ("peak [N]", "mean [N]", "γ [°]", "v [m/s]", "verdict"):
+            t.add_column(h.replace("[", "\\["), justify="left" if h == "verdict" else "right")
+        notes = []
+        for n, r in enumerate(rows, 1):
             if not r["feasible"]:
-                res = f"[red]infeasible[/]: {escape_markup(r['reason'])}"
+                verdict = "[red]infeasible[/]"
+                notes.append((n, f"infeasible: {r['reason']}"))
             else:
-                res = "[green]pass[/]" if r["pass"] else f"[red]FAIL[/] ({r['failed']})"
-            fly = r["model"] == FLYWHEEL
-            # the peak that decided: with the flywheel (None there: infinite), else outside the dead bands
-            peak = (
-                _f(r["required_peak_force_N"], "{:.1f}", none="∞" if r["feasible"] else "—")
-                if fly
-                else _f(r["peak_force_N"], "{:.1f}")
-            )
-            model = (("flywheel" if fly else "dead band"),) if mixed else ()
+                verdict = {"PASS": "[green]PASS[/]", "FAIL": "[red]FAIL[/]"}.get(
+                    r["verdict"], "[yellow]warn[/]"
+                )
+                parts = []
+                if r["failed"]:
+                    long = {"mean": "mean_force", "peak": "peak_force"}
+                    parts.append(
+                        "fails: " + ", ".join(CHECK_LABELS[long.get(k, k)] for k in r["failed"].split(";"))
+                    )
+                if r["warnings"]:
+                    parts.append("warns: " + ", ".join(CHECK_LABELS[k] for k in r["warnings"].split(";")))
+                if parts:
+                    notes.append((n, "; ".join(parts)))
+            peak = _f(r["peak_force_N"], "{:.1f}", none="∞" if r["feasible"] else "—")
+            tmin, tmax = r["transmission_min_deg"], r["transmission_max_deg"]
+            gamma = None if tmin is None or tmax is None else min(tmin, 180.0 - tmax)
             t.add_row(
-                escape_markup(r["name"]),
-                _f(r["crank_length"], "{:.4f}"),
-                _f(r["coupler_length"], "{:.4f}"),
-                _f(r["time_ratio"], "{:.4f}"),
-                f"{_f(r['transmission_min_deg'], '{:.1f}')}–{_f(r['transmission_max_deg'], '{:.1f}')}",
-                _f(r["mean_force_N"], "{:.1f}"),
+                str(n),
+                *(_f(r["vary"].get(k), "{:g}", none="") for k in keys),
                 peak,
-                *model,
-                _f(r["force_limit_N"], "{:g}"),
-                _f(r["power_W"], "{:.1f}"),
-                res,
+                _f(r["mean_force_N"], "{:.1f}"),
+                _f(gamma, "{:.1f}"),
+                _f(r["grip_speed_m_s"], "{:.2f}"),
+                verdict,
             )
         c.print(t)
-        if mixed:
-            c.print(
-                "peak: the least peak force with the flywheel where the model is flywheel (the spec gives "
-                "inertia), else the peak outside the dead bands",
-                markup=False,
-            )
+        if several:
+            designs = [(n, r["label"]) for n, r in enumerate(rows, 1)]
+            c.print("designs: " + "; ".join(f"{k} {v}" for k, v in _ranges(designs)), markup=False)
+        for k, v in _ranges(notes):
+            c.print(f"{k}: {v}", markup=False)
     best = s["best"]
     c.print(
-        f"{s['variants']} variants: [green]{s['pass']} pass[/], [red]{s['fail']} fail[/], "
+        f"{s['variants']} variants: [green]{s['pass'] - s['pass_with_warnings']} pass[/], "
+        f"[yellow]{s['pass_with_warnings']} pass with warnings[/], [red]{s['fail']} fail[/], "
         f"{s['infeasible']} infeasible; {s['failed_selected']} failing "
         f"--fail-on {','.join(s['fail_on']) or 'none'}"
     )
@@ -537,8 +636,20 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
         fly = " with the flywheel" if best["model"] == FLYWHEEL else ""
         c.print(
             f"lowest peak force{fly}: {escape_markup(best['name'])} — peak {best['peak_force_N']:.1f} N, "
-            f"mean {best['mean_force_N']:.1f} N ({'pass' if best['pass'] else 'FAIL'})"
+            f"mean {best['mean_force_N']:.1f} N ({best['verdict']})"
         )
+
+
+def _ranges(items: list[tuple[int, str]]) -> list[tuple[str, str]]:
+    """Consecutive row numbers with the same text joined: [(1, a), (2, a), (4, b)] ->
+    [('1-2', a), ('4', b)]."""
+    out: list[list] = []
+    for n, text in items:
+        if out and out[-1][2] == text and out[-1][1] == n - 1:
+            out[-1][1] = n
+        else:
+            out.append([n, n, text])
+    return [(f"{a}" if a == b else f"{a}-{b}", text) for a, b, text in out]
 
 
 def escape_markup(text: str | None) -> str:

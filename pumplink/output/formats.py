@@ -10,6 +10,7 @@ import contextlib
 import csv
 import json
 import math
+import os
 import sys
 import time
 from collections.abc import Callable, Iterable, Iterator
@@ -21,7 +22,9 @@ FORMATS = ("table", "json", "csv")
 
 
 def num(x) -> float | None:
-    """A JSON-safe float: None for NaN/inf."""
+    """A JSON-safe float: None for None, NaN and inf."""
+    if x is None:
+        return None
     x = float(x)
     return x if math.isfinite(x) else None
 
@@ -99,13 +102,30 @@ def write_csv(rows: Iterable[dict[str, Any]], out) -> None:
     w.writerows(rows)
 
 
+#: Width of tables and text when the output is not a terminal and ``COLUMNS`` is not set.
+DEFAULT_WIDTH = 80
+
+
+def width() -> int | None:
+    """``COLUMNS`` when set to a sane width (20-1000), else None."""
+    try:
+        w = int(os.environ.get("COLUMNS", ""))
+    except ValueError:
+        return None
+    return w if 20 <= w <= 1000 else None
+
+
 def console(file=None):
-    """A Rich console: colour only on a terminal (and never with NO_COLOR), wide when piped."""
+    """A Rich console: colour only on a terminal (and never with NO_COLOR); the terminal's width,
+    else ``COLUMNS``, else 80 columns when piped."""
     from rich.console import Console
 
     file = file or sys.stdout
     tty = hasattr(file, "isatty") and file.isatty()
-    return Console(file=file, highlight=False, width=None if tty else 200, soft_wrap=False)
+    w = width()
+    if w is None and not tty:
+        w = DEFAULT_WIDTH
+    return Console(file=file, highlight=False, width=w, soft_wrap=False)
 
 
 def fmt(x, fmt="{:.3f}", none="—") -> str:

@@ -63,53 +63,81 @@ def force_summary(r: ForceResult) -> dict[str, Any]:
             "inertia_kg_m2": None if r.inertia is None else num(r.inertia),
             "speed_fluctuation": r.speed_fluctuation,
             "energy_band_J": None if r.energy_band is None else num(r.energy_band),
-            "required_peak_force_N": None if r.least_peak_force is None else num(r.least_peak_force),
+            "least_peak_force_N": None if r.least_peak_force is None else num(r.least_peak_force),
             "min_passing_speed_deg_s": None if r.min_passing_speed is None else deg(r.min_passing_speed),
             "wheel_speed_range_deg_s": _speed_range(r),
             "link_kinetic_energy_J": num(r.link_energy),
             "mean_force_N": num(r.mean_force),
-            "peak_force_N": num(r.dead_band_peak_force),
-            "peak_force_infinite": bool(
-                r.dead_band_peak_force == math.inf
-            ),  # dead_band = 0: the window reaches a dead centre
-            "peak_crank_deg": deg(r.dead_band_peak_angle),
+            # the verdict's peak (of the model that decided), and the dead-band model's under its own name
+            "peak_force_N": num(r.verdict_peak_force),
+            "peak_force_infinite": bool(r.verdict_peak_force == math.inf),
+            "dead_band_peak_force_N": num(r.dead_band_peak_force),
+            "dead_band_peak_crank_deg": deg(r.dead_band_peak_angle),
             "sampled_peak_force_N": num(r.sampled_peak),
             "samples_n": r.samples_n,
+            "verdict": r.outcome,
             "pass": r.passed,
-            "checks": [
-                {
-                    "name": check_label(c, r),
-                    "value": num(c.value),
-                    "limit": c.limit,
-                    "relation": c.relation,
-                    "unit": c.unit,
-                    "severity": c.severity,
-                    "pass": c.passed,
-                }
-                for c in r.checks
-            ],
+            "checks": [check_row(c, r) for c in r.checks],
         }
     )
     return out
 
 
-def check_label(c, r: ForceResult) -> str:
-    """The words for a verdict check (``pumplink.verdict.Check.key``) in this result's context."""
-    op = r.design.spec.operator
-    if c.key == "peak_force":
+def check_row(c, r: ForceResult | None = None) -> dict[str, Any]:
+    """One verdict check as a JSON row (``result``: pass, warn or fail)."""
+    return {
+        "key": c.key,
+        "name": check_label(c, r),
+        "value": num(c.value),
+        "unit": c.unit,
+        "relation": c.relation,
+        "warn_limit": None if c.warn_limit is None else num(c.warn_limit),
+        "fail_limit": None if c.fail_limit is None else num(c.fail_limit),
+        "result": c.result,
+    }
+
+
+def force_html(r: ForceResult) -> str:
+    """A force result as an HTML table for notebooks (``ForceResult._repr_html_``)."""
+    import html
+
+    h = html.escape
+    head = f"<b>{h(r.design.spec.name)}</b>: {h(r.outcome)} at {r.speed_deg_s:g} deg/s ({h(r.model)})"
+    if not r.design.feasible:
+        return f"<p>{head}: infeasible, {h(str(r.design.error))}</p>"
+    rows = "".join(
+        f"<tr><td>{h(check_label(c, r))}</td><td>{h(check_value(c))}</td><td>{h(c.result)}</td></tr>"
+        for c in r.checks
+    )
+    return (
+        f"<p>{head}</p><table><thead><tr><th>check</th><th>value</th><th>result</th></tr></thead>"
+        f"<tbody>{rows}</tbody></table>"
+    )
+
+
+def check_label(c, r: ForceResult | None = None) -> str:
+    """The words for a verdict check (``pumplink.verdict.Check.key``), in this result's context."""
+    if c.key == "peak_force" and r is not None:
+        op = r.design.spec.operator
+        if r.dynamics:
+            return f"peak force, dynamics (δ ≤ {op.speed_fluctuation:g})"
         if r.flywheel:
-            return f"peak force with the flywheel (δ ≤ {op.speed_fluctuation:g})"
-        return f"peak force outside ±{op.dead_band:g}° of the dead centres"
+            return f"peak force, flywheel (δ ≤ {op.speed_fluctuation:g})"
+        return f"peak force outside ±{op.dead_band:g}° of DCs"
     return CHECK_LABELS[c.key]
 
 
-#: Words for the checks whose label does not depend on the result.
+#: Words for the checks (short enough for an 80-column table).
 CHECK_LABELS = {
     "mean_force": "mean force",
-    "link_energy_share": "links' kinetic energy (neglected), share of the energy band",
-    "transmission_angle": "transmission angle, min(γmin, 180° − γmax)",
-    "power": "operator power (sustained)",
-    "axle_height": "axle height (paper: 0.40-0.70 m)",
+    "peak_force": "peak force",
+    "link_energy_share": "link kinetic energy / band",
+    "transmission_angle": "transmission angle (smallest)",
+    "power": "operator power",
+    "grip_speed": "peak grip speed",
+    "stroke": "grip stroke",
+    "grip_height": "grip height over the swing",
+    "axle_height": "axle height",
 }
 
 
@@ -150,78 +178,120 @@ def sample_rows(r: ForceResult) -> list[dict[str, Any]]:
     return rows
 
 
+#: ``pumplink synth`` shows designs side by side (one column each) up to this many; more
+#: designs get one row each.
+TRANSPOSED_DESIGNS = 4
+
+
 def render_designs(designs: list[Design], fmt: str, out=None) -> None:
-    """`pumplink synth`: one row per design (Table-1 style)."""
+    """`pumplink synth`: the Table-1-style synthesis, laid out for an 80-column terminal.
+
+    Up to :data:`TRANSPOSED_DESIGNS` designs: one column per design, one row per quantity (with
+    its unit).  More: one numbered row per design with the essential columns, the names below.
+    """
     out = out or sys.stdout
     rows = [design_row(d) for d in designs]
     if fmt == "json":
         return _json({"designs": rows}, out)
     if fmt == "csv":
         return write_csv(rows, out)
+    from rich import box
     from rich.markup import escape
     from rich.table import Table
 
-    t = Table(
-        title="Dead-centre synthesis, Eq. (1)–(2) of the pump paper",
-        title_justify="left",
-        caption="lengths \\[m], angles \\[deg]; l1 frame, l2 crank, l3 coupler, l4 rocker, H handle, "
-        "Δθ swing, K time ratio, γ transmission angle, DC crank angle of the extended / folded "
-        "dead centre",
-        caption_justify="left",
-    )
-    for h in (
-        "design",
-        "L1",
-        "D1",
-        "b",
-        "l4",
-        "H",
-        "Δθ",
-        "l1",
-        "β",
-        "l2",
-        "l3",
-        "K",
-        "γ min",
-        "γ max",
-        "DC ext",
-        "DC fold",
-        "feasible",
-    ):
-        t.add_column(h, justify="left" if h in ("design", "feasible") else "right", no_wrap=h == "design")
-    notes = []
-    for d, r in zip(designs, rows):
-        ok = "[green]yes[/]" if r["feasible"] else f"[red]no ({len(notes) + 1})[/]"
-        if not r["feasible"]:
-            notes.append(f"({len(notes) + 1}) {r['name']}: {r['error']}.")  # printed with markup=False
-        lk = d.spec.linkage
-        tr, dc = r["transmission_angle_deg"], r["dead_centres_deg"]
-        t.add_row(
-            escape(r["name"]),
-            _f(lk.L1),
-            _f(lk.D1),
-            _f(lk.b),
-            _f(lk.rocker),
-            _f(lk.handle),
-            _f(lk.swing, "{:.1f}"),
-            _f(r["frame_length"], "{:.4f}"),
-            _f(r["beta_deg"], "{:.2f}"),
-            _f(r["crank_length"], "{:.4f}"),
-            _f(r["coupler_length"], "{:.4f}"),
-            _f(r["time_ratio"], "{:.4f}"),
-            _f(tr["min"], "{:.1f}"),
-            _f(tr["max"], "{:.1f}"),
-            _f(dc["extended"], "{:.2f}"),
-            _f(dc["folded"], "{:.2f}"),
-            ok,
-        )
     c = console(out)
-    c.print(t)
-    for n in notes:
-        c.print(n, markup=False)
+    notes = []
+    for n, r in enumerate(rows, 1):
+        if not r["feasible"]:
+            notes.append(f"({n}) {r['name']}: infeasible: {r['error']}.")
+    title = "Dead-centre synthesis, Eq. (1)–(2) of the pump paper"
+    if len(designs) <= TRANSPOSED_DESIGNS:
+        t = Table(
+            title=title,
+            title_justify="left",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
+            caption="DC: dead centre, the crank angle where crank and coupler line up",
+            caption_justify="left",
+        )
+        t.add_column("quantity", no_wrap=True)
+        for n, r in enumerate(rows, 1):
+            t.add_column(
+                escape(r["name"]) if len(designs) == 1 else f"({n})", justify="right", overflow="fold"
+            )
+        lines = [
+            ("L1, stand to pivot [m]", lambda d, r: _f(d.spec.linkage.L1)),
+            ("D1, pivot below axle [m]", lambda d, r: _f(d.spec.linkage.D1)),
+            ("b, stand width [m]", lambda d, r: _f(d.spec.linkage.b)),
+            ("handle H [m]", lambda d, r: _f(d.spec.linkage.handle)),
+            ("swing Δθ [°]", lambda d, r: _f(d.spec.linkage.swing, "{:.1f}")),
+            ("frame l1 [m]", lambda d, r: _f(r["frame_length"], "{:.4f}")),
+            ("crank l2 [m]", lambda d, r: _f(r["crank_length"], "{:.4f}")),
+            ("coupler l3 [m]", lambda d, r: _f(r["coupler_length"], "{:.4f}")),
+            ("rocker l4 [m]", lambda d, r: _f(d.spec.linkage.rocker, "{:.4f}")),
+            ("β [°]", lambda d, r: _f(r["beta_deg"], "{:.2f}")),
+            ("ψ1 [°]", lambda d, r: _f(r["psi1_deg"], "{:.2f}")),
+            ("ψ2 [°]", lambda d, r: _f(r["psi2_deg"], "{:.2f}")),
+            ("time ratio K", lambda d, r: _f(r["time_ratio"], "{:.4f}")),
+            (
+                "transmission γ [°]",
+                lambda d, r: (
+                    f"{_f(r['transmission_angle_deg']['min'], '{:.1f}')}–"
+                    f"{_f(r['transmission_angle_deg']['max'], '{:.1f}')}"
+                ),
+            ),
+            ("DC extended, crank [°]", lambda d, r: _f(r["dead_centres_deg"]["extended"], "{:.2f}")),
+            ("DC folded, crank [°]", lambda d, r: _f(r["dead_centres_deg"]["folded"], "{:.2f}")),
+            ("grip stroke [m]", lambda d, r: _f(r["handle_stroke"], "{:.3f}")),
+            (
+                "feasible",
+                lambda d, r: "[green]yes[/]" if r["feasible"] else "[red]no[/]",
+            ),
+        ]
+        for label, get in lines:
+            t.add_row(escape(label), *(get(d, r) for d, r in zip(designs, rows)))
+        c.print(t)
+        if len(designs) > 1:
+            for n, r in enumerate(rows, 1):
+                c.print(f"({n}) {r['name']}", markup=False)
+    else:
+        t = Table(
+            title=title,
+            title_justify="left",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
+            caption="lengths [m], angles [°]; l2 crank, l3 coupler, H handle, Δθ swing, K time ratio, "
+            "γ smallest transmission angle min(γmin, 180° − γmax); names below",
+            caption_justify="left",
+        )
+        for h in ("#", "L1", "D1", "b", "l4", "H", "Δθ", "l2", "l3", "K", "γ", "ok"):
+            t.add_column(h, justify="left" if h == "ok" else "right")
+        for n, (d, r) in enumerate(zip(designs, rows), 1):
+            lk = d.spec.linkage
+            tr = r["transmission_angle_deg"]
+            gamma = None if tr["min"] is None else min(tr["min"], 180.0 - tr["max"])
+            t.add_row(
+                str(n),
+                _f(lk.L1, "{:g}"),
+                _f(lk.D1, "{:g}"),
+                _f(lk.b, "{:g}"),
+                _f(lk.rocker, "{:g}"),
+                _f(lk.handle, "{:g}"),
+                _f(lk.swing, "{:g}"),
+                _f(r["crank_length"], "{:.4f}"),
+                _f(r["coupler_length"], "{:.4f}"),
+                _f(r["time_ratio"], "{:.4f}"),
+                _f(gamma, "{:.1f}"),
+                "[green]yes[/]" if r["feasible"] else f"[red]no ({n})[/]",
+            )
+        c.print(t)
+        for n, r in enumerate(rows, 1):
+            c.print(f"{n}: {r['name']}", markup=False)
+    for line in notes:
+        c.print(line, markup=False)
 
 
-def _bar(value, limit, width=20) -> str:
+def _bar(value, limit, width=12) -> str:
     if value is None or not math.isfinite(value):
         return "[red]" + "▶" * width + "[/]"
     n = int(round(min(float(width), abs(value) / limit * width / 1.5)))  # full bar at 1.5x the limit
@@ -264,15 +334,25 @@ def model_line(r: ForceResult) -> str:
 
 
 def render_force(
-    r: ForceResult, fmt: str, summary: bool = False, out=None, extra: dict | None = None
+    r: ForceResult,
+    fmt: str,
+    summary: bool = False,
+    out=None,
+    extra: dict | None = None,
+    strict: bool = False,
+    advice=(),
 ) -> None:
     """`pumplink force`: sweep table (condensed), checks and the verdict.
 
-    ``extra`` (JSON only): more top-level keys, e.g. ``explain`` and ``verify``.
+    ``extra`` (JSON only): more top-level keys, e.g. ``explain`` and ``verify``.  ``strict``:
+    warnings fail (``--strict``).  ``advice``: :class:`pumplink.analysis.Suggestion` records,
+    printed after a FAIL (and in JSON as ``advice``).
     """
     out = out or sys.stdout
     if fmt == "json":
         obj = force_summary(r)
+        obj["strict"] = strict
+        obj["advice"] = [advice_row(a) for a in advice]
         obj.update(extra or {})
         if not summary:
             obj["samples"] = sample_rows(r)
@@ -280,6 +360,7 @@ def render_force(
     if fmt == "csv":
         return write_csv([force_summary(r)] if summary or r.samples is None else sample_rows(r), out)
 
+    from rich import box
     from rich.markup import escape
     from rich.table import Table
 
@@ -292,32 +373,37 @@ def render_force(
         return
     dc = d["dead_centres_deg"]
     c.print(
-        f"[bold]{name}[/]  crank l2 = {d['crank_length']:.4f} m, coupler l3 = {d['coupler_length']:.4f} m, "
-        f"rocker l4 = {d['rocker_length']:.4f} m, frame l1 = {d['frame_length']:.4f} m, "
-        f"handle H = {d['handle_length']:.3f} m"
+        f"[bold]{name}[/]: crank {d['crank_length']:.4f} m, coupler {d['coupler_length']:.4f} m, "
+        f"rocker {d['rocker_length']:.4f} m, frame {d['frame_length']:.4f} m, "
+        f"handle {d['handle_length']:.3f} m"
     )
     c.print(
-        f"dead centres at crank {dc['extended']:.2f}° (extended) and {dc['folded']:.2f}° (folded); "
-        f"time ratio K = {d['time_ratio']:.4f}; wheel torque Mw = {r.wheel_torque:.3f} N·m at "
+        f"dead centres (DC) at crank {dc['extended']:.2f}° (extended) and {dc['folded']:.2f}° (folded); "
+        f"time ratio K = {d['time_ratio']:.4f}; wheel torque {r.wheel_torque:.3f} N·m at "
         f"{r.speed_deg_s:g} deg/s ({r.power:.1f} W)"
     )
     fly = r.flywheel and r.operator_force is not None
 
     if not summary and r.samples is not None and r.samples.crank_angle.size:
         s = r.samples
-        kind = "flywheel scene: the operator's force and the wheel speed" if fly else "quasi-static"
+        kind = "flywheel scene" if fly else "quasi-static"
         t = Table(
             title=f"Operator force over the crank cycle ({kind}, {r.samples_n} samples"
             f"{', condensed' if s.crank_angle.size > 28 else ''})",
             title_justify="left",
+            caption="θ2 crank angle; Fh quasi-static force"
+            + ("; F the operator's force, ω the wheel speed" if fly else "")
+            + "; bar full at 1.5× the limit; v grip speed; φ handle from vertical; "
+            "γ transmission angle",
+            caption_justify="left",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
         )
-        heads = ["crank θ2 [deg]", "quasi-static Fh [N]"]
+        heads = ["θ2 [°]", "Fh [N]"]
         heads += (
-            ["operator F [N]", f"|F| vs {r.force_limit:g} N", "wheel ω [deg/s]"]
-            if fly
-            else [f"|Fh| vs {r.force_limit:g} N"]
+            ["F [N]", f"|F| vs {r.force_limit:g} N", "ω [°/s]"] if fly else [f"|Fh| vs {r.force_limit:g} N"]
         )
-        heads += ["grip speed [m/s]", "φ [deg]", "rocker θ4 [deg]", "γ [deg]", "note"]
+        heads += ["v [m/s]", "φ [°]", "γ [°]", "note"]
         for h in heads:
             t.add_column(escape(h), justify="left" if h.startswith(("|", "note")) else "right")
         rows = []
@@ -325,20 +411,19 @@ def render_force(
 
         def add(st, i, speed, note, op=None, w=None):
             f = st.force[i]
-            qs = "∞ (dead centre)" if st.singular[i] else _f(f, "{:+.1f}")
+            qs = "∞" if st.singular[i] else _f(f, "{:+.1f}")
             if fly:
-                mid = [_f(op, "{:+.1f}"), _bar(op, r.force_limit), _f(np.degrees(w), "{:.1f}")]
+                mid = [_f(op, "{:+.1f}"), _bar(op, r.force_limit, 10), _f(np.degrees(w), "{:.1f}")]
             else:
-                mid = [_bar(None if st.singular[i] else float(f), r.force_limit)]
+                mid = [_bar(None if st.singular[i] else float(f), r.force_limit, 12)]
             rows.append(
                 (
                     float(st.crank_angle[i]) % (2 * math.pi),
                     _f(np.degrees(st.crank_angle[i]) % 360, "{:.2f}"),
                     qs,
                     *mid,
-                    _f(speed, "{:.3f}"),
+                    _f(speed, "{:.2f}"),
                     _f(np.degrees(st.rocker_angle[i]) - 90, "{:+.1f}"),
-                    _f(np.degrees(st.rocker_angle[i]), "{:.1f}"),
                     _f(np.degrees(st.transmission_angle[i]), "{:.1f}"),
                     note,
                 )
@@ -346,111 +431,179 @@ def render_force(
 
         for i in _condensed_indices(r):
             if s.singular[i]:
-                note = "[bold]dead centre[/]"
+                note = "[bold]DC[/]"
             elif fly:
-                note = "[dim]wheel at top speed[/]" if r.on_ceiling[i] else ""
+                note = "[dim]top speed[/]" if r.on_ceiling[i] else ""
             else:
-                note = "[dim]in dead band[/]" if r.in_dead_band[i] else ""
+                note = "[dim]dead band[/]" if r.in_dead_band[i] else ""
             add(s, i, hs[i], note, *((r.operator_force[i], r.wheel_speed[i]) if fly else ()))
         if s.crank_angle.size > 28 and r.marks is not None:  # mark the dead centres and the exact peak
             m = r.marks
             speeds = r.mark_grip_speed
             if fly:
                 ws, ops = r.mark_wheel_speed, r.mark_operator_force
-                for i, label in enumerate(("dead centre (extended)", "dead centre (folded)")):
+                for i, label in enumerate(("DC extended", "DC folded")):
                     add(m, i, speeds[i], f"[bold]{label}[/]", ops[i], ws[i])
             else:
-                for i, label in enumerate(
-                    ("dead centre (extended)", "dead centre (folded)", "exact peak outside dead band")
-                ):
+                for i, label in enumerate(("DC extended", "DC folded", "peak (exact)")):
                     add(m, i, speeds[i], f"[bold]{label}[/]")
         for row in sorted(rows, key=lambda x: x[0] % (2 * math.pi)):
             t.add_row(*row[1:])
         c.print(t)
 
-    ct = Table(title="Checks", title_justify="left")
-    for h in ("check", "value", "limit", "result"):
-        ct.add_column(h, justify="right" if h in ("value", "limit") else "left")
+    ct = Table(
+        title="Checks",
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+        caption="DC: dead centre; a warning is reported, a failure fails the design (docs/models.md §4)",
+        caption_justify="left",
+    )
+    for h in ("check", "value", "warn if", "fail if", "result"):
+        ct.add_column(h, justify="right" if h in ("value", "warn if", "fail if") else "left")
     if r.flywheel:
         ct.add_row(
-            f"quasi-static peak outside ±{r.design.spec.operator.dead_band:g}° "
-            "(dead-band model, for comparison)",
+            f"dead-band peak (±{r.design.spec.operator.dead_band:g}° of DCs)",
             f"{_f(r.dead_band_peak_force, '{:.2f}', '∞')} N",
+            "",
             "",
             "[dim]info[/]",
         )
         mps = r.min_passing_speed
         ct.add_row(
-            "least mean wheel speed that passes the limit",
-            "never" if mps == math.inf else f"{_f(np.degrees(mps), '{:.1f}')} deg/s",
-            f"at {r.force_limit:g} N",
+            "slowest passing mean speed",
+            "never" if mps == math.inf else f"{_f(np.degrees(mps), '{:.1f}')} °/s",
+            "",
+            "",
             "[dim]info[/]",
         )
     else:
         ct.add_row(
-            "sampled peak outside dead band (for comparison)",
+            f"sampled peak ({r.samples_n} samples)",
             f"{_f(r.sampled_peak, '{:.2f}')} N",
-            f"{r.samples_n} samples",
+            "",
+            "",
             "[dim]info[/]",
         )
     for ch in r.checks:
-        res = (
-            "[green]pass[/]"
-            if ch.passed
-            else ("[red]FAIL[/]" if ch.severity == "fail" else "[yellow]warning[/]")
-        )
-        unit = f" {ch.unit}" if ch.unit else ""
         ct.add_row(
             escape(check_label(ch, r)),
-            f"{_f(ch.value, '{:.2f}', '∞') if ch.value != np.inf else '∞'}{unit}",
-            f"{ch.relation} {ch.limit:g}{unit}",
-            res,
+            check_value(ch),
+            _limit_text(ch, ch.warn_limit),
+            _limit_text(ch, ch.fail_limit),
+            RESULT_MARKUP[ch.result],
         )
     c.print(ct)
     c.print(model_line(r))
-    warned = [ch for ch in r.checks if ch.severity == "warn" and not ch.passed]
+    c.print(verdict_line(r, strict))
+    for ch in r.checks:
+        if ch.result == "warn":
+            c.print(f"[yellow]warning:[/] {escape(check_sentence(ch, r))}")
+        elif ch.result == "fail" and ch.key in CHECK_ADVICE:
+            c.print(f"[red]fails:[/] {escape(check_sentence(ch, r))}")
+    if advice:
+        c.print("[bold]what would help most[/] (one change at a time, everything else as in the spec):")
+        for a in advice:
+            c.print(f"  {escape(advice_sentence(a))}")
+
+
+#: Rich markup of a check's result.
+RESULT_MARKUP = {"pass": "[green]pass[/]", "warn": "[yellow]warning[/]", "fail": "[red]FAIL[/]"}
+
+#: Format of each check's value (and its limits) in tables and sentences.
+_CHECK_FORMAT = {"mean_force": "{:.1f}", "peak_force": "{:.1f}", "link_energy_share": "{:.0f}"}
+
+
+def check_value(ch) -> str:
+    """A check's value with its unit, e.g. '85.8 N', '∞ N'."""
+    f = _CHECK_FORMAT.get(ch.key, "{:.2f}")
+    return f"{_f(ch.value, f, '∞') if ch.value != -math.inf else '−∞'} {ch.unit}"
+
+
+def _limit_text(ch, limit) -> str:
+    """'> 75 W' style: the side of ``limit`` on which the check warns or fails ('' for none)."""
+    if limit is None:
+        return ""
+    bad = ">" if ch.relation == "<=" else "<"
+    return f"{bad} {limit:g} {ch.unit}"
+
+
+#: What to change when a check warns or fails (the check's own advice).
+CHECK_ADVICE = {
+    "link_energy_share": "the flywheel model neglects it, so treat the verdict as an estimate "
+    "(a lighter handle or a heavier wheel; see --explain)",
+    "transmission_angle": "the coupler meets the rocker at a poor angle: large joint forces, "
+    "wear, and with friction a jam (move the rocker pivot or lengthen the rocker)",
+    "power": "a person sustains ~75 W for hours and at most ~150 W for an hour; "
+    "slow the wheel or lower the load",
+    "grip_speed": "faster than a rower's handle: the operator tires soon; slow the wheel or "
+    "shorten the swing",
+    "grip_speed fail": "the operator cannot follow the handle; slow the wheel or shorten the swing",
+    "transmission_angle fail": "the coupler meets the rocker so obliquely that joint friction can jam "
+    "the linkage (move the rocker pivot or lengthen the rocker)",
+    "power fail": "more than a person gives even for an hour (~150 W); slow the wheel or lower the load",
+    "stroke": "a standing operator must step or lean; shorten the handle or the swing",
+    "grip_height": "the efficient push height is 0.5-0.9 m; change D1, the handle or the axle height",
+    "axle_height": "outside the pump paper's 0.40-0.70 m",
+}
+
+
+def check_sentence(ch, r: ForceResult | None = None) -> str:
+    """One sentence for a check that warns or fails: value, limit, and what to do."""
+    lim = ch.fail_limit if ch.result == "fail" else ch.limit
+    if lim is None:
+        lim = ch.limit
+    side = ">" if ch.relation == "<=" else "<"
+    val = check_value(ch)
+    advice = CHECK_ADVICE.get(f"{ch.key} {ch.result}", CHECK_ADVICE.get(ch.key, ""))
+    return f"{check_label(ch, r)} is {val} ({side} {lim:g} {ch.unit}): {advice}".rstrip(": ")
+
+
+def verdict_line(r: ForceResult, strict: bool = False) -> str:
+    """The verdict in words, with Rich markup: PASS, PASS with warnings or FAIL."""
     peak = r.verdict_peak_force
-    how = " with the flywheel" if r.flywheel else ""
-    if r.passed:
-        note = f" ({len(warned)} warning{'s' if len(warned) > 1 else ''} below)" if warned else ""
-        c.print(
-            f"[bold green]VERDICT: PASS[/] — mean {r.mean_force:.1f} N and peak {peak:.1f} N{how} are within "
-            f"the {r.force_limit:g} N limit{note}"
+    how = " with full dynamics" if r.dynamics else " with the flywheel" if r.flywheel else ""
+    forces = f"mean {r.mean_force:.1f} N, peak {_f(peak, '{:.1f}', '∞')} N{how}"
+    v = r.verdict
+    if r.outcome == "PASS":
+        return f"[bold green]VERDICT: PASS[/] — {forces}, within the {r.force_limit:g} N limit; no warnings"
+    if r.outcome == "PASS with warnings":
+        n = len(v.warnings)
+        tail = " — fails under --strict" if strict else ""
+        return (
+            f"[bold yellow]VERDICT: PASS with warnings[/] — {forces}, within the {r.force_limit:g} N limit; "
+            f"{n} warning{'s' if n > 1 else ''} below{tail}"
         )
-    else:
-        bad = [check_label(ch, r) for ch in r.checks if ch.severity == "fail" and not ch.passed]
-        hint = ""
-        if r.flywheel and r.min_passing_speed is not None and math.isfinite(r.min_passing_speed):
-            hint = (
-                f"; it passes from a mean {np.degrees(r.min_passing_speed):.0f} deg/s (see: pumplink speed)"
-            )
-        c.print(
-            f"[bold red]VERDICT: FAIL[/] — {', '.join(bad)} above the {r.force_limit:g} N limit "
-            f"(mean {r.mean_force:.1f} N, peak {_f(peak, '{:.1f}', '∞')} N{how}){hint}"
-        )
-    for ch in warned:
-        if ch.key == "link_energy_share":
-            c.print(
-                f"[yellow]warning:[/] the links' kinetic energy is {ch.value:.0f} % of the energy band (> "
-                f"{ch.limit:g} %): the flywheel model neglects it, so treat the verdict as an estimate "
-                "(a lighter handle or a heavier wheel; see --explain)"
-            )
-            continue
-        c.print(
-            f"[yellow]warning:[/] {escape(check_label(ch, r))} is {ch.value:.2f} {ch.unit}, "
-            f"outside {ch.relation} {ch.limit:g} {ch.unit}"
-            + (
-                " (a person sustains ~75 W for hours; slow the wheel or lower the load)"
-                if ch.key == "power"
-                else ""
-            )
-            + (
-                " (pressure angle above 45°: the coupler pushes the crank at a poor angle "
-                "and the joints wear)"
-                if ch.key == "transmission_angle"
-                else ""
-            )
-        )
+    bad = "; ".join(
+        f"{check_label(ch, r)} {check_value(ch)} {_limit_text(ch, ch.fail_limit)}" for ch in v.failures
+    )
+    hint = ""
+    force_failed = any(ch.key in ("mean_force", "peak_force") for ch in v.failures)
+    if force_failed and r.flywheel and r.min_passing_speed is not None and math.isfinite(r.min_passing_speed):
+        hint = f"; the force passes from a mean {np.degrees(r.min_passing_speed):.0f} deg/s (pumplink speed)"
+    return f"[bold red]VERDICT: FAIL[/] — {bad}{hint}"
+
+
+def advice_row(a) -> dict[str, Any]:
+    """One suggested change (:class:`pumplink.analysis.Suggestion`) as a JSON row."""
+    return {
+        "key": a.key,
+        "from": a.old,
+        "to": a.new,
+        "unit": a.unit,
+        "peak_force_N": num(a.peak_force),
+        "verdict": a.outcome,
+        "still_failing": list(a.failing),
+    }
+
+
+def advice_sentence(a) -> str:
+    """'linkage.handle 1.2 → 1.32 m: peak 97.2 N, PASS with warnings'."""
+    still = f" (still fails: {', '.join(CHECK_LABELS[k] for k in a.failing)})" if a.failing else ""
+    return (
+        f"{a.key} {a.old:g} → {a.new:g} {a.unit}: peak {_f(a.peak_force, '{:.1f}', '∞')} N, "
+        f"{a.outcome}{still}"
+    )
 
 
 # -------------------------------------------------------------------------- model choice, verification, speed
@@ -528,15 +681,21 @@ def render_verify(row: dict[str, Any], out=None) -> None:
 
 
 def speed_rows(sw: SpeedSweep) -> list[dict[str, Any]]:
+    """One row per speed; ``peak_force_N`` is the verdict's peak (the flywheel's least peak force)."""
+    outcome = sw.outcome.tolist()
     return [
         {
             "speed_deg_s": float(w),
             "energy_band_J": num(b),
-            "required_peak_force_N": num(f),
+            "peak_force_N": num(f),
             "power_W": num(p),
+            "grip_speed_m_s": num(g),
+            "verdict": o,
             "pass": bool(ok),
         }
-        for w, b, f, p, ok in zip(sw.speed_deg_s, sw.energy_band, sw.least_peak_force, sw.power, sw.passed)
+        for w, b, f, p, g, o, ok in zip(
+            sw.speed_deg_s, sw.energy_band, sw.least_peak_force, sw.power, sw.grip_speed, outcome, sw.passed
+        )
     ]
 
 
@@ -564,6 +723,7 @@ def render_speed(sw: SpeedSweep, fmt: str, out=None) -> None:
         return _json({**speed_summary(sw), "speeds": rows}, out)
     if fmt == "csv":
         return write_csv(rows, out)
+    from rich import box
     from rich.markup import escape
     from rich.table import Table
 
@@ -572,27 +732,33 @@ def render_speed(sw: SpeedSweep, fmt: str, out=None) -> None:
         title=f"{escape(sw.design.spec.name)}: least peak operator force against mean wheel speed (flywheel, "
         f"J = {sw.inertia:.3f} kg·m², δ ≤ {sw.speed_fluctuation:g})",
         title_justify="left",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+        caption="v: peak grip speed; warn: PASS with warnings (docs/models.md §4)",
+        caption_justify="left",
     )
     for h in (
-        "speed [deg/s]",
+        "speed [°/s]",
         "rpm",
-        "band W [J]",
-        "peak force [N]",
+        "band [J]",
+        "peak [N]",
         f"vs {sw.force_limit:g} N",
         "power [W]",
-        "result",
+        "v [m/s]",
+        "verdict",
     ):
-        t.add_column(escape(h), justify="left" if h.startswith(("vs", "result")) else "right")
+        t.add_column(escape(h), justify="left" if h.startswith(("vs", "verdict")) else "right")
     for r in rows:
-        f = r["required_peak_force_N"]
+        f = r["peak_force_N"]
         t.add_row(
             f"{r['speed_deg_s']:g}",
             f"{r['speed_deg_s'] / 6:.0f}",
             _f(r["energy_band_J"], "{:.2f}"),
             _f(f, "{:.1f}", "∞"),
-            _bar(f, sw.force_limit),
+            _bar(f, sw.force_limit, 8),
             _f(r["power_W"], "{:.0f}"),
-            "[green]pass[/]" if r["pass"] else "[red]FAIL[/]",
+            _f(r["grip_speed_m_s"], "{:.2f}"),
+            {"PASS": "[green]PASS[/]", "FAIL": "[red]FAIL[/]"}.get(r["verdict"], "[yellow]warn[/]"),
         )
     c.print(t)
     mps = sw.min_passing_speed
@@ -602,8 +768,14 @@ def render_speed(sw: SpeedSweep, fmt: str, out=None) -> None:
     )
     if math.isfinite(mps):
         c.print(
-            f"[bold]passes the {sw.force_limit:g} N limit from a mean {np.degrees(mps):.1f} deg/s "
-            f"({np.degrees(mps) / 6:.0f} rpm)[/]"
+            f"[bold]the peak force is within the {sw.force_limit:g} N limit from a mean "
+            f"{np.degrees(mps):.1f} deg/s ({np.degrees(mps) / 6:.0f} rpm)[/]"
+        )
+        ok = [r["speed_deg_s"] for r in rows if r["pass"]]
+        c.print(
+            f"every check passes or only warns from {min(ok):g} to {max(ok):g} deg/s (of the speeds above)"
+            if ok
+            else "[red]no speed above passes every check[/] (see the verdict column and pumplink force)"
         )
     else:
         c.print(
@@ -692,43 +864,56 @@ def render_transmission(row: dict[str, Any], fmt: str, out=None) -> None:
         f"[bold]Optimal-transmission crank-rocker[/] for K = {row['time_ratio']:g} "
         f"(θ = {row['theta_deg']:.6f}°), swing φ = {row['swing_deg']:g}°, rocker = {row['rocker']:g}"
     )
-    t = Table(title="Link lengths (rocker's unit) and transmission angle", title_justify="left")
-    for h in (
-        "design",
-        "crank",
-        "coupler",
-        "rocker",
-        "frame",
-        "rocker/frame",
-        "min transmission [deg]",
-        "simulated swing [deg]",
-        "simulated K",
-    ):
-        t.add_column(escape(h), justify="left" if h == "design" else "right")
-    sim = row["simulated"]
-    t.add_row(
-        "[bold]optimum (this tool)[/]",
-        _f(row["crank"], "{:.6f}"),
-        _f(row["coupler"], "{:.6f}"),
-        _f(row["rocker"], "{:.6f}"),
-        _f(row["frame"], "{:.6f}"),
-        _f(row["rocker_to_frame"], "{:.6f}"),
-        _f(row["min_transmission_deg"], "{:.9f}"),
-        _f(sim["swing_deg"], "{:.9f}"),
-        _f(sim["time_ratio"], "{:.9f}"),
+    from rich import box
+
+    t = Table(
+        title="Link lengths (in the rocker's unit) and transmission angle",
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+        caption="(1) optimum (this tool)"
+        + "".join(f"; ({n}) {escape(cmp['design'])}" for n, cmp in enumerate(row["compare"], 2)),
+        caption_justify="left",
     )
-    for cmp in row["compare"]:
-        t.add_row(
-            cmp["design"],
-            _f(cmp["crank"], "{:.4f}"),
-            _f(cmp["coupler"], "{:.4f}"),
-            _f(cmp["rocker"], "{:.4f}"),
-            _f(cmp["frame"], "{:.4f}"),
-            _f(cmp["rocker"] / cmp["frame"], "{:.6f}"),
-            _f(cmp["min_transmission_deg"], "{:.9f}"),
-            _f(cmp["simulated_swing_deg"], "{:.6f}"),
-            _f(cmp["simulated_time_ratio"], "{:.6f}"),
-        )
+    sim = row["simulated"]
+    cols = [
+        {
+            "crank": row["crank"],
+            "coupler": row["coupler"],
+            "rocker": row["rocker"],
+            "frame": row["frame"],
+            "ratio": row["rocker_to_frame"],
+            "gamma": row["min_transmission_deg"],
+            "swing": sim["swing_deg"],
+            "k": sim["time_ratio"],
+        }
+    ] + [
+        {
+            "crank": cmp["crank"],
+            "coupler": cmp["coupler"],
+            "rocker": cmp["rocker"],
+            "frame": cmp["frame"],
+            "ratio": cmp["rocker"] / cmp["frame"],
+            "gamma": cmp["min_transmission_deg"],
+            "swing": cmp["simulated_swing_deg"],
+            "k": cmp["simulated_time_ratio"],
+        }
+        for cmp in row["compare"]
+    ]
+    t.add_column("quantity", no_wrap=True)
+    for n in range(1, len(cols) + 1):
+        t.add_column(f"({n})", justify="right")
+    for label, key, f in (
+        ("crank", "crank", "{:.6f}"),
+        ("coupler", "coupler", "{:.6f}"),
+        ("rocker", "rocker", "{:.6f}"),
+        ("frame", "frame", "{:.6f}"),
+        ("rocker / frame", "ratio", "{:.6f}"),
+        ("min transmission [°]", "gamma", "{:.9f}"),
+        ("simulated swing [°]", "swing", "{:.9f}"),
+        ("simulated K", "k", "{:.9f}"),
+    ):
+        t.add_row(escape(label), *(_f(col[key], f) for col in cols))
     c.print(t)
     c.print(
         f"γmin = {row['gamma_min_deg']:.9f}°, γmax = {row['gamma_max_deg']:.9f}°; binding: {row['binding']}; "
@@ -750,10 +935,11 @@ def render_transmission(row: dict[str, Any], fmt: str, out=None) -> None:
 def optimize_row(res) -> dict[str, Any]:
     """JSON contract of ``pumplink optimize`` (spec units: m, deg, N).
 
-    ``model`` says which model's peak force was the objective and decides ``passes_force_limit``
-    (as ``pumplink force``): "flywheel" when the spec gives inertia, its least peak force then in
-    ``required_peak_force_N`` (null for the quasi-static model); ``peak_force_N`` is always the
-    windowed peak outside the dead bands.
+    ``optimum`` and ``spec_design`` each carry the verdict of ``pumplink force`` on that design
+    (``verdict``, ``pass``, ``checks``), ``peak_force_N`` the verdict's peak (the flywheel's least
+    peak force when the spec gives inertia) and ``dead_band_peak_force_N`` the quasi-static peak
+    outside the dead bands.  ``meets_constraints`` is about the search's own constraints
+    (--grip-height, --stroke, transmission angle), which the optimum always meets.
     """
     from pumplink.optimize import CONSTRAINTS, VARIABLE_UNITS
 
@@ -762,9 +948,19 @@ def optimize_row(res) -> dict[str, Any]:
     names = p.constraint_names()
     spec_lk = p.spec.linkage
     op = p.spec.operator
-    peak_b, peak_s = float(b.dead_band_peak_force[0]), float(s.dead_band_peak_force[0])
     obj_b, obj_s = float(b.objective[0]), float(s.objective[0])
     spec_ok = bool(np.all(s.slack[:, 0] >= 0))
+
+    def judged(r) -> dict[str, Any]:
+        return {
+            "peak_force_N": num(r.verdict_peak_force),
+            "dead_band_peak_force_N": num(r.dead_band_peak_force),
+            "mean_force_N": num(r.mean_force),
+            "verdict": r.outcome,
+            "pass": r.passed,
+            "checks": [check_row(c, r) for c in r.checks],
+        }
+
     return {
         "name": p.spec.name,
         "objective": p.objective,
@@ -789,19 +985,15 @@ def optimize_row(res) -> dict[str, Any]:
             for k, lo, hi, v in zip(p.names, p.lower, p.upper, res.x)
         ],
         "optimum": {
-            "peak_force_N": num(peak_b),
-            "required_peak_force_N": num(b.least_peak_force[0]),
-            "mean_force_N": num(b.mean[0]),
+            **judged(res.best_result),
             "transmission_deg": num(b.transmission[0]),
             "grip_height_m": [num(b.grip_low[0]), num(b.grip_high[0])],
             "stroke_m": num(b.stroke[0]),
             "rocker_pivot_height_m": num(p.axle_height - res.best.linkage.D1),
-            "passes_force_limit": bool(b.passed[0]),
+            "meets_constraints": True,
         },
         "spec_design": {
-            "peak_force_N": num(peak_s),
-            "required_peak_force_N": num(s.least_peak_force[0]),
-            "mean_force_N": num(s.mean[0]),
+            **judged(res.spec_result),
             "transmission_deg": num(s.transmission[0]),
             "meets_constraints": spec_ok,
             "violated": [n for n, g in zip(names, s.slack[:, 0]) if g < 0],
@@ -819,8 +1011,16 @@ def optimize_row(res) -> dict[str, Any]:
     }
 
 
-def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
-    """`pumplink optimize`: variables, forces, constraints and what binds."""
+#: The verdict's words with Rich markup.
+OUTCOME_MARKUP = {
+    "PASS": "[bold green]PASS[/]",
+    "PASS with warnings": "[bold yellow]PASS with warnings[/]",
+    "FAIL": "[bold red]FAIL[/]",
+}
+
+
+def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = False) -> None:
+    """`pumplink optimize`: variables, forces and verdicts, constraints and what binds."""
     out = out or sys.stdout
     if fmt == "json":
         return _json(row, out)
@@ -838,77 +1038,91 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
                 "stroke_range_m",
             )
         }
+        flat["optimum"] = {k: v for k, v in row["optimum"].items() if k != "checks"}
         for v in row["variables"]:
             flat[f"{v['key']}_optimum"] = v["optimum"]
         flat["binding"] = "; ".join(row["binding"])
         return write_csv([flat], out)
+    from rich import box
     from rich.markup import escape
     from rich.table import Table
 
     c = console(out)
     fly = row["model"] == "flywheel"
     model = (
-        f"model: flywheel, J = {row['inertia_kg_m2']:.4g} kg·m², δ ≤ {row['speed_fluctuation']:g}, at "
+        f"flywheel, J = {row['inertia_kg_m2']:.4g} kg·m², δ ≤ {row['speed_fluctuation']:g}, at "
         f"{row['speed_deg_s']:g} deg/s"
         if fly
-        else "model: quasi-static + dead band"
+        else "quasi-static + dead band"
     )
     c.print(
-        f"[bold]{row['name']}[/]: minimise the {row['objective']} operator force "
-        f"({model}; seed {row['seed']}); axle height "
+        f"[bold]{escape(row['name'])}[/]: minimise the {row['objective']} operator force "
+        f"(model: {model}; seed {row['seed']}); axle height "
         f"{row['axle_height_m']:g} m, grip height "
         f"{row['grip_height_range_m'][0]:g}–{row['grip_height_range_m'][1]:g} m, "
         f"stroke {row['stroke_range_m'][0]:g}–{row['stroke_range_m'][1]:g} m"
     )
-    t = Table(title="Variables", title_justify="left")
+    t = Table(title="Variables", title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
     for h in ("key", "bounds", "spec", "optimum"):
         t.add_column(h, justify="left" if h == "key" else "right")
     for v in row["variables"]:
         t.add_row(
-            f"{v['key']} [{v['unit']}]",
+            f"{v['key']} \\[{v['unit']}]",
             f"{v['lower']:g} … {v['upper']:g}",
             f"{v['spec']:.4f}",
             f"{v['optimum']:.6f}",
         )
     c.print(t)
     o, s = row["optimum"], row["spec_design"]
-    peak_key = "required_peak_force_N" if fly else "peak_force_N"  # the peak of the verdict
-    t = Table(title="Forces", title_justify="left")
-    heads = (
-        "design",
-        *(("peak with the flywheel [N]", "peak outside the dead bands [N]") if fly else ("peak [N]",)),
-        "mean [N]",
-        "transmission [deg]",
-        "meets constraints",
+    t = Table(
+        title="Forces and verdicts (as pumplink force)",
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+        caption="peak: the verdict's peak" + (" (with the flywheel)" if fly else " outside the dead bands"),
+        caption_justify="left",
     )
-    for h in heads:
-        t.add_column(escape(h), justify="left" if h in ("design",) else "right")
-    for label, d, meets in (
-        (
-            "spec's own design",
-            s,
-            "yes" if s["meets_constraints"] else "[red]no[/]: " + "; ".join(s["violated"]),
-        ),
-        ("[bold]optimum[/]", o, "yes"),
-    ):
-        peaks = (
-            (_f(d["required_peak_force_N"], "{:.3f}", none="∞"), _f(d["peak_force_N"], "{:.3f}"))
-            if fly
-            else (_f(d["peak_force_N"], "{:.3f}"),)
+    for h in ("design", "peak [N]", "mean [N]", "γ [°]", "verdict"):
+        t.add_column(escape(h), justify="left" if h in ("design", "verdict") else "right")
+    for label, d in (("spec's own design", s), ("[bold]optimum[/]", o)):
+        t.add_row(
+            label,
+            _f(d["peak_force_N"], "{:.2f}", none="∞"),
+            _f(d["mean_force_N"], "{:.2f}"),
+            _f(d["transmission_deg"], "{:.2f}"),
+            OUTCOME_MARKUP[d["verdict"]],
         )
-        t.add_row(label, *peaks, _f(d["mean_force_N"], "{:.3f}"), _f(d["transmission_deg"], "{:.2f}"), meets)
     c.print(t)
-    t = Table(title="Constraints at the optimum (slack >= 0 is satisfied)", title_justify="left")
+    for label, d in (("spec's own design", s), ("optimum", o)):
+        bad = [ch for ch in d["checks"] if ch["result"] != "pass"]
+        if bad:
+            c.print(
+                f"{label}: "
+                + "; ".join(
+                    f"{ch['result']}s on {ch['name']} {_f(ch['value'], '{:.3g}', none='∞')} {ch['unit']}"
+                    for ch in bad
+                ),
+                markup=False,
+            )
+    if not s["meets_constraints"]:
+        c.print(
+            f"the spec's own design is outside the search's limits: {'; '.join(s['violated'])}", markup=False
+        )
+    t = Table(
+        title="Constraints at the optimum (slack >= 0 is met)",
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+    )
     for h in ("constraint", "slack", "binding"):
         t.add_column(h, justify="right" if h == "slack" else "left")
     for k in row["constraints"]:
-        t.add_row(k["name"], f"{k['slack']:.6g} {k['unit']}", "[bold]binds[/]" if k["binding"] else "")
+        t.add_row(k["name"], f"{k['slack']:.4g} {k['unit']}", "[bold]binds[/]" if k["binding"] else "")
     c.print(t)
+    key = "peak_force_N" if row["objective"] == "peak" else "mean_force_N"
     if row["improvement_N"] is not None:
         c.print(
-            f"{row['objective']} force "
-            f"{_f(s[peak_key] if row['objective'] == 'peak' else s['mean_force_N'], '{:.2f}')} N → "
-            f"{_f(o[peak_key] if row['objective'] == 'peak' else o['mean_force_N'], '{:.2f}')} N "
+            f"{row['objective']} force {_f(s[key], '{:.2f}')} N → {_f(o[key], '{:.2f}')} N "
             f"({row['improvement_pct']:+.1f} % lower than the spec's own design)"
             if row["improvement_pct"] >= 0
             else f"the optimum needs {-row['improvement_N']:.2f} N more than the spec's own design, "
@@ -922,22 +1136,20 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None) -> None:
         f"{' (below ground: needs a pit)' if o['rocker_pivot_height_m'] < 0 else ''}",
         markup=False,
     )
-    if not o["passes_force_limit"]:
+    if not o["pass"]:
         c.print(
-            "no design inside these bounds and ergonomic limits keeps the force within "
-            f"{row['force_limit_N']:g} N: "
-            f"the best needs {_f(o[peak_key], '{:.2f}', none='∞')} N peak; it is held back by: "
-            f"{', '.join(row['binding'])}. "
+            "no design inside these bounds and limits passes: the best one found still fails "
+            f"({', '.join(ch['name'] for ch in o['checks'] if ch['result'] == 'fail')}); "
+            f"it is held back by: {', '.join(row['binding']) or 'nothing at a bound'}. "
             "Widen the bounds that bind (--vary), or relax --grip-height / --stroke.",
             markup=False,
         )
-    verdict = "[bold green]PASS[/]" if o["passes_force_limit"] else "[bold red]FAIL[/]"
+    tail = " — fails under --strict" if strict and o["verdict"] == "PASS with warnings" else ""
     c.print(
-        f"{verdict}: optimum peak{' with the flywheel' if fly else ''} "
-        f"{_f(o[peak_key], '{:.2f}', none='∞')} N "
-        f"vs limit {row['force_limit_N']:g} N "
+        f"VERDICT: {OUTCOME_MARKUP[o['verdict']]} for the optimum: peak{' with the flywheel' if fly else ''} "
+        f"{_f(o['peak_force_N'], '{:.2f}', none='∞')} N vs limit {row['force_limit_N']:g} N "
         f"({row['evaluations']} designs evaluated, {row['generations']} generations"
-        f"{', polished' if row['polished'] else ''})"
+        f"{', polished' if row['polished'] else ''}){tail}"
     )
 
 

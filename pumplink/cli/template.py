@@ -1,0 +1,57 @@
+"""`pumplink template`: the 1:1 drilling template of every link (PDF pages, SVG or DXF)."""
+
+from __future__ import annotations
+
+import sys
+from enum import Enum
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from pumplink.cli.common import app, load_specs
+
+
+class Paper(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
+    A4 = "A4"
+    A3 = "A3"
+    letter = "letter"
+
+
+@app.command()
+def template(
+    spec: Annotated[Path, typer.Argument(help="TOML pump spec.", show_default=False)],
+    out: Annotated[
+        Path, typer.Option("--out", "-o", help="Template file: .pdf (printable pages), .svg or .dxf.")
+    ] = Path("template.pdf"),
+    paper: Annotated[Paper, typer.Option(help="Paper of the PDF pages (landscape).")] = Paper.A4,
+) -> None:
+    """A 1:1 drilling template of each link (PDF, SVG or DXF).
+
+    Hole centres, the distance between them in mm, hole diameter
+    (linkage.hole_diameter, default 10 mm), link name.
+
+    PDF: links longer than the paper are tiled over several pages with
+    numbered alignment marks; every page has a 100 mm scale bar to check the
+    printer did not scale it; page 1 has the cut list.  SVG: one 1:1 canvas.
+    DXF (needs pumplink\\[dxf]): millimetres, one layer per link, for laser or
+    CNC.  Exit 1 if the spec gives no crank-rocker.
+
+    Example: [bold]pumplink template configs/prototype.toml --out template.pdf --paper A4[/]
+    """
+    from pumplink.output.template import check_template_path
+
+    check_template_path(out)
+    from pumplink.output.charts import pyplot
+
+    if out.suffix.lower() != ".dxf":
+        pyplot()
+    from pumplink.drawing import drawing
+    from pumplink.output.template import write_template
+
+    s = load_specs([spec])[0]
+    dr = drawing(s)
+    pages = write_template(dr.parts, out, paper.value, s.name, dr.tube_given)
+    sys.stderr.write(
+        f"wrote {out}" + (f" ({pages} pages, {paper.value})" if out.suffix.lower() == ".pdf" else "") + "\n"
+    )

@@ -1,0 +1,239 @@
+"""Rows and tables of the piston-pump spec under ``pumplink force`` and ``pumplink batch``.
+
+Renderers only: every number comes from :func:`pumplink.piston.force_analysis`.  Degrees here
+only; tables fit 80 columns.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from typing import Any
+
+from pumplink.output.formats import console, deg, num, write_csv, write_json
+from pumplink.output.formats import fmt as _f
+
+#: Rows of the condensed sweep in the table (every k-th sample).
+TABLE_ROWS = 24
+
+_CHECK_LABELS = {
+    "mean_force": "mean force at the handle",
+    "peak_force": "peak force at the handle",
+    "power": "operator power (sustained)",
+}
+
+
+def _checks(r) -> list[dict[str, Any]]:
+    out = []
+    for c in r.verdict.checks if r.verdict is not None else ():
+        out.append(
+            {
+                "check": c.key,
+                "value": num(c.value),
+                "limit": num(c.limit),
+                "relation": c.relation,
+                "unit": c.unit,
+                "result": str(c.result),
+                "passed": bool(c.passed),
+            }
+        )
+    return out
+
+
+def summary_row(r) -> dict[str, Any]:
+    """JSON contract of the piston-pump summary (``force --summary``, a batch row)."""
+    s = r.spec
+    cr = s.crank_slider
+    lo, hi = r.pressure_permissible_deg
+    return {
+        "name": s.name,
+        "mechanism": s.mechanism,
+        "feasible": r.feasible,
+        "error": r.error,
+        "crank_m": cr.crank,
+        "rod_m": cr.rod,
+        "offset_m": cr.offset,
+        "handle_m": s.operator.handle,
+        "bore_m": s.piston.bore,
+        "head_m": s.piston.head,
+        "load_force_N": num(r.load_force),
+        "stroke_m": num(r.stroke),
+        "time_ratio": num(r.time_ratio),
+        "largest_pressure_angle_deg": deg(r.largest_pressure_angle),
+        "permissible_pressure_angle_deg": [lo, hi],
+        "speed_deg_s": r.speed_deg_s,
+        "power_W": num(r.power),
+        "mean_force_N": num(r.mean_force),
+        "quasi_static_peak_N": num(r.quasi_static_peak),
+        "quasi_static_peak_angle_deg": deg(r.quasi_static_peak_angle),
+        "model": r.model,
+        "inertia_kg_m2": None if r.inertia is None else num(r.inertia),
+        "energy_band_J": None if r.energy_band is None else num(r.energy_band),
+        "least_peak_force_N": None if r.least_peak_force is None else num(r.least_peak_force),
+        "force_limit_N": s.operator.force_limit,
+        "checks": _checks(r),
+        "passed": r.passed,
+    }
+
+
+def sample_rows(r) -> list[dict[str, Any]]:
+    """One row per swept crank angle."""
+    return [
+        {
+            "crank_angle_deg": deg(t),
+            "slider_position_m": num(s),
+            "velocity_ratio_m_per_rad": num(v),
+            "crank_torque_Nm": num(q),
+            "operator_force_N": num(f),
+            "pressure_angle_deg": deg(p),
+        }
+        for t, s, v, q, f, p in zip(
+            r.samples,
+            r.slider_position,
+            r.velocity_ratio,
+            r.crank_torque,
+            r.operator_force,
+            r.pressure_angle,
+            strict=True,
+        )
+    ]
+
+
+def _verdict_line(row) -> str:
+    if not row["feasible"]:
+        return f"VERDICT: FAIL — infeasible: {row['error']}"
+    peak = row["least_peak_force_N"] if row["least_peak_force_N"] is not None else row["quasi_static_peak_N"]
+    limit = row["force_limit_N"]
+    if row["passed"]:
+        mean = row["mean_force_N"]
+        return f"VERDICT: PASS — mean {mean:.1f} N and peak {peak:.1f} N are within the {limit:g} N limit"
+    over = [f"{w} {v:.1f} N" for w, v in (("mean", row["mean_force_N"]), ("peak", peak)) if v > limit]
+    return f"VERDICT: FAIL — {' and '.join(over)} above the {limit:g} N limit"
+
+
+def render_force(r, fmt: str, summary: bool = False, out=None) -> None:
+    """``pumplink force`` on a piston-pump spec: summary, the condensed sweep, the checks, the verdict."""
+    out = out or sys.stdout
+    row = summary_row(r)
+    samples = [] if summary else sample_rows(r)
+    if fmt == "json":
+        return write_json({**row, **({} if summary else {"samples": samples})}, out)
+    if fmt == "csv":
+        return write_csv(samples if samples else [row], out)
+    from rich.markup import escape
+    from rich.table import Table
+
+    c = console(out)
+    c.print(f"[bold]{escape(row['name'])}[/]\nsingle-acting piston pump, crank-slider turned by a hand crank")
+    if not row["feasible"]:
+        c.print(_verdict_line(row), markup=False)
+        return
+    c.print(
+        f"crank r = {row['crank_m']:.4g} m, rod l = {row['rod_m']:.4g} m, "
+        f"offset e = {row['offset_m']:.4g} m, "
+        f"handle R = {row['handle_m']:.4g} m\n"
+        f"bore {row['bore_m'] * 1000:.4g} mm, head {row['head_m']:.4g} m: piston force "
+        f"{row['load_force_N']:.1f} N on the working stroke\n"
+        f"stroke H = {row['stroke_m']:.4g} m, time ratio K = {row['time_ratio']:.4f}, crank speed "
+        f"{row['speed_deg_s']:g} deg/s ({row['power_W']:.1f} W)",
+        markup=False,
+    )
+    if samples:
+        step = max(1, math.ceil(len(samples) / TABLE_ROWS))
+        t = Table(
+            title=f"Sweep (every {step} of {len(samples)} samples; --format csv for all)"
+            if step > 1
+            else "Sweep",
+            title_justify="left",
+        )
+        for h in ("crank [deg]", "slider [m]", "ds/dθ [m]", "torque [N·m]", "force [N]", "λ [deg]"):
+            t.add_column(escape(h), justify="right")
+        for s in samples[::step]:
+            t.add_row(
+                _f(s["crank_angle_deg"], "{:.2f}"),
+                _f(s["slider_position_m"], "{:.4f}"),
+                _f(s["velocity_ratio_m_per_rad"], "{:+.4f}"),
+                _f(s["crank_torque_Nm"], "{:.2f}"),
+                _f(s["operator_force_N"], "{:.2f}"),
+                _f(s["pressure_angle_deg"], "{:.2f}"),
+            )
+        c.print(t)
+    t = Table(title="Checks", title_justify="left")
+    for h in ("check", "value", "limit", "result"):
+        t.add_column(h, justify="left" if h == "check" else "right")
+    for ch in row["checks"]:
+        label = _CHECK_LABELS.get(ch["check"], ch["check"])
+        if ch["check"] == "peak_force":
+            label += " (flywheel)" if row["least_peak_force_N"] is not None else " (quasi-st.)"
+        t.add_row(
+            label,
+            f"{_f(ch['value'], '{:.2f}')} {ch['unit']}",
+            f"{ch['relation']} {ch['limit']:g} {ch['unit']}",
+            {"pass": "pass", "warn": "warning", "fail": "FAIL"}[ch["result"]],
+        )
+    lo, hi = row["permissible_pressure_angle_deg"]
+    lam = row["largest_pressure_angle_deg"]
+    t.add_row(
+        "largest pressure angle (rod/piston)",
+        f"{lam:.2f} deg",
+        f"<= {lo:g} ({hi:g}) deg",
+        "ok" if lam <= lo else ("marginal" if lam <= hi else "warn"),
+    )
+    c.print(t)
+    if row["least_peak_force_N"] is not None:
+        c.print(
+            f"model: flywheel (J = {row['inertia_kg_m2']:.4g} kg·m², energy band "
+            f"{row['energy_band_J']:.4g} J; quasi-static peak {row['quasi_static_peak_N']:.1f} N)",
+            markup=False,
+        )
+    else:
+        c.print(
+            f"model: quasi-static (peak at crank {row['quasi_static_peak_angle_deg']:.1f}°;\n"
+            "  the operator turns the crank, so there is no dead centre)",
+            markup=False,
+        )
+    c.print(_verdict_line(row), markup=False)
+
+
+def render_batch(variants, fmt: str, failed: list[bool], out=None) -> None:
+    """``pumplink batch`` over piston-pump variants: one row each, then a summary line."""
+    out = out or sys.stdout
+    rows = [
+        {"variant": v.name, **{k: val for k, val in summary_row(v.result).items() if k != "name"}}
+        for v in variants
+    ]
+    n_fail = sum(failed)
+    if fmt == "json":
+        return write_json({"variants": rows, "failed": n_fail, "total": len(rows)}, out)
+    if fmt == "csv":
+        flat = [
+            {
+                k: ("" if val is None else val)
+                for k, val in r.items()
+                if k not in ("checks", "permissible_pressure_angle_deg")
+            }
+            for r in rows
+        ]
+        return write_csv(flat, out)
+    from rich.markup import escape
+    from rich.table import Table
+
+    c = console(out)
+    t = Table(title="Piston-pump variants", title_justify="left")
+    for h in ("variant", "mean [N]", "peak [N]", "verdict"):
+        t.add_column(escape(h), justify="left" if h == "variant" else "right")
+    for r, bad in zip(rows, failed, strict=True):
+        peak = r["least_peak_force_N"] if r["least_peak_force_N"] is not None else r["quasi_static_peak_N"]
+        t.add_row(
+            escape(r["variant"]),
+            _f(r["mean_force_N"], "{:.1f}"),
+            _f(peak, "{:.1f}"),
+            ("infeasible" if not r["feasible"] else "PASS" if r["passed"] else "FAIL") + ("*" if bad else ""),
+        )
+    c.print(t)
+    best = min((r for r in rows if r["feasible"]), key=lambda r: r["mean_force_N"], default=None)
+    c.print(
+        f"{len(rows)} variants, {len(rows) - n_fail} pass the --fail-on checks, {n_fail} fail (*)"
+        + (f"\nlowest mean force: {best['variant']}" if best else ""),
+        markup=False,
+    )

@@ -1,0 +1,405 @@
+"""The 1:1 workshop template: every link as a bar with its holes, for drilling and for laser/CNC.
+
+* PDF: printable pages (A4, A3 or US letter, landscape), links tiled over several pages when
+  longer than the paper, alignment marks where tiles meet and at the page corners, a 100 mm
+  scale bar on every page, the cut list on page 1.
+* SVG: one canvas at 1:1 (for a vector editor or a cutter), no tiling.
+* DXF: millimetres, one layer per link (ezdxf, optional extra ``pumplink[dxf]``).
+
+Renderers only: hole centres, diameters and lengths come from :class:`pumplink.drawing.Part`.
+1 mm on the paper is 72 / 25.4 = 2.8346 pt in the PDF and SVG.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from pumplink.errors import SpecError
+from pumplink.output.charts import pyplot
+
+MM_PER_INCH = 25.4
+#: Paper sizes, landscape (width, height) [mm]: ISO 216 A4 and A3, US letter (8.5 x 11 in).
+PAPERS = {"A4": (297.0, 210.0), "A3": (420.0, 297.0), "letter": (279.4, 215.9)}
+TEMPLATE_SUFFIXES = (".pdf", ".svg", ".dxf")
+DXF_HINT = "install it with: pip install 'pumplink[dxf]'"
+#: Page layout [mm]: printer-safe margin, header, footer (scale bar), one row per bar, the
+#: overlap of consecutive tiles of a long bar, the scale bar's length and height.
+MARGIN = 10.0
+HEADER = 12.0
+FOOTER = 20.0
+ROW = 52.0
+OVERLAP = 20.0
+SCALE_BAR = (100.0, 4.0)
+CUT_LIST_HEIGHT = 34.0
+DEFAULT_TUBE = "3/4-inch medium steel tube, 26.9 x 2.6 mm"
+
+
+@dataclass(frozen=True)
+class Tile:
+    """The piece ``[start, stop]`` [mm, along the bar from its first hole] of part ``part`` on
+    one page row; ``index`` of ``count`` tiles of that part."""
+
+    part: int
+    start: float
+    stop: float
+    index: int
+    count: int
+
+
+def check_template_path(path) -> Path:
+    """Validate the template path's extension before any work is done."""
+    path = Path(path)
+    if path.suffix.lower() not in TEMPLATE_SUFFIXES:
+        raise SpecError(f"--out {path}: unknown template type '{path.suffix}'; use .pdf, .svg or .dxf")
+    return path
+
+
+def _bar_mm(p) -> tuple[float, float]:
+    """The bar's extent [mm] along its axis, first hole at 0."""
+    edge = p.edge * 1000
+    return -edge, -edge + p.cut_length * 1000
+
+
+def tiles(parts, usable: float, overlap: float = OVERLAP) -> list[Tile]:
+    """Cut each bar into tiles no longer than ``usable`` [mm], overlapping by ``overlap`` [mm]."""
+    out = []
+    for i, p in enumerate(parts):
+        lo, hi = _bar_mm(p)
+        length = hi - lo
+        n = 1 if length <= usable else math.ceil((length - overlap) / (usable - overlap))
+        step = usable - overlap
+        for k in range(n):
+            start = lo + k * step
+            out.append(Tile(i, start, min(start + usable, hi), k, n))
+    return out
+
+
+def layout(parts, paper: str) -> list[list[Tile]]:
+    """The tiles on each page, in rows from the top; page 1 leaves room for the cut list."""
+    W, H = PAPERS[paper]
+    usable = W - 2 * MARGIN - 10.0
+    rows = H - 2 * MARGIN - HEADER - FOOTER
+    pages: list[list[Tile]] = [[]]
+    room = int((rows - CUT_LIST_HEIGHT) // ROW)
+    for t in tiles(parts, usable):
+        if len(pages[-1]) >= room:
+            pages.append([])
+            room = int(rows // ROW)
+        pages[-1].append(t)
+    return pages
+
+
+def cut_list_rows(parts, tube_given: bool) -> list[tuple[str, ...]]:
+    """The cut list: link, holes, centre distance, cut length, tube, mass (text cells)."""
+    rows = [("link", "holes", "hole centres", "cut length", "tube", "mass")]
+    for p in parts:
+        tube = f"{p.mass_per_length:.2f} kg/m " + (
+            "(linkage.mass_per_length)" if tube_given else DEFAULT_TUBE
+        )
+        holes = f"{len(p.holes)} x Ø{p.hole_diameter * 1000:g} mm"
+        rows.append(
+            (
+                p.name,
+                holes,
+                f"{p.centre_distance * 1000:.1f} mm",
+                f"{p.cut_length * 1000:.0f} mm",
+                tube,
+                f"{p.mass:.2f} kg",
+            )
+        )
+    return rows
+
+
+def _scale_bar(ax, x, y):
+    """A 100 mm bar in 10 mm steps; its outline is exactly SCALE_BAR [mm] (what the fitter measures)."""
+    from matplotlib.patches import Rectangle
+
+    L, h = SCALE_BAR
+    for k in range(0, 10, 2):
+        ax.add_patch(Rectangle((x + 10 * k, y), 10, h, fc="k", ec="none", lw=0))
+    bar = Rectangle((x, y), L, h, fill=False, ec="k", lw=0.5)
+    bar.set_gid("scale-bar")
+    ax.add_patch(bar)
+    ax.text(x, y + h + 1.0, "0", fontsize=6, ha="center", va="bottom")
+    ax.text(x + L, y + h + 1.0, "100 mm", fontsize=6, ha="center", va="bottom")
+    ax.text(
+        x + L + 12,
+        y + h / 2,
+        "scale check: this bar must measure exactly 100 mm. If not, print again at 100 % "
+        "('actual size', no 'fit to page').",
+        fontsize=6.5,
+        va="center",
+    )
+
+
+def _cross(ax, x, y, size=4.0, lw=0.4, gid=None, colour="k"):
+    ax.plot([x - size, x + size], [y, y], color=colour, lw=lw)
+    ax.plot([x, x], [y - size, y + size], color=colour, lw=lw)
+    (pt,) = ax.plot([x], [y], marker="+", ms=0.1, color=colour, lw=0)
+    if gid:
+        pt.set_gid(gid)
+
+
+def _bar(ax, p, x0, yc, lo_clip, hi_clip, clip):
+    """Part ``p`` with its first hole at page x = ``x0`` on centre line ``yc``, clipped to
+    [lo_clip, hi_clip] of the bar [mm]."""
+    from matplotlib.patches import Circle, Rectangle
+
+    d = p.hole_diameter * 1000
+    lo, hi = _bar_mm(p)
+    w = 2 * p.edge * 1000
+    artists = []
+    artists.append(ax.add_patch(Rectangle((x0 + lo, yc - w / 2), hi - lo, w, fill=False, ec="k", lw=0.6)))
+    (cl,) = ax.plot([x0 + lo - 3, x0 + hi + 3], [yc, yc], color="0.4", lw=0.3, ls=(0, (8, 2, 1, 2)))
+    artists.append(cl)
+    for i, (h, label) in enumerate(zip(p.holes, p.hole_labels)):
+        x = x0 + h * 1000
+        if not lo_clip - 1e-6 <= h * 1000 <= hi_clip + 1e-6:
+            continue
+        artists.append(ax.add_patch(Circle((x, yc), d / 2, fill=False, ec="k", lw=0.6)))
+        _cross(ax, x, yc, size=d / 2 + 3, lw=0.3, gid=f"hole-{p.key}-{i}")
+        ax.text(x + d / 2 + 1.5, yc + 1.5, f"{label}  Ø{d:g}", fontsize=6.5, va="bottom")
+    if p.end_label:
+        x = x0 + p.end * 1000
+        if lo_clip - 1e-6 <= p.end * 1000 <= hi_clip + 1e-6:
+            (g,) = ax.plot([x, x], [yc - w / 2 - 2, yc + w / 2 + 2], color="C3", lw=0.6)
+            artists.append(g)
+            ax.text(
+                x + 2,
+                yc,
+                f"{p.end_label}: {p.end * 1000:.1f} mm from {p.hole_labels[0]}",
+                fontsize=6.5,
+                ha="left",
+                va="center",
+                color="C3",
+            )
+    for a in artists:
+        a.set_clip_path(clip)
+
+
+def _new_page(plt, W, H):
+    fig = plt.figure(figsize=(W / MM_PER_INCH, H / MM_PER_INCH))
+    ax = fig.add_axes((0, 0, 1, 1))
+    ax.set_xlim(0, W)  # 1 data unit = 1 mm on the paper
+    ax.set_ylim(0, H)
+    ax.set_axis_off()
+    return fig, ax
+
+
+def _page(plt, parts, page, k, n, paper, name, cut_rows):
+    from matplotlib.patches import Rectangle
+
+    W, H = PAPERS[paper]
+    fig, ax = _new_page(plt, W, H)
+    ax.text(
+        MARGIN + 5,
+        H - MARGIN - 3,
+        f"{name}: drilling template 1:1, {paper}, page {k} of {n}",
+        fontsize=10,
+        weight="bold",
+        va="center",
+    )
+    ax.text(
+        W - MARGIN - 5,
+        H - MARGIN - 3,
+        "print at 100 % (actual size); lengths in mm",
+        fontsize=7,
+        va="center",
+        ha="right",
+    )
+    for x, y in ((MARGIN, MARGIN), (W - MARGIN, MARGIN), (MARGIN, H - MARGIN), (W - MARGIN, H - MARGIN)):
+        _cross(ax, x, y, size=3.0, lw=0.5)  # corner alignment marks
+    _scale_bar(ax, MARGIN + 5, MARGIN + 6)
+    top = H - MARGIN - HEADER
+    if cut_rows:
+        ax.text(MARGIN + 5, top, "cut list", fontsize=8, weight="bold", va="top")
+        widths = (45, 28, 26, 24, 95, 20)
+        for r, row in enumerate(cut_rows):
+            x = MARGIN + 5
+            for cell, w in zip(row, widths):
+                ax.text(x, top - 6 - 5 * r, cell, fontsize=7, va="top", weight="bold" if r == 0 else "normal")
+                x += w
+        top -= CUT_LIST_HEIGHT
+    x_left = MARGIN + 5
+    for r, t in enumerate(page):
+        p = parts[t.part]
+        yc = top - (r + 0.5) * ROW
+        x0 = x_left - t.start  # page x of the bar's first hole
+        w = 2 * p.edge * 1000
+        clip = Rectangle((x_left - 0.01, yc - ROW / 2), t.stop - t.start + 0.02, ROW, transform=ax.transData)
+        _bar(ax, p, x0, yc, t.start, t.stop, clip)
+        title = f"{p.name}: {p.centre_distance * 1000:.1f} mm between hole centres"
+        if p.end_label:
+            title += f", {p.end_label} at {p.end * 1000:.1f} mm"
+        if t.count > 1:
+            title += f"  (piece {t.index + 1} of {t.count})"
+        tx = x_left + (OVERLAP + 2 if t.index else 0)  # clear of the alignment mark J
+        ax.text(tx, yc + ROW / 2 - 3, title, fontsize=7.5, weight="bold", va="top")
+        if len(p.holes) == 2 and t.count == 1:
+            a, b = x0 + p.holes[0] * 1000, x0 + p.holes[1] * 1000
+            y = yc - w / 2 - 5
+            ax.annotate(
+                "",
+                xy=(b, y),
+                xytext=(a, y),
+                arrowprops=dict(arrowstyle="<|-|>", lw=0.5, mutation_scale=6, shrinkA=0, shrinkB=0),
+            )
+            ax.text(
+                (a + b) / 2, y - 1, f"{p.centre_distance * 1000:.1f} mm", fontsize=7, ha="center", va="top"
+            )
+        # Where two pieces of a long bar meet: the same numbered mark on both, in the overlap.
+        for j, at in ((t.index, t.start + OVERLAP / 2), (t.index + 1, t.stop - OVERLAP / 2)):
+            if (j == t.index and t.index == 0) or (j == t.index + 1 and t.index + 1 == t.count):
+                continue
+            x = x0 + at
+            for y in (yc + w / 2 + 5, yc - w / 2 - 5):
+                _cross(ax, x, y, size=3.0, lw=0.5, colour="C0")
+                ax.text(x + 1.5, y + 1.5, f"J{j}", fontsize=6.5, color="C0", va="bottom")
+        if t.index + 1 < t.count:
+            edge = x0 + t.stop
+            ax.plot([edge, edge], [yc - w / 2 - 9, yc + w / 2 + 9], color="C0", lw=0.4, ls="--")
+            ax.text(
+                x0 + t.stop - OVERLAP / 2 - 6,
+                yc - w / 2 - 5,
+                f"piece {t.index + 2} continues: lay it over this end, J{t.index + 1} on J{t.index + 1}",
+                fontsize=6.5,
+                color="C0",
+                ha="right",
+                va="center",
+            )
+    return fig
+
+
+def _replace(tmp: Path, path: Path) -> None:
+    try:
+        os.replace(tmp, path)
+    except OSError as exc:
+        tmp.unlink(missing_ok=True)
+        raise SpecError(f"{path}: cannot be written ({exc.strerror or exc})") from None
+
+
+def _tmp(path: Path) -> Path:
+    return path.with_name(f".{path.name}.tmp{os.getpid()}{path.suffix}")
+
+
+def template_pdf(parts, path, paper: str, name: str, tube_given: bool) -> int:
+    """Write the tiled PDF template (written to a temporary file, then renamed); returns pages."""
+    plt = pyplot()
+    from matplotlib.backends.backend_pdf import PdfPages
+
+    path = Path(path)
+    pages = layout(parts, paper)
+    tmp = _tmp(path)
+    try:
+        with PdfPages(tmp, metadata={"Title": f"{name}: drilling template", "Creator": "pumplink"}) as pdf:
+            for k, page in enumerate(pages, 1):
+                fig = _page(
+                    plt,
+                    parts,
+                    page,
+                    k,
+                    len(pages),
+                    paper,
+                    name,
+                    cut_list_rows(parts, tube_given) if k == 1 else None,
+                )
+                pdf.savefig(fig)
+                plt.close(fig)
+    except OSError as exc:
+        Path(tmp).unlink(missing_ok=True)
+        raise SpecError(f"{path}: cannot be written ({exc.strerror or exc})") from None
+    _replace(tmp, path)
+    return len(pages)
+
+
+def template_svg(parts, path, name: str) -> None:
+    """Every bar on one canvas at 1:1, untiled, with its hole centres (SVG, in pt: 1 mm = 72/25.4 pt)."""
+    plt = pyplot()
+    path = Path(path)
+    length = max(hi - lo for lo, hi in map(_bar_mm, parts))
+    W = length + 2 * MARGIN + 10
+    H = len(parts) * ROW + 2 * MARGIN + HEADER + FOOTER
+    fig, ax = _new_page(plt, W, H)
+    ax.text(
+        MARGIN, H - MARGIN - 3, f"{name}: link template 1:1 (mm)", fontsize=10, weight="bold", va="center"
+    )
+    _scale_bar(ax, MARGIN + 5, MARGIN + 6)
+    top = H - MARGIN - HEADER
+    from matplotlib.patches import Rectangle
+
+    for r, p in enumerate(parts):
+        yc = top - (r + 0.5) * ROW
+        lo, hi = _bar_mm(p)
+        x0 = MARGIN + 5 - lo
+        clip = Rectangle((0, 0), W, H, transform=ax.transData)
+        _bar(ax, p, x0, yc, lo, hi, clip)
+        ax.text(
+            MARGIN + 5,
+            yc + ROW / 2 - 3,
+            f"{p.name}: {p.centre_distance * 1000:.1f} mm between hole centres",
+            fontsize=7.5,
+            weight="bold",
+            va="top",
+        )
+    tmp = _tmp(path)
+    try:
+        fig.savefig(tmp)
+    except OSError as exc:
+        plt.close(fig)
+        raise SpecError(f"{path}: cannot be written ({exc.strerror or exc})") from None
+    plt.close(fig)
+    _replace(tmp, path)
+
+
+def template_dxf(parts, path, name: str) -> None:
+    """The bars in millimetres, one DXF layer per link: outline, centre line, hole circles, label."""
+    try:
+        import ezdxf
+        from ezdxf import units
+    except ImportError:
+        raise SpecError(f"DXF output needs ezdxf, which is not installed; {DXF_HINT}") from None
+    path = Path(path)
+    doc = ezdxf.new("R2010", setup=True)
+    doc.units = units.MM
+    msp = doc.modelspace()
+    for r, p in enumerate(parts):
+        layer = p.key
+        doc.layers.add(layer, color=r + 1)
+        attr = {"layer": layer}
+        yc = -r * ROW
+        lo, hi = _bar_mm(p)
+        w = p.edge * 1000
+        msp.add_lwpolyline(
+            [(lo, yc - w), (hi, yc - w), (hi, yc + w), (lo, yc + w)], close=True, dxfattribs=attr
+        )
+        msp.add_line((lo - 3, yc), (hi + 3, yc), dxfattribs=attr)
+        for h in p.holes:
+            msp.add_circle((h * 1000, yc), p.hole_diameter * 500, dxfattribs=attr)
+        msp.add_text(
+            f"{name}: {p.name}, {p.centre_distance * 1000:.1f} mm between hole centres",
+            height=4.0,
+            dxfattribs=attr,
+        ).set_placement((lo, yc + w + 3))
+    tmp = _tmp(path)
+    try:
+        doc.saveas(tmp)
+    except OSError as exc:
+        Path(tmp).unlink(missing_ok=True)
+        raise SpecError(f"{path}: cannot be written ({exc.strerror or exc})") from None
+    _replace(tmp, path)
+
+
+def write_template(parts, path, paper: str, name: str, tube_given: bool) -> int:
+    """The template in the format of ``path``'s extension; returns the number of pages (1 for SVG/DXF)."""
+    path = check_template_path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".pdf":
+        return template_pdf(parts, path, paper, name, tube_given)
+    if suffix == ".svg":
+        template_svg(parts, path, name)
+    else:
+        template_dxf(parts, path, name)
+    return 1

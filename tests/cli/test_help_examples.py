@@ -1,0 +1,96 @@
+"""Every example in every --help text and in the README's shell blocks runs, in a temporary copy
+of the repository's configs and examples (never over a tracked file), with the exit code its
+text implies."""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+BIN = Path(sys.executable).parent
+
+
+def help_examples() -> list[tuple[str, str]]:
+    """(command, example) for every 'Example: [bold]...[/]' in the commands' help texts."""
+    from pumplink.cli import app
+
+    out = [
+        ("pumplink", " ".join(m.split())) for m in re.findall(r"Example: \[bold\](.*?)\[/\]", app.info.help)
+    ]
+    for c in app.registered_commands:
+        for m in re.findall(r"Example: \[bold\](.*?)\[/\]", c.callback.__doc__ or "", re.S):
+            out.append((c.callback.__name__, " ".join(m.split())))
+    return out
+
+
+def readme_examples() -> list[str]:
+    """The `pumplink ...` lines of the README's sh blocks (comments stripped)."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    lines = []
+    for block in re.findall(r"^```sh\n(.*?)^```", text, re.S | re.M):
+        for line in block.splitlines():
+            line = line.split("  #")[0].strip()
+            if line.startswith("pumplink "):
+                lines.append(line)
+    return lines
+
+
+#: The exit code each example's text implies (0 PASS or written; 1 FAIL), by its first words.
+EXPECTED_FAIL = (
+    "pumplink force examples/well-12m-flywheel.toml",  # the 12 m well fails at any speed (its comments)
+    "pumplink speed examples/well-12m-flywheel.toml",
+    "pumplink batch configs/grids/piston-bore.toml",  # 3 of 8 bores fail
+)
+
+
+def _workdir(d: Path) -> Path:
+    for name in ("configs", "examples"):
+        shutil.copytree(ROOT / name, d / name, symlinks=False)
+    return d
+
+
+@pytest.fixture
+def workdir(tmp_path) -> Path:
+    """A fresh copy of configs/ and examples/, with the ./pump.toml the force example edits."""
+    d = _workdir(tmp_path)
+    subprocess.run([BIN / "pumplink", "init", "pump.toml"], cwd=d, check=True, capture_output=True)
+    return d
+
+
+def _run(line: str, cwd: Path) -> subprocess.CompletedProcess:
+    env = {**os.environ, "PATH": f"{BIN}{os.pathsep}{os.environ.get('PATH', '')}", "COLUMNS": "80"}
+    return subprocess.run(line, shell=True, cwd=cwd, env=env, capture_output=True, text=True, timeout=600)
+
+
+@pytest.mark.parametrize(("command", "example"), help_examples(), ids=lambda x: x if " " not in x else None)
+def test_every_help_example_runs(command, example, workdir):
+    before = {p: p.stat().st_mtime_ns for p in (ROOT / "docs").glob("*")}
+    p = _run(
+        example.replace(
+            "pump.toml && pumplink force pump.toml", "pump.toml --force && pumplink force pump.toml"
+        ),
+        workdir,
+    )
+    expected = 1 if example.startswith(EXPECTED_FAIL) else 0
+    assert p.returncode == expected, (example, p.stderr[-500:])
+    assert "Traceback" not in p.stderr
+    assert {p: p.stat().st_mtime_ns for p in (ROOT / "docs").glob("*")} == before  # no tracked file touched
+
+
+def test_every_readme_command_runs_in_order(tmp_path):
+    """The README's shell lines, in order in one folder (the quick start writes my-pump.toml first)."""
+    d = _workdir(tmp_path)
+    lines = readme_examples()
+    assert len(lines) >= 6
+    for line in lines:
+        p = _run(line, d)
+        expected = 1 if line.startswith(EXPECTED_FAIL) else 0
+        assert p.returncode == expected, (line, p.stderr[-500:])
+        assert "Traceback" not in p.stderr

@@ -1,0 +1,113 @@
+"""Piston-pump spec and models (docs/piston-pump.md), against hand derivations and brute force.
+
+Independent routes:
+
+* the harmonic limit (rod ratio L -> infinity, offset 0): s = r cos t, so the operator force is
+  F_load r sin t / R on the working stroke; the mean F_load r / (pi R), the peak F_load r / R,
+  and the energy deficit of (P.4) in closed form, D = F_load r [2 sqrt(1 - k^2) - k (pi - 2 asin k)]
+  with k = Fp R / (F_load r) (the arc between the two points where the load torque equals Fp R);
+* a dense brute-force scan of (P.4) written here (cumulative sum of the load torque minus Fp R);
+* the piston force by hand: rho g head pi bore^2 / 4 / efficiency.
+"""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from pumplink.errors import SpecError
+from pumplink.models import piston as P
+from pumplink.piston import expand_batch, force_analysis, load_piston, parse_piston
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "examples" / "piston-pump.toml"
+
+
+def harmonic_deficit(load, r, handle, fp):
+    k = fp * handle / (load * r)
+    return load * r * (2 * math.sqrt(1 - k * k) - k * (math.pi - 2 * math.asin(k)))
+
+
+def test_harmonic_limit_by_hand():
+    r, load, handle = 0.05, 1000.0, 0.3
+    rod = 1e7 * r  # L -> infinity: errors O(1/L)
+    assert P.mean_force(r, rod, 0.0, load, handle) == pytest.approx(load * r / (math.pi * handle), rel=1e-7)
+    assert P.quasi_static_peak(r, rod, 0.0, load, handle)[0] == pytest.approx(load * r / handle, rel=1e-7)
+    for fp in (60.0, 100.0, 150.0):
+        assert P.energy_deficit(r, rod, 0.0, load, handle, fp) == pytest.approx(
+            harmonic_deficit(load, r, handle, fp), rel=1e-6
+        )
+
+
+def brute_deficit(r, rod, e, load, handle, fp, n=400_000):
+    t = np.linspace(0.0, 4 * math.pi, 2 * n, endpoint=False)
+    rise = e - r * np.sin(t)
+    rate = -r * np.sin(t) + r * np.cos(t) * rise / np.sqrt(rod * rod - rise * rise)
+    sigma = -1.0 if e >= 0 else 1.0
+    torque = load * np.clip(sigma * rate, 0.0, None)
+    c = np.concatenate([[0.0], np.cumsum((torque - fp * handle) * (t[1] - t[0]))])
+    return float(np.max(c - np.minimum.accumulate(c)))
+
+
+@pytest.mark.parametrize("e", [0.0, 0.02, -0.02])
+def test_least_peak_force_meets_the_band_exactly(e):
+    r, rod, load, handle, band = 0.05, 0.2, 800.0, 0.3, 1.5
+    fp = P.least_peak_force(r, rod, e, load, handle, band)
+    assert P.mean_force(r, rod, e, load, handle) < fp < P.quasi_static_peak(r, rod, e, load, handle)[0]
+    assert brute_deficit(r, rod, e, load, handle, fp) == pytest.approx(band, rel=1e-4)
+    assert brute_deficit(r, rod, e, load, handle, fp * 0.99) > band  # a little less force fails
+
+
+def test_flywheel_limits():
+    r, rod, load, handle = 0.05, 0.2, 800.0, 0.3
+    assert (
+        P.least_peak_force(r, rod, 0.0, load, handle, 0.0)
+        == P.quasi_static_peak(r, rod, 0.0, load, handle)[0]
+    )
+    assert P.least_peak_force(r, rod, 0.0, load, handle, 1e6) == P.mean_force(r, rod, 0.0, load, handle)
+
+
+def test_example_spec_by_hand():
+    res = force_analysis(load_piston(EXAMPLE))
+    load = 1000 * 9.81 * 10.0 * math.pi * 0.05**2 / 4 / 0.6
+    assert res.load_force == pytest.approx(load, rel=1e-14)
+    assert res.stroke == pytest.approx(0.1, rel=1e-14)  # central crank-slider: 2 r
+    assert res.mean_force == pytest.approx(load * 0.1 / (2 * math.pi * 0.3), rel=1e-14)
+    assert res.passed and res.model == "quasi-static"
+    # the sweep's torque is load * |ds/dt| on the working stroke, zero on the return
+    assert np.all(res.operator_force >= 0) and np.max(res.operator_force) <= res.quasi_static_peak
+
+
+def test_spec_errors_name_the_key():
+    data = {
+        "mechanism": "crank-slider",
+        "piston": {"bore": 0.05, "head": 10, "efficiency": 0.6},
+        "crank_slider": {"crank": 0.05, "rod": 0.25},
+        "operator": {"handle": 0.3},
+    }
+    parse_piston(data)
+    with pytest.raises(SpecError, match="crank_slider.rodd"):
+        parse_piston({**data, "crank_slider": {"crank": 0.05, "rodd": 0.25}})
+    with pytest.raises(SpecError, match="mechanism"):
+        parse_piston({**data, "mechanism": "four-bar"})
+    with pytest.raises(SpecError, match="wheel.mass needs wheel.radius"):
+        parse_piston({**data, "wheel": {"mass": 5.0}})
+
+
+def test_rod_too_short_is_infeasible_not_a_mechanism():
+    data = {
+        "mechanism": "crank-slider",
+        "piston": {"bore": 0.05, "head": 10, "efficiency": 0.6},
+        "crank_slider": {"crank": 0.05, "rod": 0.06, "offset": 0.02},
+        "operator": {"handle": 0.3},
+    }
+    res = force_analysis(parse_piston(data))
+    assert not res.feasible and not res.passed and "longer than" in res.error
+
+
+def test_batch_grid_expands_in_file_order():
+    variants = expand_batch(ROOT / "configs" / "grids" / "piston-bore.toml")
+    assert len(variants) == 8
+    assert variants[1][1] == {"piston.bore": 0.04, "operator.handle": 0.3}  # last axis fastest
+    assert variants[1][0] == "piston-bore#1[bore=0.04 handle=0.3]"
