@@ -61,14 +61,25 @@ from pumplink.models import quasi_static as _qs
 GRID = 96
 #: Geometric nodes each side of a dead centre, at cell / 4**k for k = 1..CLUSTER (down to ~1e-5 rad).
 CLUSTER = 6
+#: Designs solved together: their (designs, nodes) arrays stay in the processor's cache (a third
+#: faster than one pass over 5,000 designs, benchmarks/bench_dynamics.py).
+CHUNK = 1024
 #: Relative convergence of Dinkelbach's iteration on the peak force.
 RTOL = 1e-13
+#: Relative convergence of the iteration over the grid nodes (it only says where to refine).
+GRID_RTOL = 1e-3
+#: Largest relative step of the force after which the next pass only follows the extrema already
+#: found (the passes converge quadratically; the last pass always looks at the whole grid).
+TRACK_RTOL = 1e-9
 #: Peak forces above this multiple of F_mean are reported as infinite (as in the flywheel scene).
 FORCE_CAP_RATIO = _fw.FORCE_CAP_RATIO
-#: Bracket width [rad] at which the extremum refinement stops.
-REFINE_XTOL = 1e-12
-#: Most iterations of the refinement (safeguarded Newton: 3-5 in practice).
+#: A Newton step [rad] below which the extremum refinement stops (its error is then of second
+#: order, below 1e-14 rad; the value of the function, flat at an extremum, is exact to rounding).
+REFINE_XTOL = 1e-8
+#: Most iterations of the bracketed refinement (safeguarded Newton: 3-5 in practice).
 REFINE_ITER = 60
+#: Most Newton steps of a warm start from the previous pass's root before the bracketed search.
+WARM_ITER = 3
 #: Finite-difference step of the refinement's Newton iteration, as a fraction of the bracket.
 REFINE_STEP = 1e-6
 
@@ -106,7 +117,7 @@ class Terms:
     """Reduced inertia and potential of the links at crank angles (wheel inertia J not included).
 
     inertia : I - J [kg m^2];  inertia_rate : dI/dt [kg m^2/rad];  potential : V [J];
-    potential_rate : dV/dt [J/rad];  grip_rate : g = dPx/dt [m/rad].
+    potential_rate : dV/dt [J/rad];  grip_rate : g = dPx/dt [m/rad];  grip_x : Px [m].
     """
 
     inertia: np.ndarray
@@ -114,51 +125,59 @@ class Terms:
     potential: np.ndarray
     potential_rate: np.ndarray
     grip_rate: np.ndarray
+    grip_x: np.ndarray
 
 
-def terms(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY) -> Terms:
-    """I(t) - J, I'(t), V(t), V'(t) and g(t) of Eq. (5)-(7) (docs/models.md §3).
+def terms(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only: bool = False) -> Terms:
+    """I(t) - J, I'(t), V(t), V'(t) and g(t) of Eq. (5)-(7) (docs/models.md §3a).
 
-    Velocity coefficients h3 = dt3/dt, h4 = dt4/dt and their derivatives from the loop closure
-    A + coupler e3 = O4 + rocker e4 differentiated once and twice (unit crank speed, no crank
-    acceleration); no instant centres, nothing divides by zero for a crank-rocker (sin(t3 - t4)
-    is the sine of the transmission angle).
+    With u = B - A (the coupler) and w = B - O4 (the rocker), the loop closure A + u = O4 + w
+    differentiated once and twice (unit crank speed, no crank acceleration) gives the velocity
+    coefficients h3 = dt3/dt, h4 = dt4/dt and their derivatives d3, d4 from one 2 x 2 system each:
+
+        h3 = (V . w) / S,  h4 = (V . u) / S,   V = -dA/dt,           S = u x w
+        d3 = (R . w) / S,  d4 = (R . u) / S,   R = -d2A/dt2 + h3^2 u - h4^2 w
+
+    (S = coupler * rocker * sin of the transmission angle: never zero for a crank-rocker; no instant
+    centres).  ``rates_only``: I - J, V and Px are left None (the extremum refinement needs only I',
+    V' and g).
     """
     th = np.asarray(crank_angle, float)
     cs, sn = np.cos(th), np.sin(th)
     px, py, c, k, r, hh = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle
     with np.errstate(all="ignore"):
         _p1, _p2, _e2, t, q = loop_closure(lk, cs, sn)
-        dx, dy = px - c * cs, py - c * sn
+        ccs, csn = c * cs, c * sn  # the crank pin A
+        dx, dy = px - ccs, py - csn  # O4 - A
         ux, uy = t * dx - q * dy, t * dy + q * dx  # B - A (Eq. (6) of pumplink.mechanisms.fourbar)
-        e3x, e3y = ux / k, uy / k
-        e4x, e4y = (c * cs + ux - px) / r, (c * sn + uy - py) / r
-        s34 = e3y * e4x - e3x * e4y  # sin(t3 - t4)
-        c34 = e3x * e4x + e3y * e4y
-        s24 = sn * e4x - cs * e4y  # sin(t2 - t4)
-        c24 = cs * e4x + sn * e4y
-        s23 = sn * e3x - cs * e3y  # sin(t2 - t3)
-        c23 = cs * e3x + sn * e3y
-        h3 = -c * s24 / (k * s34)  # first derivative of the loop closure
-        h4 = -c * s23 / (r * s34)
-        d3 = (-c * c24 - k * h3 * h3 * c34 + r * h4 * h4) / (k * s34)  # second derivative
-        d4 = (-c * c23 - k * h3 * h3 + r * h4 * h4 * c34) / (r * s34)
-        # coupler centre: velocity and acceleration coefficients
-        vx = -c * sn - 0.5 * k * h3 * e3y
-        vy = c * cs + 0.5 * k * h3 * e3x
-        ax = -c * cs - 0.5 * k * (d3 * e3y + h3 * h3 * e3x)
-        ay = -c * sn + 0.5 * k * (d3 * e3x - h3 * h3 * e3y)
+        wx, wy = ux - dx, uy - dy  # B - O4
+        inv = 1.0 / (ux * wy - uy * wx)
+        h3 = (csn * wx - ccs * wy) * inv  # first derivative of the loop closure
+        h4 = (csn * ux - ccs * uy) * inv
+        h33, h44 = h3 * h3, h4 * h4
+        rx = ccs + h33 * ux - h44 * wx
+        ry = csn + h33 * uy - h44 * wy
+        d3 = (rx * wx + ry * wy) * inv  # second derivative
+        d4 = (rx * ux + ry * uy) * inv
+        # coupler centre A + u/2: velocity and acceleration coefficients
+        vx = -csn - 0.5 * h3 * uy
+        vy = ccs + 0.5 * h3 * ux
+        ax = -ccs - 0.5 * (d3 * uy + h33 * ux)
+        ay = -csn + 0.5 * (d3 * ux - h33 * uy)
         arm = np.maximum(hh, r)
         mc, mh, ma = masses.coupler, masses.handle, masses.grip
         ic = mc * k * k / 12.0
         i4 = mh * arm * arm / 3.0 + ma * hh * hh  # about O4
-        inertia = mc * (vx * vx + vy * vy) + ic * h3 * h3 + i4 * h4 * h4  # Eq. (5)
         rate = 2.0 * (mc * (vx * ax + vy * ay) + ic * h3 * d3 + i4 * h4 * d4)
-        lever = 0.5 * mh * arm + ma * hh  # first moment about O4 along the rocker
-        potential = gravity * (mc * (c * sn + 0.5 * k * e3y) + (mh + ma) * py + lever * e4y)  # Eq. (6)
-        potential_rate = gravity * (mc * vy + lever * h4 * e4x)
-        grip_rate = -hh * h4 * e4y
-    return Terms(inertia, rate, potential, potential_rate, grip_rate)
+        lever = (0.5 * mh * arm + ma * hh) / r  # first moment about O4 along the rocker, per metre of w
+        inertia = potential = grip_x = None
+        if not rates_only:
+            inertia = mc * (vx * vx + vy * vy) + ic * h33 + i4 * h44  # Eq. (5)
+            potential = gravity * (mc * (csn + 0.5 * uy) + (mh + ma) * py + lever * wy)  # Eq. (6)
+            grip_x = px + (hh / r) * wx
+        potential_rate = gravity * (mc * vy + lever * h4 * wx)
+        grip_rate = -(hh / r) * h4 * wy
+    return Terms(inertia, rate, potential, potential_rate, grip_rate, grip_x)
 
 
 def reduced_inertia(lk: FourBar, crank_angle, inertia, masses: Masses):
@@ -192,7 +211,7 @@ def energy_band(
 # ----------------------------------------------------------------------------- the solver
 @dataclass(frozen=True)
 class _Problem:
-    """Per-design data (1-D arrays over D designs) and the grid nodes (D, M) of the flywheel scene."""
+    """Per-design data (1-D arrays over D designs) and the band's edges at the grid nodes (D, M)."""
 
     prep: object  # flywheel._Prepared: geometry, dead centres, stroke, grip travel at the nodes
     lk: FourBar  # (D,) arrays
@@ -203,29 +222,39 @@ class _Problem:
     gravity: float
     mw: np.ndarray
     stroke: np.ndarray
-    up: np.ndarray  # upper edge of the band at the nodes (D, M) [J]
-    lo: np.ndarray  # lower edge [J]
+    up: np.ndarray | None  # upper edge of the band at the nodes (D, M) [J]
+    lo: np.ndarray | None  # lower edge [J]
 
-    def points(self, idx):
-        """The grid nodes of designs idx: (x, base, local, up, lo), each (len(idx), M)."""
+    def points(self, rows=None):
+        """The grid nodes of designs ``rows`` (all: None) as points (x, base, local, up, lo)."""
         p = self.prep
-        return p.nodes[idx], p.base[idx], p.local[idx], self.up[idx], self.lo[idx]
+        if rows is None:
+            return p.nodes, p.base, p.local, self.up, self.lo
+        return p.nodes[rows], p.base[rows], p.local[rows], self.up[rows], self.lo[rows]
 
-    def edges(self, phi, idx):
-        """upper, lower, their rates and g at points phi [rad from the extended dead centre] of the
-        designs idx (same shapes)."""
-        lk = FourBar(*(v[idx] for v in self.lk.parameters))
-        ms = Masses(self.masses.coupler[idx], self.masses.handle[idx], self.masses.grip[idx])
-        tm = terms(lk, self.prep.dce[idx] + phi, ms, self.gravity)
-        i = self.inertia[idx] + tm.inertia
-        hi2, lo2 = 0.5 * self.w_hi[idx] ** 2, 0.5 * self.w_lo[idx] ** 2
-        return (
-            tm.potential + i * hi2,  # Eq. (8)
-            tm.potential + i * lo2,
-            tm.potential_rate + tm.inertia_rate * hi2,
-            tm.potential_rate + tm.inertia_rate * lo2,
-            tm.grip_rate,
-        )
+    def edges(self, phi, rows=None):
+        """upper and lower edge of the band [J] at points phi [rad from the extended dead centre],
+        shape (R, K), of the designs ``rows`` (R,) (all: None)."""
+        take = (lambda v: v[:, None]) if rows is None else (lambda v: v[rows][:, None])  # noqa: E731
+        lk = FourBar(*(take(v) for v in self.lk.parameters))
+        ms = Masses(take(self.masses.coupler), take(self.masses.handle), take(self.masses.grip))
+        tm = terms(lk, take(self.prep.dce) + phi, ms, self.gravity)
+        i = take(self.inertia) + tm.inertia
+        hi, lo = 0.5 * take(self.w_hi) ** 2, 0.5 * take(self.w_lo) ** 2
+        return tm.potential + i * hi, tm.potential + i * lo  # Eq. (8)
+
+
+def _node_travel(nodes, plus, grip_x, xe, xf, stroke):
+    """Grip travel G = base + local [m] at the grid nodes from their positions: the split at the
+    nearest dead centre of :func:`pumplink.models.flywheel._travel_parts`, without its integration
+    next to a dead centre.  The grid only brackets the extrema and starts the iteration (every
+    reported force comes from refined points, whose travel is integrated there), so position
+    differences, exact to ~1e-16 m, are enough."""
+    to_fold = nodes - plus
+    at_fold = np.abs(to_fold) <= np.minimum(nodes, TWO_PI - nodes)
+    s = np.where(at_fold, to_fold, np.where(nodes <= TWO_PI - nodes, nodes, nodes - TWO_PI))
+    base = np.where(at_fold, stroke, np.where(s >= 0, 0.0, 2.0 * stroke))
+    return base, np.sign(s) * np.abs(grip_x - np.where(at_fold, xf, xe))
 
 
 def _problem(lk, dce, dcf, wheel_torque, inertia, masses, mean_speed, speed_fluctuation, gravity):
@@ -243,179 +272,322 @@ def _problem(lk, dce, dcf, wheel_torque, inertia, masses, mean_speed, speed_fluc
     )
     geom, (dce, dcf, mw, j, mc, mh, ma, w, delta) = arrays[:7], arrays[7:]
     lk1 = FourBar(*geom)
-    prep, _ = _fw._prepare(lk1, dce, dcf, mw, GRID, CLUSTER)
     w_lo, w_hi = speed_limits(w, delta)
-    ms = Masses(mc, mh, ma)
-    d = np.broadcast_to(np.arange(dce.size)[:, None], prep.nodes.shape)
-    half = _Problem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, prep.stroke, None, None)
     with np.errstate(all="ignore"):
-        up, lo, *_ = half.edges(prep.nodes, d)
-    return _Problem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, prep.stroke, up, lo), scalar
+        xe = _fw._grip_x(dce, *geom)
+        xf = _fw._grip_x(dcf, *geom)
+        stroke = np.abs(xf - xe)
+        nodes, plus = _fw._nodes(dce, dcf, GRID, CLUSTER)
+        col = FourBar(*(v[:, None] for v in geom))
+        tm = terms(col, dce[:, None] + nodes, Masses(mc[:, None], mh[:, None], ma[:, None]), gravity)
+        i = j[:, None] + tm.inertia
+        up = tm.potential + i * (0.5 * w_hi**2)[:, None]  # Eq. (8)
+        lo = tm.potential + i * (0.5 * w_lo**2)[:, None]
+        base, local = _node_travel(nodes, plus[:, None], tm.grip_x, xe[:, None], xf[:, None], stroke[:, None])
+    prep = _fw._Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
+    return _Problem(prep, lk1, j, Masses(mc, mh, ma), w_lo, w_hi, gravity, mw, stroke, up, lo), scalar
 
 
-def _doubled(a, drift):
-    return np.concatenate([a, a - drift[:, None]], axis=1)
-
-
-def _pairs(x, base, local, up, lo, mw, stroke, lam):
-    """The worst pair of (C1) and of (C2) at Fp = lam over the points x (sorted per row).
+# The pairs of (C1)-(C2) in the form the sweeps use (docs/models.md §3a).  At the points x of a row
+# (sorted, one revolution) with G = base + local and the lam-free parts au = upper + Mw x,
+# al = lower + Mw x:  upper - Q = au - lam G,  lower - Q = al - lam G,  lower - P = al + lam G,
+# upper - P = au + lam G; one revolution later Q has grown by a = 2 lam S - 2 pi Mw and P by
+# b = -2 lam S - 2 pi Mw.  N and K of a pair (earlier point i, later point j, "wrap" when i lies
+# one revolution back):  (C1) N = al_j - au_i (+ 2 pi Mw),  (C2) N = al_i - au_j (- 2 pi Mw),
+# K = G_j - G_i (+ 2 S) for both.
+def _pairs(g, au, al, base, local, mw, stroke, lam):
+    """The worst pair of (C1) and of (C2) at Fp = lam over the points of each row.
 
     Returns (h, ratio), each (D, 2) for the two families: h = max over pairs of N - lam K [J]
     (feasible iff h <= 0 in both), ratio = N / K of the maximising pair [N] (Dinkelbach's next
-    iterate).  N and K of a pair: (C1) t <= s: N = lower(s) - upper(t) + Mw (s - t), K = G(s) - G(t);
-    (C2) s <= t: N = lower(s) - upper(t) - Mw (t - s), K = G(t) - G(s).
+    iterate).  Pairs whose earlier point lies up to a revolution back are included without
+    doubling the arrays: a running extremum one revolution back is the row's extremum shifted by
+    the drift (a or b), so the later copy of a point always dominates its first copy.
     """
-    n = x.shape[1]
-    g = base + local
-    m, la = mw[:, None], lam[:, None]
-    a = 2.0 * lam * stroke - TWO_PI * mw  # Q(x + 2 pi) - Q(x)
-    b = -2.0 * lam * stroke - TWO_PI * mw  # P(x + 2 pi) - P(x)
-    q = la * g - m * x
-    p = -la * g - m * x
-    rows = np.arange(x.shape[0])
-    cols = np.arange(2 * n)[None, :]
-    out_h = np.empty((x.shape[0], 2))
-    out_r = np.empty((x.shape[0], 2))
+    rows = np.arange(g.shape[0])
+    lg = lam[:, None] * g
+    out_h = np.empty((g.shape[0], 2))
+    out_r = np.empty((g.shape[0], 2))
+    two_s, turn = 2.0 * stroke, TWO_PI * mw
 
-    def ratio(i, j, sign):  # N/K of the pair (earlier i, later j) on the doubled points
-        xi, xj = x[rows, i % n] + TWO_PI * (i >= n), x[rows, j % n] + TWO_PI * (j >= n)
-        gi = base[rows, i % n] + 2.0 * stroke * (i >= n)
-        gj = base[rows, j % n] + 2.0 * stroke * (j >= n)
-        k = (gj - gi) + (local[rows, j % n] - local[rows, i % n])  # no cancellation near a dead centre
-        if sign > 0:  # (C1): t = i, s = j
-            num = lo[rows, j % n] - up[rows, i % n] + mw * (xj - xi)
-        else:  # (C2): s = i, t = j
-            num = lo[rows, i % n] - up[rows, j % n] - mw * (xj - xi)
-        return num / k
+    def ratio(i, j, wrap, num):
+        k = (base[rows, j] - base[rows, i]) + (local[rows, j] - local[rows, i])  # no cancellation at a DC
+        return num / (k + np.where(wrap, two_s, 0.0))
 
     # (C1): lower(s) - Q(s) - min over t <= s of (upper(t) - Q(t)) <= 0
-    al = _doubled(up - q, a)
-    run = np.minimum.accumulate(al, axis=1)
-    v = _doubled(lo - q, a) - run
+    f = au - lg
+    run = np.minimum.accumulate(f, axis=1)
+    back = (run[:, -1] + 2.0 * lam * stroke - turn)[:, None]  # the minimum one revolution back
+    best = np.minimum(run, back)
+    v = al - lg - best
     j = np.argmax(v, axis=1)
     out_h[:, 0] = v[rows, j]
-    i = np.argmax((al == run[rows, j][:, None]) & (cols <= j[:, None]), axis=1)
-    out_r[:, 0] = ratio(i, j, 1)
+    wrap = best[rows, j] < run[rows, j]
+    i = np.where(wrap, np.argmin(f, axis=1), np.argmax(f == run[rows, j][:, None], axis=1))
+    out_r[:, 0] = ratio(i, j, wrap, al[rows, j] - au[rows, i] + np.where(wrap, turn, 0.0))
     # (C2): max over s <= t of (lower(s) - P(s)) - (upper(t) - P(t)) <= 0
-    ga = _doubled(lo - p, b)
-    run = np.maximum.accumulate(ga, axis=1)
-    v = run - _doubled(up - p, b)
+    f = al + lg
+    run = np.maximum.accumulate(f, axis=1)
+    back = (run[:, -1] - 2.0 * lam * stroke - turn)[:, None]
+    best = np.maximum(run, back)
+    v = best - au - lg
     j = np.argmax(v, axis=1)
     out_h[:, 1] = v[rows, j]
-    i = np.argmax((ga == run[rows, j][:, None]) & (cols <= j[:, None]), axis=1)
-    out_r[:, 1] = ratio(i, j, -1)
+    wrap = best[rows, j] > run[rows, j]
+    i = np.where(wrap, np.argmax(f, axis=1), np.argmax(f == run[rows, j][:, None], axis=1))
+    out_r[:, 1] = ratio(i, j, wrap, al[rows, i] - au[rows, j] - np.where(wrap, turn, 0.0))
     return out_h, out_r
 
 
-def _dinkelbach(pts, mw, stroke, lam, cap):
-    """Dinkelbach's iteration over the pairs of the points ``pts`` from the lower bound ``lam``.
+def _dinkelbach(pts, mw, stroke, lam, cap, rtol=RTOL):
+    """Dinkelbach's iteration over the pairs of the points ``pts`` = (x, base, local, up, lo), each
+    (D, K), from the lower bound ``lam``.
 
-    Every iterate is the ratio of a pair, so a lower bound of Fp*; it stops when no pair of the
-    points is violated (or the iterate moves by less than RTOL).  Arrays over the rows of pts.
+    Every iterate is the ratio of a pair, so a lower bound of Fp*; a row stops when no pair of its
+    points is violated (or the iterate moves by less than RTOL).  The rows still iterating are
+    gathered into smaller arrays only when they are fewer than half of those held.
     """
-    lam = lam.copy()
-    active = np.arange(lam.size)
+    x, base, local, up, lo = pts
+    m = mw[:, None] * x
+    held = [base + local, up + m, lo + m, base, local, mw, stroke, cap]
+    lam = np.array(lam, float)
+    where = np.arange(lam.size)  # row of lam for each held row
+    live = np.ones(lam.size, bool)
     for _ in range(200):
-        if active.size == 0:
+        n_live = int(live.sum())
+        if n_live == 0:
             break
+        if n_live < 0.5 * live.size:
+            keep = np.nonzero(live)[0]
+            held, where, live = [v[keep] for v in held], where[keep], live[keep]
+        cur = lam[where]
         with np.errstate(all="ignore"):
-            h, r = _pairs(*(v[active] for v in pts), mw[active], stroke[active], lam[active])
+            h, r = _pairs(*held[:7], cur)
             r = np.where(h > 0, np.where(np.isnan(r), np.inf, r), -np.inf)
             new = r.max(axis=1)
-        grow = new > lam[active]
-        done = ~grow | (new - lam[active] <= RTOL * np.abs(new))
-        lam[active] = np.where(grow, new, lam[active])
-        capped = ~(lam[active] <= cap[active])
-        lam[active[capped]] = np.inf
-        active = active[~(done | capped)]
+        grow = live & (new > cur)
+        done = ~grow | (new - cur <= rtol * np.abs(new))
+        cur = np.where(grow, new, cur)
+        capped = ~(cur <= held[7])
+        cur[capped] = np.inf
+        lam[where[live]] = cur[live]
+        live &= ~(done | capped)
     return lam
 
 
+#: The four functions whose local extrema hold the worst pairs: (edge, sign of lam G, kind) with
+#: edge 0 upper / 1 lower, sign -1 for "minus Q" / +1 for "minus P", kind -1 minima / +1 maxima.
+#: (C1) pairs a local minimum of upper - Q with a later local maximum of lower - Q, (C2) a local
+#: maximum of lower - P with a later local minimum of upper - P.
+_FAMILIES = ((0, -1.0, -1), (1, -1.0, 1), (1, 1.0, 1), (0, 1.0, -1))
+
+
 def _extrema(pb: _Problem, lam, rows):
-    """Local extrema of the four functions upper - Q, lower - Q, lower - P, upper - P on the grid
-    nodes of designs ``rows`` at Fp = lam (per row): (design, node, lo, hi, edge, sign), with the
-    neighbouring nodes (lo, hi) as the bracket."""
+    """The local extrema of :data:`_FAMILIES` on the grid nodes of designs ``rows`` at Fp = lam (per
+    row): (design, node, lo, hi, family) with the neighbouring nodes (lo, hi) as the bracket."""
     x, base, local, up, low = pb.points(rows)
-    g = base + local
-    la, m = lam[:, None], pb.mw[rows][:, None]
+    lg = lam[:, None] * (base + local)
+    m = pb.mw[rows][:, None] * x
     a = 2.0 * lam * pb.stroke[rows] - TWO_PI * pb.mw[rows]
     b = -2.0 * lam * pb.stroke[rows] - TWO_PI * pb.mw[rows]
-    xp = np.concatenate([x[:, -1:] - TWO_PI, x[:, :-1]], axis=1)
-    xn = np.concatenate([x[:, 1:], x[:, :1] + TWO_PI], axis=1)
+    last = x.shape[1] - 1
+    ext = np.empty(x.shape, bool)
     out = []
-    for edge, sign, drift in ((0, -1.0, a), (1, -1.0, a), (1, 1.0, b), (0, 1.0, b)):
-        f = (up if edge == 0 else low) + sign * la * g + m * x  # upper/lower minus Q (sign -1) or P (+1)
-        fp = np.concatenate([f[:, -1:] + drift[:, None], f[:, :-1]], axis=1)
-        fn = np.concatenate([f[:, 1:], f[:, :1] - drift[:, None]], axis=1)
+    for fam, (edge, sign, kind) in enumerate(_FAMILIES):
+        drift = a if sign < 0 else b
+        f = (up if edge == 0 else low) + m
+        f += sign * lg  # upper/lower minus Q (sign -1) or P (+1)
+        f *= -kind  # local maxima become minima
         with np.errstate(invalid="ignore"):
-            ext = ((f <= fp) & (f < fn)) | ((f >= fp) & (f > fn))
+            np.less(f[:, 1:-1], f[:, 2:], out=ext[:, 1:-1])
+            ext[:, 1:-1] &= f[:, 1:-1] <= f[:, :-2]
+            # the neighbours across the period: f(x - 2 pi) = f(x) + drift (times -kind)
+            ext[:, 0] = (f[:, 0] <= f[:, -1] - kind * drift) & (f[:, 0] < f[:, 1])
+            ext[:, -1] = (f[:, -1] <= f[:, -2]) & (f[:, -1] < f[:, 0] + kind * drift)
         d, k = np.nonzero(ext)
-        out.append((d, x[d, k], xp[d, k], xn[d, k], np.full(d.size, edge), np.full(d.size, sign)))
-    return [np.concatenate(v) for v in zip(*out, strict=True)]
+        out.append((d, k, np.full(d.size, fam)))
+    d, k, fam = (np.concatenate(v) for v in zip(*out, strict=True))
+    node = x[d, k]
+    lo = np.where(k > 0, x[d, k - 1], x[d, last] - TWO_PI)
+    hi = np.where(k < last, x[d, np.minimum(k + 1, last)], x[d, 0] + TWO_PI)
+    return d, node, lo, hi, fam
 
 
-def _refined_points(pb: _Problem, lam, rows):
-    """Every local extremum of the four functions at Fp = lam, located to REFINE_XTOL by a root
-    search on the analytic derivative (Newton, safeguarded by bisection, bracketed by the neighbouring grid
-    nodes), as the points (x, base, local, up, lo), each (len(rows), K) sorted per row.
+class _Slope:
+    """The derivative of one family's function at the extrema being refined (1-D arrays, one per
+    extremum): f' = V' + I' w^2/2 + sign lam |g| + Mw, with w the band's top or bottom speed."""
+
+    def __init__(self, pb: _Problem, dd, fam, lam_e):
+        edge = np.array([f[0] for f in _FAMILIES])[fam]
+        sign = np.array([f[1] for f in _FAMILIES])[fam]
+        self.lk = FourBar(*(v[dd] for v in pb.lk.parameters))
+        self.ms = Masses(pb.masses.coupler[dd], pb.masses.handle[dd], pb.masses.grip[dd])
+        self.w2 = 0.5 * np.where(edge == 0, pb.w_hi[dd], pb.w_lo[dd]) ** 2
+        self.slam = sign * lam_e
+        self.mw, self.dce, self.gravity = pb.mw[dd], pb.prep.dce[dd], pb.gravity
+
+    def __call__(self, phi, idx=None):
+        """f' at phi [rad from the extended dead centre], shape (..., E) or (..., len(idx))."""
+        if idx is None:
+            lk, ms, w2, slam, mw, dce = self.lk, self.ms, self.w2, self.slam, self.mw, self.dce
+        else:
+            lk = self.lk.take(idx)
+            ms = Masses(self.ms.coupler[idx], self.ms.handle[idx], self.ms.grip[idx])
+            w2, slam, mw, dce = self.w2[idx], self.slam[idx], self.mw[idx], self.dce[idx]
+        tm = terms(lk, dce + phi, ms, self.gravity, rates_only=True)
+        return tm.potential_rate + tm.inertia_rate * w2 + slam * np.abs(tm.grip_rate) + mw
+
+
+def _newton(slope: _Slope, start, lo, hi, width):
+    """Newton's method on f' (finite-difference second derivative, step REFINE_STEP * width) from
+    ``start`` without a bracket: the root where a step below REFINE_XTOL lands inside (lo, hi),
+    NaN where it leaves the bracket or has not converged after WARM_ITER steps."""
+    out = np.full(start.size, np.nan)
+    c = start.copy()
+    live = np.nonzero(np.isfinite(c))[0]
+    for _ in range(WARM_ITER):
+        if live.size == 0:
+            break
+        cc = c[live]
+        step = REFINE_STEP * width[live]
+        fc, fh = slope(np.stack([cc, cc + step]), live)
+        new = np.where(fc == 0, cc, cc - fc * step / (fh - fc))
+        inside = (new > lo[live]) & (new < hi[live])
+        conv = inside & (np.abs(new - cc) <= REFINE_XTOL)
+        out[live[conv]] = new[conv]
+        c[live] = new
+        live = live[inside & ~conv]
+    return out
+
+
+def _bracketed(slope: _Slope, lo, hi, node, idx):
+    """Roots of f' in the brackets (lo, hi) of the extrema ``idx``: a secant start, then Newton
+    safeguarded by the bracket, until a step is below REFINE_XTOL (the extremum's value is then
+    exact to rounding: the function is flat there).  Where f' does not change sign over the
+    bracket (an extremum at a node, e.g. a dead centre) the node itself."""
+    a, b = lo[idx].copy(), hi[idx].copy()
+    root = node[idx].copy()
+    with np.errstate(all="ignore"):
+        fa, fb = slope(np.stack([a, b]), idx)
+        live = np.nonzero(np.isfinite(fa) & np.isfinite(fb) & (np.sign(fa) * np.sign(fb) < 0))[0]
+        c = (a * fb - b * fa) / (fb - fa)  # a secant step to start
+        for _ in range(REFINE_ITER):
+            if live.size == 0:
+                break
+            al, bl, fal = a[live], b[live], fa[live]
+            cc = c[live]
+            cc = np.where((cc > al) & (cc < bl), cc, 0.5 * (al + bl))
+            step = REFINE_STEP * np.maximum(bl - al, REFINE_XTOL)
+            fc, fh = slope(np.stack([cc, cc + step]), idx[live])
+            left = np.sign(fc) == np.sign(fal)  # keep the root bracketed
+            al, bl = np.where(left, cc, al), np.where(left, bl, cc)
+            a[live], b[live], fa[live] = al, bl, np.where(left, fc, fal)
+            new = np.where(fc == 0, cc, cc - fc * step / (fh - fc))
+            conv = (np.abs(new - cc) <= REFINE_XTOL) | (bl - al <= REFINE_XTOL)
+            root[live[conv]] = np.clip(new[conv], al[conv], bl[conv])
+            c[live] = new
+            live = live[~conv]
+        root[live] = 0.5 * (a[live] + b[live])
+    return root
+
+
+@dataclass(frozen=True)
+class _Track:
+    """Refined extrema, one entry each: design (absolute index), family, bracket, grid node, root."""
+
+    design: np.ndarray
+    family: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+    node: np.ndarray
+    root: np.ndarray
+
+    def _fields(self):
+        return (self.design, self.family, self.lo, self.hi, self.node, self.root)
+
+    def of(self, rows):
+        """The entries of the designs ``rows``, in their order."""
+        keep = np.isin(self.design, rows)
+        return _Track(*(v[keep] for v in self._fields()))
+
+    def updated(self, other: _Track, rows):
+        """These entries with those of the designs ``rows`` replaced by ``other``'s."""
+        keep = ~np.isin(self.design, rows)
+        return _Track(*(np.concatenate([a[keep], b]) for a, b in zip(self._fields(), other._fields())))
+
+
+def _warm_start(track: _Track | None, dd, fam, node, lo, hi):
+    """The previous root of the same family and design nearest to each grid node, where it lies in
+    the node's bracket (lo, hi); NaN elsewhere."""
+    start = np.full(dd.size, np.nan)
+    if track is None or track.root.size == 0 or dd.size == 0:
+        return start
+    key = fam * (int(max(dd.max(), track.design.max())) + 1) + dd
+    wkey = track.family * (int(max(dd.max(), track.design.max())) + 1) + track.design
+    order = np.lexsort((track.root, wkey))
+    wkey, wroot = wkey[order], track.root[order]
+    pos = np.searchsorted(wkey * 8.0 + wroot, key * 8.0 + np.mod(node, TWO_PI))  # roots lie in [0, 2 pi)
+    for p in (pos - 1, pos):
+        p = np.clip(p, 0, wkey.size - 1)
+        off = np.mod(wroot[p] - node + np.pi, TWO_PI) - np.pi
+        near = (wkey[p] == key) & (node + off > lo) & (node + off < hi)
+        better = near & ~(np.abs(off) >= np.abs(start - node))
+        start = np.where(better, node + off, start)
+    return start
+
+
+def _refined_points(pb: _Problem, lam, rows, track: _Track | None = None, detect: bool = True):
+    """Every local extremum of :data:`_FAMILIES` at Fp = lam, located by a root search on its
+    analytic derivative (bracketed by the neighbouring grid nodes), as the points
+    (x, base, local, up, lo), each (len(rows), K) sorted per row, and the extrema as a
+    :class:`_Track` for the next call.
 
     The pairs of (C1)-(C2) are extreme at such points (a running minimum is attained at a local
     minimum, the largest excess after it at a local maximum), so the points hold the worst pair
-    at this lam exactly; at another force they still give lower bounds.
+    at this lam exactly; at another force they still give lower bounds.  ``track`` (the extrema of
+    the previous call, at a nearby force) starts Newton at the same family's root in the same
+    bracket; where that fails the bracketed search runs.  ``detect=False`` follows the extrema of
+    ``track`` to this lam without looking for new ones on the grid (cheap; the points are then
+    only lower bounds, for the passes before the last).
     """
-    d, node, lo, hi, edge, sign = _extrema(pb, lam, rows)
-    dd = rows[d]
-    lam_e, mw_e = lam[d], pb.mw[dd]
-
-    def deriv(phi, reps=1):
-        rep = (lambda v: np.tile(v, reps)) if reps > 1 else (lambda v: v)  # noqa: E731
-        _u, _l, du, dl, g = pb.edges(phi, rep(dd))
-        return np.where(rep(edge) == 0, du, dl) + rep(sign * lam_e) * np.abs(g) + rep(mw_e)
-
+    if detect:
+        d, node, lo, hi, fam = _extrema(pb, lam, rows)
+        dd = rows[d]
+    else:
+        track = track.of(rows)
+        dd, fam, lo, hi, node = track.design, track.family, track.lo, track.hi, track.node
+        d = np.searchsorted(rows, dd)
+    slope = _Slope(pb, dd, fam, lam[d])
+    width = hi - lo
     with np.errstate(all="ignore"):
-        a, b = lo.copy(), hi.copy()
-        fa, fb = deriv(a), deriv(b)
-        ok = np.isfinite(fa) & np.isfinite(fb) & (np.sign(fa) * np.sign(fb) < 0)
-        c = (a * fb - b * fa) / (fb - fa)  # a secant step to start
-        live = ok.copy()
-        for _ in range(REFINE_ITER):  # Newton on the derivative, safeguarded by the bracket
-            c = np.where((c > a) & (c < b), c, 0.5 * (a + b))
-            step = REFINE_STEP * np.maximum(b - a, REFINE_XTOL)
-            both = deriv(np.concatenate([c, c + step]), 2)
-            fc, fh = both[: c.size], both[c.size :]
-            left = np.sign(fc) == np.sign(fa)  # keep the root bracketed
-            a = np.where(live & left, c, a)
-            b = np.where(live & ~left, c, b)
-            fa = np.where(live & left, fc, fa)
-            newton = c - fc * step / (fh - fc)
-            done = (np.abs(newton - c) <= REFINE_XTOL) | (fc == 0) | (b - a <= REFINE_XTOL)
-            a = np.where(live & done, newton, a)
-            b = np.where(live & done, newton, b)
-            live &= ~done
-            if not live.any():
-                break
-            c = np.where(live, newton, c)
-    # no sign change of the derivative (an extremum at a node, e.g. a dead centre): the node itself
-    root = np.mod(np.where(ok, 0.5 * (a + b), node), TWO_PI)
+        start = _warm_start(track, dd, fam, node, lo, hi) if detect else track.root
+        root = _newton(slope, start, lo, hi, width)
+        if detect:
+            cold = np.nonzero(~np.isfinite(root))[0]
+            if cold.size:
+                root[cold] = _bracketed(slope, lo, hi, node, cold)
+        else:  # a root that could not be followed stays where it was (still a point of the curve)
+            root = np.where(np.isfinite(root), root, start)
+    root = np.mod(root, TWO_PI)
+    # one sorted row of points per design; short rows repeat their last point (a repeated point
+    # adds no pair and keeps the row sorted), a design without extrema gets its extended dead centre
     count = np.bincount(d, minlength=rows.size)
-    width = max(int(count.max()), 1)
-    order = np.argsort(d, kind="stable")
-    d, root = d[order], root[order]
-    slot = np.arange(d.size) - (np.cumsum(count) - count)[d]
-    first = np.repeat(np.where(count > 0, 0, np.nan), 1)  # rows without extrema: NaN (never)
-    x = np.empty((rows.size, width))
-    x[:] = root[(np.cumsum(count) - count).clip(max=max(d.size - 1, 0))][:, None] if d.size else 0.0
-    x += first[:, None] * 0.0
-    x[d, slot] = root
-    x = np.sort(x, axis=1)
+    width_k = max(int(count.max()) if count.size else 1, 1)
+    order = np.lexsort((root, d))
+    ds, rs = d[order], root[order]
+    slot = np.arange(ds.size) - (np.cumsum(count) - count)[ds]
+    x = np.full((rows.size, width_k), np.nan)
+    x[ds, slot] = rs
+    last = np.where(count > 0, x[np.arange(rows.size), np.maximum(count - 1, 0)], 0.0)
+    x = np.where(np.isnan(x), last[:, None], x)
     args = [v[rows][:, None] for v in pb.prep.args()]
     with np.errstate(all="ignore"):
         base, local = _fw._travel_parts(x, *args)
-        up, low, *_ = pb.edges(x, np.broadcast_to(rows[:, None], x.shape))
-    return x, base, local, up, low
+        up, low = pb.edges(x, rows)
+    return (x, base, local, up, low), _Track(dd, fam, lo, hi, node, root)
 
 
-def _solve(pb: _Problem, max_passes: int = 12):
+def _solve(pb: _Problem, max_passes: int = 24):
     n = pb.mw.size
     out = np.full(n, np.nan)
     with np.errstate(all="ignore"):
@@ -432,19 +604,38 @@ def _solve(pb: _Problem, max_passes: int = 12):
         todo = np.nonzero(ok & ~zero)[0]
     if todo.size == 0:
         return out
-    # Dinkelbach over the pairs of grid nodes (a subset of all pairs: a lower bound), then passes
-    # over the extrema refined at the current iterate until it no longer moves
-    lam = _dinkelbach(pb.points(todo), pb.mw[todo], pb.stroke[todo], f_mean[todo], cap[todo])
+    # Dinkelbach over the pairs of grid nodes, only to find where to refine (the grid's travel
+    # next to a dead centre is not integrated, so this force is not trusted as a bound); then
+    # passes over the extrema refined at the current force: Dinkelbach over their pairs (from
+    # F_mean in the first pass, from the last, exact, lower bound after).  Between full passes
+    # (extrema looked for on the whole grid) the extrema found are only followed to the new force,
+    # while it still moves by more than TRACK_RTOL.  A design is done when a full pass leaves its
+    # force where it was: it then is the ratio of a pair (a lower bound of Fp*) at which no pair is
+    # violated (an upper bound), Fp* up to the refinement tolerance.
+    grid = pb.points(None if todo.size == n else todo)
+    mw, stroke = pb.mw[todo], pb.stroke[todo]
+    lam = _dinkelbach(tuple(v[:, ::4] for v in grid), mw, stroke, f_mean[todo], cap[todo], GRID_RTOL)
+    lam = _dinkelbach(grid, mw, stroke, lam, cap[todo], GRID_RTOL)  # a quarter of the nodes first
     live = np.nonzero(np.isfinite(lam))[0]
+    follow = np.zeros(todo.size, bool)  # designs whose next pass only follows their extrema
+    start = f_mean[todo]
+    track = None
     for _ in range(max_passes):
         if live.size == 0:
             break
-        rows = todo[live]
-        pts = _refined_points(pb, lam[live], rows)
-        new = _dinkelbach(pts, pb.mw[rows], pb.stroke[rows], lam[live], cap[rows])
-        moved = ~(new - lam[live] <= 4 * RTOL * np.abs(new))
-        lam[live] = new
-        live = live[moved & np.isfinite(new)]
+        detect = not follow[live].any()
+        sel = live if detect else live[follow[live]]
+        rows = todo[sel]
+        pts, found = _refined_points(pb, lam[sel], rows, track, detect)
+        track = found if detect or track is None else track.updated(found, rows)
+        new = _dinkelbach(pts, pb.mw[rows], pb.stroke[rows], start[sel], cap[rows])
+        step = np.abs(new - lam[sel])
+        lam[sel] = start[sel] = new
+        follow[sel] = step > TRACK_RTOL * np.abs(new)
+        done = ~np.isfinite(new)
+        if detect:  # certified where the full pass left the force where it was
+            done |= step <= 4 * RTOL * np.abs(new)
+        live = np.setdiff1d(live, sel[done], assume_unique=True)
     out[todo] = lam
     return out
 
@@ -462,7 +653,7 @@ def least_peak_force(
 ):
     """Least peak operator force [N] for a periodic motion inside the band of Eq. (8).
 
-    Exact up to the refinement tolerance ((C1)-(C2) of the module docstring, docs/models.md §3).
+    Exact up to the refinement tolerance ((C1)-(C2) of the module docstring, docs/models.md §3a).
     With no link masses (I = J, V = 0) it is the flywheel scene's Eq. (4).
 
     Parameters
@@ -478,18 +669,25 @@ def least_peak_force(
     Fp* [N]: inf where no force up to FORCE_CAP_RATIO * F_mean keeps the motion in the band,
     NaN for an infeasible design.
     """
-    pb, scalar = _problem(
+    scalar, arrays = per_design(
         lk,
         dead_centre_extended,
         dead_centre_folded,
         wheel_torque,
         inertia,
-        masses,
+        masses.coupler,
+        masses.handle,
+        masses.grip,
         mean_speed,
         speed_fluctuation,
-        gravity,
     )
-    out = _solve(pb)
+    n = arrays[0].size
+    out = np.empty(n)
+    for start in range(0, n, CHUNK):  # chunks whose (designs, nodes) arrays stay in the cache
+        part = [v[start : start + CHUNK] for v in arrays]
+        ms = Masses(*part[11:14])
+        pb, _ = _problem(FourBar(*part[:7]), *part[7:11], ms, *part[14:], gravity)
+        out[start : start + CHUNK] = _solve(pb)
     return float(out[0]) if scalar else out
 
 
@@ -506,7 +704,7 @@ def band_margin(
     gravity=GRAVITY,
 ):
     """max over the pairs of (C1)-(C2) of N - Fp K at Fp = ``force`` [J]: for Fp >= F_mean a periodic
-    motion inside the band exists iff this is <= 0 (docs/models.md §3)."""
+    motion inside the band exists iff this is <= 0 (docs/models.md §3a)."""
     pb, scalar = _problem(
         lk,
         dead_centre_extended,
@@ -520,9 +718,10 @@ def band_margin(
     )
     lam = np.broadcast_to(np.asarray(force, float), pb.mw.shape).astype(float)
     rows = np.arange(lam.size)
-    pts = _refined_points(pb, lam, rows)
+    (x, base, local, up, lo), _ = _refined_points(pb, lam, rows)
+    m = pb.mw[:, None] * x
     with np.errstate(all="ignore"):
-        h, _ = _pairs(*pts, pb.mw, pb.stroke, lam)
+        h, _ = _pairs(base + local, up + m, lo + m, base, local, pb.mw, pb.stroke, lam)
     out = h.max(axis=1)
     return float(out[0]) if scalar else out
 
@@ -577,7 +776,7 @@ def scene(
     fp = float(_solve(pb)[0]) if force is None else float(force)
     pts = ()
     if np.isfinite(fp):
-        pts = tuple(v[0] for v in _refined_points(pb, np.array([fp]), np.array([0])))
+        pts = tuple(v[0] for v in _refined_points(pb, np.array([fp]), np.array([0]))[0])
     return Scene(
         lk,
         float(dead_centre_extended),

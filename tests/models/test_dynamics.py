@@ -178,7 +178,7 @@ def _brute_lower_bound(lk, dce, dcf, mw, j, ms, w, delta, n=200_000):
     pb, _ = dy._problem(lk, dce, dcf, mw, j, ms, w, delta, GRAVITY)
     x = np.sort(np.concatenate([np.linspace(0, 2 * np.pi, n, endpoint=False), pb.prep.nodes[0]]))[None, :]
     base, local = fw._travel_parts(x, *(v[:, None] for v in pb.prep.args()))
-    up, lo, *_ = pb.edges(x, np.zeros(x.shape, int))
+    up, lo = pb.edges(x)
     cap = np.array([np.inf])
     f_mean = mean_force(pb.mw, pb.stroke)
     return float(dy._dinkelbach((x, base, local, up, lo), pb.mw, pb.stroke, f_mean, cap)[0])
