@@ -726,6 +726,135 @@ def band_margin(
     return float(out[0]) if scalar else out
 
 
+# ----------------------------------------------------------------------------- model choice, cadence
+#: Crank angles per revolution on which the links' largest kinetic energy and the range of their
+#: potential energy are taken for the model choice (1 deg steps).
+EFFECT_GRID = 360
+
+
+def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY):
+    """The sizes the model choice compares with the flywheel's energy band (docs/models.md §3).
+
+    Parameters
+    ----------
+    lk : linkage (scalars or 1-D arrays over designs).
+    masses : coupler and handle masses [kg]; ``grip`` is the operator's arms [kg].
+    mean_speed : w_bar [rad/s].
+
+    Returns
+    -------
+    (link_energy, link_weight, arm_energy) [J]: the coupler's and handle's largest kinetic energy
+    at w_bar and the range of their potential energy over a revolution (both on
+    :data:`EFFECT_GRID` crank angles), and the largest kinetic energy of the arms at the grip,
+    m (H max|dt4/dt| w_bar)^2 / 2 (exact: :func:`pumplink.mechanisms.fourbar.peak_rocker_rate`).
+    """
+    from pumplink.mechanisms.fourbar import peak_rocker_rate
+
+    scalar, arrays = per_design(lk, masses.coupler, masses.handle, masses.grip, mean_speed)
+    geom, (mc, mh, ma, w) = arrays[:7], arrays[7:]
+    th = np.arange(EFFECT_GRID) * (TWO_PI / EFFECT_GRID)
+    col = FourBar(*(v[:, None] for v in geom))
+    with np.errstate(all="ignore"):
+        tm = terms(col, th, Masses(mc[:, None], mh[:, None], 0.0), gravity)
+        link = 0.5 * np.max(tm.inertia, axis=1) * w * w
+        weight = np.ptp(tm.potential, axis=1)
+        arm = 0.5 * ma * (geom[5] * peak_rocker_rate(FourBar(*geom)) * w) ** 2
+    out = (link, weight, arm)
+    return tuple(float(v[0]) for v in out) if scalar else out
+
+
+def best_speed(
+    lk: FourBar,
+    dead_centre_extended: float,
+    dead_centre_folded: float,
+    wheel_torque: float,
+    inertia: float,
+    masses: Masses,
+    speed_fluctuation: float,
+    lowest: float,
+    highest: float,
+    gravity: float = GRAVITY,
+    points: int = 25,
+):
+    """The mean speed in [lowest, highest] [rad/s] with the least Fp*, and that Fp* [N] (one design).
+
+    Every pair's N of (C1)-(C2) is affine in w_bar^2 (the band's edges are V + I w^2 / 2) and its K
+    does not depend on w_bar, so Fp* = max(F_mean, max over pairs of N/K) is convex in w_bar^2
+    (docs/models.md §3a): the least value on ``points`` speeds brackets the minimum, which scipy's
+    bounded scalar minimiser then locates (to 1e-7 of the speed).
+    """
+    from scipy.optimize import minimize_scalar
+
+    def fp(w):
+        return least_peak_force(
+            lk,
+            dead_centre_extended,
+            dead_centre_folded,
+            wheel_torque,
+            inertia,
+            masses,
+            w,
+            speed_fluctuation,
+            gravity,
+        )
+
+    w = np.linspace(lowest, highest, points)
+    f = fp(w)
+    if not np.isfinite(f).any():
+        return float("nan"), float("inf")
+    k = int(np.nanargmin(np.where(np.isfinite(f), f, np.inf)))
+    a, b = w[max(k - 1, 0)], w[min(k + 1, points - 1)]
+    res = minimize_scalar(lambda x: fp(x), bounds=(a, b), method="bounded", options=dict(xatol=1e-7 * w[k]))
+    if np.isfinite(res.fun) and res.fun <= f[k]:
+        return float(res.x), float(res.fun)
+    return float(w[k]), float(f[k])
+
+
+def speed_range(
+    lk: FourBar,
+    dead_centre_extended: float,
+    dead_centre_folded: float,
+    wheel_torque: float,
+    inertia: float,
+    masses: Masses,
+    speed_fluctuation: float,
+    limit: float,
+    lowest: float,
+    highest: float,
+    best: float,
+    gravity: float = GRAVITY,
+):
+    """The mean speeds in [lowest, highest] with Fp* <= ``limit`` [rad/s]: (low, high), an interval
+    because Fp* is convex in w_bar^2 (:func:`best_speed`); ``best`` is its minimiser.  NaN, NaN when
+    none; an end of the interval at ``lowest`` or ``highest`` may continue beyond it."""
+    from scipy.optimize import brentq
+
+    def excess(w):
+        f = least_peak_force(
+            lk,
+            dead_centre_extended,
+            dead_centre_folded,
+            wheel_torque,
+            inertia,
+            masses,
+            w,
+            speed_fluctuation,
+            gravity,
+        )
+        return min(f, 1e6 * limit) - limit  # the cap's inf as a large finite value
+
+    nan = float("nan")
+    if not np.isfinite(best) or excess(best) > 0:
+        return nan, nan
+    ends = []
+    for edge in (lowest, highest):
+        if excess(edge) <= 0:
+            ends.append(float(edge))
+        else:
+            ends.append(float(brentq(excess, *sorted((edge, best)), xtol=1e-9 * best, rtol=1e-12)))
+    return ends[0], ends[1]
+
+
 # ----------------------------------------------------------------------------- one design in detail
 @dataclass(frozen=True)
 class Scene:
