@@ -332,13 +332,15 @@ def explain(r: PistonResult) -> str:
         return (
             f"Flywheel decided: the spec gives the crank shaft's inertia (J = {r.inertia:.3g} kg·m²), so "
             f"the operator need not push the working stroke's peak: the least peak force that keeps the "
-            f"speed within δ is exact (Eq. P.4, docs/piston-pump.md). {left_out}"
+            f"speed within δ is exact (Eq. P.4, docs/piston-pump.md), enough while the crank and rod "
+            f"are light beside the flywheel. {left_out}"
         )
     return (
         "Quasi-static decided: the operator turns the crank, so the handle force T/R is finite at every "
         "crank angle (no dead centre for the operator) and the speed does not enter it; its peak over "
-        "the turn is exact, which is what the verdict needs without a flywheel. Give wheel.inertia or "
-        f"wheel.mass for the flywheel model. {left_out}"
+        "the turn is exact, and that is enough for the verdict without a flywheel (nothing carries the "
+        "crank past the working stroke's peak). Give wheel.inertia or wheel.mass for the flywheel "
+        f"model. {left_out}"
     )
 
 
