@@ -231,3 +231,106 @@ def test_solve_ivp_confirms_the_profile_and_rejects_a_weaker_operator():
     sim = dy.integrate_motion(weak, cycles=3)
     assert not dy.agrees(weak, sim)
     assert sim.min_speed < weak.min_speed * (1 - 1e-5)
+
+
+# ----------------------------------------------------------------------------- model choice sizes
+def test_effect_sizes_against_independent_routes():
+    """The sizes the model choice compares with the band, each by another route: the links' kinetic
+    energy by the uniform-bar formula m (vA^2 + vA.vB + vB^2)/6 of the flywheel module's estimate;
+    their weight from the float twin of the reference linkage's positions; the arms' kinetic energy
+    from a 200,000-point sweep of the reference rocker rate."""
+    spec, syn, lk, dce, dcf = _case()
+    ref = R.from_synthesis(syn)
+    mpl, arms, w = 1.56, 4.32, math.radians(300.0)
+    ms = dy.bar_masses(lk, mpl, arms)
+    link, weight, arm = dy.effect_sizes(lk, ms, w)
+    th = np.arange(dy.EFFECT_GRID) * (2 * np.pi / dy.EFFECT_GRID)
+    assert link == pytest.approx(float(np.max(fw.link_energy(lk, th, w, mpl))), rel=1e-12)
+    t4, _rate, _g = R.sweep_rocker(ref, th)
+    f = ref.floats()
+    long = max(f["handle"], f["rocker"])
+    y_coupler = 0.5 * (f["crank"] * np.sin(th) + f["oy"] + f["rocker"] * np.sin(t4))
+    y_handle = f["oy"] + 0.5 * long * np.sin(t4)
+    v = GRAVITY * (mpl * f["coupler"] * y_coupler + mpl * long * y_handle)
+    assert weight == pytest.approx(float(np.ptp(v)), rel=1e-11)
+    dense = np.linspace(0.0, 2 * np.pi, 200_001)
+    _t4, rate, _g = R.sweep_rocker(ref, dense)
+    top = 0.5 * arms * (f["handle"] * w * float(np.nanmax(np.abs(rate)))) ** 2
+    assert top <= arm * (1 + 1e-12) and arm == pytest.approx(top, rel=1e-8)
+
+
+def test_model_index_by_hand():
+    """The least model that is enough: 0 without inertia, 1 while every neglected effect is at most
+    10 % of the band, 2 beyond; the arms count only in the verdict; --model overrides."""
+    from pumplink.models import model_index
+
+    nan = float("nan")
+    assert model_index(nan, 1.0, 5.0, 5.0, 5.0) == 0  # no inertia: quasi-static, whatever the sizes
+    assert model_index(0.5, 1.0, 0.1, 0.1, 9.0) == 1  # at the limit; the arms not in the verdict
+    assert model_index(0.5, 1.0, 0.1 + 1e-12, 0.0, 0.0) == 2
+    assert model_index(0.5, 1.0, 0.0, 0.1 + 1e-12, 0.0) == 2
+    assert model_index(0.5, 1.0, 0.0, 0.0, 0.2, arms_in_verdict=True) == 2
+    assert model_index(0.5, 0.0, 0.0, 0.0, 0.0) == 1  # nothing left out of a zero band
+    assert model_index(0.5, 1.0, nan, nan, nan) == 1  # not known (infeasible): no call for more
+    assert model_index(0.5, 1.0, 5.0, 5.0, 5.0, forced="flywheel") == 1
+    assert model_index(0.5, 1.0, 0.0, 0.0, 0.0, forced="dynamics") == 2
+    assert model_index(0.5, 1.0, 5.0, 5.0, 5.0, forced="quasi-static") == 0
+    got = model_index(np.array([nan, 0.5, 0.5]), np.ones(3), np.array([0.0, 0.0, 0.2]), 0.0, 0.0)
+    assert got.tolist() == [0, 1, 2]
+
+
+# ----------------------------------------------------------------------------- best cadence
+def test_least_peak_force_is_convex_in_the_mean_speed_squared():
+    """Every pair's N is affine in w^2 and K does not depend on it (docs/models.md §3a), so Fp* is
+    the maximum of affine functions of w^2: convex.  Second differences on a uniform grid in w^2."""
+    spec, syn, lk, dce, dcf = _case()
+    ms = dy.bar_masses(lk, 1.56, 4.32)
+    u = np.linspace(math.radians(200.0) ** 2, math.radians(900.0) ** 2, 41)
+    rep = type(lk)(*(np.full(u.size, float(v)) for v in lk.parameters))
+    f = dy.least_peak_force(rep, dce, dcf, spec.wheel_torque, spec.inertia, ms, np.sqrt(u), 0.2)
+    second = f[:-2] - 2 * f[1:-1] + f[2:]
+    assert np.all(second >= -1e-9 * f[1:-1])
+    assert np.any(second > 1e-3)  # and not affine: the effort has a minimum inside
+
+
+def test_best_speed_is_the_minimum_of_a_dense_scan():
+    """The best cadence against 600 speeds scanned in one call: no scanned speed needs less effort,
+    and the nearest ones differ by no more than the scan's step allows."""
+    spec, syn, lk, dce, dcf = _case()
+    ms = dy.bar_masses(lk, 1.56, 4.32)
+    lo, hi = math.radians(60.0), math.radians(1440.0)
+    best, effort = dy.best_speed(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 0.2, lo, hi)
+    w = np.linspace(lo, hi, 600)
+    rep = type(lk)(*(np.full(w.size, float(v)) for v in lk.parameters))
+    f = dy.least_peak_force(rep, dce, dcf, spec.wheel_torque, spec.inertia, ms, w, 0.2)
+    assert effort <= np.nanmin(f) * (1 + 1e-12)
+    k = int(np.nanargmin(f))
+    assert w[k - 1] <= best <= w[k + 1]
+    assert effort == pytest.approx(
+        dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, best, 0.2), rel=1e-12
+    )
+    # without links or arms this is the flywheel: faster is never harder, and from some speed on the
+    # force is the mean force (an infinite flywheel's, the floor), where the search stops
+    none = dy.Masses()
+    at, floor = dy.best_speed(lk, dce, dcf, spec.wheel_torque, spec.inertia, none, 0.2, lo, hi)
+    stroke = 2 * spec.linkage.handle * math.sin(math.radians(spec.linkage.swing) / 2)
+    assert floor == pytest.approx(float(mean_force(spec.wheel_torque, stroke)), rel=1e-9)
+    faster = dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, none, hi, 0.2)
+    assert faster == pytest.approx(floor, rel=1e-9) and at < hi
+
+
+def test_speed_range_ends_where_the_force_meets_the_limit():
+    spec, syn, lk, dce, dcf = _case()
+    ms = dy.bar_masses(lk, 1.56, 4.32)
+    args = (lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 0.2)
+    lo, hi = math.radians(60.0), math.radians(1440.0)
+    best, effort = dy.best_speed(*args, lo, hi)
+    limit = 1.5 * effort  # an interval around the best cadence
+    a, b = dy.speed_range(*args, limit, lo, hi, best)
+    assert lo < a < best < b < hi
+    for end in (a, b):
+        assert dy.least_peak_force(*args[:6], end, 0.2) == pytest.approx(limit, rel=1e-7)
+    inside = dy.least_peak_force(*args[:6], np.array([a * (1 + 1e-4), b * (1 - 1e-4)]), 0.2)
+    outside = dy.least_peak_force(*args[:6], np.array([a * (1 - 1e-4), b * (1 + 1e-4)]), 0.2)
+    assert np.all(inside <= limit) and np.all(outside > limit)
+    assert all(math.isnan(x) for x in dy.speed_range(*args, 0.9 * effort, lo, hi, best))  # none passes
