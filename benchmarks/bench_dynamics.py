@@ -19,7 +19,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_core import ROOT, machine  # noqa: E402
 
-from pumplink.analysis import design, link_masses  # noqa: E402
+from pumplink.analysis import cadence, design, force_analysis, link_masses  # noqa: E402
 from pumplink.mechanisms.fourbar import synthesize  # noqa: E402
 from pumplink.models import dynamics as dy  # noqa: E402
 from pumplink.spec import load_spec  # noqa: E402
@@ -96,6 +96,11 @@ def main() -> None:
         f"cpu {n / cpu:,.0f}/s (wall {n / wall:,.0f}/s)",
         ">= 10,000/s",
         n / cpu >= 10_000,
+    )
+    r = force_analysis(spec, keep_samples=False)
+    wall, cpu = timed(lambda: cadence(r), 5)
+    print(
+        f"best cadence and passing speeds (12 m example): cpu {cpu * 1e3:.0f} ms (wall {wall * 1e3:.0f} ms)"
     )
 
 
