@@ -147,7 +147,7 @@ class ForceResult:
     def __repr__(self) -> str:
         if not self.design.feasible:
             return f"<ForceResult {self.design.spec.name!r}: infeasible ({self.design.error})>"
-        how = "flywheel" if self.flywheel else "dead band"
+        how = self.model if self.flywheel else "dead band"
         fails = ", ".join(c.key for c in self.verdict.failures)
         return (
             f"<ForceResult {self.design.spec.name!r}: {self.outcome}{f' ({fails})' if fails else ''}, "
@@ -684,7 +684,7 @@ def cadence(r: ForceResult, searched_deg_s=CADENCE_RANGE_DEG_S) -> Cadence:
     fastest = min(HOUR_POWER_W / mw, GRIP_SPEED_FAIL_M_S / (peak_rocker_rate(lk) * top * spec.linkage.handle))
     fixed = [c.key for c in r.verdict.failures if c.key not in ("peak_force", "power", "grip_speed")]
     low, high = force[0], min(force[1], fastest)
-    passing = (low, high) if not fixed and low <= high else (nan, nan)
+    passing = (float(low), float(high)) if not fixed and low <= high else (nan, nan)
     return Cadence(best, effort, hand, mw * best, edge, (lo, hi), model, force, passing)
 
 
