@@ -296,6 +296,74 @@ def force_analysis(
     )
 
 
+# ----------------------------------------------------------------------------- explain, verify
+def explain(r: PistonResult) -> str:
+    """Which model decided the piston pump's verdict and why it is enough (docs/piston-pump.md)."""
+    left_out = (
+        "Left out: the crank's, rod's and piston's inertia, the water column's acceleration and friction "
+        "(in the efficiency)."
+    )
+    if r.flywheel:
+        return (
+            f"Flywheel decided: the spec gives the crank shaft's inertia (J = {r.inertia:.3g} kg·m²), so "
+            f"the operator need not push the working stroke's peak: the least peak force that keeps the "
+            f"speed within δ is exact (Eq. P.4, docs/piston-pump.md), enough while the crank and rod "
+            f"are light beside the flywheel. {left_out}"
+        )
+    return (
+        "Quasi-static decided: the operator turns the crank, so the handle force T/R is finite at every "
+        "crank angle (no dead centre for the operator) and the speed does not enter it; its peak over "
+        "the turn is exact, and that is enough for the verdict without a flywheel (nothing carries the "
+        "crank past the working stroke's peak). Give wheel.inertia or wheel.mass for the flywheel "
+        f"model. {left_out}"
+    )
+
+
+#: Crank angles of the dense sweeps of :func:`verify` over one turn.
+VERIFY_SAMPLES = 400_000
+
+
+@dataclass(frozen=True)
+class PistonCheck:
+    """A piston pump's answer checked on a dense sweep that shares none of its formulas: the work
+    of one turn by quadrature, the peak against the sweep and (flywheel) the energy deficit."""
+
+    samples: int
+    work: float  # |integral of T over a turn / (F_load H) - 1| (trapezoid rule)
+    sweep_peak: float  # largest F on the sweep [N]
+    peak: float  # the exact quasi-static peak [N]
+    deficit: float | None  # flywheel: the largest loss over an arc at Fp* by quadrature / W
+    tolerance: float
+    agrees: bool
+
+
+def verify(r: PistonResult, rtol: float = 1e-6) -> PistonCheck:
+    """Check the piston pump's answer on :data:`VERIFY_SAMPLES` crank angles: the trapezoid
+    integral of the crank torque over a turn is the work F_load H (Eq. P.3) to ``rtol``; no sample
+    of the handle force exceeds the exact quasi-static peak and the largest comes within ``rtol``
+    of it (a smooth maximum); with a flywheel the largest energy lost over an arc at Fp*, by the
+    same quadrature over two turns, is the energy band W (to ``rtol``; at most W where Fp* is the
+    mean force)."""
+    cr, op = r.spec.crank_slider, r.spec.operator
+    t = np.linspace(0.0, 4.0 * math.pi, 2 * VERIFY_SAMPLES + 1)
+    torque = _pm.crank_torque(cr.crank, cr.rod, cr.offset, r.load_force, t)
+    one = t <= 2.0 * math.pi * (1 + 1e-15)
+    work = float(np.trapezoid(torque[one], t[one]))
+    err = abs(work / (r.load_force * r.stroke) - 1.0)
+    top = float(np.max(torque[one]) / op.handle)
+    ok = err <= rtol and top <= r.quasi_static_peak * (1 + 1e-12) and top >= r.quasi_static_peak * (1 - rtol)
+    deficit = None
+    if r.flywheel and r.least_peak_force is not None and math.isfinite(r.least_peak_force):
+        step = t[1] - t[0]
+        gain = np.concatenate([[0.0], np.cumsum(0.5 * step * (torque[1:] + torque[:-1]))]) - (
+            r.least_peak_force * op.handle * t
+        )  # integral of (T - Fp R): the energy lost
+        deficit = float(np.max(gain - np.minimum.accumulate(gain))) / r.energy_band
+        at_mean = r.least_peak_force <= r.mean_force * (1 + 1e-12)
+        ok = ok and (deficit <= 1 + rtol if at_mean else abs(deficit - 1.0) <= rtol)
+    return PistonCheck(VERIFY_SAMPLES, err, top, r.quasi_static_peak, deficit, rtol, bool(ok))
+
+
 # ----------------------------------------------------------------------------- batch
 @dataclass(frozen=True)
 class PistonVariant:

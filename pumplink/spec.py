@@ -18,6 +18,7 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from pumplink.constants import (
+    DEFAULT_ARM_MASS,
     DEFAULT_EFFICIENCY,
     DEFAULT_SPEED_FLUCTUATION,
     FORCE_LIMIT_N,
@@ -139,6 +140,19 @@ class Linkage(_Section):
         description="mass per metre of the handle and coupler [kg/m] for the link-energy estimate "
         "(default 1.56: 3/4-inch steel tube)",
     )
+    coupler_mass: float | None = Field(
+        default=None,
+        ge=0,
+        le=1000,
+        description="coupler mass [kg] (full dynamics; default mass_per_length * coupler length)",
+    )
+    handle_mass: float | None = Field(
+        default=None,
+        ge=0,
+        le=1000,
+        description="handle mass [kg], a uniform bar from the rocker pivot to the grip (full dynamics; "
+        "default mass_per_length * max(handle, rocker))",
+    )
     hole_diameter: float | None = Field(
         default=None,
         ge=0.001,
@@ -231,6 +245,23 @@ class Operator(_Section):
         le=1,
         description="largest coefficient of speed fluctuation (w_max - w_min) / w_mean [-] (flywheel model)",
     )
+    arm_mass: float | None = Field(
+        default=None,
+        ge=0,
+        le=100,
+        description="operator's hands and forearms moving with the grip [kg] (full dynamics: the "
+        "muscular effort and the best cadence; default 4.32)",
+    )
+    arms_in_verdict: bool | None = Field(
+        default=None,
+        description="true to judge the muscular effort (arm_mass at the grip) against force_limit "
+        "instead of the hand force",
+    )
+
+    @property
+    def arm_mass_kg(self) -> float:
+        """operator.arm_mass, or the anthropometric default (pumplink.constants.DEFAULT_ARM_MASS) [kg]."""
+        return DEFAULT_ARM_MASS if self.arm_mass is None else self.arm_mass
 
 
 class PumpSpec(_Section):

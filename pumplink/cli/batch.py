@@ -8,7 +8,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, StrictOpt, app
+from pumplink.cli.common import Format, ModelOpt, StrictOpt, app, model_key
 from pumplink.errors import SpecError
 
 #: Runs of at least this many variants print their size and estimated time before they start.
@@ -63,11 +63,13 @@ def batch(
             "--fail-on",
             help="What makes the run fail (exit 1): any of mean, peak, infeasible, checks (any "
             "other check that fails: transmission angle, power, grip speed), warnings; all (= "
-            "a variant whose verdict is FAIL) or none. peak is the verdict's peak: the flywheel's "
-            "least peak force where the variant gives inertia, else the peak outside the dead bands.",
+            "a variant whose verdict is FAIL) or none. peak is the verdict's peak: the least peak force "
+            "of the flywheel or full dynamics where the variant gives inertia, else the peak outside "
+            "the dead bands.",
         ),
     ] = "all",
     strict: StrictOpt = False,
+    model: ModelOpt = None,
     chunk: Annotated[
         Optional[str],
         typer.Option(
@@ -85,9 +87,10 @@ def batch(
     a folder means its *.toml files (not sub-folders).
 
     One row per variant (lengths, feasibility, forces, verdict) and a summary (counts, lowest
-    peak force).  The verdict is that of pumplink force: the flywheel model where the variant
-    gives inertia, else quasi-static with the dead band (the model column says which): PASS, PASS
-    with warnings or FAIL, with each check's result in its own column.  Exit 0 if no variant
+    peak force).  The verdict is that of pumplink force: where the variant gives inertia the
+    least model that is enough (flywheel or full dynamics, or --model), else quasi-static with
+    the dead band (the model column says which): PASS, PASS with warnings or FAIL, with each
+    check's result in its own column.  Exit 0 if no variant
     fails a --fail-on check (default: no variant FAILs; --strict: none warns either), 1 if one
     does, 2 for bad input.
 
@@ -117,8 +120,11 @@ def batch(
     from pumplink.cli import piston
 
     if piston.is_piston_input(inputs):  # mechanism = "crank-slider": docs/piston-pump.md
+        if model is not None:
+            raise SpecError("--model is for rope-pump batches; a piston pump's model follows its spec")
         piston.batch(inputs, fmt.value, out, set(sel), junit, chunk)
     batches = _batch.load_inputs(inputs)
+    key = model_key(model)  # the flywheel and full dynamics decide where the variants give inertia
     tasks = _batch.plan(batches, k_n, _batch.run_module.task_designs(samples))
     total = sum(e - s for _, s, e in tasks)
     n_workers = max(1, min(workers or os.cpu_count() or 1, len(tasks)))  # no idle processes
@@ -138,7 +144,7 @@ def batch(
                 fail_on=sel,
                 junit=junit is not None,
             )  # runs in the workers
-            results = _batch.run(batches, samples, k_n, n_workers, post=post)
+            results = _batch.run(batches, samples, k_n, n_workers, post=post, model=key)
             summary, rows = rb.write_stream(
                 batches, results, total, fmt.value, out, junit, sel, samples, k_n, advance
             )

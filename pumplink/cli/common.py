@@ -92,6 +92,30 @@ FormatOpt = Annotated[Format, typer.Option("--format", "-f", help="Output: table
 
 SAMPLE_LIMIT_KEPT = 1_000_000
 
+
+class Model(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
+    quasi_static = "quasi-static"
+    flywheel = "flywheel"
+    dynamics = "dynamics"
+
+
+#: ``--model`` of force, speed, batch and optimize (the same option and words everywhere).
+ModelOpt = Annotated[
+    Optional[Model],
+    typer.Option(
+        "--model",
+        help="Decide with this model: quasi-static, flywheel or dynamics (default: the least model "
+        "that is enough, see force --explain; the last two need the wheel's inertia).",
+        show_default=False,
+    ),
+]
+
+
+def model_key(model: Model | None) -> str | None:
+    """The registry key of ``--model`` (None: the automatic choice)."""
+    return None if model is None else model.value
+
+
 StrictOpt = Annotated[
     bool,
     typer.Option(

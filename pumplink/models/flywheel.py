@@ -177,13 +177,13 @@ def _travel(phi, *args):
     return base + local
 
 
-def _nodes(dce, dcf):
+def _nodes(dce, dcf, grid=GRID, cluster=CLUSTER):
     """Grid nodes phi in [0, 2 pi) per design, sorted, shape (D, M): uniform (half-cell offset)
     plus geometric clusters at both dead centres (phi = 0 and phi = plus)."""
-    h = TWO_PI / GRID
+    h = TWO_PI / grid
     plus = np.mod(dcf - dce, TWO_PI)
-    uni = (np.arange(GRID) + 0.5) * h
-    off = h * 4.0 ** -np.arange(1, CLUSTER + 1)  # h/4 ... : inside the first half cell
+    uni = (np.arange(grid) + 0.5) * h
+    off = h * 4.0 ** -np.arange(1, cluster + 1)  # h/4 ... : inside the first half cell
     near0 = np.concatenate([off, TWO_PI - off, [0.0]])
     nearp = np.concatenate([-off, off, [0.0]])
     x = np.concatenate(
@@ -215,13 +215,13 @@ class _Prepared:
         return g + (self.dce[idx], self.plus[idx], self.xe[idx], self.xf[idx], self.stroke[idx])
 
 
-def _prepare(lk: FourBar, dce, dcf, wheel_torque):
+def _prepare(lk: FourBar, dce, dcf, wheel_torque, grid=GRID, cluster=CLUSTER):
     scalar, (*geom, dce, dcf, mw) = per_design(lk, dce, dcf, wheel_torque)
     with np.errstate(all="ignore"):
         xe = _grip_x(dce, *geom)
         xf = _grip_x(dcf, *geom)
         stroke = np.abs(xf - xe)
-        nodes, plus = _nodes(dce, dcf)
+        nodes, plus = _nodes(dce, dcf, grid, cluster)
         g2 = [p[:, None] for p in geom]
         base, local = _travel_parts(
             nodes, *g2, dce[:, None], plus[:, None], xe[:, None], xf[:, None], stroke[:, None]
