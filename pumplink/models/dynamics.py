@@ -763,6 +763,17 @@ def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY):
     return tuple(float(v[0]) for v in out) if scalar else out
 
 
+def _at_speed(lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses, fluctuation, g):
+    """Fp*(mean speed) of one design, the other arguments fixed (:func:`least_peak_force`)."""
+
+    def fp(w):
+        return least_peak_force(
+            lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses, w, fluctuation, g
+        )
+
+    return fp
+
+
 def best_speed(
     lk: FourBar,
     dead_centre_extended: float,
@@ -785,18 +796,8 @@ def best_speed(
     """
     from scipy.optimize import minimize_scalar
 
-    def fp(w):
-        return least_peak_force(
-            lk,
-            dead_centre_extended,
-            dead_centre_folded,
-            wheel_torque,
-            inertia,
-            masses,
-            w,
-            speed_fluctuation,
-            gravity,
-        )
+    design = (lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses)
+    fp = _at_speed(*design, speed_fluctuation, gravity)
 
     w = np.linspace(lowest, highest, points)
     f = fp(w)
@@ -829,18 +830,11 @@ def speed_range(
     none; an end of the interval at ``lowest`` or ``highest`` may continue beyond it."""
     from scipy.optimize import brentq
 
+    design = (lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses)
+    fp = _at_speed(*design, speed_fluctuation, gravity)
+
     def excess(w):
-        f = least_peak_force(
-            lk,
-            dead_centre_extended,
-            dead_centre_folded,
-            wheel_torque,
-            inertia,
-            masses,
-            w,
-            speed_fluctuation,
-            gravity,
-        )
+        f = fp(w)
         return min(f, 1e6 * limit) - limit  # the cap's inf as a large finite value
 
     nan = float("nan")
