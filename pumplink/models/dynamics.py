@@ -972,10 +972,7 @@ def wheel_speed(sc: Scene, crank_angle):
 def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> _fw.TimeIntegration:
     """Integrate I t'' + I'/2 t'^2 + V' = F g - Mw (Eq. (7) in time, scipy ``solve_ivp``) under the
     reported force profile F(t) (open loop), from the reported speed at the extended dead centre."""
-    from scipy.integrate import solve_ivp
-
     t0 = sc.dead_centre_extended
-    w0 = wheel_speed(sc, t0)
     mw = sc.wheel_torque
 
     def rhs(_t, y):
@@ -984,42 +981,7 @@ def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> _fw.Tim
         i = sc.inertia + tm.inertia
         return [y[1], (f * tm.grip_rate - mw - tm.potential_rate - 0.5 * tm.inertia_rate * y[1] ** 2) / i]
 
-    def turn(_t, y):
-        return np.sin(0.5 * (y[0] - t0))
-
-    turn.terminal = cycles + 1
-    horizon = 4.0 * cycles * TWO_PI / sc.min_speed
-    sol = solve_ivp(
-        rhs,
-        (0.0, horizon),
-        [t0, w0],
-        method="DOP853",
-        rtol=rtol,
-        atol=1e-12 * sc.max_speed,
-        events=turn,
-        dense_output=True,
-        max_step=TWO_PI / 64 / sc.max_speed,
-    )
-    times = sol.t_events[0]
-    times = times[times > 1e-9 * horizon][:cycles]
-    if times.size == 0:  # the wheel stopped or turned back: no revolution completed
-        nan = float("nan")
-        return _fw.TimeIntegration(0, np.array([w0]), np.inf, nan, nan, nan, nan, np.inf)
-    speeds = np.array([w0] + [float(sol.sol(t)[1]) for t in times])
-    last0, last1 = (times[-2] if times.size > 1 else 0.0), times[-1]
-    w = sol.sol(np.linspace(last0, last1, 40001))[1]
-    wmax, wmin = float(w.max()), float(w.min())
-    mean = 0.5 * (wmax + wmin)
-    return _fw.TimeIntegration(
-        int(times.size),
-        speeds,
-        float(np.max(np.abs(speeds - speeds[0])) / speeds[0]),
-        wmax,
-        wmin,
-        mean,
-        TWO_PI / (last1 - last0),
-        (wmax - wmin) / mean,
-    )
+    return _fw.revolutions(rhs, t0, wheel_speed(sc, t0), sc.min_speed, sc.max_speed, cycles, rtol)
 
 
 def agrees(sc: Scene, sim: _fw.TimeIntegration, rtol: float = 1e-6) -> bool:

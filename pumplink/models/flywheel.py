@@ -1016,9 +1016,7 @@ def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> TimeInt
     The force is the reported profile F(t) as a function of the crank angle alone (open loop):
     an error in the profile shows as a drift from one revolution to the next.
     """
-    from scipy.integrate import solve_ivp
-
-    j, mw, t0 = sc.inertia, sc.wheel_torque, sc.top_angle
+    j, mw = sc.inertia, sc.wheel_torque
 
     def rhs(_t, y):
         th = y[0]
@@ -1028,28 +1026,42 @@ def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> TimeInt
             (float(operator_force(sc, th)) * float(g) - mw) / j,
         ]  # Eq. (1): J w dw/dt = (F g - Mw) w
 
+    return revolutions(rhs, sc.top_angle, sc.max_speed, sc.min_speed, sc.max_speed, cycles, rtol)
+
+
+def revolutions(rhs, start_angle, start_speed, min_speed, max_speed, cycles, rtol) -> TimeIntegration:
+    """Integrate the crank's motion ``y' = rhs(t, y)``, y = (angle [rad], speed [rad/s]), with
+    scipy's ``solve_ivp`` for ``cycles`` revolutions from ``start_angle`` at ``start_speed``, and
+    measure each revolution's start speed, the last revolution's speed range and mean; shared by
+    the flywheel and full dynamics' ``--verify``.  A motion that stops or turns back (no revolution
+    completed) gives NaN speeds and an infinite drift.
+    """
+    from scipy.integrate import solve_ivp
+
     def turn(_t, y):
-        return np.sin(0.5 * (y[0] - t0))  # zero each time the crank is back at the start angle
+        return np.sin(0.5 * (y[0] - start_angle))  # zero each time the crank is back at the start
 
     turn.terminal = cycles + 1  # the start itself may count as a crossing
-    turn.direction = 0.0
-    horizon = 4.0 * cycles * TWO_PI / sc.min_speed
+    horizon = 4.0 * cycles * TWO_PI / min_speed
     # On the top-speed arcs dw/dt is exactly 0, so the error estimate vanishes and, unbounded, one
     # step could jump over whole revolutions: at most 1/64 revolution per step.
     sol = solve_ivp(
         rhs,
         (0.0, horizon),
-        [t0, sc.max_speed],
+        [start_angle, start_speed],
         method="DOP853",
         rtol=rtol,
-        atol=1e-12 * sc.max_speed,
+        atol=1e-12 * max_speed,
         events=turn,
         dense_output=True,
-        max_step=TWO_PI / 64 / sc.max_speed,
+        max_step=TWO_PI / 64 / max_speed,
     )
     times = sol.t_events[0]
     times = times[times > 1e-9 * horizon][:cycles]
-    speeds = np.array([sc.max_speed] + [float(sol.sol(t)[1]) for t in times])
+    if times.size == 0:  # the wheel stopped or turned back: no revolution completed
+        nan = float("nan")
+        return TimeIntegration(0, np.array([start_speed]), np.inf, nan, nan, nan, nan, np.inf)
+    speeds = np.array([start_speed] + [float(sol.sol(t)[1]) for t in times])
     last0, last1 = (times[-2] if times.size > 1 else 0.0), times[-1]
     w = sol.sol(np.linspace(last0, last1, 40001))[1]
     wmax, wmin = float(w.max()), float(w.min())
