@@ -83,8 +83,9 @@ def machine() -> str:
 
 def run(args: list[str]) -> tuple[float, float]:
     """Wall and CPU time (user + system) [s] of one run of ``args``; output discarded, a failure
-    stops the benchmark.  The process is single-threaded, so on an idle machine wall ~ CPU; on a
-    shared one the CPU time is the steadier of the two."""
+    stops the benchmark.  pumplink runs on one thread (it asks OpenBLAS for one), so on an idle
+    machine its wall ~ CPU, and on a shared one the CPU time is the steadier of the two; a plain
+    ``import numpy`` starts an OpenBLAS thread per core and shows more CPU than wall time."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     subprocess.run(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)

@@ -103,12 +103,17 @@ def main(argv: list[str] | None = None) -> None:
     0 pass, 1 fail or infeasible, 2 unusable input or an output that cannot be written (usage
     errors included), 130 interrupted (Ctrl-C or SIGTERM, from the first line of this function).
 
-    Run as the program (``argv`` None), the garbage collector is told to leave the objects alive
-    at the end alone (``gc.freeze``): the process ends next, and the collections the interpreter
-    runs while tearing down every module numpy, pydantic, typer and rich loaded cost about a
-    fifth of a short command's time.  Exit handlers, ``finally`` blocks and stream flushes run
-    as usual.
+    Run as the program (``argv`` None), two things keep a short command short.  OpenBLAS, which
+    numpy loads, starts one thread per core at import, about 60 ms of CPU on a 2-core machine;
+    pumplink's numerics are elementwise and use no multi-threaded linear algebra, so one thread
+    is asked for (``OPENBLAS_NUM_THREADS=1``, unless the variable is set; batch workers inherit
+    it).  And the garbage collector is told to leave the objects alive at the end alone
+    (``gc.freeze``): the process ends next, and the collections the interpreter runs while
+    tearing down every module numpy, pydantic, typer and rich loaded cost about a fifth of a
+    short command's time.  Exit handlers, ``finally`` blocks and stream flushes run as usual.
     """
+    if argv is None:
+        os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     signal.signal(signal.SIGINT, _interrupt)
     signal.signal(signal.SIGTERM, _interrupt)
     try:

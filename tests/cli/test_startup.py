@@ -88,3 +88,25 @@ def test_importing_the_cli_loads_no_library():
     assert not top & {"numpy", "scipy", "pydantic", "matplotlib", "mpmath"}, sorted(
         top & {"numpy", "scipy", "pydantic", "matplotlib", "mpmath"}
     )
+
+
+AT_EXIT = (
+    "import atexit, os, sys\n"
+    "atexit.register(lambda: sys.stderr.write(f\"at exit: {os.environ.get('OPENBLAS_NUM_THREADS')}\\n\"))\n"
+    "sys.argv = ['pumplink', 'synth', 'configs/prototype.toml']\n"
+    "from pumplink.cli import main\n"
+    "main()\n"
+)
+
+
+@pytest.mark.parametrize("given, expected", [(None, "1"), ("3", "3")])
+def test_run_as_the_program_asks_openblas_for_one_thread(given, expected):
+    """Run as the program, pumplink asks numpy's OpenBLAS for one thread unless the user chose a
+    number; exit handlers still run (after the garbage collector's freeze) and the exit code is
+    the command's."""
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+    if given is not None:
+        env["OPENBLAS_NUM_THREADS"] = given
+    p = subprocess.run([sys.executable, "-c", AT_EXIT], cwd=ROOT, env=env, capture_output=True, text=True)
+    assert p.returncode == 0 and "0.0998" in p.stdout, p.stderr
+    assert p.stderr.splitlines()[-1] == f"at exit: {expected}"
