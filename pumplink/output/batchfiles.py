@@ -313,17 +313,36 @@ def _junit_case(name: str, classname: str, failure: str | None, skipped: str | N
 def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequence[str]):
     """(failure, skipped) message per variant: failures selected by --fail-on; infeasible
     variants not selected are reported as skipped, other unselected failures pass."""
+    n = len(c)
     out = []
     lim = cols["force_limit_N"]
-    for i in range(len(c)):
-        if not c.feasible[i]:
+    feasible, mean_ok, peak_ok = (
+        np.broadcast_to(np.asarray(a), (n,)).tolist() for a in (c.feasible, c.mean_ok, c.peak_ok)
+    )
+
+    def per_variant(a):
+        return None if a is None else np.broadcast_to(np.asarray(a), (n,))
+
+    # the other checks' levels, values and limits per variant, once per chunk (when --fail-on
+    # selects them)
+    others = [
+        (
+            ch,
+            per_variant(ch.level).tolist(),
+            *map(per_variant, (ch.value, ch.warn_limit, ch.fail_limit, ch.relation)),
+        )
+        for ch in c.verdict.checks
+        if ch.key not in ("mean_force", "peak_force") and ("checks" in fail_on or "warnings" in fail_on)
+    ]
+    for i in range(n):
+        if not feasible[i]:
             msg = f"infeasible: {c.reason[i]}"
             out.append((msg, None) if "infeasible" in fail_on else (None, msg))
             continue
         bad = []
-        if "mean" in fail_on and not c.mean_ok[i]:
+        if "mean" in fail_on and not mean_ok[i]:
             bad.append(f"mean force {cols['mean_force_N'][i]:.2f} N > limit {lim[i]:g} N")
-        if "peak" in fail_on and not c.peak_ok[i]:
+        if "peak" in fail_on and not peak_ok[i]:
             if c.flywheel[i]:
                 pk = float(c.least_peak_force[i])
                 what = f"peak force with the flywheel (δ ≤ {float(c.speed_fluctuation[i]):g})"
@@ -343,16 +362,12 @@ def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequ
                     if pk is None
                     else f"peak force {pk:.2f} N > limit {lim[i]:g} N"
                 )
-        for ch in c.verdict.checks:
-            level = int(np.broadcast_to(np.asarray(ch.level), (len(c),))[i])
-            if ch.key in ("mean_force", "peak_force") or level == 0:
-                continue
+        for ch, levels, values, warn_limits, fail_limits, relations in others:
+            level = levels[i]
             if (level == 2 and "checks" in fail_on) or (level == 1 and "warnings" in fail_on):
-                value = float(np.broadcast_to(np.asarray(ch.value), (len(c),))[i])
-                limit = ch.fail_limit if level == 2 else ch.warn_limit
-                limit = float(np.broadcast_to(np.asarray(limit), (len(c),))[i])
-                rel = np.broadcast_to(np.asarray(ch.relation), (len(c),))[i]
-                side = ">" if rel == "<=" else "<"
+                value = float(values[i])
+                limit = float((fail_limits if level == 2 else warn_limits)[i])
+                side = ">" if relations[i] == "<=" else "<"
                 word = "fails" if level == 2 else "warns"
                 bad.append(f"{ch.key} {value:.4g} {ch.unit} {side} {limit:g} {ch.unit} ({word})")
         out.append(("; ".join(bad) if bad else None, None))
