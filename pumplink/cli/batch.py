@@ -77,6 +77,16 @@ def batch(
             show_default=False,
         ),
     ] = None,
+    scheduler: Annotated[
+        Optional[str],
+        typer.Option(
+            "--scheduler",
+            help="Run on Dask instead of the local pool: local:N (a local cluster of N worker "
+            "processes) or the address of a running scheduler, tcp://host:8786 (needs pip "
+            "install 'pumplink[dask]'). Same rows, same order.",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """Evaluate many variants at once: a base spec plus axes to vary (Cartesian product).
 
@@ -96,7 +106,10 @@ def batch(
     Piston-pump specs and batch files (mechanism = "crank-slider") run alone, without --junit.
 
     Example: [bold]pumplink batch configs/grids/piston-bore.toml[/]
+
+    Grids too large for one machine run on Dask (README, "Grids too large for one machine").
     """
+    import contextlib
     import functools
     import os
     import time
@@ -114,42 +127,79 @@ def batch(
     for opt, path in (("--out", out), ("--junit", junit)):  # before any work: fail fast, exit 2
         if path is not None:
             check_output(path, opt)
+    cluster = _dask() if scheduler is not None else None  # not installed: one line, exit 2
+    where = cluster.parse_scheduler(scheduler) if cluster is not None else None
+    if where is not None and workers != 1:
+        raise SpecError(
+            f"--workers {workers} is for the local pool; with --scheduler the cluster's workers run the "
+            "tasks (local:N sets how many)"
+        )
     from pumplink.cli import piston
 
     if piston.is_piston_input(inputs):  # mechanism = "crank-slider": docs/piston-pump.md
+        if where is not None:
+            raise SpecError("--scheduler is for rope-pump batches; piston-pump batches run whole, without it")
         piston.batch(inputs, fmt.value, out, set(sel), junit, chunk)
     batches = _batch.load_inputs(inputs)
     tasks = _batch.plan(batches, k_n, _batch.run_module.task_designs(samples))
     total = sum(e - s for _, s, e in tasks)
-    n_workers = max(1, min(workers or os.cpu_count() or 1, len(tasks)))  # no idle processes
-    if total >= LARGE_BATCH:  # say what is coming before a long run starts
-        secs = _batch.run_module.estimate_seconds(batches, tasks, samples, n_workers)
-        sys.stderr.write(
-            f"batch: {total:,} variants in {len(tasks):,} tasks on {n_workers} worker"
-            f"{'s' if n_workers > 1 else ''}; estimated {duration(secs)} (Ctrl-C stops it, writing nothing)\n"
-        )
 
-    try:
-        with progress(total, "batch") as advance:
-            post = functools.partial(
-                rb.render_chunk,
-                fmt=fmt.value,
-                vkeys=rb.varied_keys(batches),
-                fail_on=sel,
-                junit=junit is not None,
-            )  # runs in the workers
-            results = _batch.run(batches, samples, k_n, n_workers, post=post)
-            summary, rows = rb.write_stream(
-                batches, results, total, fmt.value, out, junit, sel, samples, k_n, advance
+    with cluster.connect(where) if where is not None else contextlib.nullcontext() as client:
+        if client is not None:
+            n_workers = min(cluster.threads(client), len(tasks))
+        else:
+            n_workers = max(1, min(workers or os.cpu_count() or 1, len(tasks)))  # no idle processes
+        if total >= LARGE_BATCH:  # say what is coming before a long run starts
+            secs = _batch.run_module.estimate_seconds(batches, tasks, samples, n_workers)
+            on = f" on {where}" if where is not None else ""
+            sys.stderr.write(
+                f"batch: {total:,} variants in {len(tasks):,} tasks on {n_workers} worker"
+                f"{'s' if n_workers > 1 else ''}{on}; estimated {duration(secs)} "
+                "(Ctrl-C stops it, writing nothing)\n"
             )
-    except BrokenProcessPool:  # a worker was killed (SIGKILL, out of memory)
-        sys.stderr.write(
-            "interrupted: a worker process was killed (out of memory?); no output file written\n"
-        )
-        raise typer.Exit(130) from None
+        try:
+            with progress(total, "batch") as advance:
+                post = functools.partial(
+                    rb.render_chunk,
+                    fmt=fmt.value,
+                    vkeys=rb.varied_keys(batches),
+                    fail_on=sel,
+                    junit=junit is not None,
+                )  # runs in the local pool's workers; with Dask in this process, on the arrays sent back
+                if client is not None:
+                    results = cluster.run(batches, client, samples, k_n, post=post)
+                else:
+                    results = _batch.run(batches, samples, k_n, n_workers, post=post)
+                summary, rows = rb.write_stream(
+                    batches, results, total, fmt.value, out, junit, sel, samples, k_n, advance
+                )
+        except BrokenProcessPool as exc:  # a worker was killed (SIGKILL, out of memory), a cluster lost
+            what = str(exc) if client is not None else "a worker process was killed (out of memory?)"
+            sys.stderr.write(f"interrupted: {what}; no output file written\n")
+            raise typer.Exit(130) from None
     if fmt.value == "table":
         rb.render_table(summary, rows)
     else:
         wrote = [p for p in (out, junit) if p is not None]
         sys.stderr.write(rb.summary_line(summary, time.perf_counter() - t0, wrote) + "\n")
     raise typer.Exit(1 if summary["failed_selected"] else 0)
+
+
+def _need(module: str, option: str, extra: str, what: str) -> None:
+    """One line saying how to install an optional extra when ``module`` cannot be imported (exit 2)."""
+    import importlib
+
+    try:
+        importlib.import_module(module)
+    except ImportError:
+        raise SpecError(
+            f"{option} needs {what}, which is not installed; install it with pip install 'pumplink[{extra}]'"
+        ) from None
+
+
+def _dask():
+    """:mod:`pumplink.batch.cluster`, or one line saying how to install Dask (exit 2)."""
+    _need("distributed", "--scheduler", "dask", "Dask")
+    from pumplink.batch import cluster
+
+    return cluster
