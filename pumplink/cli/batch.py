@@ -3,13 +3,22 @@
 from __future__ import annotations
 
 import sys
+from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, StrictOpt, app
+from pumplink.cli.common import StrictOpt, app
 from pumplink.errors import SpecError
+
+
+class BatchFormat(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
+    table = "table"
+    json = "json"
+    csv = "csv"
+    parquet = "parquet"
+
 
 #: Runs of at least this many variants print their size and estimated time before they start.
 LARGE_BATCH = 100_000
@@ -31,13 +40,14 @@ def batch(
         ),
     ] = 360,
     fmt: Annotated[
-        Format,
+        BatchFormat,
         typer.Option(
             "--format",
             "-f",
-            help="Rows as csv or json; table: the summary (and the rows, or the failures of a large run).",
+            help="Rows as csv or json, or parquet (with --out; needs pip install 'pumplink[parquet]'); "
+            "table: the summary (and the rows, or the failures of a large run).",
         ),
-    ] = Format.table,
+    ] = BatchFormat.table,
     out: Annotated[
         Optional[Path],
         typer.Option(
@@ -123,7 +133,11 @@ def batch(
     sel = _batch.parse_fail_on(fail_on + (",warnings" if strict else ""))
     k_n = _batch.parse_chunk(chunk)
     if fmt.value == "table" and out is not None:
-        raise SpecError("--out writes rows: give --format csv or --format json with it")
+        raise SpecError("--out writes rows: give --format csv, json or parquet with it")
+    if fmt.value == "parquet":
+        if out is None:
+            raise SpecError("--format parquet writes a binary file: give --out FILE.parquet with it")
+        _need("pyarrow", "--format parquet", "parquet", "pyarrow")
     for opt, path in (("--out", out), ("--junit", junit)):  # before any work: fail fast, exit 2
         if path is not None:
             check_output(path, opt)
@@ -137,8 +151,9 @@ def batch(
     from pumplink.cli import piston
 
     if piston.is_piston_input(inputs):  # mechanism = "crank-slider": docs/piston-pump.md
-        if where is not None:
-            raise SpecError("--scheduler is for rope-pump batches; piston-pump batches run whole, without it")
+        for flag, given in (("--scheduler", where is not None), ("--format parquet", fmt.value == "parquet")):
+            if given:
+                raise SpecError(f"{flag} is for rope-pump batches; piston-pump batches run whole, without it")
         piston.batch(inputs, fmt.value, out, set(sel), junit, chunk)
     batches = _batch.load_inputs(inputs)
     tasks = _batch.plan(batches, k_n, _batch.run_module.task_designs(samples))

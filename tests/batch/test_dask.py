@@ -88,10 +88,10 @@ def _post(batches, fmt="csv"):
 
 
 # ----------------------------------------------------------------------------- the library
-@pytest.mark.parametrize("fmt", ["csv", "json"])
+@pytest.mark.parametrize("fmt", ["csv", "json", "parquet"])
 def test_local_cluster_gives_the_rows_of_one_process(tmp_path, grids, client, fmt):
     """Both models in one run, cut into 22 tasks of at most 64 variants (Dask completes them out
-    of order): the file and the JUnit report are byte-identical."""
+    of order): the file and the JUnit report are byte-identical, the Parquet file too."""
     batches = B.load_inputs(grids)
     post = _post(batches, fmt)
     ref = _write(tmp_path, "ref", batches, B.run(batches, 90, designs=64, post=post), fmt)
@@ -99,6 +99,12 @@ def test_local_cluster_gives_the_rows_of_one_process(tmp_path, grids, client, fm
     assert len(B.plan(batches, designs=64)) == 22
     assert got == ref
     assert ref[1].count(b"<testcase ") == 1200 + 144
+    if fmt == "parquet":
+        import pyarrow.parquet as pq
+
+        models = pq.read_table(tmp_path / "dask.parquet").column("model").to_pylist()
+        assert len(models) == 1344 and models.count("flywheel") == 144
+        return
     fly = [r for r in ref[0].decode().splitlines() if r.startswith(("fly#", '{"name": "fly#'))]
     assert len(fly) == 144 and all(",flywheel," in r or '"model": "flywheel"' in r for r in fly)
 
