@@ -15,9 +15,10 @@ so no row is lost or written twice.  A task that kills
 The workers' malloc is tuned by a worker plugin (:class:`WorkerSetup`): Dask starts its workers
 with ``MALLOC_TRIM_THRESHOLD_=65536``, which also freezes glibc's mmap threshold at 128 kB, so
 every temporary array of the kernels is mapped and unmapped afresh and its pages faulted in; on
-this workload that doubled the CPU time.
+the flywheel design-space grid that cost twice the CPU time (``benchmarks/bench_dask.py``).
 
-This module imports Dask (``pip install 'pumplink[dask]'``); nothing else in pumplink does.
+This module imports Dask (``pip install 'pumplink[dask]'``); the rest of pumplink does not (the
+CLI only checks that it can be imported when ``--scheduler`` is given).
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from typing import Any
 
+import dask
 import distributed
 
 from pumplink.batch.files import Batch
@@ -46,15 +48,26 @@ CONNECT_TIMEOUT = 5.0
 WORKER_TIMEOUT = 60.0
 
 #: glibc's mmap threshold on the workers [bytes]: blocks below it come from the heap, which is
-#: reused across tasks.  32 MiB is the largest value glibc's own dynamic threshold reaches
-#: (``DEFAULT_MMAP_THRESHOLD_MAX`` on 64-bit systems), i.e. what a plain process, such as a worker
-#: of the local pool, converges to.
+#: reused across tasks.  32 MiB is the ceiling of glibc's own dynamic threshold
+#: (``DEFAULT_MMAP_THRESHOLD_MAX`` on 64-bit systems), which rises to the largest block freed: in
+#: a plain process, such as a worker of the local pool, the kernels' temporaries end up on the
+#: heap too.
 MMAP_THRESHOLD = 32 * 1024 * 1024
 #: glibc's trim threshold on the workers [bytes]: free memory at the top of the heap beyond this
 #: goes back to the system (twice the mmap threshold, as glibc's dynamic rule sets it).
 TRIM_THRESHOLD = 2 * MMAP_THRESHOLD
 
 _M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3  # mallopt parameters, <malloc.h>
+
+#: Dask settings of the local cluster: its background work, for a dashboard nobody watches here,
+#: is cut from ~9 % of a core (idle, 2 workers; the statistical profiler samples every task's
+#: stack every 10 ms) to ~1.5 %.  A cluster started elsewhere keeps its own settings.
+LOCAL_CONFIG = {
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.tick.interval": "1s",
+    "distributed.admin.system-monitor.interval": "2s",
+    "distributed.worker.memory.monitor-interval": "1s",
+}
 
 
 @dataclass(frozen=True)
@@ -143,7 +156,7 @@ def connect(
             log.setLevel(logging.CRITICAL)
         if scheduler.address is None:
             n = scheduler.workers or os.cpu_count() or 1
-            with _stop_signals_ignored():
+            with _stop_signals_ignored(), dask.config.set(LOCAL_CONFIG):
                 cluster = stack.enter_context(
                     distributed.LocalCluster(
                         n_workers=n,

@@ -166,7 +166,7 @@ def batch(
             n_workers = max(1, min(workers or os.cpu_count() or 1, len(tasks)))  # no idle processes
         if total >= LARGE_BATCH:  # say what is coming before a long run starts
             secs = _batch.run_module.estimate_seconds(batches, tasks, samples, n_workers)
-            on = f" on {where}" if where is not None else ""
+            on = f" (Dask, {where})" if where is not None else ""
             sys.stderr.write(
                 f"batch: {total:,} variants in {len(tasks):,} tasks on {n_workers} worker"
                 f"{'s' if n_workers > 1 else ''}{on}; estimated {duration(secs)} "

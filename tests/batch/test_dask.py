@@ -166,6 +166,16 @@ def test_workers_malloc_is_tuned(client):
     assert set(envs.values()) == {"65536"}  # Dask's setting is there: the plugin is what helps
 
 
+def test_local_workers_do_no_dashboard_work(client):
+    """The local cluster's workers neither profile their tasks nor tick every 20 ms (for a
+    dashboard nobody watches): the settings reach the worker processes."""
+    import dask
+
+    keys = ("distributed.worker.profile.enabled", "distributed.admin.tick.interval")
+    got = client.run(lambda: tuple(dask.config.get(k) for k in keys))
+    assert set(got.values()) == {(False, "1s")}
+
+
 def test_scheduler_text():
     assert C.parse_scheduler("local:3") == C.Scheduler(None, 3)
     assert C.parse_scheduler("local") == C.parse_scheduler("local:0") == C.Scheduler(None, 0)
