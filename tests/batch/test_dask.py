@@ -176,6 +176,22 @@ def test_local_workers_do_no_dashboard_work(client):
     assert set(got.values()) == {(False, "1s")}
 
 
+def test_the_readme_grid_of_ten_million_variants(tmp_path):
+    """The README's 10-million-variant recipe grid is valid: 10^7 flywheel variants in 9,766
+    tasks, and its first thousand evaluate (one process)."""
+    import re
+
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    (text,) = re.findall(r"^```toml\n(# grid-10m\.toml.*?)^```", readme, re.S | re.M)
+    (tmp_path / "configs").symlink_to(ROOT / "configs")
+    (tmp_path / "grid-10m.toml").write_text(text)
+    batches = B.load_inputs([tmp_path / "grid-10m.toml"])
+    assert batches[0].size == 10**7 and batches[0].flywheel
+    assert len(B.plan(batches, designs=B.run_module.task_designs(360))) == 9766
+    rows = list(B.run(batches, 360, (1, 10_000)))
+    assert sum(len(c) for c, _ in rows) == 1000
+
+
 def test_scheduler_text():
     assert C.parse_scheduler("local:3") == C.Scheduler(None, 3)
     assert C.parse_scheduler("local") == C.parse_scheduler("local:0") == C.Scheduler(None, 0)
