@@ -33,9 +33,15 @@ test: $(VENV)/.stamp-test
 	$(BIN)/lint-imports --no-cache
 	$(BIN)/python -m pytest -q
 
-# Every benchmarks/bench_*.py, one after the other in this process's venv (medians of repeats).
+# Every benchmarks/bench_*.py, one after the other in this process's venv (medians of repeats);
+# each also appends its figures to $(BENCH_OUT) (benchmarks/_record.py), and the last step prints
+# them all in one table with their targets (benchmarks/summary.py).
+BENCH_OUT := $(CURDIR)/build/bench.jsonl
 bench: $(VENV)/.stamp-bench
-	@for b in benchmarks/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done
+	@mkdir -p $(dir $(BENCH_OUT)) && rm -f $(BENCH_OUT)
+	@for b in benchmarks/bench_*.py; do echo "== $$b"; \
+		PUMPLINK_BENCH_OUT=$(BENCH_OUT) $(BIN)/python $$b || exit 1; done
+	@$(BIN)/python benchmarks/summary.py $(BENCH_OUT)
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache .hypothesis .ruff_cache .import_linter_cache

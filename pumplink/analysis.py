@@ -3,8 +3,8 @@ model-choice report, the time-domain check and the curves a chart shows.
 
 Pure functions (no I/O); the results are frozen dataclasses in SI units (radians inside),
 converted to degrees and rows only by :mod:`pumplink.output`.  The verdict comes from
-:func:`pumplink.verdict.assess`, the peak force from the model :func:`pumplink.models.choose_model`
-picks.
+:func:`pumplink.verdict.assess`, the peak force from the least model that is enough
+(:func:`energy_model`, :func:`pumplink.models.model_index`) or the one asked for.
 """
 
 from __future__ import annotations
@@ -14,9 +14,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pumplink.constants import GRAVITY, LINK_ENERGY_LIMIT, LINK_MASS_PER_METRE, SUSTAINED_POWER_W
+from pumplink.constants import (
+    GRIP_SPEED_FAIL_M_S,
+    HOUR_POWER_W,
+    LINK_ENERGY_LIMIT,
+    LINK_MASS_PER_METRE,
+    SUSTAINED_POWER_W,
+)
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.mechanisms.fourbar import (
+    FourBar,
     State,
     Synthesis,
     grip_heights,
@@ -24,9 +31,11 @@ from pumplink.mechanisms.fourbar import (
     infeasibility_reason,
     kinematic_state,
     peak_rocker_rate,
+    per_design,
     synthesize,
 )
-from pumplink.models import FLYWHEEL, MODELS, Conditions, choose_model
+from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC, Conditions, model_index
+from pumplink.models import dynamics as _dy
 from pumplink.models import flywheel as _fw
 from pumplink.models import quasi_static as _qs
 from pumplink.spec import PumpSpec
@@ -117,15 +126,28 @@ class ForceResult:
     mark_operator_force: np.ndarray | None = None  # at the marks [N] (flywheel)
     mark_wheel_speed: np.ndarray | None = None  # at the marks [rad/s]
     link_energy: float = float("nan")  # largest kinetic energy of coupler + handle at this speed [J]
+    effort_peak_force: float | None = None  # least peak effort: hand force + the arms (full dynamics) [N]
+    effects: EnergyModel | None = None  # the model choice with the wheel's inertia (None without)
 
     @property
     def flywheel(self) -> bool:
-        return self.model == MODELS[FLYWHEEL].label
+        """True when an energy model with the wheel's inertia decided (flywheel or full dynamics)."""
+        return self.model in (MODELS[FLYWHEEL].label, MODELS[DYNAMICS].label)
+
+    @property
+    def dynamics(self) -> bool:
+        """True when full dynamics decided."""
+        return self.model == MODELS[DYNAMICS].label
+
+    @property
+    def model_key(self) -> str:
+        """The registry key of the model that decided (``pumplink.models.ORDER``)."""
+        return next(k for k in ORDER if MODELS[k].label == self.model)
 
     def __repr__(self) -> str:
         if not self.design.feasible:
             return f"<ForceResult {self.design.spec.name!r}: infeasible ({self.design.error})>"
-        how = "flywheel" if self.flywheel else "dead band"
+        how = self.model if self.flywheel else "dead band"
         fails = ", ".join(c.key for c in self.verdict.failures)
         return (
             f"<ForceResult {self.design.spec.name!r}: {self.outcome}{f' ({fails})' if fails else ''}, "
@@ -193,6 +215,99 @@ def design(spec: PumpSpec) -> Design:
     return Design(spec, syn, infeasibility_reason(syn.reason, lk.L1, lk.D1, lk.b, swing))
 
 
+def link_masses(spec: PumpSpec, coupler_length, arms: bool) -> _dy.Masses:
+    """Coupler, handle and grip masses [kg] from the spec (docs/models.md §3a): linkage.coupler_mass
+    and linkage.handle_mass, else linkage.mass_per_length times the coupler's length and the
+    handle's max(H, rocker); the grip carries operator.arm_mass when ``arms``, else nothing."""
+    lk = spec.linkage
+    mpl = lk.mass_per_length or LINK_MASS_PER_METRE
+    return _dy.Masses(
+        lk.coupler_mass if lk.coupler_mass is not None else mpl * np.asarray(coupler_length, float),
+        lk.handle_mass if lk.handle_mass is not None else mpl * max(lk.handle, lk.rocker),
+        spec.operator.arm_mass_kg if arms else 0.0,
+    )
+
+
+@dataclass(frozen=True)
+class EnergyModel:
+    """The model that decides with the wheel's inertia, what decided it, and its peak force.
+
+    Floats for one design, arrays over designs otherwise.  ``index`` 1 flywheel, 2 full dynamics
+    (:data:`pumplink.models.ORDER`); ``band`` W = J w^2 delta, ``link_energy`` the coupler's and
+    handle's largest kinetic energy, ``link_weight`` the range of their potential energy,
+    ``arm_energy`` the arms' largest kinetic energy [J] (:func:`pumplink.models.dynamics.effect_sizes`);
+    ``peak_force`` the deciding model's least peak force [N] (NaN where not solved).
+    """
+
+    index: np.ndarray | int
+    band: np.ndarray | float
+    link_energy: np.ndarray | float
+    link_weight: np.ndarray | float
+    arm_energy: np.ndarray | float
+    arms_in_verdict: np.ndarray | bool
+    peak_force: np.ndarray | float
+    forced: bool = False  # the model was asked for (--model), not chosen
+
+    @property
+    def model(self):
+        """The deciding model's key per design."""
+        return np.asarray(ORDER, dtype=object)[np.asarray(self.index)]
+
+
+def energy_model(
+    lk,
+    dead_centre_extended,
+    dead_centre_folded,
+    wheel_torque,
+    inertia,
+    speed,
+    speed_fluctuation,
+    masses: _dy.Masses,
+    arms_in_verdict,
+    forced: str | None = None,
+    solve=True,
+) -> EnergyModel:
+    """Choose between the flywheel and full dynamics and solve the chosen one's least peak force.
+
+    The one route for ``force``, ``speed``, ``batch`` and ``optimize`` (floats or arrays over designs,
+    broadcast together), so they decide alike.  ``masses``: coupler and handle [kg] and the arms at
+    the grip (operator.arm_mass); the arms enter the solved force only where ``arms_in_verdict``.
+    ``forced``: a model key that overrides the choice.  ``solve``: False (or False per design) to
+    leave the force unsolved (NaN), e.g. for an infeasible design.
+    """
+    scalar, arrays = per_design(
+        lk,
+        dead_centre_extended,
+        dead_centre_folded,
+        wheel_torque,
+        inertia,
+        speed,
+        speed_fluctuation,
+        masses.coupler,
+        masses.handle,
+        masses.grip,
+        arms_in_verdict,
+        solve,
+    )
+    geom, (dce, dcf, mw, j, w, delta, mc, mh, ma, arms, todo) = arrays[:7], arrays[7:]
+    four = FourBar(*geom)
+    arms, todo = arms.astype(bool), todo.astype(bool)
+    band = _fw.energy_band(j, w, delta)
+    link, weight, arm = _dy.effect_sizes(four, _dy.Masses(mc, mh, ma), w)
+    index = np.asarray(model_index(j, band, link, weight, arm, arms, forced))
+    peak = np.full(j.shape, np.nan)
+    for key in (FLYWHEEL, DYNAMICS):
+        r = np.nonzero((index == ORDER.index(key)) & todo)[0]
+        if r.size:
+            ms = _dy.Masses(mc[r], mh[r], np.where(arms[r], ma[r], 0.0))
+            cond = Conditions(w[r], 0.0, j[r], delta[r], ms)
+            peak[r] = MODELS[key].peak_force(four.take(r), dce[r], dcf[r], mw[r], cond)
+    out = (index, band, link, weight, arm, arms, peak)
+    if scalar:
+        out = (int(index[0]), *(float(v[0]) for v in out[1:5]), bool(arms[0]), float(peak[0]))
+    return EnergyModel(*out, forced=forced is not None)
+
+
 def conditions(spec: PumpSpec, speed: float | None = None) -> Conditions:
     """The spec's operating conditions at wheel speed ``speed`` [rad/s] (default: the spec's)."""
     op = spec.operator
@@ -208,6 +323,7 @@ def force_analysis(
     at_deg=None,
     keep_samples: bool = True,
     progress=None,
+    model: str | None = None,
 ) -> ForceResult:
     """Force sweep, checks and verdict for one spec.
 
@@ -219,6 +335,8 @@ def force_analysis(
     at_deg : explicit crank angles [deg] to evaluate instead of the uniform sweep.
     keep_samples : False to stream the sweep without keeping it (``--summary``).
     progress : optional callable given the fraction of a streamed sweep done (for a progress bar).
+    model : "quasi-static", "flywheel" or "dynamics" to override the choice of the least model that
+        is enough (the energy models need the wheel's inertia).
     """
     d = design(spec)
     op = spec.operator
@@ -229,7 +347,28 @@ def force_analysis(
     syn = d.synthesis
     nan = float("nan")
     inertia = spec.inertia
-    model = choose_model(inertia is not None)
+    if model is not None and model != QUASI_STATIC and inertia is None:
+        raise SpecError(
+            f"--model {model} needs the wheel's inertia, but {spec.name} gives none; add wheel.mass [kg] "
+            "or wheel.inertia [kg m^2] to the spec"
+        )
+    # the least model that is enough (docs/models.md §3), or the one asked for
+    em = None
+    if inertia is not None:
+        em = energy_model(
+            syn.linkage,
+            syn.dead_centre_extended,
+            syn.dead_centre_folded,
+            mw,
+            inertia,
+            speed,
+            op.speed_fluctuation,
+            link_masses(spec, syn.coupler_length, arms=True),
+            bool(op.arms_in_verdict),
+            forced=model,
+            solve=d.feasible,
+        )
+    model = MODELS[model] if model == QUASI_STATIC else MODELS[ORDER[0 if em is None else em.index]]
     fly = (
         {}
         if inertia is None
@@ -237,6 +376,7 @@ def force_analysis(
             inertia=inertia,
             speed_fluctuation=op.speed_fluctuation,
             energy_band=float(_fw.energy_band(inertia, speed, op.speed_fluctuation)),
+            effects=em,
         )
     )
     if not d.feasible:
@@ -262,7 +402,6 @@ def force_analysis(
     lk = syn.linkage
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
     mean = float(_qs.mean_force(mw, grip_stroke(spec.linkage.handle, syn.swing)))
-    cond = conditions(spec, float(speed))
     peak, peak_angle = _qs.dead_band_peak_force(lk, dce, dcf, band, mw)
 
     # Kept samples: the given --at angles, else the uniform sweep.  The sampled peak of a
@@ -288,35 +427,43 @@ def force_analysis(
         n = samples
 
     marks = kinematic_state(lk, np.array([dce, dcf, peak_angle]), mw)
-    mpl = spec.linkage.mass_per_length or LINK_MASS_PER_METRE
-    link = float(np.nanmax(_fw.link_energy(lk, _link_grid(), speed, mpl)))
+    link = nan if em is None else em.link_energy
     share = None
     verdict_peak = peak
-    if model.key == FLYWHEEL:
-        fp = float(model.peak_force(lk, dce, dcf, mw, cond))
-        sc = _fw.scene(lk, dce, dcf, mw, inertia, float(speed), op.speed_fluctuation, solved=fp)
-        fly.update(
-            least_peak_force=sc.least_peak_force,
-            scene=sc,
-            min_passing_speed=float(
-                _fw.min_passing_speed(lk, dce, dcf, mw, op.force_limit, inertia, op.speed_fluctuation)
-            ),
+    if model.key in (FLYWHEEL, DYNAMICS):
+        delta = op.speed_fluctuation
+        if model.key == DYNAMICS:
+            ms = link_masses(spec, syn.coupler_length, bool(op.arms_in_verdict))
+            sc = _dy.scene(lk, dce, dcf, mw, inertia, ms, float(speed), delta, force=em.peak_force)
+            m, lowest = _dy, nan  # faster is not always easier: pumplink speed gives the range
+        else:
+            sc = _fw.scene(lk, dce, dcf, mw, inertia, float(speed), delta, solved=em.peak_force)
+            m, lowest = _fw, float(_fw.min_passing_speed(lk, dce, dcf, mw, op.force_limit, inertia, delta))
+            share = 100.0 * link / fly["energy_band"] if fly["energy_band"] > 0 else np.inf  # J = 0: no band
+        # the operator's effort: the hand force plus accelerating and lifting their own arms
+        effort = float(
+            MODELS[DYNAMICS].peak_force(
+                lk,
+                dce,
+                dcf,
+                mw,
+                Conditions(speed, band, inertia, delta, link_masses(spec, syn.coupler_length, arms=True)),
+            )
         )
+        fly.update(least_peak_force=sc.least_peak_force, scene=sc, min_passing_speed=lowest)
+        fly.update(effort_peak_force=effort)
         if np.isfinite(sc.least_peak_force):
             fly.update(
-                mark_operator_force=_fw.operator_force(sc, marks.crank_angle),
-                mark_wheel_speed=_fw.wheel_speed(sc, marks.crank_angle),
+                mark_operator_force=m.operator_force(sc, marks.crank_angle),
+                mark_wheel_speed=m.wheel_speed(sc, marks.crank_angle),
             )
             if theta is not None:
                 fly.update(
-                    operator_force=_fw.operator_force(sc, theta),
-                    wheel_speed=_fw.wheel_speed(sc, theta),
-                    on_ceiling=_fw.on_ceiling(sc, theta),
+                    operator_force=m.operator_force(sc, theta),
+                    wheel_speed=m.wheel_speed(sc, theta),
+                    on_ceiling=(_dy.regime(sc, theta) == 0) if m is _dy else _fw.on_ceiling(sc, theta),
                 )
         verdict_peak = sc.least_peak_force
-        share = (
-            100.0 * link / fly["energy_band"] if fly["energy_band"] > 0 else np.inf
-        )  # J = 0: no band at all
     verdict = judge(
         True,
         mean,
@@ -326,7 +473,7 @@ def force_analysis(
         d.transmission_angle,
         mw * speed,
         peak_rocker_rate(lk)
-        * top_speed(speed, op.speed_fluctuation if model.key == FLYWHEEL else None)
+        * top_speed(speed, op.speed_fluctuation if model.key in (FLYWHEEL, DYNAMICS) else None)
         * spec.linkage.handle,
         spec.linkage.handle,
         syn.swing,
@@ -432,7 +579,8 @@ def force_curve(r: ForceResult, points: int = CURVE_POINTS) -> ForceCurve:
     f = kinematic_state(syn.linkage, theta, r.wheel_torque).force
     op = ws = None
     if r.flywheel and r.scene is not None and np.isfinite(r.scene.least_peak_force):
-        op, ws = _fw.operator_force(r.scene, theta), _fw.wheel_speed(r.scene, theta)
+        m = _dy if r.dynamics else _fw
+        op, ws = m.operator_force(r.scene, theta), m.wheel_speed(r.scene, theta)
     return ForceCurve(theta, f, op, ws, float(np.sign(np.interp(r.dead_band_peak_angle, theta, f))))
 
 
@@ -456,6 +604,9 @@ def verify(r: ForceResult, rtol: float = VERIFY_RTOL) -> Verification:
     """
     if r.scene is None or not math.isfinite(r.scene.least_peak_force):
         raise SpecError("nothing to integrate: no finite peak force keeps the wheel turning")
+    if r.dynamics:
+        sim = _dy.integrate_motion(r.scene)
+        return Verification(sim, rtol, _dy.agrees(r.scene, sim, rtol))
     sim = _fw.integrate_motion(r.scene)
     agree = (
         sim.periodicity <= rtol
@@ -465,14 +616,149 @@ def verify(r: ForceResult, rtol: float = VERIFY_RTOL) -> Verification:
     return Verification(sim, rtol, bool(agree))
 
 
+# ----------------------------------------------------------------------------- best cadence
+#: Mean speeds [deg/s] searched for the best cadence and the passing range (10 to 240 rpm).
+CADENCE_RANGE_DEG_S = (60.0, 1440.0)
+
+
+@dataclass(frozen=True)
+class Cadence:
+    """The best cadence of one design and the mean speeds that pass (SI units, radians).
+
+    ``speed`` is the mean speed with the least peak *effort* (hand force plus accelerating and
+    lifting the operator's own arms, full dynamics, docs/models.md §3a), ``effort`` that least
+    peak effort, ``hand_force`` the hand force there (full dynamics, arms left out) and ``power``
+    Mw w there.  ``force_range`` are the mean speeds where the verdict's peak force (of ``model``,
+    the model that decided at the spec's speed) is within the force limit, ``passing`` those where
+    no check fails (that force, the power, the peak grip speed, and every check that does not
+    depend on speed); (NaN, NaN) when there are none, and an end at the edge of ``searched`` may go on
+    beyond it.
+    """
+
+    speed: float
+    effort: float
+    hand_force: float
+    power: float
+    at_edge: bool
+    searched: tuple[float, float]
+    model: str
+    force_range: tuple[float, float]
+    passing: tuple[float, float]
+
+
+def cadence(r: ForceResult, searched_deg_s=CADENCE_RANGE_DEG_S) -> Cadence:
+    """The best cadence and the passing mean speeds of the design of ``r`` (a force analysis at the
+    spec's speed, which says which model decides and which checks fail at any speed).
+
+    Raises
+    ------
+    SpecError : the spec gives no inertia (then the force does not depend on speed).
+    """
+    spec = r.design.spec
+    if spec.inertia is None:
+        raise SpecError(
+            f"{spec.name}: the best cadence needs the wheel's inertia (the quasi-static force does not "
+            "depend on speed); add wheel.mass [kg] or wheel.inertia [kg m^2] to the spec"
+        )
+    syn, op, mw, j = r.design.synthesis, spec.operator, spec.wheel_torque, spec.inertia
+    lk, dce, dcf, delta = syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, op.speed_fluctuation
+    lo, hi = (math.radians(v) for v in searched_deg_s)
+    nan = float("nan")
+    with_arms = link_masses(spec, syn.coupler_length, arms=True)
+    best, effort = _dy.best_speed(lk, dce, dcf, mw, j, with_arms, delta, lo, hi)
+    no_arms = link_masses(spec, syn.coupler_length, arms=False)
+    hand = _dy.least_peak_force(lk, dce, dcf, mw, j, no_arms, best, delta)
+    edge = bool(np.isfinite(best) and min(best - lo, hi - best) <= 1e-6 * hi)
+    model = r.model_key
+    if model == DYNAMICS:
+        arms_in = bool(op.arms_in_verdict)
+        judged = link_masses(spec, syn.coupler_length, arms_in)
+        # the verdict's force is least at the best cadence (arms in the verdict) or at its own minimiser
+        at = best if arms_in else _dy.best_speed(lk, dce, dcf, mw, j, judged, delta, lo, hi)[0]
+        force = _dy.speed_range(lk, dce, dcf, mw, j, judged, delta, op.force_limit, lo, hi, at)
+    elif model == FLYWHEEL:
+        slowest = float(_fw.min_passing_speed(lk, dce, dcf, mw, op.force_limit, j, delta))
+        force = (slowest, math.inf) if math.isfinite(slowest) else (nan, nan)
+    else:
+        force = (0.0, math.inf) if r.passed else (nan, nan)
+    # the checks that depend on speed fail above a speed: the power and the peak grip speed
+    top = top_speed(1.0, delta if model in (FLYWHEEL, DYNAMICS) else None)
+    fastest = min(HOUR_POWER_W / mw, GRIP_SPEED_FAIL_M_S / (peak_rocker_rate(lk) * top * spec.linkage.handle))
+    fixed = [c.key for c in r.verdict.failures if c.key not in ("peak_force", "power", "grip_speed")]
+    low, high = force[0], min(force[1], fastest)
+    passing = (float(low), float(high)) if not fixed and low <= high else (nan, nan)
+    return Cadence(best, effort, hand, mw * best, edge, (lo, hi), model, force, passing)
+
+
+# ----------------------------------------------------------------------------- quasi-static check
+#: Crank angles of the virtual-work check and of the dense sweep of :func:`verify_quasi_static`.
+STATIC_CHECK_ANGLES = 3600
+STATIC_SWEEP = 200_000
+#: Central-difference step [rad] of the virtual-work check (truncation ~h^2, rounding ~1e-16/h).
+STATIC_STEP = 1e-5
+#: How far below the exact peak the dense sweep may stay: one sample step times the force's
+#: slope, relative (the peak outside the dead bands sits at a band edge or a smooth maximum).
+STATIC_SWEEP_RTOL = 1e-3
+
+
+@dataclass(frozen=True)
+class StaticCheck:
+    """The quasi-static answer checked by two routes that share none of its formulas: virtual work
+    from positions alone, and a dense sweep of the force against the exact peak."""
+
+    angles: int  # crank angles outside the dead bands in the virtual-work check
+    virtual_work: float  # largest |F (dPx/dt2 by central differences of positions) / Mw - 1|
+    samples: int  # crank angles of the dense sweep outside the dead bands
+    sweep_peak: float  # largest |F| on the sweep [N]
+    peak: float  # the exact peak outside the dead bands (the verdict's) [N]
+    tolerance: float  # of the virtual-work check
+    agrees: bool
+
+
+def verify_quasi_static(r: ForceResult, rtol: float = VERIFY_RTOL) -> StaticCheck:
+    """Check the quasi-static force and its exact peak (docs/physics.md §3-4, docs/models.md §1).
+
+    * Virtual work: at :data:`STATIC_CHECK_ANGLES` crank angles outside the dead bands, F times
+      the grip's horizontal travel per crank radian, taken by central differences of the grip's
+      position (Px = x_O4 + H cos t4), must be Mw to ``rtol``.
+    * The peak: on a sweep of :data:`STATIC_SWEEP` crank angles outside the dead bands no |F| may
+      exceed the exact peak (to 1e-9), and the largest must come within
+      :data:`STATIC_SWEEP_RTOL` of it (a sample step).
+    """
+    syn = r.design.synthesis
+    lk, mw, band = syn.linkage, r.wheel_torque, r.dead_band
+    dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
+    h = STATIC_STEP
+
+    def grip_x(theta):
+        return lk.pivot_x + lk.handle * np.cos(kinematic_state(lk, theta, mw).rocker_angle)
+
+    theta = np.arange(STATIC_CHECK_ANGLES) * (2 * np.pi / STATIC_CHECK_ANGLES)
+    theta = theta[~_qs.in_dead_band(theta, dce, dcf, band)]
+    rate = (grip_x(theta + h) - grip_x(theta - h)) / (2 * h)
+    force = kinematic_state(lk, theta, mw).force
+    vw = float(np.max(np.abs(force * rate / mw - 1.0))) if theta.size else 0.0
+    sweep = np.arange(STATIC_SWEEP) * (2 * np.pi / STATIC_SWEEP)
+    sweep = sweep[~_qs.in_dead_band(sweep, dce, dcf, band)]
+    f = np.abs(kinematic_state(lk, sweep, mw).force)
+    top = float(np.nanmax(f)) if sweep.size else float("nan")
+    peak = r.dead_band_peak_force
+    ok = vw <= rtol and top <= peak * (1 + 1e-9) and top >= peak * (1 - STATIC_SWEEP_RTOL)
+    return StaticCheck(int(theta.size), vw, int(sweep.size), top, peak, rtol, bool(ok))
+
+
 # ----------------------------------------------------------------------------- speed sweep
 @dataclass(frozen=True)
 class SpeedSweep:
-    """Least peak operator force against mean wheel speed for one design (flywheel model).
+    """The least peak operator force against mean wheel speed for one design, by model.
 
-    Arrays over ``speed`` [rad/s]: ``energy_band`` [J], ``least_peak_force`` [N], ``power`` [W],
-    ``passed`` (no check fails at that speed); :meth:`spec_speed_passes`: the verdict at the spec's
-    own speed (what ``pumplink force`` says).
+    Arrays over ``speed`` [rad/s]: ``energy_band`` [J]; ``flywheel_force`` (links neglected),
+    ``dynamics_force`` (full dynamics, the hand force; the arms only where the spec puts them in the
+    verdict) and ``effort_force`` (full dynamics with the arms) [N]; ``model`` the model that decides
+    at each speed (the least that is enough, or the one asked for) and ``least_peak_force`` its
+    force, the verdict's peak [N]; ``power`` [W]; ``passed`` (no check fails at that speed).
+    :meth:`spec_speed_passes`: the verdict at the spec's own speed (what ``pumplink force`` says);
+    ``cadence``: the best cadence and the passing speeds (:func:`cadence`).
     """
 
     design: Design
@@ -481,7 +767,7 @@ class SpeedSweep:
     force_limit: float
     mean_force: float
     dead_band_peak_force: float  # exact windowed peak outside the dead band (dead-band model) [N]
-    min_passing_speed: float  # [rad/s]; inf: no speed passes
+    min_passing_speed: float  # the flywheel's slowest passing speed [rad/s]; inf: no speed passes
     speed_deg_s: np.ndarray  # as given (echoed exactly in reports)
     speed: np.ndarray
     energy_band: np.ndarray
@@ -490,6 +776,12 @@ class SpeedSweep:
     passed: np.ndarray
     verdict: Verdict | None = None  # every check at each speed (the spec's own speed last)
     grip_speed: np.ndarray | None = None  # peak grip speed at each speed [m/s]
+    flywheel_force: np.ndarray | None = None
+    dynamics_force: np.ndarray | None = None
+    effort_force: np.ndarray | None = None
+    model: np.ndarray | None = None  # model key at each speed
+    cadence: Cadence | None = None
+    result: ForceResult | None = None  # pumplink force at the spec's own speed
 
     @property
     def outcome(self) -> np.ndarray:
@@ -500,9 +792,18 @@ class SpeedSweep:
         """The verdict at the spec's own speed (as ``pumplink force``), strict or not."""
         return bool(np.asarray(self.verdict.passed_strict(strict))[-1])
 
+    @property
+    def sustained_speed(self) -> float:
+        """The mean speed at which the power Mw w reaches the 75 W a person sustains [rad/s]."""
+        return SUSTAINED_POWER_W / self.design.spec.wheel_torque
 
-def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
-    """Least peak force at each mean wheel speed [deg/s] (docs/models.md §2, Eq. (4)).
+
+def speed_sweep(
+    spec: PumpSpec, speeds_deg_s, model: str | None = None, with_cadence: bool = True
+) -> SpeedSweep:
+    """Least peak force at each mean wheel speed [deg/s] by the flywheel (docs/models.md §2) and
+    full dynamics (§3a), and the verdict of the model that decides at each speed (``model``: the
+    one asked for, else the least that is enough), with the best cadence (``with_cadence``).
 
     Raises
     ------
@@ -522,23 +823,27 @@ def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
     w = np.radians(np.append(given, op.speed))  # the spec's own speed last
     lk = syn.linkage
     rep = type(lk)(*(np.full(w.size, float(v)) for v in lk.parameters))  # one design per speed
-    cond = Conditions(w, np.radians(op.dead_band), j, op.speed_fluctuation)
-    req = MODELS[FLYWHEEL].peak_force(rep, syn.dead_centre_extended, syn.dead_centre_folded, mw, cond)
-    band = _fw.energy_band(j, w, op.speed_fluctuation)
+    dce, dcf, delta = syn.dead_centre_extended, syn.dead_centre_folded, op.speed_fluctuation
+    arms_in = bool(op.arms_in_verdict)
+    with_arms = link_masses(spec, syn.coupler_length, arms=True)
+    em = energy_model(rep, dce, dcf, mw, j, w, delta, with_arms, arms_in, forced=model)
+    cond = Conditions(w, np.radians(op.dead_band), j, delta)
+    fly = MODELS[FLYWHEEL].peak_force(rep, dce, dcf, mw, cond)
+    judged = link_masses(spec, syn.coupler_length, arms_in)
+    hand = _dy.least_peak_force(rep, dce, dcf, mw, j, judged, w, delta)
+    effort = _dy.least_peak_force(rep, dce, dcf, mw, j, with_arms, w, delta)
+    index = np.asarray(em.index)
+    energy = index > 0
+    req = np.where(energy, em.peak_force, np.nan)
     mean = float(_qs.mean_force(mw, grip_stroke(spec.linkage.handle, syn.swing)))
-    qs = _qs.dead_band_peak_force(
-        lk, syn.dead_centre_extended, syn.dead_centre_folded, np.radians(op.dead_band), mw
-    )[0]
-    mps = float(
-        _fw.min_passing_speed(
-            lk, syn.dead_centre_extended, syn.dead_centre_folded, mw, op.force_limit, j, op.speed_fluctuation
-        )
-    )
-    mpl = spec.linkage.mass_per_length or LINK_MASS_PER_METRE
-    link_1 = float(np.nanmax(_fw.link_energy(lk, _link_grid(), 1.0, mpl)))  # at 1 rad/s; scales as w^2
-    with np.errstate(divide="ignore"):
-        share = np.where(band > 0, 100.0 * link_1 * w * w / band, np.inf)
-    grip = peak_rocker_rate(lk) * top_speed(w, op.speed_fluctuation) * spec.linkage.handle
+    qs = _qs.dead_band_peak_force(lk, dce, dcf, np.radians(op.dead_band), mw)[0]
+    if not energy.all():  # --model quasi-static: the dead-band peak decides at every speed
+        req = np.where(energy, req, qs)
+    mps = float(_fw.min_passing_speed(lk, dce, dcf, mw, op.force_limit, j, delta))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        share = np.where(em.band > 0, 100.0 * em.link_energy / em.band, np.inf)
+    share = np.where(index == ORDER.index(FLYWHEEL), share, 0.0)  # a check of the flywheel only
+    grip = peak_rocker_rate(lk) * np.where(energy, top_speed(w, delta), w) * spec.linkage.handle
     verdict = judge(
         True,
         mean,
@@ -553,23 +858,31 @@ def speed_sweep(spec: PumpSpec, speeds_deg_s) -> SpeedSweep:
         spec.linkage.D1,
         spec.wheel.axle_height,
     )
+    result = force_analysis(spec, keep_samples=False, samples=0, model=model)
     passed = np.asarray(verdict.passed)
+    keys = np.asarray(ORDER, dtype=object)[index]
     return SpeedSweep(
         d,
         j,
-        op.speed_fluctuation,
+        delta,
         op.force_limit,
         mean,
         float(qs),
         mps,
         given,
         w[:-1],
-        band[:-1],
+        em.band[:-1],
         req[:-1],
         mw * w[:-1],
         passed[:-1],
         verdict,
         grip[:-1],
+        fly[:-1],
+        hand[:-1],
+        effort[:-1],
+        keys[:-1],
+        cadence(result) if with_cadence else None,
+        result,
     )
 
 
@@ -582,7 +895,7 @@ class Effect:
     included: bool
     value: float
     unit: str
-    compared_with: str  # what the value is measured against, in words
+    compared_with: str  # what the ratio measures the value against, in words ('of the force limit')
     ratio: float  # value / that reference [-] (NaN when there is none)
     note: str
 
@@ -593,22 +906,24 @@ def _ratio(a: float, b: float) -> float:
 
 
 def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
-    """Which effects the verdict's model includes, their size at this speed, and why it suffices.
+    """Which effects the verdict's model includes, their size at this speed, and why it is enough.
 
-    The "model no more than the scene needs" rule made visible (docs/models.md §3): the returned
-    sentence says which model answered and whether the neglected effects are small enough.
+    The "least model that is enough" rule made visible (docs/models.md §3): each effect the
+    flywheel leaves out (the links' kinetic energy and weight, the operator's arms) against its
+    energy band, and a sentence naming the model that decided and why it is enough.
     """
     spec = r.design.spec
-    op, lk = spec.operator, spec.linkage
+    op = spec.operator
     nan = float("nan")
-    w = r.speed
+    syn = r.design.synthesis
     work = 2 * np.pi * r.wheel_torque  # load work per revolution [J]
-    arm = max(lk.handle, lk.rocker)
-    mpl = lk.mass_per_length or LINK_MASS_PER_METRE
-    handle_mass = mpl * arm
-    lift = (
-        handle_mass * GRAVITY * 0.5 * arm * (1 - np.cos(np.radians(lk.swing) / 2))
-    )  # weight of the handle's centre
+    masses = link_masses(spec, syn.coupler_length, arms=True)
+    em = r.effects
+    if em is None:  # no inertia: the sizes for information, against the work per revolution
+        sizes = _dy.effect_sizes(syn.linkage, masses, r.speed)
+    else:
+        sizes = (em.link_energy, em.link_weight, em.arm_energy)
+    link, weight, arm = sizes
     effects = [
         Effect(
             "load torque Mw = Fw rw (pump efficiency in Fw)",
@@ -627,13 +942,12 @@ def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
             True,
             qs,
             "N",
-            "the force limit",
+            "of the force limit",
             qs / r.force_limit,
             "infinite at the dead centres themselves: something must carry the linkage through",
         )
     )
     if r.flywheel:
-        wheel_ke = 0.5 * r.inertia * w * w
         moving = spec.load.moving_mass_kg * spec.wheel.radius**2
         effects.append(
             Effect(
@@ -641,74 +955,121 @@ def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
                 True,
                 r.inertia,
                 "kg·m²",
-                "of which rope and water",
+                "rope and water",
                 _ratio(moving, r.inertia),
-                f"kinetic energy {wheel_ke:.2f} J at {r.speed_deg_s:g} deg/s; band W = J ω̄² δ = "
-                f"{r.energy_band:.2f} J",
+                f"kinetic energy {0.5 * r.inertia * r.speed**2:.2f} J at {r.speed_deg_s:g} deg/s; band "
+                f"W = J ω̄² δ = {r.energy_band:.2f} J",
             )
         )
-        ref, ref_name = r.energy_band, "the energy band W"
+        ref, ref_name = r.energy_band, "of the energy band W"
     else:
-        ref, ref_name = work, "the work per revolution"
-    effects.append(
+        ref, ref_name = work, "of the work per revolution"
+    dyn, arms_in = r.dynamics, bool(op.arms_in_verdict)
+    effects += [
         Effect(
             "kinetic energy of coupler + handle (largest)",
-            False,
-            r.link_energy,
+            dyn,
+            link,
             "J",
             ref_name,
-            _ratio(r.link_energy, ref),
-            f"links taken as {mpl:.2f} kg/m tube; grows as speed²",
-        )
-    )
-    effects.append(
+            _ratio(link, ref),
+            f"coupler {float(masses.coupler):.2f} kg, handle {float(masses.handle):.2f} kg; grows as speed²",
+        ),
         Effect(
-            "weight of the handle (lift over the swing)",
-            False,
-            lift,
+            "weight of coupler + handle (range of potential energy)",
+            dyn,
+            weight,
             "J",
             ref_name,
-            _ratio(lift, ref),
-            f"{handle_mass:.2f} kg; given back on the way down each stroke",
-        )
-    )
-    effects.append(
+            _ratio(weight, ref),
+            "lifted and given back each revolution",
+        ),
+        Effect(
+            "operator's arms at the grip (kinetic energy, largest)",
+            dyn and arms_in,
+            arm,
+            "J",
+            ref_name,
+            _ratio(arm, ref),
+            f"{op.arm_mass_kg:.2f} kg (hands, forearms, half the upper arms): in the effort"
+            + (
+                f" {r.effort_peak_force:.1f} N"
+                if r.effort_peak_force is not None and math.isfinite(r.effort_peak_force)
+                else ""
+            )
+            + ("" if arms_in else ", not in the hand force the verdict judges"),
+        ),
         Effect(
             "operator power Mw ω̄",
             True,
             r.power,
             "W",
-            "75 W sustained for hours",
+            "of 75 W sustained for hours",
             r.power / SUSTAINED_POWER_W,
             "a person gives 50-150 W for an hour (docs/physics.md §5)",
-        )
-    )
-    small = _ratio(r.link_energy, ref) <= LINK_ENERGY_LIMIT and _ratio(lift, ref) <= LINK_ENERGY_LIMIT
+        ),
+    ]
+    return tuple(effects), _why(r, link, weight, arm, ref)
+
+
+def _share(a: float, b: float) -> str:
+    """a / b in words: '57%' below ten times, else '10.4×'."""
+    x = _ratio(a, b)
+    return f"{x:.0%}" if x < 10 else f"{x:.1f}×"
+
+
+def _why(r: ForceResult, link: float, weight: float, arm: float, band: float) -> str:
+    """The sentence of :func:`explain`: which model decided and why it is enough."""
+    op = r.design.spec.operator
+    limit = LINK_ENERGY_LIMIT
     if not r.flywheel:
-        why = (
-            "Quasi-static + dead band answered: the spec gives no inertia, so speed cannot enter and "
-            f"the dead band ±{op.dead_band:g}° stands in for the flywheel. Give wheel.mass or "
-            "wheel.inertia to let the wheel's energy decide (the flywheel model); the links' energy is "
-            "then compared with the energy band."
+        return (
+            "Quasi-static + dead band decided: the spec gives no inertia, so no model with speed in it can "
+            "answer. The force at each crank angle is exact by virtual work (the speed cancels out of "
+            f"it) and its peak outside ±{op.dead_band:g}° of the dead centres is exact; the dead band "
+            "stands in for the wheel's inertia at the dead centres, where the force is infinite. That is "
+            "enough for the geometry (synthesis, transmission, where the force rises); whether a person "
+            "carries the linkage through the dead centres needs the wheel: give wheel.mass or "
+            "wheel.inertia and the flywheel or full dynamics decides."
         )
-    elif small:
-        why = (
-            "Flywheel answered: the quasi-static force is infinite at the dead centres, so the wheel's "
-            "energy must enter; the neglected link energy and handle weight are at most "
-            f"{LINK_ENERGY_LIMIT:.0%} of the band, "
-            "so link inertia (full dynamics) would not change the verdict materially."
+    sizes = (
+        f"the links' kinetic energy is {_share(link, band)} of the flywheel's energy band W = "
+        f"{band:.3g} J and their weight {_share(weight, band)}"
+        + (f", the arms (in the verdict) {_share(arm, band)}" if op.arms_in_verdict else "")
+    )
+    small = model_index(r.inertia, band, link, weight, arm, bool(op.arms_in_verdict)) == ORDER.index(FLYWHEEL)
+    left_out = "Still left out: joint friction and the operator's posture."
+    if r.dynamics:
+        effort = (
+            f" The arms ({op.arm_mass_kg:g} kg at the grip, {_share(arm, band)} of W) are in the "
+            f"effort figure {r.effort_peak_force:.1f} N, not in the hand force that guidance such as the "
+            f"{r.force_limit:g} N limit refers to."
+            if not op.arms_in_verdict and r.effort_peak_force is not None
+            else ""
         )
-    else:
-        why = (
-            "Flywheel answered: the quasi-static force is infinite at the dead centres, so the wheel's "
-            "energy must enter. But the neglected link energy or handle weight exceeds "
-            f"{LINK_ENERGY_LIMIT:.0%} of the energy "
-            "band: this design is past what the flywheel scene covers. Full dynamics (link masses and "
-            "weight, the operator's arms) would be needed for a firm answer, which pumplink does not "
-            "model; treat the verdict "
-            "as an estimate, or lighten the handle (linkage.mass_per_length) or add wheel mass."
+        if r.effects.forced and small:
+            return (
+                f"Full dynamics decided because --model dynamics asked for it; {sizes} (at most "
+                f"{limit:.0%}), so the flywheel would have been enough.{effort} {left_out}"
+            )
+        return (
+            f"Full dynamics decided: {sizes}, more than {limit:.0%}, so the flywheel alone is not enough. "
+            "It is enough here: it keeps the wheel's, the coupler's and the handle's inertia and the "
+            "links' weight exactly, with the same exact least-peak-force test as the flywheel "
+            f"(docs/models.md §3a).{effort} {left_out}"
         )
-    return tuple(effects), why
+    if r.effects.forced and not small:
+        return (
+            f"Flywheel decided because --model flywheel asked for it, but {sizes}: more than "
+            f"{limit:.0%}, so treat the verdict as an estimate; the least model that is enough is full "
+            "dynamics (leave out --model)."
+        )
+    return (
+        "Flywheel decided: the quasi-static force is infinite at the dead centres, so the wheel's "
+        f"energy must enter; {sizes}, at most {limit:.0%} each: the links' inertia and weight, which "
+        "full dynamics adds, move the band's edges by about that share of its width at most, so the "
+        f"flywheel is enough. {left_out}"
+    )
 
 
 # ----------------------------------------------------------------------------- advice after a FAIL

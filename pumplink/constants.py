@@ -61,6 +61,13 @@ LINK_MASS_PER_METRE = 7850.0 * math.pi / 4.0 * (26.9e-3**2 - 21.7e-3**2)
 #: flywheel model stops being enough (docs/models.md §3).
 LINK_ENERGY_LIMIT = 0.1
 
+#: Mass of the operator's arms that moves with the grip [kg], as one point mass at the grip: both
+#: hands (0.006 of body mass each), both forearms (0.016) and half of both upper arms (0.028, whose
+#: shoulder end is nearly still), i.e. 0.072 of body mass (segment masses from Winter, "Biomechanics
+#: and Motor Control of Human Movement", Table 4.1), for a 60 kg adult: 4.32 kg.
+ARM_MASS_FRACTION = 2.0 * (0.006 + 0.016 + 0.5 * 0.028)
+ARM_BODY_MASS_KG = 60.0
+DEFAULT_ARM_MASS = ARM_MASS_FRACTION * ARM_BODY_MASS_KG
 #: Permissible largest pressure angle [deg], (preferred, acceptable for preliminary design), of the
 #: lever-mechanism textbook (§2.4): 30-45 deg where the driven link slides (a prismatic pair), 45-60
 #: deg for mechanisms with revolute pairs only (docs/mechanisms.md §4).

@@ -4,9 +4,10 @@ Variables (by default, in spec units): ``rocker`` [m], ``L1`` [m], ``D1`` [m], `
 within :data:`DEFAULT_BOUNDS`; every other spec value stays fixed.  Objective: the peak force of
 the verdict (as ``pumplink force``) or the mean force pi Mw / (2 H sin(swing/2)) (docs/physics.md).
 The peak of the verdict depends on the model: when the spec gives inertia
-(``wheel.inertia``, ``wheel.mass`` or ``load.moving_mass``) it is the flywheel's least peak force
-at the spec's speed and speed fluctuation (``pumplink.models.flywheel.least_peak_force``, vectorised
-over the population); otherwise the exact windowed peak outside the dead bands
+(``wheel.inertia``, ``wheel.mass`` or ``load.moving_mass``) it is the least peak force at the
+spec's speed and speed fluctuation of the least model that is enough for each candidate, the
+flywheel or full dynamics (``pumplink.analysis.energy_model``, vectorised over the population), or
+of the model ``--model`` asks for; otherwise the exact windowed peak outside the dead bands
 (``pumplink.models.quasi_static.peak_force``).  The pass flag is that verdict: mean and peak within the force
 limit.  Constraints (all ``g >= 0``):
 
@@ -38,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.constants import MIN_TRANSMISSION_DEG
+from pumplink.constants import LINK_MASS_PER_METRE, MIN_TRANSMISSION_DEG
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_stroke, synthesize
 from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC, Conditions
@@ -82,16 +83,22 @@ class Problem:
     axle_height: float = DEFAULT_AXLE_HEIGHT_M
     grip_height: tuple[float, float] = GRIP_HEIGHT_M
     stroke: tuple[float, float] = STROKE_M
+    forced: str | None = None  # a model key (--model); None: the least model that is enough
 
     @property
     def flywheel(self) -> bool:
-        """True when the spec gives inertia: the flywheel model decides the peak."""
-        return self.spec.inertia is not None
+        """True when an energy model (flywheel or full dynamics) decides the peak: the spec gives
+        inertia and --model does not ask for the quasi-static model."""
+        return self.spec.inertia is not None and self.forced != QUASI_STATIC
 
     @property
     def model(self) -> str:
-        """The model whose peak force is the objective and decides the pass flag."""
-        return MODELS[FLYWHEEL if self.flywheel else QUASI_STATIC].label
+        """The model whose peak force is the objective and decides the pass flag, in words."""
+        if not self.flywheel:
+            return MODELS[QUASI_STATIC].label
+        if self.forced is not None:
+            return MODELS[self.forced].label
+        return "flywheel or full dynamics (the least model that is enough, per design)"
 
     def constraint_names(self) -> list[str]:
         """Names of the constraints in force (the last of :data:`CONSTRAINTS` only for the
@@ -147,6 +154,7 @@ class OptimizationResult:
     message: str = field(default="")
     spec_result: Any = None  # pumplink force's analysis of the spec's own design (ForceResult)
     best_result: Any = None  # ... and of the optimum (its verdict decides the exit code)
+    force_evaluations: int = 0  # designs whose force was computed: those meeting every constraint
 
 
 def parse_bounds(items: list[str] | None) -> dict[str, tuple[float, float]]:
@@ -236,13 +244,20 @@ def make_problem(
     axle_height: float | None = None,
     grip_height=GRIP_HEIGHT_M,
     stroke=STROKE_M,
+    model: str | None = None,
 ) -> Problem:
     """Assemble a :class:`Problem`; the axle height is ``axle_height``, else the spec's
-    ``wheel.axle_height``, else :data:`DEFAULT_AXLE_HEIGHT_M`."""
+    ``wheel.axle_height``, else :data:`DEFAULT_AXLE_HEIGHT_M`.  ``model``: a model key that decides
+    the peak (``--model``), else the least model that is enough for each design."""
     bounds = dict(DEFAULT_BOUNDS) if bounds is None else bounds
+    if model not in (None, QUASI_STATIC) and spec.inertia is None:
+        raise SpecError(
+            f"--model {model} needs the wheel's inertia, but {spec.name} gives none; add wheel.mass [kg] "
+            "or wheel.inertia [kg m^2] to the spec"
+        )
     if objective not in ("peak", "mean"):
         raise SpecError(f"--objective {objective!r} is unknown; use peak or mean")
-    if spec.inertia == 0.0 and objective == "peak":
+    if spec.inertia == 0.0 and objective == "peak" and model == FLYWHEEL:
         raise SpecError(
             f"{spec.name}: the inertia is 0 kg m^2 (load.moving_mass = 0 and no wheel mass), so there is no "
             "energy band (J w^2 delta = 0) and every design needs an infinite peak force; give wheel.mass "
@@ -264,6 +279,7 @@ def make_problem(
         float(axle_height),
         tuple(grip_height),
         tuple(stroke),
+        model,
     )
 
 
@@ -278,20 +294,30 @@ def _columns(problem: Problem, x: np.ndarray) -> dict[str, np.ndarray]:
     return cols
 
 
-def evaluate_designs(problem: Problem, x) -> Evaluation:
-    """Objective and constraint slacks for x of shape (variables, designs) (vectorised).
+@dataclass(frozen=True)
+class _Terms:
+    """The geometry of designs and their constraint slacks (no force model): see evaluate_designs."""
 
-    Slacks are in degrees (angles) or metres (heights, stroke); a design satisfies every
-    constraint iff all its slacks are >= 0.
-    """
+    syn: Any
+    ok: np.ndarray
+    slack: np.ndarray
+    mu: np.ndarray
+    grip_low: np.ndarray
+    grip_high: np.ndarray
+    stroke: np.ndarray
+    win: np.ndarray
+    handle: np.ndarray  # [m], per design
+    rocker: np.ndarray  # [m], per design
+
+
+def _terms(problem: Problem, x) -> _Terms:
+    """Synthesis and constraint slacks for x of shape (variables, designs) (vectorised)."""
     p = _columns(problem, x)
     sw = np.radians(p["swing"])
     h = p["handle"]
     syn = synthesize(p["L1"], p["D1"], p["b"], p["rocker"], sw, h)
     ok = syn.feasible
-    spec = problem.spec
-    mw = spec.wheel_torque
-    band = math.radians(spec.operator.dead_band)
+    band = math.radians(problem.spec.operator.dead_band)
 
     margin = np.minimum(syn.psi2, np.pi - syn.psi1) - 2 * CHANGE_POINT_MARGIN
     margin = np.where(syn.frame_length > 1e-6, margin, -1.0)
@@ -316,8 +342,22 @@ def evaluate_designs(problem: Problem, x) -> Evaluation:
     )
     if problem.flywheel:
         slack = slack[:-1]  # the dead-band window: quasi-static model only
+    return _Terms(syn, ok, slack, mu, grip_low, grip_high, stroke, win, h, p["rocker"])
 
-    mean = _qs.mean_force(mw, grip_stroke(h, sw))
+
+def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
+    """Objective and constraint slacks for x of shape (variables, designs) (vectorised).
+
+    Slacks are in degrees (angles) or metres (heights, stroke); a design satisfies every
+    constraint iff all its slacks are >= 0.  ``search``: only the force the objective needs (the
+    flywheel's or the dead-band peak, neither for the mean objective); the other stays NaN.
+    """
+    tm = _terms(problem, x)
+    syn, ok = tm.syn, tm.ok
+    spec = problem.spec
+    mw = spec.wheel_torque
+    band = math.radians(spec.operator.dead_band)
+    mean = _qs.mean_force(mw, tm.stroke)
     op = spec.operator
     cond = Conditions(
         float(np.radians(float(op.speed))),
@@ -325,37 +365,60 @@ def evaluate_designs(problem: Problem, x) -> Evaluation:
         np.nan if spec.inertia is None else spec.inertia,
         op.speed_fluctuation,
     )
+    objective_peak = problem.objective == "peak"
     peak = np.full(ok.shape, np.nan)
-    live = ok & (win > 0)
+    live = ok & (tm.win > 0)
     lk = syn.linkage
-    if live.any():
+    if live.any() and not (search and (problem.flywheel or not objective_peak)):
         sub = lk.take(live)
         peak[live] = MODELS[QUASI_STATIC].peak_force(
             sub, syn.dead_centre_extended[live], syn.dead_centre_folded[live], mw, cond
         )
     required = np.full(ok.shape, np.nan)
-    if problem.flywheel and ok.any():
-        # the flywheel's least peak force at the spec's speed, as pumplink force
+    if problem.flywheel and ok.any() and not (search and not objective_peak):
+        # the least peak force of the least model that is enough at the spec's speed, as pumplink force
+        from pumplink.analysis import energy_model, link_masses
+
         sub = lk.take(ok)
-        required[ok] = MODELS[FLYWHEEL].peak_force(
-            sub, syn.dead_centre_extended[ok], syn.dead_centre_folded[ok], mw, cond
+        em = energy_model(
+            sub,
+            syn.dead_centre_extended[ok],
+            syn.dead_centre_folded[ok],
+            mw,
+            spec.inertia,
+            cond.speed,
+            op.speed_fluctuation,
+            _masses(spec, syn.coupler_length[ok], tm.handle[ok], tm.rocker[ok], link_masses),
+            bool(op.arms_in_verdict),
+            forced=problem.forced,
         )
+        required[ok] = em.peak_force
     verdict = required if problem.flywheel else peak
     mean = np.where(ok, mean, np.nan)
-    obj = verdict if problem.objective == "peak" else mean
+    obj = verdict if objective_peak else mean
     obj = np.where(np.isfinite(obj), obj, INFEASIBLE_OBJECTIVE)
     return Evaluation(
         obj,
         peak,
         mean,
-        slack,
-        np.where(ok, np.degrees(mu), np.nan),
-        grip_low,
-        grip_high,
-        stroke,
+        tm.slack,
+        np.where(ok, np.degrees(tm.mu), np.nan),
+        tm.grip_low,
+        tm.grip_high,
+        tm.stroke,
         required,
         problem.flywheel,
     )
+
+
+def _masses(spec: PumpSpec, coupler_length, handle, rocker, link_masses):
+    """The spec's link and arm masses for designs of these lengths (``analysis.link_masses``, with
+    the handle's default mass for each design's handle and rocker)."""
+    ms = link_masses(spec, coupler_length, arms=True)
+    lk = spec.linkage
+    mpl = lk.mass_per_length or LINK_MASS_PER_METRE
+    handle_mass = lk.handle_mass if lk.handle_mass is not None else mpl * np.maximum(handle, rocker)
+    return type(ms)(ms.coupler, handle_mass, ms.grip)
 
 
 def _spec_with(problem: Problem, x) -> PumpSpec:
@@ -394,23 +457,30 @@ def optimize(
     from scipy.optimize import NonlinearConstraint, differential_evolution, minimize
 
     cache: dict[bytes, Evaluation] = {}
-    count = [0]
+    count = [0, 0]  # designs looked at (their constraints), and those whose force was computed
+    n = len(problem.names)
 
-    def ev(x):
-        x = np.asarray(x, float)
-        x2 = x.reshape(len(problem.names), -1)
+    def ev(x, looked_at=True):
+        x2 = np.asarray(x, float).reshape(n, -1)
         key = x2.tobytes()
         if key not in cache:
             if len(cache) > 4:
                 cache.clear()
-            cache[key] = evaluate_designs(problem, x2)
-            count[0] += x2.shape[1]
+            cache[key] = evaluate_designs(problem, x2, search=True)
+            count[0] += x2.shape[1] if looked_at else 0
+            count[1] += x2.shape[1]
         return cache[key]
 
-    n = len(problem.names)
-    con = NonlinearConstraint(lambda x: ev(x).slack, 0.0, np.inf)
+    def slack(x):
+        # DE asks for the constraints of every trial design first, then for the objective of only
+        # those that meet them all: the constraints need the geometry, no force model
+        x2 = np.asarray(x, float).reshape(n, -1)
+        count[0] += x2.shape[1]
+        return _terms(problem, x2).slack
+
+    con = NonlinearConstraint(slack, 0.0, np.inf)
     res = differential_evolution(
-        lambda x: ev(x).objective,
+        lambda x: ev(x, looked_at=False).objective,
         list(zip(problem.lower, problem.upper)),
         constraints=con,
         vectorized=True,
@@ -454,7 +524,7 @@ def optimize(
             return float(ev(problem.lower + z * scale).objective[0])
 
         def g(z):
-            return ev(problem.lower + z * scale).slack[:, 0]
+            return ev(problem.lower + z * scale).slack[:, 0]  # SLSQP asks f and g at the same points
 
         z0 = (x - problem.lower) / scale
         loc = minimize(
@@ -498,8 +568,9 @@ def optimize(
         seed,
         str(res.message),
         # the verdicts, exactly as pumplink force gives them on each spec (one verdict)
-        force_analysis(problem.spec, keep_samples=False, samples=0),
-        force_analysis(best, keep_samples=False, samples=0),
+        force_analysis(problem.spec, keep_samples=False, samples=0, model=problem.forced),
+        force_analysis(best, keep_samples=False, samples=0, model=problem.forced),
+        count[1],
     )
 
 

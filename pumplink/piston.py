@@ -36,7 +36,7 @@ from pumplink.mechanisms import crank_slider as cs
 from pumplink.models import FLYWHEEL, choose_model
 from pumplink.models import flywheel as _fw
 from pumplink.models import piston as _pm
-from pumplink.spec import read_toml
+from pumplink.spec import batch_base, is_piston_data, read_toml
 from pumplink.verdict import Verdict, assess
 
 #: The mechanism kinds a spec may name (the rope pump's four-bar has no key).
@@ -108,31 +108,6 @@ class PistonSpec(_Section):
 
 
 # ----------------------------------------------------------------------------- reading
-def is_piston_data(data: Any) -> bool:
-    """True when a spec mapping names a mechanism kind (else it is a rope-pump spec)."""
-    return isinstance(data, dict) and "mechanism" in data
-
-
-def _batch_base(data: dict, path: Path) -> Any:
-    base = data.get("base")
-    if isinstance(base, str):
-        return read_toml(path.parent / base, expected="a TOML spec")
-    return base
-
-
-def is_piston_file(path: str | Path) -> bool:
-    """True for a piston-pump spec file, or a batch file whose base is one.  Unreadable files are
-    not piston files (the rope-pump path reports their errors)."""
-    path = Path(path)
-    if not path.is_file():
-        return False
-    try:
-        data = read_toml(path)
-        return is_piston_data(data) or (isinstance(data, dict) and is_piston_data(_batch_base(data, path)))
-    except SpecError:
-        return False
-
-
 def _describe(err: dict) -> str:
     key = ".".join(str(p) for p in err["loc"]) or "the spec"
     kind = err["type"]
@@ -321,6 +296,74 @@ def force_analysis(
     )
 
 
+# ----------------------------------------------------------------------------- explain, verify
+def explain(r: PistonResult) -> str:
+    """Which model decided the piston pump's verdict and why it is enough (docs/piston-pump.md)."""
+    left_out = (
+        "Left out: the crank's, rod's and piston's inertia, the water column's acceleration and friction "
+        "(in the efficiency)."
+    )
+    if r.flywheel:
+        return (
+            f"Flywheel decided: the spec gives the crank shaft's inertia (J = {r.inertia:.3g} kg·m²), so "
+            f"the operator need not push the working stroke's peak: the least peak force that keeps the "
+            f"speed within δ is exact (Eq. P.4, docs/piston-pump.md), enough while the crank and rod "
+            f"are light beside the flywheel. {left_out}"
+        )
+    return (
+        "Quasi-static decided: the operator turns the crank, so the handle force T/R is finite at every "
+        "crank angle (no dead centre for the operator) and the speed does not enter it; its peak over "
+        "the turn is exact, and that is enough for the verdict without a flywheel (nothing carries the "
+        "crank past the working stroke's peak). Give wheel.inertia or wheel.mass for the flywheel "
+        f"model. {left_out}"
+    )
+
+
+#: Crank angles of the dense sweeps of :func:`verify` over one turn.
+VERIFY_SAMPLES = 400_000
+
+
+@dataclass(frozen=True)
+class PistonCheck:
+    """A piston pump's answer checked on a dense sweep that shares none of its formulas: the work
+    of one turn by quadrature, the peak against the sweep and (flywheel) the energy deficit."""
+
+    samples: int
+    work: float  # |integral of T over a turn / (F_load H) - 1| (trapezoid rule)
+    sweep_peak: float  # largest F on the sweep [N]
+    peak: float  # the exact quasi-static peak [N]
+    deficit: float | None  # flywheel: the largest loss over an arc at Fp* by quadrature / W
+    tolerance: float
+    agrees: bool
+
+
+def verify(r: PistonResult, rtol: float = 1e-6) -> PistonCheck:
+    """Check the piston pump's answer on :data:`VERIFY_SAMPLES` crank angles: the trapezoid
+    integral of the crank torque over a turn is the work F_load H (Eq. P.3) to ``rtol``; no sample
+    of the handle force exceeds the exact quasi-static peak and the largest comes within ``rtol``
+    of it (a smooth maximum); with a flywheel the largest energy lost over an arc at Fp*, by the
+    same quadrature over two turns, is the energy band W (to ``rtol``; at most W where Fp* is the
+    mean force)."""
+    cr, op = r.spec.crank_slider, r.spec.operator
+    t = np.linspace(0.0, 4.0 * math.pi, 2 * VERIFY_SAMPLES + 1)
+    torque = _pm.crank_torque(cr.crank, cr.rod, cr.offset, r.load_force, t)
+    one = t <= 2.0 * math.pi * (1 + 1e-15)
+    work = float(np.trapezoid(torque[one], t[one]))
+    err = abs(work / (r.load_force * r.stroke) - 1.0)
+    top = float(np.max(torque[one]) / op.handle)
+    ok = err <= rtol and top <= r.quasi_static_peak * (1 + 1e-12) and top >= r.quasi_static_peak * (1 - rtol)
+    deficit = None
+    if r.flywheel and r.least_peak_force is not None and math.isfinite(r.least_peak_force):
+        step = t[1] - t[0]
+        gain = np.concatenate([[0.0], np.cumsum(0.5 * step * (torque[1:] + torque[:-1]))]) - (
+            r.least_peak_force * op.handle * t
+        )  # integral of (T - Fp R): the energy lost
+        deficit = float(np.max(gain - np.minimum.accumulate(gain))) / r.energy_band
+        at_mean = r.least_peak_force <= r.mean_force * (1 + 1e-12)
+        ok = ok and (deficit <= 1 + rtol if at_mean else abs(deficit - 1.0) <= rtol)
+    return PistonCheck(VERIFY_SAMPLES, err, top, r.quasi_static_peak, deficit, rtol, bool(ok))
+
+
 # ----------------------------------------------------------------------------- batch
 @dataclass(frozen=True)
 class PistonVariant:
@@ -357,7 +400,7 @@ def expand_batch(path: str | Path) -> list[tuple[str, dict[str, float], PistonSp
         raise SpecError(
             f"{path}: unknown key '{sorted(unknown)[0]}' in a batch file; allowed: name, base, vary"
         )
-    base = _batch_base(data, path)
+    base = batch_base(data, path)
     label = str(data.get("name", path.stem))
     parse_piston({"name": label, **base}, source=f"{path} [base]")
     vary = data.get("vary", {})

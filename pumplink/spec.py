@@ -18,6 +18,7 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from pumplink.constants import (
+    DEFAULT_ARM_MASS,
     DEFAULT_EFFICIENCY,
     DEFAULT_SPEED_FLUCTUATION,
     FORCE_LIMIT_N,
@@ -139,6 +140,19 @@ class Linkage(_Section):
         description="mass per metre of the handle and coupler [kg/m] for the link-energy estimate "
         "(default 1.56: 3/4-inch steel tube)",
     )
+    coupler_mass: float | None = Field(
+        default=None,
+        ge=0,
+        le=1000,
+        description="coupler mass [kg] (full dynamics; default mass_per_length * coupler length)",
+    )
+    handle_mass: float | None = Field(
+        default=None,
+        ge=0,
+        le=1000,
+        description="handle mass [kg], a uniform bar from the rocker pivot to the grip (full dynamics; "
+        "default mass_per_length * max(handle, rocker))",
+    )
     hole_diameter: float | None = Field(
         default=None,
         ge=0.001,
@@ -231,6 +245,23 @@ class Operator(_Section):
         le=1,
         description="largest coefficient of speed fluctuation (w_max - w_min) / w_mean [-] (flywheel model)",
     )
+    arm_mass: float | None = Field(
+        default=None,
+        ge=0,
+        le=100,
+        description="operator's hands and forearms moving with the grip [kg] (full dynamics: the "
+        "muscular effort and the best cadence; default 4.32)",
+    )
+    arms_in_verdict: bool | None = Field(
+        default=None,
+        description="true to judge the muscular effort (arm_mass at the grip) against force_limit "
+        "instead of the hand force",
+    )
+
+    @property
+    def arm_mass_kg(self) -> float:
+        """operator.arm_mass, or the anthropometric default (pumplink.constants.DEFAULT_ARM_MASS) [kg]."""
+        return DEFAULT_ARM_MASS if self.arm_mass is None else self.arm_mass
 
 
 class PumpSpec(_Section):
@@ -500,6 +531,33 @@ def read_toml(path: str | Path, expected: str = "a TOML spec") -> dict[str, Any]
         raise SpecError(f"{path}: not valid TOML: {exc}") from None
     except RecursionError:  # cannot happen below MAX_NESTING; kept as a last guard
         raise SpecError(f"{path}: nested too deeply to read, expected {expected}") from None
+
+
+def is_piston_data(data: Any) -> bool:
+    """True when a spec mapping names a mechanism kind (else it is a rope-pump spec); the piston
+    pump's models are in :mod:`pumplink.piston`, imported only for such a spec."""
+    return isinstance(data, dict) and "mechanism" in data
+
+
+def batch_base(data: dict, path: Path) -> Any:
+    """The mapping a batch file's ``base`` names (read from its TOML file), else ``base`` as given."""
+    base = data.get("base")
+    if isinstance(base, str):
+        return read_toml(path.parent / base, expected="a TOML spec")
+    return base
+
+
+def is_piston_file(path: str | Path) -> bool:
+    """True for a piston-pump spec file, or a batch file whose base is one.  Unreadable files are
+    not piston files (the rope-pump path reports their errors)."""
+    path = Path(path)
+    if not path.is_file():
+        return False
+    try:
+        data = read_toml(path)
+        return is_piston_data(data) or (isinstance(data, dict) and is_piston_data(batch_base(data, path)))
+    except SpecError:
+        return False
 
 
 def spec_from_file_data(data: Any, path: str | Path) -> PumpSpec:

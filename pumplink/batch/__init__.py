@@ -24,8 +24,10 @@ from pumplink.batch.files import (
 )
 from pumplink.batch.runner import (
     CHUNK_DESIGNS,
+    DYNAMICS_LABEL,
     FLYWHEEL_DESIGNS,
     FLYWHEEL_LABEL,
+    MODEL_LABELS,
     QUASI_STATIC_LABEL,
     SUB_DESIGNS,
     TASK_SAMPLES,
@@ -37,9 +39,11 @@ from pumplink.batch.runner import (
 
 __all__ = [
     "CHUNK_DESIGNS",
+    "DYNAMICS_LABEL",
     "FAIL_CHECKS",
     "FLYWHEEL_DESIGNS",
     "FLYWHEEL_LABEL",
+    "MODEL_LABELS",
     "QUASI_STATIC_LABEL",
     "INERTIA_KEYS",
     "MAX_AXIS_VALUES",

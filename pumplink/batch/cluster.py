@@ -257,9 +257,9 @@ def threads(client: distributed.Client) -> int:
     return max(1, sum(client.nthreads().values()))
 
 
-def _evaluate(batch: Batch, index: int, start: int, stop: int, samples: int) -> Chunk:
+def _evaluate(batch: Batch, index: int, start: int, stop: int, samples: int, model: str | None) -> Chunk:
     """One task on a worker: the chunk's arrays."""
-    return evaluate_chunk(batch, start, stop, samples, index)
+    return evaluate_chunk(batch, start, stop, samples, index, model)
 
 
 def run(
@@ -269,9 +269,11 @@ def run(
     chunk: tuple[int, int] = (1, 1),
     designs: int | None = None,
     post: Callable[[Batch, Chunk], Any] | None = None,
+    model: str | None = None,
 ) -> Iterator[tuple[Chunk, Any]]:
     """Evaluate slice ``chunk`` of the run on the cluster, yielding ``(Chunk, post(batch, chunk))``
-    in variant order, as :func:`pumplink.batch.runner.run` does.
+    in variant order, as :func:`pumplink.batch.runner.run` does (``model`` as there: a model key
+    to decide every variant that gives inertia, else the least model that is enough).
 
     At most two tasks per worker thread are in flight, so the driver's memory stays bounded
     whatever the grid size; ``post`` (the rendering) runs here, in the driver, on each chunk
@@ -285,7 +287,7 @@ def run(
 
     def submit(task: tuple[int, int, int]) -> distributed.Future:
         i, start, stop = task
-        return client.submit(_evaluate, batches[i], i, start, stop, samples, pure=False)
+        return client.submit(_evaluate, batches[i], i, start, stop, samples, model, pure=False)
 
     pending: deque = deque(submit(t) for _, t in zip(range(width), tasks))
     try:

@@ -16,24 +16,27 @@ from typing import Any
 import numpy as np
 
 from pumplink import spec
-from pumplink.analysis import judge, top_speed
+from pumplink.analysis import energy_model, judge, top_speed
 from pumplink.batch.files import Batch, axis_indices
 from pumplink.constants import LINK_MASS_PER_METRE
 from pumplink.mechanisms.fourbar import (
-    FourBar,
     grip_stroke,
     infeasibility_reason,
     peak_rocker_rate,
     synthesize,
 )
-from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC, Conditions
+from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC, Conditions
 from pumplink.models import flywheel as _fw
 from pumplink.models import quasi_static as _qs
+from pumplink.models.dynamics import Masses
 from pumplink.verdict import FAIL, WARN, Verdict
 
-#: The ``model`` column's words for the two models a batch variant can be decided by.
+#: The ``model`` column's words for the models a batch variant can be decided by.
 FLYWHEEL_LABEL = MODELS[FLYWHEEL].label
 QUASI_STATIC_LABEL = MODELS[QUASI_STATIC].label
+DYNAMICS_LABEL = MODELS[DYNAMICS].label
+#: The labels by model index (:data:`pumplink.models.ORDER`).
+MODEL_LABELS = tuple(MODELS[k].label for k in ORDER)
 #: Most designs per chunk (rows handed to the writer at once, one task for a worker process).
 CHUNK_DESIGNS = 8192
 
@@ -61,9 +64,11 @@ class Chunk:
     ``reason`` holds the infeasibility sentence (None when feasible); the checks follow
     :func:`pumplink.verdict.assess`, as for ``pumplink force``: ``mean_ok`` = mean <= limit,
     ``peak_ok`` = verdict peak <= limit (False when it is NaN), ``passed`` = feasible and both.
-    The verdict peak (:attr:`verdict_peak_force`) is ``least_peak_force`` where ``flywheel`` (the
-    variant gives inertia), else ``dead_band_peak_force``.  The flywheel columns are NaN for
-    quasi-static variants, and ``least_peak_force`` / ``min_passing_speed`` also for infeasible ones.
+    The verdict peak (:attr:`verdict_peak_force`) is ``least_peak_force`` where ``flywheel`` (an
+    energy model decides: the flywheel or full dynamics, ``model_index``), else
+    ``dead_band_peak_force``.  The energy-model columns are NaN for quasi-static variants, and
+    ``least_peak_force`` / ``min_passing_speed`` also for infeasible ones; ``min_passing_speed``
+    only for the flywheel (with full dynamics faster is not always easier: ``pumplink speed``).
     """
 
     batch: int  # index of the batch in the run
@@ -86,7 +91,7 @@ class Chunk:
     mean_ok: np.ndarray
     peak_ok: np.ndarray
     passed: np.ndarray
-    flywheel: np.ndarray  # True: the variant gives inertia, the flywheel model decides
+    flywheel: np.ndarray  # True: an energy model decides (flywheel or full dynamics: model_index)
     inertia: np.ndarray  # J [kg m^2]
     speed_fluctuation: np.ndarray  # delta_allow [-]
     least_peak_force: np.ndarray  # least peak force with the flywheel [N] (inf: no energy band)
@@ -94,6 +99,13 @@ class Chunk:
     grip_speed: np.ndarray | None = None  # peak grip speed at the wheel's top speed [m/s]
     stroke: np.ndarray | None = None  # horizontal grip stroke [m]
     verdict: Verdict | None = None  # every check, per variant (:func:`pumplink.verdict.assess`)
+    model_index: np.ndarray | None = None  # 0 quasi-static, 1 flywheel, 2 full dynamics (models.ORDER)
+
+    @property
+    def model(self) -> list[str]:
+        """The words of the model that decided each variant (``model`` column)."""
+        index = np.zeros(len(self), int) if self.model_index is None else self.model_index
+        return [MODEL_LABELS[i] for i in index.tolist()]
 
     @property
     def level(self) -> np.ndarray:
@@ -166,7 +178,9 @@ def _rows(cond: Conditions, idx) -> Conditions:
     )
 
 
-def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batch_index: int = 0) -> Chunk:
+def evaluate_chunk(
+    batch: Batch, start: int, stop: int, samples: int = 360, batch_index: int = 0, model: str | None = None
+) -> Chunk:
     """Synthesis, force checks and verdict for variants ``start..stop-1`` of a batch.
 
     Vectorised over the variants; the numbers equal :func:`pumplink.analysis.force_analysis`
@@ -178,6 +192,8 @@ def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batc
     samples : uniform crank samples per revolution for the sampled-peak column (0: skip it).
         The peak force itself is exact whatever the sampling
         (:func:`pumplink.models.quasi_static.dead_band_peak_force`).
+    model : a model key (``--model``) to decide every variant that gives inertia; default the
+        least model that is enough, per variant (:func:`pumplink.analysis.energy_model`).
     """
     n = stop - start
     if batch.axes:
@@ -218,41 +234,55 @@ def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batc
             s = slice(s0, s0 + SUB_DESIGNS)
             part = sub.take(s)
             sampled[ok[s]] = _qs.sampled_peak(part, samples, mw[ok][s], dce[s], dcf[s], band[ok][s])
-    # The flywheel model, only for the variants that give inertia.
+    # The energy models, only for the variants that give inertia: the least one that is enough
+    # (or the one asked for), decided and solved by the route pumplink force takes.
     fly = ~np.isnan(j)
     delta = cond.speed_fluctuation
     required = np.full(n, np.nan)
     passing = np.full(n, np.nan)
-    rows = np.nonzero(fly & feasible)[0]
-    for s0 in range(0, rows.size, FLYWHEEL_DESIGNS):  # bounded temporaries
-        r = rows[s0 : s0 + FLYWHEEL_DESIGNS]
-        part = lk.take(r)
-        dce, dcf = syn.dead_centre_extended[r], syn.dead_centre_folded[r]
-        required[r] = MODELS[FLYWHEEL].peak_force(part, dce, dcf, mw[r], _rows(cond, r))
-        passing[r] = _fw.min_passing_speed(part, dce, dcf, mw[r], limit[r], j[r], delta[r])
-    # The rest of the verdict's inputs, as pumplink force computes them (analysis.force_analysis).
+    index = np.zeros(n, int)
     share = None
     if fly.any():
-        mpl = (
-            _field(batch, cols, "linkage.mass_per_length", n)
-            if batch.given("linkage.mass_per_length")
-            else None
-        )
+        mpl = _given(batch, cols, "linkage.mass_per_length", n)
         mpl = np.full(n, LINK_MASS_PER_METRE) if mpl is None else np.nan_to_num(mpl, nan=LINK_MASS_PER_METRE)
-        link = np.full(n, np.nan)
-        grid = np.arange(720) * (np.pi / 360)  # analysis._link_grid
-        for s0 in range(0, rows.size, FLYWHEEL_DESIGNS // 8):
-            r = rows[s0 : s0 + FLYWHEEL_DESIGNS // 8]
-            part = FourBar(*(np.asarray(v)[r][:, None] for v in lk.parameters))
-            e = _fw.link_energy(part, grid[None, :], speed[r][:, None], mpl[r][:, None])
-            link[r] = np.nanmax(e, axis=1)
-        band_j = _fw.energy_band(j, speed, delta)
+        coupler = _given(batch, cols, "linkage.coupler_mass", n)
+        handle_mass = _given(batch, cols, "linkage.handle_mass", n)
+        arm = _given(batch, cols, "operator.arm_mass", n)
+        masses = Masses(
+            mpl * np.asarray(syn.coupler_length) if coupler is None else coupler,
+            mpl * np.maximum(handle, get("linkage.rocker")) if handle_mass is None else handle_mass,
+            batch.spec.operator.arm_mass_kg if arm is None else arm,
+        )
+        em = energy_model(
+            lk,
+            syn.dead_centre_extended,
+            syn.dead_centre_folded,
+            mw,
+            j,
+            speed,
+            delta,
+            masses,
+            bool(batch.spec.operator.arms_in_verdict),
+            forced=model,
+            solve=fly & feasible,
+        )
+        index = np.where(fly, em.index, 0)
+        required = np.where(fly & feasible, em.peak_force, np.nan)
+        rows = np.nonzero(fly & feasible & (index == ORDER.index(FLYWHEEL)))[0]
+        if rows.size:
+            part = lk.take(rows)
+            dce, dcf = syn.dead_centre_extended[rows], syn.dead_centre_folded[rows]
+            passing[rows] = _fw.min_passing_speed(part, dce, dcf, mw[rows], limit[rows], j[rows], delta[rows])
+        # the flywheel's neglected link energy (a check of the flywheel model only: 0 elsewhere,
+        # where the output leaves the column empty)
         with np.errstate(divide="ignore", invalid="ignore"):
-            share = np.where(fly, np.where(band_j > 0, 100.0 * link / band_j, np.inf), np.nan)
+            share = np.where(em.band > 0, 100.0 * em.link_energy / em.band, np.inf)
+        share = np.where(index == ORDER.index(FLYWHEEL), share, 0.0)
     rate = np.full(n, np.nan)
     if ok.size:
         rate[ok] = peak_rocker_rate(sub)
-    top = np.where(fly, top_speed(speed, np.where(fly, delta, 0.0)), speed)
+    fly = fly & (index > 0)  # an energy model decides (not where --model quasi-static asks otherwise)
+    top = np.where(fly, top_speed(speed, np.where(fly, delta, 0.0)), speed)  # flywheel and dynamics
     grip_speed = rate * top * handle
     axle = _field(batch, cols, "wheel.axle_height", n) if batch.given("wheel.axle_height") else None
     tmin, tmax = np.asarray(syn.transmission_min), np.asarray(syn.transmission_max)
@@ -311,6 +341,7 @@ def evaluate_chunk(batch: Batch, start: int, stop: int, samples: int = 360, batc
         grip_speed=grip_speed,
         stroke=grip_stroke(handle, swing),
         verdict=verdict,
+        model_index=index,
     )
 
 
@@ -353,14 +384,14 @@ def _init_worker(batches: Sequence[Batch]) -> None:
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
 
 
-def _evaluate_one(batches: Sequence[Batch], task: tuple[int, int, int], samples: int, post):
+def _evaluate_one(batches: Sequence[Batch], task: tuple[int, int, int], samples: int, post, model=None):
     i, start, stop = task
-    c = evaluate_chunk(batches[i], start, stop, samples, i)
+    c = evaluate_chunk(batches[i], start, stop, samples, i, model)
     return c, (post(batches[i], c) if post is not None else None)
 
 
-def _task(task: tuple[int, int, int], samples: int, post):
-    return _evaluate_one(_worker_batches, task, samples, post)
+def _task(task: tuple[int, int, int], samples: int, post, model=None):
+    return _evaluate_one(_worker_batches, task, samples, post, model)
 
 
 def run(
@@ -370,6 +401,7 @@ def run(
     workers: int = 1,
     designs: int | None = None,
     post: Callable[[Batch, Chunk], Any] | None = None,
+    model: str | None = None,
 ) -> Iterator[tuple[Chunk, Any]]:
     """Evaluate slice ``chunk`` of the run, yielding ``(Chunk, post(batch, chunk))`` in variant order.
 
@@ -377,7 +409,8 @@ def run(
     ``loky.ProcessPoolExecutor``: a worker killed mid-run raises ``BrokenProcessPool`` here
     instead of hanging), at most 2 tasks per worker in flight, so memory stays bounded whatever
     the grid size.  ``post`` (a picklable module-level function, e.g. the row
-    formatting) runs in the worker too, so it is parallel as well.
+    formatting) runs in the worker too, so it is parallel as well.  ``model``: a model key to
+    decide every variant that gives inertia (``--model``), else the least model that is enough.
     """
     if designs is None:
         designs = task_designs(samples)
@@ -385,7 +418,7 @@ def run(
     workers = min(workers, len(tasks))  # never more processes than tasks
     if workers <= 1:
         for t in tasks:
-            yield _evaluate_one(batches, t, samples, post)
+            yield _evaluate_one(batches, t, samples, post, model)
         return
     from collections import deque
 
@@ -396,14 +429,14 @@ def run(
     try:
         it = iter(tasks)
         for t in it:
-            pending.append(pool.submit(_task, t, samples, post))
+            pending.append(pool.submit(_task, t, samples, post, model))
             if len(pending) >= 2 * workers:
                 break
         while pending:
             result = pending.popleft().result()
             nxt = next(it, None)
             if nxt is not None:
-                pending.append(pool.submit(_task, nxt, samples, post))
+                pending.append(pool.submit(_task, nxt, samples, post, model))
             yield result
     finally:
         # Ctrl-C, SIGTERM, a dead worker or an error: drop the queued chunks and let the running

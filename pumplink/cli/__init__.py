@@ -10,6 +10,7 @@ scipy) happen inside the commands so ``--help`` starts fast.
 from __future__ import annotations
 
 import contextlib
+import gc
 import math
 import os
 import re
@@ -35,7 +36,7 @@ from pumplink.cli import (  # noqa: F401, I001 -- in the order of `pumplink --he
     structure,
     schema,
 )
-from pumplink.cli.common import app, settings
+from pumplink.cli.common import app, command_group, settings
 from pumplink.errors import SHOWN_CHARS, PumplinkError, one_line
 
 __all__ = ["app", "main"]
@@ -101,6 +102,12 @@ def main(argv: list[str] | None = None) -> None:
 
     0 pass, 1 fail or infeasible, 2 unusable input or an output that cannot be written (usage
     errors included), 130 interrupted (Ctrl-C or SIGTERM, from the first line of this function).
+
+    Run as the program (``argv`` None), the garbage collector is told to leave the objects alive
+    at the end alone (``gc.freeze``): the process ends next, and the collections the interpreter
+    runs while tearing down every module numpy, pydantic, typer and rich loaded cost about a
+    fifth of a short command's time.  Exit handlers, ``finally`` blocks and stream flushes run
+    as usual.
     """
     signal.signal(signal.SIGINT, _interrupt)
     signal.signal(signal.SIGTERM, _interrupt)
@@ -110,6 +117,8 @@ def main(argv: list[str] | None = None) -> None:
         code = 130
     if code == 130:  # said here, unless the command said why itself (a killed batch worker)
         _interrupted(say=settings.get("interrupted", False))
+    if argv is None:
+        gc.freeze()
     sys.exit(code)
 
 
@@ -139,7 +148,7 @@ def _run(args: list[str]) -> int:
             stream.reconfigure(errors="replace")
     settings["debug"] = "--debug" in args[:1]
     try:
-        code = app(args=args, prog_name="pumplink", standalone_mode=False)
+        code = command_group(app)(args=args, prog_name="pumplink", standalone_mode=False)
         sys.stdout.flush()  # a full disk or a closed pipe is reported here, not at exit
     except PumplinkError as exc:
         if settings["debug"]:

@@ -9,7 +9,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import StrictOpt, app
+from pumplink.cli.common import ModelOpt, StrictOpt, app, model_key
 from pumplink.errors import SpecError
 
 
@@ -73,11 +73,13 @@ def batch(
             "--fail-on",
             help="What makes the run fail (exit 1): any of mean, peak, infeasible, checks (any "
             "other check that fails: transmission angle, power, grip speed), warnings; all (= "
-            "a variant whose verdict is FAIL) or none. peak is the verdict's peak: the flywheel's "
-            "least peak force where the variant gives inertia, else the peak outside the dead bands.",
+            "a variant whose verdict is FAIL) or none. peak is the verdict's peak: the least peak force "
+            "of the flywheel or full dynamics where the variant gives inertia, else the peak outside "
+            "the dead bands.",
         ),
     ] = "all",
     strict: StrictOpt = False,
+    model: ModelOpt = None,
     chunk: Annotated[
         Optional[str],
         typer.Option(
@@ -105,9 +107,10 @@ def batch(
     a folder means its *.toml files (not sub-folders).
 
     One row per variant (lengths, feasibility, forces, verdict) and a summary (counts, lowest
-    peak force).  The verdict is that of pumplink force: the flywheel model where the variant
-    gives inertia, else quasi-static with the dead band (the model column says which): PASS, PASS
-    with warnings or FAIL, with each check's result in its own column.  Exit 0 if no variant
+    peak force).  The verdict is that of pumplink force: where the variant gives inertia the
+    least model that is enough (flywheel or full dynamics, or --model), else quasi-static with
+    the dead band (the model column says which): PASS, PASS with warnings or FAIL, with each
+    check's result in its own column.  Exit 0 if no variant
     fails a --fail-on check (default: no variant FAILs; --strict: none warns either), 1 if one
     does, 2 for bad input.
 
@@ -151,11 +154,14 @@ def batch(
     from pumplink.cli import piston
 
     if piston.is_piston_input(inputs):  # mechanism = "crank-slider": docs/piston-pump.md
+        if model is not None:
+            raise SpecError("--model is for rope-pump batches; a piston pump's model follows its spec")
         for flag, given in (("--scheduler", where is not None), ("--format parquet", fmt.value == "parquet")):
             if given:
                 raise SpecError(f"{flag} is for rope-pump batches; piston-pump batches run whole, without it")
         piston.batch(inputs, fmt.value, out, set(sel), junit, chunk)
     batches = _batch.load_inputs(inputs)
+    key = model_key(model)  # the flywheel and full dynamics decide where the variants give inertia
     tasks = _batch.plan(batches, k_n, _batch.run_module.task_designs(samples))
     total = sum(e - s for _, s, e in tasks)
 
@@ -182,9 +188,9 @@ def batch(
                     junit=junit is not None,
                 )  # runs in the local pool's workers; with Dask in this process, on the arrays sent back
                 if client is not None:
-                    results = cluster.run(batches, client, samples, k_n, post=post)
+                    results = cluster.run(batches, client, samples, k_n, post=post, model=key)
                 else:
-                    results = _batch.run(batches, samples, k_n, n_workers, post=post)
+                    results = _batch.run(batches, samples, k_n, n_workers, post=post, model=key)
                 summary, rows = rb.write_stream(
                     batches, results, total, fmt.value, out, junit, sel, samples, k_n, advance
                 )

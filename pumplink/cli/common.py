@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import copy
 import math
 import re
+from collections.abc import MutableMapping
 from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
@@ -22,6 +24,59 @@ app = typer.Typer(
 )
 
 
+class _LazyCommands(MutableMapping):
+    """The group's commands by name, in registration order, each built on first look-up.
+
+    Typer builds a command from its function's signature (evaluating every annotation and
+    option), about a millisecond a command; a run needs only its own command, ``--help`` and
+    shell completion go through all of them in order."""
+
+    def __init__(self, typer_app: typer.Typer):
+        from typer.main import get_command_name
+
+        self._app = typer_app
+        commands = typer_app.registered_commands
+        self._infos = {c.name or get_command_name(c.callback.__name__): c for c in commands}
+        self._built: dict = {}
+
+    def __getitem__(self, name: str):
+        if name not in self._built:
+            from typer.main import get_command_from_info
+
+            self._built[name] = get_command_from_info(
+                self._infos[name],  # KeyError for an unknown command, as in a dict
+                pretty_exceptions_short=self._app.pretty_exceptions_short,
+                rich_markup_mode=self._app.rich_markup_mode,
+            )
+        return self._built[name]
+
+    def __setitem__(self, name: str, command) -> None:
+        self._infos.setdefault(name, None)
+        self._built[name] = command
+
+    def __delitem__(self, name: str) -> None:
+        del self._infos[name]
+        self._built.pop(name, None)
+
+    def __iter__(self):
+        return iter(self._infos)
+
+    def __len__(self) -> int:
+        return len(self._infos)
+
+
+def command_group(typer_app: typer.Typer):
+    """The click group that ``typer_app(...)`` would run, with each command built only when it is
+    looked up (:class:`_LazyCommands`): ``pumplink force`` builds ``force`` alone."""
+    from typer.main import get_command
+
+    shell = copy.copy(typer_app)  # the callback and the top-level options, no commands yet
+    shell.registered_commands = []
+    group = get_command(shell)
+    group.commands = _LazyCommands(typer_app)
+    return group
+
+
 #: Options of the top-level callback that the entry point needs (``--debug``).
 settings = {"debug": False}
 
@@ -36,6 +91,30 @@ FormatOpt = Annotated[Format, typer.Option("--format", "-f", help="Output: table
 
 
 SAMPLE_LIMIT_KEPT = 1_000_000
+
+
+class Model(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
+    quasi_static = "quasi-static"
+    flywheel = "flywheel"
+    dynamics = "dynamics"
+
+
+#: ``--model`` of force, speed, batch and optimize (the same option and words everywhere).
+ModelOpt = Annotated[
+    Optional[Model],
+    typer.Option(
+        "--model",
+        help="Decide with this model: quasi-static, flywheel or dynamics (default: the least model "
+        "that is enough, see force --explain; the last two need the wheel's inertia).",
+        show_default=False,
+    ),
+]
+
+
+def model_key(model: Model | None) -> str | None:
+    """The registry key of ``--model`` (None: the automatic choice)."""
+    return None if model is None else model.value
+
 
 StrictOpt = Annotated[
     bool,

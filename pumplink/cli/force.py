@@ -12,8 +12,10 @@ from pumplink.cli.common import (
     SAMPLE_LIMIT_KEPT,
     Format,
     FormatOpt,
+    ModelOpt,
     StrictOpt,
     app,
+    model_key,
     spec_or_default,
     speed_option,
 )
@@ -64,11 +66,14 @@ def force(
         bool,
         typer.Option(
             "--verify",
-            help="Flywheel model: integrate the equation of motion "
-            "(scipy solve_ivp) under the reported force profile and "
-            "check it is periodic with the mean speed and δ.",
+            help="Check the answer by an independent route: the flywheel and full "
+            "dynamics integrate the equation of motion (scipy solve_ivp) under "
+            "the reported force profile (periodic, mean speed, δ); the "
+            "quasi-static model checks virtual work from positions and its "
+            "exact peak against a dense sweep.",
         ),
     ] = False,
+    model: ModelOpt = None,
     strict: StrictOpt = False,
     fmt: FormatOpt = Format.table,
 ) -> None:
@@ -111,7 +116,7 @@ def force(
             f"--samples {samples} keeps too many rows (at most {SAMPLE_LIMIT_KEPT:,}); "
             "add --summary to stream them"
         )
-    from pumplink.piston import is_piston_file
+    from pumplink.spec import is_piston_file
 
     if spec is not None and is_piston_file(spec):  # mechanism = "crank-slider": docs/piston-pump.md
         from pumplink.cli import piston
@@ -125,11 +130,6 @@ def force(
     from pumplink.output.formats import progress
 
     s = spec_or_default(spec)
-    if verify and s.inertia is None:
-        raise SpecError(
-            f"--verify checks the flywheel model, but {s.name} gives no inertia; add wheel.mass [kg] "
-            "or wheel.inertia [kg m^2] to the spec"
-        )
     with progress(1000, "force sweep") as advance:  # drawn on a terminal for sweeps over a second
         done = [0]
 
@@ -138,16 +138,39 @@ def force(
             advance(k - done[0])
             done[0] = k
 
-        result = force_analysis(s, speed, samples, at_deg=at or None, keep_samples=not summary, progress=tick)
+        result = force_analysis(
+            s,
+            speed,
+            samples,
+            at_deg=at or None,
+            keep_samples=not summary,
+            progress=tick,
+            model=model_key(model),
+        )
     extra, agrees = {}, True
+    best = None
     if explain and result.design.feasible:
+        from pumplink.analysis import cadence
         from pumplink.analysis import explain as explain_model
-        from pumplink.output.tables import explain_rows
+        from pumplink.output.tables import cadence_row, explain_rows
 
         effects, why = explain_model(result)
-        extra["explain"] = {"model": result.model, "effects": explain_rows(effects), "why": why}
+        best = cadence(result) if s.inertia is not None else None
+        extra["explain"] = {
+            "model": result.model,
+            "effects": explain_rows(effects),
+            "why": why,
+            "best_cadence": None if best is None else cadence_row(best),
+        }
     scene_ok = result.scene is not None and math.isfinite(result.scene.least_peak_force)
-    if verify and scene_ok:
+    if verify and not result.flywheel and result.design.feasible:  # the quasi-static model decided
+        from pumplink.analysis import verify_quasi_static
+        from pumplink.output.tables import static_verify_row
+
+        check = verify_quasi_static(result)
+        extra["verify"] = static_verify_row(check)
+        agrees = check.agrees
+    elif verify and scene_ok:
         from pumplink.analysis import verify as verify_motion
         from pumplink.output.tables import verify_row
 
@@ -168,7 +191,7 @@ def force(
 
         side = sys.stdout if fmt.value == "table" else sys.stderr
         if "explain" in extra:
-            render_explain(effects, why, out=side)
+            render_explain(effects, why, out=side, cadence=best, force_limit=result.force_limit)
         if "verify" in extra:
             render_verify(extra["verify"], out=side)
     if plot is not None and result.design.feasible:

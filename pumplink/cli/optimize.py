@@ -8,7 +8,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, StrictOpt, app, load_specs
+from pumplink.cli.common import Format, FormatOpt, ModelOpt, StrictOpt, app, load_specs, model_key
 from pumplink.errors import SpecError
 
 
@@ -41,9 +41,9 @@ def optimize(
     objective: Annotated[
         Objective,
         typer.Option(
-            help="Minimise the peak force of the verdict (the flywheel's "
-            "least peak force when the spec gives inertia, else the exact "
-            "peak outside the dead bands) or the mean force."
+            help="Minimise the peak force of the verdict (the least peak "
+            "force of the flywheel or full dynamics when the spec gives "
+            "inertia, else the exact peak outside the dead bands) or the mean force."
         ),
     ] = Objective.peak,
     seed: Annotated[
@@ -70,6 +70,7 @@ def optimize(
         bool, typer.Option("--force", help="Overwrite the --write file if it exists.")
     ] = False,
     strict: StrictOpt = False,
+    model: ModelOpt = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Search frame placement, rocker and swing for the least operator force.
@@ -103,7 +104,9 @@ def optimize(
         from pumplink.output.formats import check_output
 
         check_output(write, "--write")
-    problem = make_problem(load_specs([spec])[0], bounds, objective.value, axle_height, gh, st)
+    problem = make_problem(
+        load_specs([spec])[0], bounds, objective.value, axle_height, gh, st, model_key(model)
+    )
     from pumplink.output.formats import progress
 
     with progress(300, "optimize (generations)") as advance:

@@ -12,18 +12,24 @@ from pumplink.errors import SpecError
 
 
 def force(spec: Path, speed, samples: int, at, summary: bool, plot, explain: bool, verify: bool, fmt: str):
-    """``pumplink force SPEC`` for a piston-pump spec; exits 0 (PASS) or 1 (FAIL, infeasible)."""
-    for flag, given in (("--plot", plot is not None), ("--explain", explain), ("--verify", verify)):
-        if given:
-            raise SpecError(
-                f"{flag} is for rope-pump specs; {spec} is a piston pump (mechanism = 'crank-slider')"
-            )
-    from pumplink.output.piston import render_force
-    from pumplink.piston import force_analysis, load_piston
+    """``pumplink force SPEC`` for a piston-pump spec; exits 0 (PASS) or 1 (FAIL, infeasible, a
+    --verify disagreement)."""
+    if plot is not None:
+        raise SpecError(
+            f"--plot is for rope-pump specs; {spec} is a piston pump (mechanism = 'crank-slider')"
+        )
+    from pumplink import piston as _piston
+    from pumplink.output.piston import render_checks, render_force
 
-    result = force_analysis(load_piston(spec), speed, samples, at_deg=at or None, keep_samples=not summary)
-    render_force(result, fmt, summary=summary)
-    raise typer.Exit(0 if result.passed else 1)
+    result = _piston.force_analysis(
+        _piston.load_piston(spec), speed, samples, at_deg=at or None, keep_samples=not summary
+    )
+    why = _piston.explain(result) if explain and result.feasible else None
+    check = _piston.verify(result) if verify and result.feasible else None
+    render_force(result, fmt, summary=summary, why=why, check=check)
+    if fmt != "json":
+        render_checks(result, why, check)
+    raise typer.Exit(0 if result.passed and (check is None or check.agrees) else 1)
 
 
 def batch(inputs: list[Path], fmt: str, out: Path | None, fail_on: set[str], junit=None, chunk=None):
@@ -59,7 +65,7 @@ def batch(inputs: list[Path], fmt: str, out: Path | None, fail_on: set[str], jun
 
 def is_piston_input(inputs: list[Path]) -> bool:
     """True when the inputs are piston-pump files; mixing them with rope-pump files is an error."""
-    from pumplink.piston import is_piston_file
+    from pumplink.spec import is_piston_file
 
     kinds = {is_piston_file(p) for p in inputs}
     if kinds == {True, False}:

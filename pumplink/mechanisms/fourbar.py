@@ -54,6 +54,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pumplink.mechanisms.bracket import find_minimum
+
 #: Reason codes for infeasible designs (0 = feasible).
 FEASIBLE = 0
 PIVOT_ON_AXLE = 1
@@ -236,11 +238,10 @@ def peak_rocker_rate(lk: FourBar):
 
     A crank-rocker's rocker rate is smooth and finite over the whole revolution (it is zero at
     the dead centres), so the maximum is interior: found on a grid of :data:`RATE_GRID` points
-    and refined with scipy's bracketing minimiser to solver tolerance.  NaN for an infeasible
+    and refined with a bracketing minimiser (:func:`pumplink.mechanisms.bracket.find_minimum`)
+    to solver tolerance.  NaN for an infeasible
     design.
     """
-    from scipy.optimize.elementwise import find_minimum  # lazy: keeps start-up fast
-
     scalar, geom = per_design(lk)
     step = 2.0 * np.pi / RATE_GRID
     theta = np.arange(RATE_GRID) * step

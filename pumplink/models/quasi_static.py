@@ -10,6 +10,7 @@ import functools
 import numpy as np
 
 from pumplink.mechanisms.angles import TWO_PI, angular_distance, offset_table, shifted_directions
+from pumplink.mechanisms.bracket import find_minimum
 from pumplink.mechanisms.fourbar import FourBar, force_kernel, kernel_work, per_design
 
 #: Points per dead-band window on which the exact peak search starts (independent of the
@@ -64,8 +65,8 @@ def dead_band_peak_force(lk: FourBar, dead_centre_extended, dead_centre_folded, 
 
     Exact to solver tolerance whatever the sweep sampling: each of the two windows is scanned on
     a fixed grid (including its ends, where the force usually peaks because it rises toward the
-    dead centres), and an interior maximum is refined with scipy's bracketing minimiser
-    (``scipy.optimize.elementwise.find_minimum``, Chandrupatla's method).
+    dead centres), and an interior maximum is refined with a bracketing minimiser
+    (:func:`pumplink.mechanisms.bracket.find_minimum`, Chandrupatla's method, as scipy's).
 
     Parameters
     ----------
@@ -79,8 +80,6 @@ def dead_band_peak_force(lk: FourBar, dead_centre_extended, dead_centre_folded, 
     peak : largest |force| [N] (NaN for an infeasible design).
     angle : crank angle where it occurs [rad], in [0, 2 pi).
     """
-    from scipy.optimize.elementwise import find_minimum  # lazy: keeps start-up fast
-
     scalar, params = per_design(lk, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band)
     *geom, dce, dcf, band = params  # geom: the four-bar's seven parameters, then Mw
     start, length = _windows(dce, dcf, band)  # (D, 2)

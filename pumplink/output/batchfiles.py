@@ -110,12 +110,15 @@ _OUTCOMES = np.array(["PASS", "PASS with warnings", "FAIL"], dtype=object)
 
 
 def _check_results(c: Chunk) -> dict[str, list[str]]:
-    """``check_<key>`` columns: pass / warn / fail, '' where the check does not apply."""
+    """``check_<key>`` columns: pass / warn / fail, '' where the check does not apply (an
+    infeasible variant; the neglected link energy where the flywheel did not decide)."""
     n = len(c)
     out = {col: [""] * n for col in CHECK_COLUMNS}
+    models = np.asarray(c.model, dtype=object)
     for ch in c.verdict.checks:
         words = _RESULTS[np.broadcast_to(np.asarray(ch.level), (n,))]
-        out[f"check_{ch.key}"] = np.where(c.feasible, words, "").tolist()
+        applies = c.feasible & ((models == FLYWHEEL) if ch.key == "link_energy_share" else True)
+        out[f"check_{ch.key}"] = np.where(applies, words, "").tolist()
     return out
 
 
@@ -146,7 +149,7 @@ def _outcomes(c: Chunk) -> list[str]:
 
 
 def _models(c: Chunk) -> list[str]:
-    return [FLYWHEEL if f else QUASI_STATIC for f in c.flywheel.tolist()]
+    return c.model
 
 
 def chunk_columns(batch: Batch, c: Chunk) -> dict[str, list]:
@@ -400,6 +403,8 @@ def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequ
         np.broadcast_to(np.asarray(a), (n,)).tolist() for a in (c.feasible, c.mean_ok, c.peak_ok)
     )
 
+    models = c.model  # a list built on each access: once per chunk
+
     def per_variant(a):
         return None if a is None else np.broadcast_to(np.asarray(a), (n,))
 
@@ -425,7 +430,8 @@ def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequ
         if "peak" in fail_on and not peak_ok[i]:
             if c.flywheel[i]:
                 pk = float(c.least_peak_force[i])
-                what = f"peak force with the flywheel (δ ≤ {float(c.speed_fluctuation[i]):g})"
+                how = "the flywheel" if models[i] == FLYWHEEL else models[i]
+                what = f"peak force with {how} (δ ≤ {float(c.speed_fluctuation[i]):g})"
                 if pk == math.inf:
                     bad.append(
                         f"{what} infinite (the energy band J ω² δ is too small to carry the linkage through "
@@ -485,7 +491,7 @@ def _update_summary(s: dict, batch: Batch, c: Chunk, fail_on) -> None:
         if math.isfinite(peak[i]) and (s["best"] is None or peak[i] < s["best"]["peak_force_N"]):
             s["best"] = {
                 "name": variant_name(batch, c.start + i),
-                "model": FLYWHEEL if c.flywheel[i] else QUASI_STATIC,
+                "model": c.model[i],
                 "peak_force_N": float(peak[i]),
                 "mean_force_N": float(c.mean_force[i]),
                 "verdict": str(_OUTCOMES[int(np.broadcast_to(c.level, (len(c),))[i])]),
@@ -620,7 +626,7 @@ def write_stream(
 def summary_line(s: dict[str, Any], elapsed: float | None = None, wrote: Sequence[Path] = ()) -> str:
     """One line for stderr: counts, best variant, what failed, what was written."""
     best = s["best"]
-    fly = " (flywheel)" if best and best["model"] == FLYWHEEL else ""
+    fly = f" ({best['model']})" if best and best["model"] != QUASI_STATIC else ""
     best_txt = (
         f"; lowest peak{fly} {best['peak_force_N']:.1f} N: {best['name']}"
         if best
@@ -662,14 +668,18 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
         for r in rows:
             keys.extend(k for k in r["vary"] if k not in keys)
         several = len({r["label"] for r in rows}) > 1 or not keys
-        fly = any(r["model"] == FLYWHEEL for r in rows)
+        fly = any(r["model"] != QUASI_STATIC for r in rows)
         t = Table(
             title=title,
             title_justify="left",
             box=box.SIMPLE_HEAD,
             pad_edge=False,
             caption="peak: the verdict's peak force"
-            + (" (with the flywheel where the spec gives inertia)" if fly else " outside the dead bands")
+            + (
+                " (of the model that decided: flywheel or full dynamics where the spec gives inertia)"
+                if fly
+                else " outside the dead bands"
+            )
             + "; γ smallest transmission angle; v peak grip speed; warn: PASS with warnings",
             caption_justify="left",
         )
@@ -723,7 +733,7 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
         f"--fail-on {','.join(s['fail_on']) or 'none'}"
     )
     if best:
-        fly = " with the flywheel" if best["model"] == FLYWHEEL else ""
+        fly = f" ({best['model']})" if best["model"] != QUASI_STATIC else ""
         c.print(
             f"lowest peak force{fly}: {escape_markup(best['name'])} — peak {best['peak_force_N']:.1f} N, "
             f"mean {best['mean_force_N']:.1f} N ({best['verdict']})"

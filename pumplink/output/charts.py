@@ -133,66 +133,75 @@ def force_curve(result, curve, path) -> Path:
 
 
 def speed_chart(sweep, path) -> Path:
-    """Required peak operator force against mean wheel speed (flywheel model), limit and minimum speed.
+    """Least peak force against mean wheel speed by the flywheel and full dynamics, the operator's
+    effort with their arms, the best cadence, the speeds that pass and the 75 W line.
 
     Parameters
     ----------
-    sweep : :class:`pumplink.analysis.SpeedSweep`.
+    sweep : :class:`pumplink.analysis.SpeedSweep` (with its cadence).
     path : output file (.png, .svg, .pdf).
     """
     path = check_path(path)
     plt = pyplot()
-    v = sweep.speed_deg_s
-    fig, ax = plt.subplots(figsize=(8, 4.8), layout="constrained")
+    v = np.asarray(sweep.speed_deg_s, float)
+    spec = sweep.design.spec
+    fig, ax = plt.subplots(figsize=(9, 6.2), layout="constrained")
+    limit = sweep.force_limit
+    cad = sweep.cadence
+    if cad is not None and np.isfinite(cad.passing[0]):
+        lo, hi = np.degrees(cad.passing[0]), min(np.degrees(cad.passing[1]), v.max())
+        ax.axvspan(lo, hi, color="tab:green", alpha=0.13, lw=0)
+        ax.text(
+            0.5 * (lo + hi), 0.02, "passes\nevery check", transform=ax.get_xaxis_transform(),
+            ha="center", va="bottom", fontsize=9, color="darkgreen",
+        )  # fmt: skip
+    w75 = np.degrees(sweep.sustained_speed)
+    if v.min() < w75 < v.max():
+        ax.axvspan(w75, v.max(), color="0.5", alpha=0.10, lw=0)
+        ax.axvline(w75, color="0.35", lw=1.4, ls="--")
+        ax.text(
+            w75, 0.14, f" 75 W sustained ({w75:.0f} deg/s)\n more power →", rotation=0,
+            transform=ax.get_xaxis_transform(), ha="left", va="center", fontsize=9.5, color="0.2",
+            bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="0.35"),
+        )  # fmt: skip
+    ax.plot(v, sweep.flywheel_force, color="tab:blue", lw=2, label="flywheel (links' inertia neglected)")
+    ax.plot(v, sweep.dynamics_force, color="tab:orange", lw=2.6, label="full dynamics: hand force")
+    arm = spec.operator.arm_mass_kg
     ax.plot(
-        v,
-        sweep.least_peak_force,
-        color="C1",
-        lw=2,
-        marker="o",
-        ms=3,
-        label=f"least peak force, flywheel (J = {sweep.inertia:.3f} kg·m², δ ≤ {sweep.speed_fluctuation:g})",
-    )
-    ax.axhline(sweep.force_limit, color="C3", ls="--", lw=1, label=f"limit {sweep.force_limit:g} N")
+        v, sweep.effort_force, color="tab:red", lw=2, ls="-.",
+        label=f"full dynamics: effort (hand force + {arm:.2f} kg of arms)",
+    )  # fmt: skip
+    ax.axhline(limit, color="k", ls=":", lw=1.2, label=f"force limit {limit:g} N")
     ax.axhline(
-        sweep.mean_force,
-        color="C2",
-        ls="-.",
-        lw=1,
-        label=f"mean force {sweep.mean_force:.1f} N (infinite flywheel)",
+        sweep.mean_force, color="0.5", ls=(0, (1, 3)), lw=1, label=f"mean force {sweep.mean_force:.1f} N"
     )
-    ax.axhline(
-        sweep.dead_band_peak_force,
-        color="C0",
-        ls=":",
-        lw=1,
-        label=f"quasi-static peak outside the dead band {sweep.dead_band_peak_force:.1f} N (speed-blind)",
-    )
-    if np.isfinite(sweep.min_passing_speed):
-        x = np.degrees(sweep.min_passing_speed)
-        ax.axvline(x, color="k", lw=0.8, ls=":")
+    if cad is not None and np.isfinite(cad.speed):
+        x, y = np.degrees(cad.speed), cad.effort
+        ax.plot([x], [y], marker="*", ms=16, color="tab:red", mec="k", zorder=5)
         ax.annotate(
-            f"passes from {x:.0f} deg/s",
-            (x, sweep.force_limit),
-            xytext=(8, 30),
-            textcoords="offset points",
-            arrowprops=dict(arrowstyle="->", lw=0.8),
-            fontsize=9,
-        )
-    top = np.nanmax(np.where(np.isfinite(sweep.least_peak_force), sweep.least_peak_force, np.nan))
+            f"best cadence {x:.0f} deg/s ({x / 6:.0f} rpm)\neffort {y:.0f} N, hand {cad.hand_force:.0f} N, "
+            f"{cad.power:.0f} W",
+            (x, y), xytext=(0.74, 0.6), textcoords="axes fraction", ha="center", fontsize=9.5,
+            arrowprops=dict(arrowstyle="->", lw=0.9),
+            bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="0.6"),
+        )  # fmt: skip
+    finite = [np.asarray(a, float) for a in (sweep.flywheel_force, sweep.dynamics_force, sweep.effort_force)]
+    top = max(np.nanmax(np.where(np.isfinite(a), a, np.nan)) for a in finite)
     ax.set(
         xlabel="mean wheel speed ω̄ [deg/s]",
-        ylabel="peak horizontal force at the grip [N]",
-        ylim=(0, min(max(top, sweep.force_limit) * 1.1, 4 * sweep.force_limit)),
-        title=f"{sweep.design.spec.name}: the wheel's inertia carries the dead centres; "
-        "faster needs less force",
+        ylabel="least peak horizontal force at the grip [N]",
+        xlim=(v.min(), v.max()),
+        ylim=(0, min(max(top * 1.12, limit * 1.25), 4 * limit)),
     )
-    ax2 = ax.twinx()
-    ax2.plot(v, sweep.power, color="0.5", lw=1, ls="--")
-    ax2.axhline(75, color="0.5", lw=0.6, ls=":")
-    ax2.set_ylabel("operator power Mw ω̄ [W] (grey; dotted: 75 W sustained)", color="0.4")
+    ax.set_title(
+        f"{spec.name}: the force a person needs against cadence (J = {sweep.inertia:.3f} kg·m², "
+        f"δ ≤ {sweep.speed_fluctuation:g})",
+        fontsize=11,
+    )
+    rpm = ax.secondary_xaxis("top", functions=(lambda d: d / 6.0, lambda r: r * 6.0))
+    rpm.set_xlabel("wheel speed [rpm]")
     ax.grid(alpha=0.3)
-    ax.legend(loc="upper right", fontsize=8)
+    fig.legend(loc="outside lower center", ncols=2, fontsize=9, frameon=False)
     save(fig, path)
     plt.close(fig)
     return path

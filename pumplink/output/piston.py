@@ -12,7 +12,7 @@ from typing import Any
 
 from pumplink.output.formats import console, deg, num, write_csv, write_json
 from pumplink.output.formats import fmt as _f
-from pumplink.output.tables import check_row
+from pumplink.output.tables import check_row as verdict_check_row
 
 #: Rows of the condensed sweep in the table (every k-th sample).
 TABLE_ROWS = 24
@@ -27,7 +27,7 @@ _CHECK_LABELS = {
 def _checks(r) -> list[dict[str, Any]]:
     """The verdict's checks in the rope pump's JSON shape (``pumplink.output.tables.check_row``)."""
     checks = r.verdict.checks if r.verdict is not None else ()
-    return [{**check_row(c), "name": _CHECK_LABELS.get(c.key, c.key)} for c in checks]
+    return [{**verdict_check_row(c), "name": _CHECK_LABELS.get(c.key, c.key)} for c in checks]
 
 
 def summary_row(r) -> dict[str, Any]:
@@ -102,13 +102,54 @@ def _verdict_line(row) -> str:
     return f"VERDICT: FAIL — {' and '.join(over)} above the {limit:g} N limit"
 
 
-def render_force(r, fmt: str, summary: bool = False, out=None) -> None:
-    """``pumplink force`` on a piston-pump spec: summary, the condensed sweep, the checks, the verdict."""
+def check_row(check) -> dict[str, Any]:
+    """The dense-sweep check of a piston pump (:class:`pumplink.piston.PistonCheck`) as JSON."""
+    return {
+        "method": "trapezoid rule and a dense sweep",
+        "samples": check.samples,
+        "work": num(check.work),
+        "sweep_peak_force_N": num(check.sweep_peak),
+        "peak_force_N": num(check.peak),
+        "deficit_over_band": None if check.deficit is None else num(check.deficit),
+        "tolerance": check.tolerance,
+        "agrees": check.agrees,
+    }
+
+
+def render_checks(r, why: str | None, check, out=None) -> None:
+    """``--explain`` and ``--verify`` of a piston pump in words (after the table; stderr with CSV)."""
+    if why is None and check is None:
+        return
+    c = console(out or sys.stdout)
+    if why is not None:
+        c.print(why, markup=False)
+    if check is not None:
+        fly = (
+            f"; the largest energy lost over an arc at Fp* is {check.deficit:.6f} of the band W"
+            if check.deficit is not None
+            else ""
+        )
+        c.print(
+            f"verify ({check.samples:,} crank angles): {'agrees' if check.agrees else 'DISAGREES'} — "
+            f"the work of a turn by the trapezoid rule is F_load·H to {check.work:.1e}; the sweep "
+            f"peaks at {check.sweep_peak:.3f} N, the exact peak {check.peak:.3f} N{fly}",
+            markup=False,
+        )
+
+
+def render_force(r, fmt: str, summary: bool = False, out=None, why=None, check=None) -> None:
+    """``pumplink force`` on a piston-pump spec: summary, the condensed sweep, the checks, the verdict
+    (with JSON, ``explain`` and ``verify`` when given)."""
     out = out or sys.stdout
     row = summary_row(r)
     samples = [] if summary else sample_rows(r)
     if fmt == "json":
-        return write_json({**row, **({} if summary else {"samples": samples})}, out)
+        extra = {}
+        if why is not None:
+            extra["explain"] = {"model": row.get("model"), "why": why}
+        if check is not None:
+            extra["verify"] = check_row(check)
+        return write_json({**row, **extra, **({} if summary else {"samples": samples})}, out)
     if fmt == "csv":
         return write_csv(samples if samples else [row], out)
     from rich.markup import escape

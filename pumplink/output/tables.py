@@ -15,7 +15,6 @@ import numpy as np
 
 if TYPE_CHECKING:
     from pumplink.analysis import Design, ForceResult, SpeedSweep
-from pumplink.methods import POINT_LABELS
 from pumplink.output.formats import console, deg, num, write_csv
 from pumplink.output.formats import fmt as _f
 from pumplink.output.formats import write_json as _json
@@ -68,6 +67,9 @@ def force_summary(r: ForceResult) -> dict[str, Any]:
             "min_passing_speed_deg_s": None if r.min_passing_speed is None else deg(r.min_passing_speed),
             "wheel_speed_range_deg_s": _speed_range(r),
             "link_kinetic_energy_J": num(r.link_energy),
+            "link_weight_J": None if r.effects is None else num(r.effects.link_weight),
+            "arm_kinetic_energy_J": None if r.effects is None else num(r.effects.arm_energy),
+            "effort_peak_force_N": None if r.effort_peak_force is None else num(r.effort_peak_force),
             "mean_force_N": num(r.mean_force),
             # the verdict's peak (of the model that decided), and the dead-band model's under its own name
             "peak_force_N": num(r.verdict_peak_force),
@@ -120,6 +122,8 @@ def check_label(c, r: ForceResult | None = None) -> str:
     """The words for a verdict check (``pumplink.verdict.Check.key``), in this result's context."""
     if c.key == "peak_force" and r is not None:
         op = r.design.spec.operator
+        if r.dynamics:
+            return f"peak force, dynamics (δ ≤ {op.speed_fluctuation:g})"
         if r.flywheel:
             return f"peak force, flywheel (δ ≤ {op.speed_fluctuation:g})"
         return f"peak force outside ±{op.dead_band:g}° of DCs"
@@ -318,6 +322,17 @@ def _condensed_indices(r: ForceResult, max_rows: int = 24) -> list[int]:
 
 def model_line(r: ForceResult) -> str:
     """Which model decided the verdict, in words."""
+    if r.dynamics:
+        op = r.design.spec.operator
+        arms = (
+            f"the effort: the hand force + {op.arm_mass_kg:g} kg of arms at the grip"
+            if op.arms_in_verdict
+            else "the hand force (the operator's arms not in it)"
+        )
+        return (
+            f"model: full dynamics, J = {r.inertia:.3f} kg·m² plus the coupler's and handle's inertia and "
+            f"weight, δ ≤ {r.speed_fluctuation:g} at a mean {r.speed_deg_s:g} deg/s; {arms}"
+        )
     if r.flywheel:
         return (
             f"model: flywheel, J = {r.inertia:.3f} kg·m², δ ≤ {r.speed_fluctuation:g} at a mean "
@@ -475,14 +490,24 @@ def render_force(
             "",
             "[dim]info[/]",
         )
-        mps = r.min_passing_speed
-        ct.add_row(
-            "slowest passing mean speed",
-            "never" if mps == math.inf else f"{_f(np.degrees(mps), '{:.1f}')} °/s",
-            "",
-            "",
-            "[dim]info[/]",
-        )
+        if r.dynamics:  # faster is not always easier: the speeds that pass come from pumplink speed
+            if not r.design.spec.operator.arms_in_verdict:
+                ct.add_row(
+                    f"effort: + {r.design.spec.operator.arm_mass_kg:g} kg of arms",
+                    f"{_f(r.effort_peak_force, '{:.1f}', '∞')} N",
+                    "",
+                    "",
+                    "[dim]info[/]",
+                )
+        else:
+            mps = r.min_passing_speed
+            ct.add_row(
+                "slowest passing mean speed",
+                "never" if mps == math.inf else f"{_f(np.degrees(mps), '{:.1f}')} °/s",
+                "",
+                "",
+                "[dim]info[/]",
+            )
     else:
         ct.add_row(
             f"sampled peak ({r.samples_n} samples)",
@@ -568,7 +593,7 @@ def check_sentence(ch, r: ForceResult | None = None) -> str:
 def verdict_line(r: ForceResult, strict: bool = False) -> str:
     """The verdict in words, with Rich markup: PASS, PASS with warnings or FAIL."""
     peak = r.verdict_peak_force
-    how = " with the flywheel" if r.flywheel else ""
+    how = " with full dynamics" if r.dynamics else " with the flywheel" if r.flywheel else ""
     forces = f"mean {r.mean_force:.1f} N, peak {_f(peak, '{:.1f}', '∞')} N{how}"
     v = r.verdict
     if r.outcome == "PASS":
@@ -587,6 +612,8 @@ def verdict_line(r: ForceResult, strict: bool = False) -> str:
     force_failed = any(ch.key in ("mean_force", "peak_force") for ch in v.failures)
     if force_failed and r.flywheel and r.min_passing_speed is not None and math.isfinite(r.min_passing_speed):
         hint = f"; the force passes from a mean {np.degrees(r.min_passing_speed):.0f} deg/s (pumplink speed)"
+    elif force_failed and r.dynamics:
+        hint = "; pumplink speed gives the speeds at which it passes"
     return f"[bold red]VERDICT: FAIL[/] — {bad}{hint}"
 
 
@@ -629,32 +656,42 @@ def explain_rows(effects) -> list[dict[str, Any]]:
     ]
 
 
-def render_explain(effects, why: str, out=None) -> None:
-    """`pumplink force --explain` (table output): the effects table and the reason."""
+def render_explain(effects, why: str, out=None, cadence=None, force_limit: float = 0.0) -> None:
+    """`pumplink force --explain` (table output): the effects table, the reason, and the best
+    cadence (:class:`pumplink.analysis.Cadence`, when the spec gives inertia)."""
+    from rich import box
     from rich.markup import escape
     from rich.table import Table
 
     c = console(out or sys.stdout)
     t = Table(
-        title="Model choice: what is in the model, and how big it is at this speed", title_justify="left"
+        title="Model choice: what is in the model, and how big it is at this speed",
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
     )
-    for h in ("effect", "in model", "size", "compared with", "ratio", "note"):
-        t.add_column(h, justify="right" if h in ("size", "ratio") else "left")
-    for e in effects:
+    for h in ("effect", "in model", "size", "compared with"):
+        t.add_column(h, justify="right" if h == "size" else "left")
+    notes = []
+    for i, e in enumerate(effects, 1):
         inc = "[green]yes[/]" if e.included else "[dim]neglected[/]"
         ratio = (
             "" if not math.isfinite(e.ratio) else (f"{e.ratio:.0%}" if e.ratio < 10 else f"{e.ratio:.1f}×")
         )
         t.add_row(
-            escape(e.name),
+            f"{i}. {escape(e.name)}",
             inc,
             f"{_f(e.value, '{:.3g}', '∞')} {e.unit}",
-            escape(e.compared_with),
-            ratio,
-            escape(e.note),
+            escape(f"{ratio} {e.compared_with}" if ratio else ""),
         )
+        notes.append(f"{i}. {e.note}")
     c.print(t)
+    for n in notes:
+        c.print(n, markup=False)
     c.print(why, markup=False)
+    if cadence is not None:
+        for line in cadence_lines(cadence, force_limit):
+            c.print(line, markup=False)
 
 
 def verify_row(v) -> dict[str, Any]:
@@ -673,8 +710,30 @@ def verify_row(v) -> dict[str, Any]:
     }
 
 
+def static_verify_row(v) -> dict[str, Any]:
+    """The quasi-static cross-check (:class:`pumplink.analysis.StaticCheck`) as a row."""
+    return {
+        "method": "virtual work from positions (central differences) and a dense sweep",
+        "angles": v.angles,
+        "virtual_work": num(v.virtual_work),
+        "samples": v.samples,
+        "sweep_peak_force_N": num(v.sweep_peak),
+        "peak_force_N": num(v.peak),
+        "tolerance": v.tolerance,
+        "agrees": v.agrees,
+    }
+
+
 def render_verify(row: dict[str, Any], out=None) -> None:
     c = console(out or sys.stdout)
+    if "virtual_work" in row:  # the quasi-static model
+        ok = "[bold green]agrees[/]" if row["agrees"] else "[bold red]DISAGREES[/]"
+        c.print(
+            f"verify (quasi-static: {row['method']}): {ok} — F·dPx/dθ2 = Mw to {row['virtual_work']:.1e} "
+            f"at {row['angles']} crank angles; {row['samples']:,} samples outside the dead bands peak at "
+            f"{row['sweep_peak_force_N']:.3f} N, the exact peak {row['peak_force_N']:.3f} N"
+        )
+        return
     ok = "[bold green]agrees[/]" if row["agrees"] else "[bold red]DISAGREES[/]"
     c.print(
         f"verify ({row['method']}, {row['cycles']} revolutions): {ok} — "
@@ -687,42 +746,117 @@ def render_verify(row: dict[str, Any], out=None) -> None:
 
 
 def speed_rows(sw: SpeedSweep) -> list[dict[str, Any]]:
-    """One row per speed; ``peak_force_N`` is the verdict's peak (the flywheel's least peak force)."""
+    """One row per speed; ``peak_force_N`` is the verdict's peak (of the model in ``model``)."""
     outcome = sw.outcome.tolist()
+    cols = (
+        sw.speed_deg_s,
+        sw.energy_band,
+        sw.least_peak_force,
+        sw.flywheel_force,
+        sw.dynamics_force,
+        sw.effort_force,
+        sw.model,
+        sw.power,
+        sw.grip_speed,
+        outcome,
+        sw.passed,
+    )
     return [
         {
             "speed_deg_s": float(w),
             "energy_band_J": num(b),
+            "model": MODEL_WORDS[m],
             "peak_force_N": num(f),
+            "flywheel_peak_force_N": num(fw),
+            "dynamics_peak_force_N": num(dy),
+            "effort_peak_force_N": num(ef),
             "power_W": num(p),
             "grip_speed_m_s": num(g),
             "verdict": o,
             "pass": bool(ok),
         }
-        for w, b, f, p, g, o, ok in zip(
-            sw.speed_deg_s, sw.energy_band, sw.least_peak_force, sw.power, sw.grip_speed, outcome, sw.passed
-        )
+        for w, b, f, fw, dy, ef, m, p, g, o, ok in zip(*cols)
     ]
+
+
+#: The words of a model key in reports (``pumplink.models.MODELS[key].label``).
+MODEL_WORDS = {
+    "quasi-static": "quasi-static + dead band",
+    "flywheel": "flywheel",
+    "dynamics": "full dynamics",
+}
+
+
+def cadence_row(c) -> dict[str, Any]:
+    """The best cadence and the passing speeds (:class:`pumplink.analysis.Cadence`) as JSON."""
+
+    def rng(pair):
+        lo, hi = pair
+        if not math.isfinite(lo):
+            return None
+        return {"min": deg(lo), "max": deg(hi) if math.isfinite(hi) else None}
+
+    return {
+        "speed_deg_s": deg(c.speed),
+        "rpm": num(math.degrees(c.speed) / 6.0),
+        "effort_peak_force_N": num(c.effort),
+        "hand_peak_force_N": num(c.hand_force),
+        "power_W": num(c.power),
+        "at_edge_of_search": c.at_edge,
+        "searched_deg_s": {"min": deg(c.searched[0]), "max": deg(c.searched[1])},
+        "model": MODEL_WORDS[c.model],
+        "force_passes_deg_s": rng(c.force_range),
+        "verdict_passes_deg_s": rng(c.passing),
+    }
+
+
+def cadence_lines(c, force_limit: float) -> list[str]:
+    """The best cadence and the passing speeds in words (plain text, each under 80 columns)."""
+    rpm = math.degrees(c.speed) / 6.0
+    edge = " (the edge of the speeds searched)" if c.at_edge else ""
+    lines = [
+        f"best cadence: {math.degrees(c.speed):.0f} deg/s ({rpm:.0f} rpm){edge}, where the peak effort",
+        f"  (hand force + the operator's arms) is least, {c.effort:.1f} N (hand force {c.hand_force:.1f} N),",
+        f"  at {c.power:.0f} W",
+    ]
+
+    def span(pair):
+        lo, hi = (math.degrees(v) for v in pair)
+        top = "up" if not math.isfinite(hi) or hi >= math.degrees(c.searched[1]) * (1 - 1e-9) else f"{hi:.0f}"
+        return f"from {lo:.0f} deg/s" + (" up" if top == "up" else f" to {top} deg/s")
+
+    what = MODEL_WORDS[c.model]
+    if math.isfinite(c.force_range[0]):
+        lines.append(f"peak force ({what}) within {force_limit:g} N: {span(c.force_range)}")
+    else:
+        lines.append(f"peak force ({what}) above {force_limit:g} N at every speed")
+    if math.isfinite(c.passing[0]):
+        lines.append(f"no check fails (force, power, grip speed): {span(c.passing)}")
+    else:
+        lines.append("no speed passes every check (see the checks that fail)")
+    return lines
 
 
 def speed_summary(sw: SpeedSweep) -> dict[str, Any]:
     out = design_row(sw.design)
     out.update(
         {
-            "model": "flywheel",
+            "model": sw.result.model,
             "inertia_kg_m2": num(sw.inertia),
             "speed_fluctuation": sw.speed_fluctuation,
             "force_limit_N": num(sw.force_limit),
             "mean_force_N": num(sw.mean_force),
             "quasi_static_peak_force_N": num(sw.dead_band_peak_force),
             "min_passing_speed_deg_s": deg(sw.min_passing_speed),
+            "best_cadence": None if sw.cadence is None else cadence_row(sw.cadence),
         }
     )
     return out
 
 
 def render_speed(sw: SpeedSweep, fmt: str, out=None) -> None:
-    """`pumplink speed`: required peak force against wheel speed, and the least passing speed."""
+    """`pumplink speed`: the least peak force of the flywheel and of full dynamics against wheel
+    speed, the verdict at each speed, the best cadence and the passing speeds."""
     out = out or sys.stdout
     rows = speed_rows(sw)
     if fmt == "json":
@@ -735,59 +869,55 @@ def render_speed(sw: SpeedSweep, fmt: str, out=None) -> None:
 
     c = console(out)
     t = Table(
-        title=f"{escape(sw.design.spec.name)}: least peak operator force against mean wheel speed (flywheel, "
-        f"J = {sw.inertia:.3f} kg·m², δ ≤ {sw.speed_fluctuation:g})",
+        title=f"{escape(sw.design.spec.name)}: least peak operator force against mean wheel speed "
+        f"(J = {sw.inertia:.3f} kg·m², δ ≤ {sw.speed_fluctuation:g})",
         title_justify="left",
         box=box.SIMPLE_HEAD,
         pad_edge=False,
-        caption="v: peak grip speed; warn: PASS with warnings (docs/models.md §4)",
+        caption="flywheel: links neglected; dynamics: links' inertia and weight (the hand force); "
+        "effort: + the operator's arms; bold: the model that decides (least that is enough); "
+        "v: peak grip speed; warn: PASS with warnings (docs/models.md §3-4)",
         caption_justify="left",
     )
     for h in (
         "speed [°/s]",
         "rpm",
-        "band [J]",
-        "peak [N]",
-        f"vs {sw.force_limit:g} N",
+        "flywheel [N]",
+        "dynamics [N]",
+        "effort [N]",
         "power [W]",
         "v [m/s]",
         "verdict",
     ):
-        t.add_column(escape(h), justify="left" if h.startswith(("vs", "verdict")) else "right")
+        t.add_column(escape(h), justify="left" if h == "verdict" else "right")
     for r in rows:
-        f = r["peak_force_N"]
+        fly, dyn = (
+            _f(r["flywheel_peak_force_N"], "{:.1f}", "∞"),
+            _f(r["dynamics_peak_force_N"], "{:.1f}", "∞"),
+        )
+        if r["model"] == "flywheel":
+            fly = f"[bold]{fly}[/]"
+        elif r["model"] == "full dynamics":
+            dyn = f"[bold]{dyn}[/]"
         t.add_row(
             f"{r['speed_deg_s']:g}",
             f"{r['speed_deg_s'] / 6:.0f}",
-            _f(r["energy_band_J"], "{:.2f}"),
-            _f(f, "{:.1f}", "∞"),
-            _bar(f, sw.force_limit, 8),
+            fly,
+            dyn,
+            _f(r["effort_peak_force_N"], "{:.1f}", "∞"),
             _f(r["power_W"], "{:.0f}"),
             _f(r["grip_speed_m_s"], "{:.2f}"),
             {"PASS": "[green]PASS[/]", "FAIL": "[red]FAIL[/]"}.get(r["verdict"], "[yellow]warn[/]"),
         )
     c.print(t)
-    mps = sw.min_passing_speed
     c.print(
         f"mean force {sw.mean_force:.1f} N (the floor: an infinite flywheel); quasi-static peak "
-        f"outside the dead band {sw.dead_band_peak_force:.1f} N (the dead-band model, blind to speed)"
+        f"outside the dead band {sw.dead_band_peak_force:.1f} N (the dead-band model, blind to speed)",
+        markup=False,
     )
-    if math.isfinite(mps):
-        c.print(
-            f"[bold]the peak force is within the {sw.force_limit:g} N limit from a mean "
-            f"{np.degrees(mps):.1f} deg/s ({np.degrees(mps) / 6:.0f} rpm)[/]"
-        )
-        ok = [r["speed_deg_s"] for r in rows if r["pass"]]
-        c.print(
-            f"every check passes or only warns from {min(ok):g} to {max(ok):g} deg/s (of the speeds above)"
-            if ok
-            else "[red]no speed above passes every check[/] (see the verdict column and pumplink force)"
-        )
-    else:
-        c.print(
-            f"[bold red]no speed passes[/]: the mean force {sw.mean_force:.1f} N is above the "
-            f"{sw.force_limit:g} N limit"
-        )
+    if sw.cadence is not None:
+        for line in cadence_lines(sw.cadence, sw.force_limit):
+            c.print(line, markup=False)
 
 
 # ----------------------------------------------------------------------------- transmission
@@ -959,6 +1089,7 @@ def optimize_row(res) -> dict[str, Any]:
 
     def judged(r) -> dict[str, Any]:
         return {
+            "model": r.model,
             "peak_force_N": num(r.verdict_peak_force),
             "dead_band_peak_force_N": num(r.dead_band_peak_force),
             "mean_force_N": num(r.mean_force),
@@ -1054,12 +1185,12 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
     from rich.table import Table
 
     c = console(out)
-    fly = row["model"] == "flywheel"
+    fly = row["speed_fluctuation"] is not None  # an energy model decides (flywheel or full dynamics)
     model = (
-        f"flywheel, J = {row['inertia_kg_m2']:.4g} kg·m², δ ≤ {row['speed_fluctuation']:g}, at "
+        f"{row['model']}, J = {row['inertia_kg_m2']:.4g} kg·m², δ ≤ {row['speed_fluctuation']:g}, at "
         f"{row['speed_deg_s']:g} deg/s"
         if fly
-        else "quasi-static + dead band"
+        else row["model"]
     )
     c.print(
         f"[bold]{escape(row['name'])}[/]: minimise the {row['objective']} operator force "
@@ -1085,7 +1216,8 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
         title_justify="left",
         box=box.SIMPLE_HEAD,
         pad_edge=False,
-        caption="peak: the verdict's peak" + (" (with the flywheel)" if fly else " outside the dead bands"),
+        caption="peak: the verdict's peak"
+        + (f" ({s['model']} / {o['model']})" if fly else " outside the dead bands"),
         caption_justify="left",
     )
     for h in ("design", "peak [N]", "mean [N]", "γ [°]", "verdict"):
@@ -1151,8 +1283,9 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
             markup=False,
         )
     tail = " — fails under --strict" if strict and o["verdict"] == "PASS with warnings" else ""
+    how = f" ({o['model']})" if fly else ""
     c.print(
-        f"VERDICT: {OUTCOME_MARKUP[o['verdict']]} for the optimum: peak{' with the flywheel' if fly else ''} "
+        f"VERDICT: {OUTCOME_MARKUP[o['verdict']]} for the optimum: peak{how} "
         f"{_f(o['peak_force_N'], '{:.2f}', none='∞')} N vs limit {row['force_limit_N']:g} N "
         f"({row['evaluations']} designs evaluated, {row['generations']} generations"
         f"{', polished' if row['polished'] else ''}){tail}"
@@ -1174,6 +1307,8 @@ FAILURE_TEXT = {
 
 def failure_sentences(records: list[dict]) -> list[str]:
     """The method comparison's findings in words."""
+    from pumplink.methods import POINT_LABELS  # here: `force` and `synth` need no method study
+
     return [FAILURE_TEXT[f["what"]].format(label=POINT_LABELS[f["kind"]], **f) for f in records]
 
 
@@ -1181,6 +1316,8 @@ def json_rows(rows: list[dict]) -> list[dict]:
     """The JSON contract: name, seconds_per_position, max_rel_error_uniform,
     max_rel_error_near_dead_centre, failures (plus summary, cannot_handle and per-sampling detail,
     keyed by the words of each sampling)."""
+    from pumplink.methods import POINT_LABELS
+
     return [
         {
             "name": r["name"],

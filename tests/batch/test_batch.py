@@ -69,11 +69,12 @@ base = "{PROTOTYPE}"
 """
 
 
-# Batches that give inertia: the flywheel model decides their verdict.  They cover every
-# route to J of PumpSpec.inertia: wheel.mass plus the water column from head and pipe_diameter (the
-# village base, also with head and bore on axes), wheel.inertia plus an explicit load.moving_mass on
-# a rope-force base, and a moving mass alone; speed, speed fluctuation and force limit on axes; and
-# infeasible variants (L1 = 0, see SMALL).
+# Batches that give inertia: the least energy model that is enough decides their verdict, per
+# variant (the flywheel, or full dynamics where the links' energy or weight is not small).  They
+# cover every route to J of PumpSpec.inertia: wheel.mass plus the water column from head and
+# pipe_diameter (the village base, also with head and bore on axes), wheel.inertia plus an explicit
+# load.moving_mass on a rope-force base, and a moving mass alone; speed, speed fluctuation and force
+# limit on axes; light links; and infeasible variants (L1 = 0, see SMALL).
 PROTO_INLINE = """\
 [base.wheel]
 radius = 0.25
@@ -118,6 +119,13 @@ base = "{VILLAGE}"
 [vary]
 "load.moving_mass" = [5.0, 40.0]
 "operator.speed" = [360, 720]
+""",
+    # light links (0.1 kg/m): the flywheel is enough, and a small wheel fails it on the peak
+    "fly-light": PROTO_INLINE.replace("swing = 60.0", "swing = 60.0\nmass_per_length = 0.1")
+    + """\
+[vary]
+"wheel.inertia" = [0.05, 0.5]
+"load.rope_force" = [45.0, 90.0]
 """,
 }
 
@@ -362,7 +370,7 @@ def _same(x, y) -> bool:
 
 def _assert_equals_force_analysis(b: B.Batch, c: B.Chunk, picks) -> None:
     """Row i of the chunk (variant c.start + i) equals force_analysis of its spec, exactly."""
-    from pumplink.batch import FLYWHEEL_LABEL as FLYWHEEL
+    from pumplink.batch import QUASI_STATIC_LABEL as QUASI_STATIC
 
     nan = float("nan")
     for i in picks:
@@ -390,7 +398,7 @@ def _assert_equals_force_analysis(b: B.Batch, c: B.Chunk, picks) -> None:
         }
         for what, (x, y) in pairs.items():
             assert _same(x, y), (i, what, x, y)
-        assert (r.model == FLYWHEEL) == c.flywheel[i]
+        assert r.model == c.model[i] and (r.model != QUASI_STATIC) == c.flywheel[i]
         assert (
             r.passed == c.passed[i] and r.design.error == c.reason[i] and r.design.feasible == c.feasible[i]
         )
@@ -407,14 +415,16 @@ def test_random_variants_equal_force_analysis_exactly(qs_grid):
 
 
 def test_flywheel_variants_equal_force_analysis_exactly(fly_files):
-    """Every variant of the batches that give inertia: J, the least peak force with the flywheel,
-    the minimum passing speed and the verdict equal force_analysis (the per-design scene) exactly."""
-    outcomes = set()
+    """Every variant of the batches that give inertia: J, the model chosen (the least that is
+    enough: the flywheel or full dynamics, per variant), its least peak force, the minimum passing
+    speed and the verdict equal force_analysis (the per-design scene) exactly."""
+    outcomes, models = set(), set()
     for f in fly_files:
         b = B.load_batch(f)
         assert b.flywheel
         c = B.evaluate_chunk(b, 0, b.size, 360)
         assert c.flywheel.all()
+        models |= set(c.model)
         _assert_equals_force_analysis(b, c, range(b.size))
         # the verdict's peak is the flywheel one: dead-band peak and verdict disagree somewhere
         ok = c.feasible
@@ -422,6 +432,7 @@ def test_flywheel_variants_equal_force_analysis_exactly(fly_files):
             (bool(p), bool(q)) for p, q in zip(c.dead_band_peak_force[ok] <= c.force_limit[ok], c.peak_ok[ok])
         }
     assert outcomes == {(True, True), (True, False), (False, True), (False, False)}
+    assert models == {B.FLYWHEEL_LABEL, B.DYNAMICS_LABEL}  # both decide somewhere in these grids
 
 
 def test_design_space_grid_slice_equals_force_analysis_exactly():
@@ -491,27 +502,40 @@ def test_random_variants_equal_pumplink_force_json(tmp_path, qs_grid, grid_csv):
 
 def test_flywheel_rows_equal_pumplink_force_json(tmp_path, fly_files):
     """The scene columns of batch rows (CSV) equal `pumplink force --summary --format json`: a
-    passing, a peak-failing and an infeasible flywheel variant, and a moving mass alone."""
+    passing, a peak-failing (by each energy model) and an infeasible variant, and a moving mass
+    alone."""
     junit = tmp_path / "r.xml"
     r = pumplink("batch", *fly_files, "--format", "csv", "--fail-on", "peak", "--junit", junit)
     assert r.returncode == 1, r.stderr
     all_rows = read_csv(r.stdout)
     b = B.load_batch(fly_files[0])
     rows = [x for x in all_rows if x["source"] == str(fly_files[0])]
-    assert len(rows) == b.size and {x["model"] for x in all_rows} == {"flywheel"}
+    assert len(rows) == b.size and {x["model"] for x in all_rows} == {"flywheel", "full dynamics"}
     picks = [
         next(i for i, x in enumerate(rows) if x["pass"] == "True"),
-        next(i for i, x in enumerate(rows) if x["failed"] == "peak"),
+        next(i for i, x in enumerate(rows) if x["failed"] == "peak" and x["model"] == "full dynamics"),
         next(i for i, x in enumerate(rows) if x["feasible"] == "False"),
     ]
     _assert_rows_equal_force_json(tmp_path, b, {x["name"]: x for x in rows}, picks)
-    # the JUnit failure names the flywheel's peak, as the row has it
-    fail = rows[picks[1]]
-    (case,) = [t for t in ET.parse(junit).getroot().iter("testcase") if t.get("name") == fail["name"]]
-    assert case.find("failure").get("message") == (
-        f"peak force with the flywheel (δ ≤ {float(fail['speed_fluctuation']):g}) "
-        f"{float(fail['least_peak_force_N']):.2f} N > limit {float(fail['force_limit_N']):g} N"
-    )
+    # a flywheel variant that fails on its peak, in whichever batch has one
+    for f in fly_files:
+        fb, frows = B.load_batch(f), [x for x in all_rows if x["source"] == str(f)]
+        k = next(
+            (i for i, x in enumerate(frows) if "peak" in x["failed"].split(";") and x["model"] == "flywheel"),
+            None,
+        )
+        if k is not None:
+            _assert_rows_equal_force_json(tmp_path, fb, {x["name"]: x for x in frows}, [k])
+            break
+    assert k is not None
+    # the JUnit failure names the deciding model's peak, as the row has it
+    for fail in (rows[picks[1]], frows[k]):
+        (case,) = [t for t in ET.parse(junit).getroot().iter("testcase") if t.get("name") == fail["name"]]
+        how = "the flywheel" if fail["model"] == "flywheel" else fail["model"]
+        assert case.find("failure").get("message") == (
+            f"peak force with {how} (δ ≤ {float(fail['speed_fluctuation']):g}) "
+            f"{float(fail['least_peak_force_N']):.2f} N > limit {float(fail['force_limit_N']):g} N"
+        )
     moving = B.load_batch(fly_files[3])
     _assert_rows_equal_force_json(
         tmp_path, moving, {x["name"]: x for x in all_rows if x["source"] == str(fly_files[3])}, [1]
@@ -602,7 +626,9 @@ def test_fail_on_peak_is_the_flywheel_peak(tmp_path, fail_on, code, failures):
     p = tmp_path / "flysmall.toml"
     p.write_text(FLY_SMALL)
     junit = tmp_path / "r.xml"
-    r = pumplink("batch", p, "--fail-on", fail_on, "--format", "json", "--junit", junit)
+    r = pumplink(
+        "batch", p, "--fail-on", fail_on, "--format", "json", "--junit", junit, "--model", "flywheel"
+    )
     assert r.returncode == code, r.stderr
     d = json.loads(r.stdout)
     v = d["variants"]
@@ -644,10 +670,26 @@ def test_fail_on_peak_is_the_flywheel_peak(tmp_path, fail_on, code, failures):
     assert "lowest peak (flywheel) 35.3 N: flysmall#2" in r.stderr
 
 
+def test_the_links_carry_the_dead_centres_when_the_wheel_cannot(tmp_path):
+    """The same grid by the least model that is enough: with J = 1e-6 kg m^2 the links' kinetic
+    energy dwarfs the flywheel's band, so full dynamics decides, and the coupler and handle (1 m
+    of 1.56 kg/m tube) are themselves a flywheel: a finite least peak force, above the heavy
+    wheel's; with J = 1000 kg m^2 the flywheel is enough and gives the mean force (W -> inf)."""
+    p = tmp_path / "flysmall.toml"
+    p.write_text(FLY_SMALL)
+    r = pumplink("batch", p, "--fail-on", "none", "--format", "json")
+    assert r.returncode == 0, r.stderr
+    v = json.loads(r.stdout)["variants"]
+    assert [x["model"] for x in v] == ["full dynamics"] * 2 + ["flywheel"] * 2
+    for light, heavy in ((v[0], v[2]), (v[1], v[3])):
+        assert math.isfinite(light["peak_force_N"]) and light["peak_force_N"] > heavy["peak_force_N"]
+        assert heavy["peak_force_N"] == pytest.approx(heavy["mean_force_N"], rel=1e-12)
+
+
 def test_flywheel_table_shows_the_verdict_peak_and_the_model(tmp_path):
     p = tmp_path / "flysmall.toml"
     p.write_text(FLY_SMALL)
-    r = pumplink("batch", p, PROTOTYPE, "--fail-on", "none")
+    r = pumplink("batch", p, PROTOTYPE, "--fail-on", "none", "--model", "flywheel")
     assert r.returncode == 0, r.stderr
     rows = {ln.split()[0]: ln.split() for ln in r.stdout.splitlines() if ln[:3].strip().isdigit()}
     # '#', the two varied values, then peak [N]: the flywheel's least peak (the mean, 62.8 N at 80 N
@@ -655,17 +697,18 @@ def test_flywheel_table_shows_the_verdict_peak_and_the_model(tmp_path):
     assert rows["4"][1:4] == ["1000", "80", "62.8"]
     assert rows["5"][1] == "85.8"
     assert "designs: 1-4 flysmall; 5 Prototype" in r.stdout
-    assert "lowest peak force with the flywheel: flysmall#2" in r.stdout
+    assert "lowest peak force (flywheel): flysmall#2" in r.stdout
     assert max(len(ln) for ln in r.stdout.splitlines()) <= 80
 
 
 def test_zero_inertia_fails_with_an_infinite_peak(tmp_path):
-    """A moving mass of 0 kg and no wheel mass: J = 0, no energy band (W = 0), so the least peak
-    force is the quasi-static maximum, infinite (flywheel.least_peak_force: inf for band 0)."""
+    """A moving mass of 0 kg and no wheel mass, by the flywheel (--model): J = 0, no energy band
+    (W = 0), so the least peak force is the quasi-static maximum, infinite
+    (flywheel.least_peak_force: inf for band 0)."""
     p = tmp_path / "j0.toml"
     p.write_text(PROTO_INLINE + '[vary]\n"load.moving_mass" = [0.0, 40.0]\n')
     junit = tmp_path / "r.xml"
-    r = pumplink("batch", p, "--format", "csv", "--junit", junit)
+    r = pumplink("batch", p, "--format", "csv", "--junit", junit, "--model", "flywheel")
     assert r.returncode == 1, r.stderr
     rows = read_csv(r.stdout)
     assert [x["inertia_kg_m2"] for x in rows] == ["0.0", "2.5"]  # 40 kg * 0.25^2 m^2
@@ -763,7 +806,7 @@ def test_workers_give_the_same_rows(tmp_path, qs_grid, fly_files):
         assert r.returncode == 0, r.stderr
         outs.append(out.read_bytes())
     assert outs[0] == outs[1] and outs[0].count(b"\n") == 27216 + n_fly + 1
-    assert outs[0].count(b",flywheel,") == n_fly
+    assert outs[0].count(b",flywheel,") + outs[0].count(b",full dynamics,") == n_fly
 
 
 def test_no_progress_bar_or_colour_when_stderr_is_not_a_terminal(small):
@@ -877,7 +920,7 @@ def test_killed_run_leaves_no_partial_file(tmp_path, sig, workers, group):
 
 
 def test_csv_and_json_carry_the_same_rows(qs_grid, fly_files):
-    """Standard designs (both models), the quasi-static grid and the flywheel batches in one run."""
+    """Standard designs (two models), the quasi-static grid and the flywheel batches in one run."""
     rc = pumplink(
         "batch", "configs/", qs_grid, *fly_files, "--format", "csv", "--fail-on", "none", "--samples", 30
     )
@@ -889,7 +932,7 @@ def test_csv_and_json_carry_the_same_rows(qs_grid, fly_files):
     n_fly = sum(B.load_batch(f).size for f in fly_files)
     assert len(rows) == len(variants) == 27216 + 11 + n_fly
     assert {r["model"] for r in rows[:11]} == {
-        "flywheel",
+        "full dynamics",
         "quasi-static + dead band",
     }  # configs/ mixes the models
     spread = (
@@ -924,7 +967,7 @@ def test_csv_and_json_carry_the_same_rows(qs_grid, fly_files):
             v["failed"],
             v["model"],
         )
-        fly = r["model"] == "flywheel"
+        fly = r["model"] in ("flywheel", "full dynamics")  # an energy model: the wheel's inertia given
         assert (r["inertia_kg_m2"] != "") == fly and (r["speed_fluctuation"] != "") == fly
 
 

@@ -22,6 +22,7 @@ COMMANDS = (
     [["synth", *SPECS]]
     + [["force", f] for f in SPECS + EXAMPLES]
     + [["force", f, "--summary"] for f in SPECS + EXAMPLES]
+    + [["force", f, "--explain"] for f in SPECS + EXAMPLES]
     + [["force", "configs/prototype.toml", "--at", "90", "--at", "270"]]
     + [["speed", f] for f in ("configs/village-10m.toml", "examples/well-12m-flywheel.toml")]
     + [

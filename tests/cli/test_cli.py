@@ -882,13 +882,14 @@ def _force_json(*args):
 
 
 def test_speed_decides_the_verdict_with_inertia():
-    """The flywheel model's promise: with inertia in the spec, --speed 360 and --speed 540 give different
-    verdicts, each cross-checked by integrating the equation of motion (--verify).
+    """The flywheel model's promise (--model flywheel): with inertia in the spec, --speed 360 and
+    --speed 540 give different verdicts, each cross-checked by integrating the equation of motion
+    (--verify).
 
     Physically right: a faster wheel stores J w^2 / 2, so the least peak force falls (from above the
     limit to below it), bounded below by the mean force; the power Mw w rises in proportion."""
-    p360, j360 = _force_json(FLY, "--speed", "360", "--verify")
-    p540, j540 = _force_json(FLY, "--speed", "540", "--verify")
+    p360, j360 = _force_json(FLY, "--speed", "360", "--verify", "--model", "flywheel")
+    p540, j540 = _force_json(FLY, "--speed", "540", "--verify", "--model", "flywheel")
     # the peak force decides between them; at 540 deg/s power and grip speed fail instead
     assert (p360.returncode, p540.returncode) == (1, 1), (p360.stderr, p540.stderr)
     assert [_result(j360, "peak_force"), _result(j540, "peak_force")] == ["fail", "pass"]
@@ -908,13 +909,29 @@ def test_speed_decides_the_verdict_with_inertia():
     assert j360["dead_band_peak_force_N"] < 100 < j360["peak_force_N"] == j360["least_peak_force_N"]
 
 
+def test_full_dynamics_decides_the_shipped_example_and_the_arms_make_faster_harder():
+    """Without --model the least model that is enough decides: the 12 m example's 1.2 m steel handle
+    carries 1.5 x the flywheel's energy band, so full dynamics.  Its hand force still falls with
+    speed (above the flywheel's: the handle's inertia and weight), but the operator's effort with
+    their own arms rises past the best cadence; both speeds are cross-checked by --verify."""
+    (p360, j360), (p540, j540) = (_force_json(FLY, "--speed", v, "--verify") for v in ("360", "540"))
+    _, fly360 = _force_json(FLY, "--speed", "360", "--model", "flywheel")
+    for j in (j360, j540):
+        assert j["model"] == "full dynamics" and j["verify"]["agrees"] is True
+        assert j["verify"]["periodicity"] < 1e-6 and j["link_kinetic_energy_J"] > 0.1 * j["energy_band_J"]
+    assert j360["peak_force_N"] > 100 > j540["peak_force_N"]  # the hand force falls with speed
+    assert j360["peak_force_N"] > fly360["peak_force_N"]  # the links cost force
+    assert j540["effort_peak_force_N"] > j360["effort_peak_force_N"] > j360["peak_force_N"]
+
+
 def test_verdict_flips_at_the_reported_minimum_speed():
-    """min_passing_speed_deg_s is where the verdict changes: just below fails, just above passes."""
-    _, j = _force_json(FLY)
+    """min_passing_speed_deg_s (the flywheel's) is where the verdict changes: just below fails,
+    just above passes."""
+    _, j = _force_json(FLY, "--model", "flywheel")
     v = j["min_passing_speed_deg_s"]
     assert 360 < v < 540
-    below, jb = _force_json(FLY, "--speed", f"{v * 0.999:.6f}")
-    above, ja = _force_json(FLY, "--speed", f"{v * 1.001:.6f}")
+    below, jb = _force_json(FLY, "--speed", f"{v * 0.999:.6f}", "--model", "flywheel")
+    above, ja = _force_json(FLY, "--speed", f"{v * 1.001:.6f}", "--model", "flywheel")
     assert [_result(jb, "peak_force"), _result(ja, "peak_force")] == ["fail", "pass"]
     assert jb["least_peak_force_N"] > 100 > ja["least_peak_force_N"]
 
@@ -941,7 +958,9 @@ def test_samples_carry_the_operator_profile_and_wheel_speed():
 
 
 def test_table_names_the_model_that_answered():
-    fly = run("force", FLY, "--summary", cache=True).stdout
+    dyn = run("force", FLY, "--summary", cache=True).stdout
+    assert "model: full dynamics, J = " in dyn and "VERDICT: FAIL" in dyn and "pumplink speed gives" in dyn
+    fly = run("force", FLY, "--summary", "--model", "flywheel", cache=True).stdout
     assert "model: flywheel, J = " in fly and "VERDICT: FAIL" in fly and "passes from a mean 375 deg/s" in fly
     qs = run("force", "--summary", cache=True).stdout
     assert "model: quasi-static + dead band" in qs and "give wheel.mass or wheel.inertia" in qs
@@ -952,19 +971,33 @@ def test_explain_reports_effects_and_reason():
     ex = j["explain"]
     names = [e["effect"] for e in ex["effects"]]
     assert any("coupler + handle" in n for n in names) and any("power" in n for n in names)
-    link = next(e for e in ex["effects"] if "coupler + handle" in e["effect"])
-    assert link["included"] is False and link["ratio"] == pytest.approx(
-        link["value"] / j["energy_band_J"], rel=1e-12
-    )
-    # a 1.2 m steel handle at 360 deg/s carries more energy than the band: the reason says so
-    assert link["ratio"] > 1 and "Full dynamics" in ex["why"]
+    link = next(e for e in ex["effects"] if "kinetic energy of coupler + handle" in e["effect"])
+    weight = next(e for e in ex["effects"] if "weight of coupler + handle" in e["effect"])
+    arms = next(e for e in ex["effects"] if "arms" in e["effect"])
+    for e in (link, weight, arms):
+        assert e["ratio"] == pytest.approx(e["value"] / j["energy_band_J"], rel=1e-12)
+    # a 1.2 m steel handle at 360 deg/s carries more energy than the band: full dynamics decides,
+    # with the links in the model and the arms only in the effort
+    assert link["ratio"] > 1 and link["included"] and weight["included"] and not arms["included"]
+    assert ex["why"].startswith("Full dynamics decided") and "more than 10%" in ex["why"]
+    assert j["link_kinetic_energy_J"] == link["value"] and j["link_weight_J"] == weight["value"]
+    cad = ex["best_cadence"]
+    assert 120 < cad["speed_deg_s"] < 720 and cad["effort_peak_force_N"] <= j["effort_peak_force_N"]
+    # the flywheel asked for where it is not enough: the reason says so
+    _, f = _force_json(FLY, "--explain", "--model", "flywheel")
+    assert f["explain"]["why"].startswith("Flywheel decided because --model flywheel asked for it")
     q = run("force", "--summary", "--explain", cache=True).stdout
-    assert "Quasi-static + dead band answered" in q and "Model choice" in q
+    assert "Quasi-static + dead band decided" in q and "Model choice" in q
 
 
-def test_verify_without_inertia_is_one_line_exit_2():
-    p = run("force", "--verify", cache=True)
-    assert p.returncode == 2 and p.stderr.count("\n") == 1 and "wheel.mass" in p.stderr
+def test_verify_without_inertia_checks_the_quasi_static_answer():
+    """Without inertia --verify checks virtual work from positions and the exact peak against a
+    dense sweep (the quasi-static model has no motion to integrate)."""
+    p = run("force", "--summary", "--verify", "--format", "json", cache=True)
+    assert p.returncode == 0, p.stderr
+    v = json.loads(p.stdout)["verify"]
+    assert v["agrees"] is True and v["virtual_work"] < 1e-6 and v["angles"] > 1000
+    assert v["peak_force_N"] * (1 - 1e-3) <= v["sweep_peak_force_N"] <= v["peak_force_N"] * (1 + 1e-9)
 
 
 def test_speed_command(tmp_path):
@@ -974,9 +1007,13 @@ def test_speed_command(tmp_path):
     sp = [r["speed_deg_s"] for r in j["speeds"]]
     assert sp == [300.0, 360.0, 420.0, 480.0, 540.0, 600.0]
     f = [r["peak_force_N"] for r in j["speeds"]]
-    assert all(a > b for a, b in zip(f, f[1:]))  # faster: less force
+    assert all(a > b for a, b in zip(f, f[1:]))  # faster: less hand force
+    assert all(r["model"] == "full dynamics" for r in j["speeds"])
+    assert all(r["dynamics_peak_force_N"] > r["flywheel_peak_force_N"] for r in j["speeds"])
     # the force passes from the least passing speed on, but the grip then moves faster than 4 m/s
-    assert [x <= 100 for x in f] == [v >= j["min_passing_speed_deg_s"] for v in sp]
+    cad = j["best_cadence"]
+    assert [x <= 100 for x in f] == [v >= cad["force_passes_deg_s"]["min"] for v in sp]
+    assert cad["verdict_passes_deg_s"] is None
     assert [r["pass"] for r in j["speeds"]] == [False] * 6 and all(
         r["grip_speed_m_s"] > 4 for r in j["speeds"]
     )
@@ -985,7 +1022,8 @@ def test_speed_command(tmp_path):
     assert j["speeds"][3]["verdict"] == one["verdict"] == "FAIL"
     png = tmp_path / "s.png"
     t = run("speed", FLY, "--plot", png)
-    assert png.stat().st_size > 10_000 and "within the 100 N limit from a mean" in t.stdout
+    assert png.stat().st_size > 10_000 and "within 100 N: from 390 deg/s up" in t.stdout
+    assert "best cadence: 311 deg/s (52 rpm)" in t.stdout
     q = run("speed", "configs/prototype.toml", cwd=Path(__file__).parents[2])
     assert q.returncode == 2 and q.stderr.count("\n") == 1 and "wheel.mass" in q.stderr
     bad = run("speed", FLY, "--from", "500", "--to", "100")
@@ -1000,8 +1038,11 @@ def test_zero_inertia_fails_cleanly(tmp_path):
     d["load"]["moving_mass"] = 0.0
     spec = tmp_path / "j0.toml"
     spec.write_text(tomli_w.dumps(d), encoding="utf-8")
-    p = run("force", spec, "--summary", "--explain", "--verify", "--format", "json")
+    p = run("force", spec, "--summary", "--explain", "--verify", "--format", "json", "--model", "flywheel")
     assert p.returncode == 1 and "Traceback" not in p.stderr and "nothing to integrate" in p.stderr
     j = json.loads(p.stdout)
     assert j["model"] == "flywheel" and j["inertia_kg_m2"] == 0 and j["least_peak_force_N"] is None
     assert j["pass"] is False and "verify" not in j
+    # by the least model that is enough: the links are the only flywheel, full dynamics decides
+    a = json.loads(run("force", spec, "--summary", "--format", "json").stdout)
+    assert a["model"] == "full dynamics" and a["peak_force_N"] > 1000 and a["pass"] is False

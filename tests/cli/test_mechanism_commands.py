@@ -121,7 +121,7 @@ def test_outside_realisability_one_sentence_exit_1(args, words):
         (["rocker", "--swing", "200", "--rocker", "0.3", "-k", "1.2"], "--swing"),
         (["structure", "configs/prototype.toml"], "not a mechanism file"),
         (["synth", "examples/piston-pump.toml"], "piston-pump spec"),
-        (["force", "examples/piston-pump.toml", "--verify"], "--verify"),
+        (["force", "examples/piston-pump.toml", "--plot", "p.png"], "--plot"),
     ],
 )
 def test_bad_input_one_line_exit_2(args, words):

@@ -245,4 +245,4 @@ def test_report_of_a_failing_design_is_written_and_exits_1(tmp_path):
     p = run("report", "examples/well-12m-flywheel.toml", "--out", str(out))
     assert p.returncode == 1 and "FAIL" in p.stderr
     text = out.read_text(encoding="utf-8")
-    assert "FAIL" in text and "model: flywheel" in text
+    assert "FAIL" in text and "model: full dynamics" in text

@@ -1,0 +1,52 @@
+"""How a benchmark script hands its figures to the summary table of `make bench`.
+
+Every ``benchmarks/bench_*.py`` prints its own report and also calls :func:`record` once per
+figure; with ``PUMPLINK_BENCH_OUT`` set (``make bench`` sets it) each call appends one JSON line
+to that file, and ``benchmarks/summary.py`` renders all of them as one table at the end.
+Without the variable :func:`record` does nothing, so a script run by hand behaves as before.
+
+A line: ``{"script", "name", "value", "unit", "target", "met", "note", "load"}``; ``target``
+is the goal in words ("<= 0.25 s") or null, ``met`` true/false or null without a target,
+``load`` the 1-minute load average when the figure was taken (the machine is shared).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from pathlib import Path
+
+#: The environment variable naming the JSON-lines file the figures are appended to.
+ENV = "PUMPLINK_BENCH_OUT"
+
+
+def record(
+    name: str, value: float, unit: str, target: str | None = None, met: bool | None = None, note: str = ""
+):
+    """Append one figure to ``$PUMPLINK_BENCH_OUT`` (nothing when it is unset).
+
+    Parameters
+    ----------
+    name : what was measured, as a reader would say it ("pumplink synth SPEC, start-up").
+    value : the figure.
+    unit : its unit ("s", "ms", "designs/s", "x" for a ratio).
+    target : the goal with its comparison ("<= 0.25 s", ">= 5x"), or None when there is none.
+    met : whether the figure meets ``target``; None without a target.
+    note : a few words of context (a reference figure beside it, how it was measured).
+    """
+    path = os.environ.get(ENV)
+    if not path:
+        return
+    row = {
+        "script": Path(sys.argv[0]).name,
+        "name": name,
+        "value": float(value),
+        "unit": unit,
+        "target": target,
+        "met": None if met is None else bool(met),
+        "note": note,
+        "load": os.getloadavg()[0],
+    }
+    with open(path, "a", encoding="utf-8") as f:
+        f.write(json.dumps(row) + "\n")

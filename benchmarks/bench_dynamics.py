@@ -1,0 +1,108 @@
+"""Full-dynamics benchmarks: the least peak force with link masses (pumplink.models.dynamics).
+
+Medians over repeated runs in one process.  Targets: one design's Fp* in <= 5 ms, a batch at
+>= 10,000 designs/s per core.  The figure judged is the CPU time of this (single-threaded) process,
+i.e. per core: on a shared machine the wall clock, printed beside it, also counts the time other
+processes hold the core (on an idle machine the two agree).  Each line says the figure, the
+target and whether it is met.  Run with `make bench`.
+"""
+
+from __future__ import annotations
+
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_core import ROOT, machine  # noqa: E402
+
+from pumplink.analysis import cadence, design, force_analysis, link_masses  # noqa: E402
+from pumplink.mechanisms.fourbar import synthesize  # noqa: E402
+from pumplink.models import dynamics as dy  # noqa: E402
+from pumplink.spec import load_spec  # noqa: E402
+
+EXAMPLE = ROOT / "examples" / "well-12m-flywheel.toml"
+BATCH = 10_000
+
+
+def timed(fn, repeat):
+    """Median wall and CPU time [s] of ``repeat`` calls (after one warm-up call)."""
+    fn()
+    wall, cpu = [], []
+    for _ in range(repeat):
+        t0, c0 = time.perf_counter(), time.process_time()
+        fn()
+        wall.append(time.perf_counter() - t0)
+        cpu.append(time.process_time() - c0)
+    return statistics.median(wall), statistics.median(cpu)
+
+
+def line(label, figure, target, met):
+    print(f"{label}: {figure}; target {target}; met: {'yes' if met else 'NO'}")
+
+
+def batch_designs(spec, n, seed=12):
+    """``n`` distinct feasible designs around the spec: handle, swing, rocker, frame placement,
+    link mass, arm mass, speed and speed fluctuation all varied."""
+    rng = np.random.default_rng(seed)
+    lk = spec.linkage
+    m = 2 * n
+    syn = synthesize(
+        lk.L1 + rng.uniform(-0.05, 0.05, m),
+        lk.D1 + rng.uniform(-0.05, 0.05, m),
+        lk.b,
+        lk.rocker * rng.uniform(0.85, 1.15, m),
+        np.radians(lk.swing * rng.uniform(0.85, 1.15, m)),
+        lk.handle * rng.uniform(0.8, 1.2, m),
+    )
+    ok = np.nonzero(syn.reason == 0)[0][:n]
+    four = syn.linkage.take(ok)
+    masses = dy.bar_masses(four, rng.uniform(0.5, 3.0, ok.size), rng.uniform(0.0, 6.0, ok.size))
+    return (
+        four,
+        syn.dead_centre_extended[ok],
+        syn.dead_centre_folded[ok],
+        spec.wheel_torque,
+        spec.inertia,
+        masses,
+        np.radians(rng.uniform(180.0, 720.0, ok.size)),
+        rng.uniform(0.1, 0.4, ok.size),
+    )
+
+
+def main() -> None:
+    print(f"machine: {machine()}")
+    spec = load_spec(EXAMPLE)
+    syn = design(spec).synthesis
+    lk, mw, j = syn.linkage, spec.wheel_torque, spec.inertia
+    dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
+    ms = link_masses(spec, float(syn.coupler_length), arms=False)
+    w = np.radians(spec.operator.speed)
+    wall, cpu = timed(lambda: dy.least_peak_force(lk, dce, dcf, mw, j, ms, w, 0.2), 51)
+    line(
+        "Fp*, one design (12 m example)",
+        f"cpu {cpu * 1e3:.2f} ms (wall {wall * 1e3:.2f})",
+        "<= 5 ms",
+        cpu <= 5e-3,
+    )
+    args = batch_designs(spec, BATCH)
+    n = args[0].crank.size
+    wall, cpu = timed(lambda: dy.least_peak_force(*args), 5)
+    line(
+        f"Fp*, {n:,} designs in one call",
+        f"cpu {n / cpu:,.0f}/s (wall {n / wall:,.0f}/s)",
+        ">= 10,000/s",
+        n / cpu >= 10_000,
+    )
+    r = force_analysis(spec, keep_samples=False)
+    wall, cpu = timed(lambda: cadence(r), 5)
+    print(
+        f"best cadence and passing speeds (12 m example): cpu {cpu * 1e3:.0f} ms (wall {wall * 1e3:.0f} ms)"
+    )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,1033 @@
+"""Full one-degree-of-freedom dynamics: link masses, their weight and the operator's arms.
+
+The flywheel scene (:mod:`pumplink.models.flywheel`) carries only the wheel's inertia J.  Here the
+coupler and the handle move with their masses, the handle's weight rises and falls, and an
+optional point mass at the grip stands for the operator's hands and forearms (docs/models.md §3).
+
+The scene
+---------
+Generalised coordinate: the crank angle t (= the wheel's angle).  Kinetic and potential energy
+
+    T = I(t) w^2 / 2,   I(t) = J + sum over moving links (m |v_G|^2 + I_G w_link^2) / w^2    (5)
+    V(t) = g_n (sum of m y_G)                                                              (6)
+
+with the coupler and the handle (the rocker extended from O4 to the grip, length max(H, rocker))
+as uniform bars, the point mass at the grip, and g_n the standard gravity.  The energy balance per
+crank radian (the power balance F vx - Mw w = d(T + V)/dt divided by w) still contains no w:
+
+    dE/dt = F g(t) - Mw,   E = T + V,   g = dPx/dt                                    (7)
+
+The speed band w in [w_bar (1 - delta/2), w_bar (1 + delta/2)] is the t-dependent band on E
+
+    lower(t) = V + I w_lo^2 / 2  <=  E  <=  upper(t) = V + I w_hi^2 / 2                  (8)
+
+The flywheel scene is the special case I = J, V = 0 (a constant band of width J w_bar^2 delta).
+
+The least peak force, exactly (docs/models.md §3, the proof)
+-----------------------------------------------------------
+With |F| <= Fp the slope of E lies in [-Fp |g| - Mw, Fp |g| - Mw]; with G the grip's horizontal
+travel (|dPx| summed), Q = Fp G - Mw t and P = -Fp G - Mw t are the fastest gain and the fastest
+loss.  A periodic motion inside the band exists **iff** Fp >= F_mean and, over every arc shorter
+than a revolution,
+
+    (C1) t <= s:  lower(s) - upper(t) <= Q(s) - Q(t)   (from the top at t, full push reaches s)
+    (C2) s <= t:  upper(t) - lower(s) >= P(t) - P(s)   (from the bottom at s, full braking stays
+                                                          below the top at t)
+
+and then the largest motion, e = min(Q + running min of (upper - Q) over the past revolution,
+P + running min of (upper - P) over the next one), is one.  Both are linear in Fp, so the least
+peak force is a fractional programme over pairs of crank angles, solved by Dinkelbach's iteration
+on grid nodes (plus nodes clustered at the dead centres), then with every local extremum of the
+four functions upper - Q, lower - Q, lower - P, upper - P refined by a bracketing root search on
+their derivatives (analytic: I', V' from the acceleration analysis).
+
+Pure functions on floats / arrays over designs; SI units, radians.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from pumplink.constants import GRAVITY
+from pumplink.mechanisms.angles import TWO_PI
+from pumplink.mechanisms.fourbar import FourBar, loop_closure, per_design
+from pumplink.models import flywheel as _fw
+from pumplink.models import quasi_static as _qs
+
+#: Uniform grid nodes per revolution that bracket the extrema before refinement (the refinement
+#: makes the answer exact; features of the four functions narrower than a cell, 3.75 deg, are merged).
+GRID = 96
+#: Geometric nodes each side of a dead centre, at cell / 4**k for k = 1..CLUSTER (down to ~1e-5 rad).
+CLUSTER = 6
+#: Designs solved together: their (designs, nodes) arrays stay in the processor's cache (a third
+#: faster than one pass over 5,000 designs, benchmarks/bench_dynamics.py).
+CHUNK = 1024
+#: Relative convergence of Dinkelbach's iteration on the peak force.
+RTOL = 1e-13
+#: Relative convergence of the iteration over the grid nodes (it only says where to refine).
+GRID_RTOL = 1e-3
+#: Largest relative step of the force after which the next pass only follows the extrema already
+#: found (the passes converge quadratically; the last pass always looks at the whole grid).
+TRACK_RTOL = 1e-9
+#: Peak forces above this multiple of F_mean are reported as infinite (as in the flywheel scene).
+FORCE_CAP_RATIO = _fw.FORCE_CAP_RATIO
+#: A Newton step [rad] below which the extremum refinement stops (its error is then of second
+#: order, below 1e-14 rad; the value of the function, flat at an extremum, is exact to rounding).
+REFINE_XTOL = 1e-8
+#: Most iterations of the bracketed refinement (safeguarded Newton: 3-5 in practice).
+REFINE_ITER = 60
+#: Most Newton steps of a warm start from the previous pass's root before the bracketed search.
+WARM_ITER = 3
+#: Finite-difference step of the refinement's Newton iteration, as a fraction of the bracket.
+REFINE_STEP = 1e-6
+
+
+# ----------------------------------------------------------------------------- masses
+@dataclass(frozen=True)
+class Masses:
+    """Moving masses of the linkage (floats or arrays over designs) [kg].
+
+    Attributes
+    ----------
+    coupler : mass of the coupler, a uniform bar from the crank pin A to the joint B.
+    handle : mass of the handle, a uniform bar from the rocker pivot O4 along the rocker, of
+        length max(H, rocker).
+    grip : point mass at the grip (the operator's hands and forearms), 0 for the hand force.
+    """
+
+    coupler: np.ndarray | float = 0.0
+    handle: np.ndarray | float = 0.0
+    grip: np.ndarray | float = 0.0
+
+
+def bar_masses(lk: FourBar, mass_per_length, grip=0.0) -> Masses:
+    """Coupler and handle as uniform bars of ``mass_per_length`` [kg/m]; ``grip`` [kg] at the grip."""
+    return Masses(
+        mass_per_length * np.asarray(lk.coupler, float),
+        mass_per_length * np.maximum(lk.handle, lk.rocker),
+        grip,
+    )
+
+
+# ----------------------------------------------------------------------------- I, I', V, V'
+@dataclass(frozen=True)
+class Terms:
+    """Reduced inertia and potential of the links at crank angles (wheel inertia J not included).
+
+    inertia : I - J [kg m^2];  inertia_rate : dI/dt [kg m^2/rad];  potential : V [J];
+    potential_rate : dV/dt [J/rad];  grip_rate : g = dPx/dt [m/rad];  grip_x : Px [m].
+    """
+
+    inertia: np.ndarray
+    inertia_rate: np.ndarray
+    potential: np.ndarray
+    potential_rate: np.ndarray
+    grip_rate: np.ndarray
+    grip_x: np.ndarray
+
+
+def terms(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only: bool = False) -> Terms:
+    """I(t) - J, I'(t), V(t), V'(t) and g(t) of Eq. (5)-(7) (docs/models.md §3a).
+
+    With u = B - A (the coupler) and w = B - O4 (the rocker), the loop closure A + u = O4 + w
+    differentiated once and twice (unit crank speed, no crank acceleration) gives the velocity
+    coefficients h3 = dt3/dt, h4 = dt4/dt and their derivatives d3, d4 from one 2 x 2 system each:
+
+        h3 = (V . w) / S,  h4 = (V . u) / S,   V = -dA/dt,           S = u x w
+        d3 = (R . w) / S,  d4 = (R . u) / S,   R = -d2A/dt2 + h3^2 u - h4^2 w
+
+    (S = coupler * rocker * sin of the transmission angle: never zero for a crank-rocker; no instant
+    centres).  ``rates_only``: I - J, V and Px are left None (the extremum refinement needs only I',
+    V' and g).
+    """
+    th = np.asarray(crank_angle, float)
+    cs, sn = np.cos(th), np.sin(th)
+    px, py, c, k, r, hh = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle
+    with np.errstate(all="ignore"):
+        _p1, _p2, _e2, t, q = loop_closure(lk, cs, sn)
+        ccs, csn = c * cs, c * sn  # the crank pin A
+        dx, dy = px - ccs, py - csn  # O4 - A
+        ux, uy = t * dx - q * dy, t * dy + q * dx  # B - A (Eq. (6) of pumplink.mechanisms.fourbar)
+        wx, wy = ux - dx, uy - dy  # B - O4
+        inv = 1.0 / (ux * wy - uy * wx)
+        h3 = (csn * wx - ccs * wy) * inv  # first derivative of the loop closure
+        h4 = (csn * ux - ccs * uy) * inv
+        h33, h44 = h3 * h3, h4 * h4
+        rx = ccs + h33 * ux - h44 * wx
+        ry = csn + h33 * uy - h44 * wy
+        d3 = (rx * wx + ry * wy) * inv  # second derivative
+        d4 = (rx * ux + ry * uy) * inv
+        # coupler centre A + u/2: velocity and acceleration coefficients
+        vx = -csn - 0.5 * h3 * uy
+        vy = ccs + 0.5 * h3 * ux
+        ax = -ccs - 0.5 * (d3 * uy + h33 * ux)
+        ay = -csn + 0.5 * (d3 * ux - h33 * uy)
+        arm = np.maximum(hh, r)
+        mc, mh, ma = masses.coupler, masses.handle, masses.grip
+        ic = mc * k * k / 12.0
+        i4 = mh * arm * arm / 3.0 + ma * hh * hh  # about O4
+        rate = 2.0 * (mc * (vx * ax + vy * ay) + ic * h3 * d3 + i4 * h4 * d4)
+        lever = (0.5 * mh * arm + ma * hh) / r  # first moment about O4 along the rocker, per metre of w
+        inertia = potential = grip_x = None
+        if not rates_only:
+            inertia = mc * (vx * vx + vy * vy) + ic * h33 + i4 * h44  # Eq. (5)
+            potential = gravity * (mc * (csn + 0.5 * uy) + (mh + ma) * py + lever * wy)  # Eq. (6)
+            grip_x = px + (hh / r) * wx
+        potential_rate = gravity * (mc * vy + lever * h4 * wx)
+        grip_rate = -(hh / r) * h4 * wy
+    return Terms(inertia, rate, potential, potential_rate, grip_rate, grip_x)
+
+
+def reduced_inertia(lk: FourBar, crank_angle, inertia, masses: Masses):
+    """I(t) and dI/dt [kg m^2, kg m^2/rad] of Eq. (5): the wheel's J plus the links'."""
+    tm = terms(lk, crank_angle, masses)
+    return inertia + tm.inertia, tm.inertia_rate
+
+
+def potential(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY):
+    """V(t) and dV/dt [J, J/rad] of Eq. (6), zero at the wheel axle's height."""
+    tm = terms(lk, crank_angle, masses, gravity)
+    return tm.potential, tm.potential_rate
+
+
+def speed_limits(mean_speed, speed_fluctuation):
+    """w_lo = w_bar (1 - delta/2), w_hi = w_bar (1 + delta/2) [rad/s]."""
+    w = np.asarray(mean_speed, float)
+    return w * (1.0 - 0.5 * speed_fluctuation), w * (1.0 + 0.5 * speed_fluctuation)
+
+
+def energy_band(
+    lk: FourBar, crank_angle, inertia, masses: Masses, mean_speed, speed_fluctuation, gravity=GRAVITY
+):
+    """The t-dependent band on E = T + V, Eq. (8): (lower, upper) [J]."""
+    tm = terms(lk, crank_angle, masses, gravity)
+    lo, hi = speed_limits(mean_speed, speed_fluctuation)
+    i = inertia + tm.inertia
+    return tm.potential + 0.5 * i * lo * lo, tm.potential + 0.5 * i * hi * hi
+
+
+# ----------------------------------------------------------------------------- the solver
+@dataclass(frozen=True)
+class _Problem:
+    """Per-design data (1-D arrays over D designs) and the band's edges at the grid nodes (D, M)."""
+
+    prep: object  # flywheel._Prepared: geometry, dead centres, stroke, grip travel at the nodes
+    lk: FourBar  # (D,) arrays
+    inertia: np.ndarray
+    masses: Masses  # (D,) arrays
+    w_lo: np.ndarray
+    w_hi: np.ndarray
+    gravity: float
+    mw: np.ndarray
+    stroke: np.ndarray
+    up: np.ndarray | None  # upper edge of the band at the nodes (D, M) [J]
+    lo: np.ndarray | None  # lower edge [J]
+
+    def points(self, rows=None):
+        """The grid nodes of designs ``rows`` (all: None) as points (x, base, local, up, lo)."""
+        p = self.prep
+        if rows is None:
+            return p.nodes, p.base, p.local, self.up, self.lo
+        return p.nodes[rows], p.base[rows], p.local[rows], self.up[rows], self.lo[rows]
+
+    def edges(self, phi, rows=None):
+        """upper and lower edge of the band [J] at points phi [rad from the extended dead centre],
+        shape (R, K), of the designs ``rows`` (R,) (all: None)."""
+        take = (lambda v: v[:, None]) if rows is None else (lambda v: v[rows][:, None])  # noqa: E731
+        lk = FourBar(*(take(v) for v in self.lk.parameters))
+        ms = Masses(take(self.masses.coupler), take(self.masses.handle), take(self.masses.grip))
+        tm = terms(lk, take(self.prep.dce) + phi, ms, self.gravity)
+        i = take(self.inertia) + tm.inertia
+        hi, lo = 0.5 * take(self.w_hi) ** 2, 0.5 * take(self.w_lo) ** 2
+        return tm.potential + i * hi, tm.potential + i * lo  # Eq. (8)
+
+
+def _node_travel(nodes, plus, grip_x, xe, xf, stroke):
+    """Grip travel G = base + local [m] at the grid nodes from their positions: the split at the
+    nearest dead centre of :func:`pumplink.models.flywheel._travel_parts`, without its integration
+    next to a dead centre.  The grid only brackets the extrema and starts the iteration (every
+    reported force comes from refined points, whose travel is integrated there), so position
+    differences, exact to ~1e-16 m, are enough."""
+    to_fold = nodes - plus
+    at_fold = np.abs(to_fold) <= np.minimum(nodes, TWO_PI - nodes)
+    s = np.where(at_fold, to_fold, np.where(nodes <= TWO_PI - nodes, nodes, nodes - TWO_PI))
+    base = np.where(at_fold, stroke, np.where(s >= 0, 0.0, 2.0 * stroke))
+    return base, np.sign(s) * np.abs(grip_x - np.where(at_fold, xf, xe))
+
+
+def _problem(lk, dce, dcf, wheel_torque, inertia, masses, mean_speed, speed_fluctuation, gravity):
+    scalar, arrays = per_design(
+        lk,
+        dce,
+        dcf,
+        wheel_torque,
+        inertia,
+        masses.coupler,
+        masses.handle,
+        masses.grip,
+        mean_speed,
+        speed_fluctuation,
+    )
+    geom, (dce, dcf, mw, j, mc, mh, ma, w, delta) = arrays[:7], arrays[7:]
+    lk1 = FourBar(*geom)
+    w_lo, w_hi = speed_limits(w, delta)
+    with np.errstate(all="ignore"):
+        xe = _fw._grip_x(dce, *geom)
+        xf = _fw._grip_x(dcf, *geom)
+        stroke = np.abs(xf - xe)
+        nodes, plus = _fw._nodes(dce, dcf, GRID, CLUSTER)
+        col = FourBar(*(v[:, None] for v in geom))
+        tm = terms(col, dce[:, None] + nodes, Masses(mc[:, None], mh[:, None], ma[:, None]), gravity)
+        i = j[:, None] + tm.inertia
+        up = tm.potential + i * (0.5 * w_hi**2)[:, None]  # Eq. (8)
+        lo = tm.potential + i * (0.5 * w_lo**2)[:, None]
+        base, local = _node_travel(nodes, plus[:, None], tm.grip_x, xe[:, None], xf[:, None], stroke[:, None])
+    prep = _fw._Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
+    return _Problem(prep, lk1, j, Masses(mc, mh, ma), w_lo, w_hi, gravity, mw, stroke, up, lo), scalar
+
+
+# The pairs of (C1)-(C2) in the form the sweeps use (docs/models.md §3a).  At the points x of a row
+# (sorted, one revolution) with G = base + local and the lam-free parts au = upper + Mw x,
+# al = lower + Mw x:  upper - Q = au - lam G,  lower - Q = al - lam G,  lower - P = al + lam G,
+# upper - P = au + lam G; one revolution later Q has grown by a = 2 lam S - 2 pi Mw and P by
+# b = -2 lam S - 2 pi Mw.  N and K of a pair (earlier point i, later point j, "wrap" when i lies
+# one revolution back):  (C1) N = al_j - au_i (+ 2 pi Mw),  (C2) N = al_i - au_j (- 2 pi Mw),
+# K = G_j - G_i (+ 2 S) for both.
+def _pairs(g, au, al, base, local, mw, stroke, lam):
+    """The worst pair of (C1) and of (C2) at Fp = lam over the points of each row.
+
+    Returns (h, ratio), each (D, 2) for the two families: h = max over pairs of N - lam K [J]
+    (feasible iff h <= 0 in both), ratio = N / K of the maximising pair [N] (Dinkelbach's next
+    iterate).  Pairs whose earlier point lies up to a revolution back are included without
+    doubling the arrays: a running extremum one revolution back is the row's extremum shifted by
+    the drift (a or b), so the later copy of a point always dominates its first copy.
+    """
+    rows = np.arange(g.shape[0])
+    lg = lam[:, None] * g
+    out_h = np.empty((g.shape[0], 2))
+    out_r = np.empty((g.shape[0], 2))
+    two_s, turn = 2.0 * stroke, TWO_PI * mw
+
+    def ratio(i, j, wrap, num):
+        k = (base[rows, j] - base[rows, i]) + (local[rows, j] - local[rows, i])  # no cancellation at a DC
+        return num / (k + np.where(wrap, two_s, 0.0))
+
+    # (C1): lower(s) - Q(s) - min over t <= s of (upper(t) - Q(t)) <= 0
+    f = au - lg
+    run = np.minimum.accumulate(f, axis=1)
+    back = (run[:, -1] + 2.0 * lam * stroke - turn)[:, None]  # the minimum one revolution back
+    best = np.minimum(run, back)
+    v = al - lg - best
+    j = np.argmax(v, axis=1)
+    out_h[:, 0] = v[rows, j]
+    wrap = best[rows, j] < run[rows, j]
+    i = np.where(wrap, np.argmin(f, axis=1), np.argmax(f == run[rows, j][:, None], axis=1))
+    out_r[:, 0] = ratio(i, j, wrap, al[rows, j] - au[rows, i] + np.where(wrap, turn, 0.0))
+    # (C2): max over s <= t of (lower(s) - P(s)) - (upper(t) - P(t)) <= 0
+    f = al + lg
+    run = np.maximum.accumulate(f, axis=1)
+    back = (run[:, -1] - 2.0 * lam * stroke - turn)[:, None]
+    best = np.maximum(run, back)
+    v = best - au - lg
+    j = np.argmax(v, axis=1)
+    out_h[:, 1] = v[rows, j]
+    wrap = best[rows, j] > run[rows, j]
+    i = np.where(wrap, np.argmax(f, axis=1), np.argmax(f == run[rows, j][:, None], axis=1))
+    out_r[:, 1] = ratio(i, j, wrap, al[rows, i] - au[rows, j] - np.where(wrap, turn, 0.0))
+    return out_h, out_r
+
+
+def _dinkelbach(pts, mw, stroke, lam, cap, rtol=RTOL):
+    """Dinkelbach's iteration over the pairs of the points ``pts`` = (x, base, local, up, lo), each
+    (D, K), from the lower bound ``lam``.
+
+    Every iterate is the ratio of a pair, so a lower bound of Fp*; a row stops when no pair of its
+    points is violated (or the iterate moves by less than RTOL).  The rows still iterating are
+    gathered into smaller arrays only when they are fewer than half of those held.
+    """
+    x, base, local, up, lo = pts
+    m = mw[:, None] * x
+    held = [base + local, up + m, lo + m, base, local, mw, stroke, cap]
+    lam = np.array(lam, float)
+    where = np.arange(lam.size)  # row of lam for each held row
+    live = np.ones(lam.size, bool)
+    for _ in range(200):
+        n_live = int(live.sum())
+        if n_live == 0:
+            break
+        if n_live < 0.5 * live.size:
+            keep = np.nonzero(live)[0]
+            held, where, live = [v[keep] for v in held], where[keep], live[keep]
+        cur = lam[where]
+        with np.errstate(all="ignore"):
+            h, r = _pairs(*held[:7], cur)
+            r = np.where(h > 0, np.where(np.isnan(r), np.inf, r), -np.inf)
+            new = r.max(axis=1)
+        grow = live & (new > cur)
+        done = ~grow | (new - cur <= rtol * np.abs(new))
+        cur = np.where(grow, new, cur)
+        capped = ~(cur <= held[7])
+        cur[capped] = np.inf
+        lam[where[live]] = cur[live]
+        live &= ~(done | capped)
+    return lam
+
+
+#: The four functions whose local extrema hold the worst pairs: (edge, sign of lam G, kind) with
+#: edge 0 upper / 1 lower, sign -1 for "minus Q" / +1 for "minus P", kind -1 minima / +1 maxima.
+#: (C1) pairs a local minimum of upper - Q with a later local maximum of lower - Q, (C2) a local
+#: maximum of lower - P with a later local minimum of upper - P.
+_FAMILIES = ((0, -1.0, -1), (1, -1.0, 1), (1, 1.0, 1), (0, 1.0, -1))
+
+
+def _extrema(pb: _Problem, lam, rows):
+    """The local extrema of :data:`_FAMILIES` on the grid nodes of designs ``rows`` at Fp = lam (per
+    row): (design, node, lo, hi, family) with the neighbouring nodes (lo, hi) as the bracket."""
+    x, base, local, up, low = pb.points(rows)
+    lg = lam[:, None] * (base + local)
+    m = pb.mw[rows][:, None] * x
+    a = 2.0 * lam * pb.stroke[rows] - TWO_PI * pb.mw[rows]
+    b = -2.0 * lam * pb.stroke[rows] - TWO_PI * pb.mw[rows]
+    last = x.shape[1] - 1
+    ext = np.empty(x.shape, bool)
+    out = []
+    for fam, (edge, sign, kind) in enumerate(_FAMILIES):
+        drift = a if sign < 0 else b
+        f = (up if edge == 0 else low) + m
+        f += sign * lg  # upper/lower minus Q (sign -1) or P (+1)
+        f *= -kind  # local maxima become minima
+        with np.errstate(invalid="ignore"):
+            np.less(f[:, 1:-1], f[:, 2:], out=ext[:, 1:-1])
+            ext[:, 1:-1] &= f[:, 1:-1] <= f[:, :-2]
+            # the neighbours across the period: f(x - 2 pi) = f(x) + drift (times -kind)
+            ext[:, 0] = (f[:, 0] <= f[:, -1] - kind * drift) & (f[:, 0] < f[:, 1])
+            ext[:, -1] = (f[:, -1] <= f[:, -2]) & (f[:, -1] < f[:, 0] + kind * drift)
+        d, k = np.nonzero(ext)
+        out.append((d, k, np.full(d.size, fam)))
+    d, k, fam = (np.concatenate(v) for v in zip(*out, strict=True))
+    node = x[d, k]
+    lo = np.where(k > 0, x[d, k - 1], x[d, last] - TWO_PI)
+    hi = np.where(k < last, x[d, np.minimum(k + 1, last)], x[d, 0] + TWO_PI)
+    return d, node, lo, hi, fam
+
+
+class _Slope:
+    """The derivative of one family's function at the extrema being refined (1-D arrays, one per
+    extremum): f' = V' + I' w^2/2 + sign lam |g| + Mw, with w the band's top or bottom speed."""
+
+    def __init__(self, pb: _Problem, dd, fam, lam_e):
+        edge = np.array([f[0] for f in _FAMILIES])[fam]
+        sign = np.array([f[1] for f in _FAMILIES])[fam]
+        self.lk = FourBar(*(v[dd] for v in pb.lk.parameters))
+        self.ms = Masses(pb.masses.coupler[dd], pb.masses.handle[dd], pb.masses.grip[dd])
+        self.w2 = 0.5 * np.where(edge == 0, pb.w_hi[dd], pb.w_lo[dd]) ** 2
+        self.slam = sign * lam_e
+        self.mw, self.dce, self.gravity = pb.mw[dd], pb.prep.dce[dd], pb.gravity
+
+    def __call__(self, phi, idx=None):
+        """f' at phi [rad from the extended dead centre], shape (..., E) or (..., len(idx))."""
+        if idx is None:
+            lk, ms, w2, slam, mw, dce = self.lk, self.ms, self.w2, self.slam, self.mw, self.dce
+        else:
+            lk = self.lk.take(idx)
+            ms = Masses(self.ms.coupler[idx], self.ms.handle[idx], self.ms.grip[idx])
+            w2, slam, mw, dce = self.w2[idx], self.slam[idx], self.mw[idx], self.dce[idx]
+        tm = terms(lk, dce + phi, ms, self.gravity, rates_only=True)
+        return tm.potential_rate + tm.inertia_rate * w2 + slam * np.abs(tm.grip_rate) + mw
+
+
+def _newton(slope: _Slope, start, lo, hi, width):
+    """Newton's method on f' (finite-difference second derivative, step REFINE_STEP * width) from
+    ``start`` without a bracket: the root where a step below REFINE_XTOL lands inside (lo, hi),
+    NaN where it leaves the bracket or has not converged after WARM_ITER steps."""
+    out = np.full(start.size, np.nan)
+    c = start.copy()
+    live = np.nonzero(np.isfinite(c))[0]
+    for _ in range(WARM_ITER):
+        if live.size == 0:
+            break
+        cc = c[live]
+        step = REFINE_STEP * width[live]
+        fc, fh = slope(np.stack([cc, cc + step]), live)
+        new = np.where(fc == 0, cc, cc - fc * step / (fh - fc))
+        inside = (new > lo[live]) & (new < hi[live])
+        conv = inside & (np.abs(new - cc) <= REFINE_XTOL)
+        out[live[conv]] = new[conv]
+        c[live] = new
+        live = live[inside & ~conv]
+    return out
+
+
+def _bracketed(slope: _Slope, lo, hi, node, idx):
+    """Roots of f' in the brackets (lo, hi) of the extrema ``idx``: a secant start, then Newton
+    safeguarded by the bracket, until a step is below REFINE_XTOL (the extremum's value is then
+    exact to rounding: the function is flat there).  Where f' does not change sign over the
+    bracket (an extremum at a node, e.g. a dead centre) the node itself."""
+    a, b = lo[idx].copy(), hi[idx].copy()
+    root = node[idx].copy()
+    with np.errstate(all="ignore"):
+        fa, fb = slope(np.stack([a, b]), idx)
+        live = np.nonzero(np.isfinite(fa) & np.isfinite(fb) & (np.sign(fa) * np.sign(fb) < 0))[0]
+        c = (a * fb - b * fa) / (fb - fa)  # a secant step to start
+        for _ in range(REFINE_ITER):
+            if live.size == 0:
+                break
+            al, bl, fal = a[live], b[live], fa[live]
+            cc = c[live]
+            cc = np.where((cc > al) & (cc < bl), cc, 0.5 * (al + bl))
+            step = REFINE_STEP * np.maximum(bl - al, REFINE_XTOL)
+            fc, fh = slope(np.stack([cc, cc + step]), idx[live])
+            left = np.sign(fc) == np.sign(fal)  # keep the root bracketed
+            al, bl = np.where(left, cc, al), np.where(left, bl, cc)
+            a[live], b[live], fa[live] = al, bl, np.where(left, fc, fal)
+            new = np.where(fc == 0, cc, cc - fc * step / (fh - fc))
+            conv = (np.abs(new - cc) <= REFINE_XTOL) | (bl - al <= REFINE_XTOL)
+            root[live[conv]] = np.clip(new[conv], al[conv], bl[conv])
+            c[live] = new
+            live = live[~conv]
+        root[live] = 0.5 * (a[live] + b[live])
+    return root
+
+
+@dataclass(frozen=True)
+class _Track:
+    """Refined extrema, one entry each: design (absolute index), family, bracket, grid node, root."""
+
+    design: np.ndarray
+    family: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+    node: np.ndarray
+    root: np.ndarray
+
+    def _fields(self):
+        return (self.design, self.family, self.lo, self.hi, self.node, self.root)
+
+    def of(self, rows):
+        """The entries of the designs ``rows``, in their order."""
+        keep = np.isin(self.design, rows)
+        return _Track(*(v[keep] for v in self._fields()))
+
+    def updated(self, other: _Track, rows):
+        """These entries with those of the designs ``rows`` replaced by ``other``'s."""
+        keep = ~np.isin(self.design, rows)
+        return _Track(*(np.concatenate([a[keep], b]) for a, b in zip(self._fields(), other._fields())))
+
+
+def _warm_start(track: _Track | None, dd, fam, node, lo, hi):
+    """The previous root of the same family and design nearest to each grid node, where it lies in
+    the node's bracket (lo, hi); NaN elsewhere."""
+    start = np.full(dd.size, np.nan)
+    if track is None or track.root.size == 0 or dd.size == 0:
+        return start
+    key = fam * (int(max(dd.max(), track.design.max())) + 1) + dd
+    wkey = track.family * (int(max(dd.max(), track.design.max())) + 1) + track.design
+    order = np.lexsort((track.root, wkey))
+    wkey, wroot = wkey[order], track.root[order]
+    pos = np.searchsorted(wkey * 8.0 + wroot, key * 8.0 + np.mod(node, TWO_PI))  # roots lie in [0, 2 pi)
+    for p in (pos - 1, pos):
+        p = np.clip(p, 0, wkey.size - 1)
+        off = np.mod(wroot[p] - node + np.pi, TWO_PI) - np.pi
+        near = (wkey[p] == key) & (node + off > lo) & (node + off < hi)
+        better = near & ~(np.abs(off) >= np.abs(start - node))
+        start = np.where(better, node + off, start)
+    return start
+
+
+def _refined_points(pb: _Problem, lam, rows, track: _Track | None = None, detect: bool = True):
+    """Every local extremum of :data:`_FAMILIES` at Fp = lam, located by a root search on its
+    analytic derivative (bracketed by the neighbouring grid nodes), as the points
+    (x, base, local, up, lo), each (len(rows), K) sorted per row, and the extrema as a
+    :class:`_Track` for the next call.
+
+    The pairs of (C1)-(C2) are extreme at such points (a running minimum is attained at a local
+    minimum, the largest excess after it at a local maximum), so the points hold the worst pair
+    at this lam exactly; at another force they still give lower bounds.  ``track`` (the extrema of
+    the previous call, at a nearby force) starts Newton at the same family's root in the same
+    bracket; where that fails the bracketed search runs.  ``detect=False`` follows the extrema of
+    ``track`` to this lam without looking for new ones on the grid (cheap; the points are then
+    only lower bounds, for the passes before the last).
+    """
+    if detect:
+        d, node, lo, hi, fam = _extrema(pb, lam, rows)
+        dd = rows[d]
+    else:
+        track = track.of(rows)
+        dd, fam, lo, hi, node = track.design, track.family, track.lo, track.hi, track.node
+        d = np.searchsorted(rows, dd)
+    slope = _Slope(pb, dd, fam, lam[d])
+    width = hi - lo
+    with np.errstate(all="ignore"):
+        start = _warm_start(track, dd, fam, node, lo, hi) if detect else track.root
+        root = _newton(slope, start, lo, hi, width)
+        if detect:
+            cold = np.nonzero(~np.isfinite(root))[0]
+            if cold.size:
+                root[cold] = _bracketed(slope, lo, hi, node, cold)
+        else:  # a root that could not be followed stays where it was (still a point of the curve)
+            root = np.where(np.isfinite(root), root, start)
+    root = np.mod(root, TWO_PI)
+    # one sorted row of points per design; short rows repeat their last point (a repeated point
+    # adds no pair and keeps the row sorted), a design without extrema gets its extended dead centre
+    count = np.bincount(d, minlength=rows.size)
+    width_k = max(int(count.max()) if count.size else 1, 1)
+    order = np.lexsort((root, d))
+    ds, rs = d[order], root[order]
+    slot = np.arange(ds.size) - (np.cumsum(count) - count)[ds]
+    x = np.full((rows.size, width_k), np.nan)
+    x[ds, slot] = rs
+    last = np.where(count > 0, x[np.arange(rows.size), np.maximum(count - 1, 0)], 0.0)
+    x = np.where(np.isnan(x), last[:, None], x)
+    args = [v[rows][:, None] for v in pb.prep.args()]
+    with np.errstate(all="ignore"):
+        base, local = _fw._travel_parts(x, *args)
+        up, low = pb.edges(x, rows)
+    return (x, base, local, up, low), _Track(dd, fam, lo, hi, node, root)
+
+
+def _solve(pb: _Problem, max_passes: int = 24):
+    n = pb.mw.size
+    out = np.full(n, np.nan)
+    with np.errstate(all="ignore"):
+        ok = (
+            np.isfinite(pb.stroke)
+            & (pb.stroke > 0)
+            & np.isfinite(pb.up).all(axis=1)
+            & np.isfinite(pb.lo).all(axis=1)
+        )
+        f_mean = _qs.mean_force(pb.mw, pb.stroke)
+        cap = FORCE_CAP_RATIO * f_mean
+        zero = ok & (pb.w_hi <= pb.w_lo)
+        out[zero] = np.inf
+        todo = np.nonzero(ok & ~zero)[0]
+    if todo.size == 0:
+        return out
+    # Dinkelbach over the pairs of grid nodes, only to find where to refine (the grid's travel
+    # next to a dead centre is not integrated, so this force is not trusted as a bound); then
+    # passes over the extrema refined at the current force: Dinkelbach over their pairs (from
+    # F_mean in the first pass, from the last, exact, lower bound after).  Between full passes
+    # (extrema looked for on the whole grid) the extrema found are only followed to the new force,
+    # while it still moves by more than TRACK_RTOL.  A design is done when a full pass leaves its
+    # force where it was: it then is the ratio of a pair (a lower bound of Fp*) at which no pair is
+    # violated (an upper bound), Fp* up to the refinement tolerance.
+    grid = pb.points(None if todo.size == n else todo)
+    mw, stroke = pb.mw[todo], pb.stroke[todo]
+    lam = _dinkelbach(tuple(v[:, ::4] for v in grid), mw, stroke, f_mean[todo], cap[todo], GRID_RTOL)
+    lam = _dinkelbach(grid, mw, stroke, lam, cap[todo], GRID_RTOL)  # a quarter of the nodes first
+    live = np.nonzero(np.isfinite(lam))[0]
+    follow = np.zeros(todo.size, bool)  # designs whose next pass only follows their extrema
+    start = f_mean[todo]
+    track = None
+    for _ in range(max_passes):
+        if live.size == 0:
+            break
+        detect = not follow[live].any()
+        sel = live if detect else live[follow[live]]
+        rows = todo[sel]
+        pts, found = _refined_points(pb, lam[sel], rows, track, detect)
+        track = found if detect or track is None else track.updated(found, rows)
+        new = _dinkelbach(pts, pb.mw[rows], pb.stroke[rows], start[sel], cap[rows])
+        step = np.abs(new - lam[sel])
+        lam[sel] = start[sel] = new
+        follow[sel] = step > TRACK_RTOL * np.abs(new)
+        done = ~np.isfinite(new)
+        if detect:  # certified where the full pass left the force where it was
+            done |= step <= 4 * RTOL * np.abs(new)
+        live = np.setdiff1d(live, sel[done], assume_unique=True)
+    out[todo] = lam
+    return out
+
+
+def least_peak_force(
+    lk: FourBar,
+    dead_centre_extended,
+    dead_centre_folded,
+    wheel_torque,
+    inertia,
+    masses: Masses,
+    mean_speed,
+    speed_fluctuation,
+    gravity=GRAVITY,
+):
+    """Least peak operator force [N] for a periodic motion inside the band of Eq. (8).
+
+    Exact up to the refinement tolerance ((C1)-(C2) of the module docstring, docs/models.md §3a).
+    With no link masses (I = J, V = 0) it is the flywheel scene's Eq. (4).
+
+    Parameters
+    ----------
+    lk : linkage (scalars or 1-D arrays over designs).
+    dead_centre_extended, dead_centre_folded : dead-centre crank angles [rad].
+    wheel_torque : Mw [N m];  inertia : J of the wheel, rope and water [kg m^2].
+    masses : :class:`Masses` [kg];  mean_speed : w_bar [rad/s];  speed_fluctuation : delta [-].
+    gravity : [m/s^2].
+
+    Returns
+    -------
+    Fp* [N]: inf where no force up to FORCE_CAP_RATIO * F_mean keeps the motion in the band,
+    NaN for an infeasible design.
+    """
+    scalar, arrays = per_design(
+        lk,
+        dead_centre_extended,
+        dead_centre_folded,
+        wheel_torque,
+        inertia,
+        masses.coupler,
+        masses.handle,
+        masses.grip,
+        mean_speed,
+        speed_fluctuation,
+    )
+    n = arrays[0].size
+    out = np.empty(n)
+    for start in range(0, n, CHUNK):  # chunks whose (designs, nodes) arrays stay in the cache
+        part = [v[start : start + CHUNK] for v in arrays]
+        ms = Masses(*part[11:14])
+        pb, _ = _problem(FourBar(*part[:7]), *part[7:11], ms, *part[14:], gravity)
+        out[start : start + CHUNK] = _solve(pb)
+    return float(out[0]) if scalar else out
+
+
+def band_margin(
+    lk: FourBar,
+    dead_centre_extended,
+    dead_centre_folded,
+    wheel_torque,
+    inertia,
+    masses: Masses,
+    mean_speed,
+    speed_fluctuation,
+    force,
+    gravity=GRAVITY,
+):
+    """max over the pairs of (C1)-(C2) of N - Fp K at Fp = ``force`` [J]: for Fp >= F_mean a periodic
+    motion inside the band exists iff this is <= 0 (docs/models.md §3a)."""
+    pb, scalar = _problem(
+        lk,
+        dead_centre_extended,
+        dead_centre_folded,
+        wheel_torque,
+        inertia,
+        masses,
+        mean_speed,
+        speed_fluctuation,
+        gravity,
+    )
+    lam = np.broadcast_to(np.asarray(force, float), pb.mw.shape).astype(float)
+    rows = np.arange(lam.size)
+    (x, base, local, up, lo), _ = _refined_points(pb, lam, rows)
+    m = pb.mw[:, None] * x
+    with np.errstate(all="ignore"):
+        h, _ = _pairs(base + local, up + m, lo + m, base, local, pb.mw, pb.stroke, lam)
+    out = h.max(axis=1)
+    return float(out[0]) if scalar else out
+
+
+# ----------------------------------------------------------------------------- model choice, cadence
+#: Crank angles per revolution on which the links' largest kinetic energy and the range of their
+#: potential energy are taken for the model choice (1 deg steps).
+EFFECT_GRID = 360
+
+
+def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY):
+    """The sizes the model choice compares with the flywheel's energy band (docs/models.md §3).
+
+    Parameters
+    ----------
+    lk : linkage (scalars or 1-D arrays over designs).
+    masses : coupler and handle masses [kg]; ``grip`` is the operator's arms [kg].
+    mean_speed : w_bar [rad/s].
+
+    Returns
+    -------
+    (link_energy, link_weight, arm_energy) [J]: the coupler's and handle's largest kinetic energy
+    at w_bar and the range of their potential energy over a revolution (both on
+    :data:`EFFECT_GRID` crank angles), and the largest kinetic energy of the arms at the grip,
+    m (H max|dt4/dt| w_bar)^2 / 2 (exact: :func:`pumplink.mechanisms.fourbar.peak_rocker_rate`).
+    """
+    from pumplink.mechanisms.fourbar import peak_rocker_rate
+
+    scalar, arrays = per_design(lk, masses.coupler, masses.handle, masses.grip, mean_speed)
+    geom, (mc, mh, ma, w) = arrays[:7], arrays[7:]
+    th = np.arange(EFFECT_GRID) * (TWO_PI / EFFECT_GRID)
+    col = FourBar(*(v[:, None] for v in geom))
+    with np.errstate(all="ignore"):
+        tm = terms(col, th, Masses(mc[:, None], mh[:, None], 0.0), gravity)
+        link = 0.5 * np.max(tm.inertia, axis=1) * w * w
+        weight = np.ptp(tm.potential, axis=1)
+        arm = 0.5 * ma * (geom[5] * peak_rocker_rate(FourBar(*geom)) * w) ** 2
+    out = (link, weight, arm)
+    return tuple(float(v[0]) for v in out) if scalar else out
+
+
+def _at_speed(lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses, fluctuation, g):
+    """Fp*(mean speed) of one design, the other arguments fixed (:func:`least_peak_force`)."""
+
+    def fp(w):
+        return least_peak_force(
+            lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses, w, fluctuation, g
+        )
+
+    return fp
+
+
+def best_speed(
+    lk: FourBar,
+    dead_centre_extended: float,
+    dead_centre_folded: float,
+    wheel_torque: float,
+    inertia: float,
+    masses: Masses,
+    speed_fluctuation: float,
+    lowest: float,
+    highest: float,
+    gravity: float = GRAVITY,
+    points: int = 25,
+):
+    """The mean speed in [lowest, highest] [rad/s] with the least Fp*, and that Fp* [N] (one design).
+
+    Every pair's N of (C1)-(C2) is affine in w_bar^2 (the band's edges are V + I w^2 / 2) and its K
+    does not depend on w_bar, so Fp* = max(F_mean, max over pairs of N/K) is convex in w_bar^2
+    (docs/models.md §3a): the least value on ``points`` speeds brackets the minimum, which scipy's
+    bounded scalar minimiser then locates (to 1e-7 of the speed).
+    """
+    from scipy.optimize import minimize_scalar
+
+    design = (lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses)
+    fp = _at_speed(*design, speed_fluctuation, gravity)
+
+    w = np.linspace(lowest, highest, points)
+    f = fp(w)
+    if not np.isfinite(f).any():
+        return float("nan"), float("inf")
+    k = int(np.nanargmin(np.where(np.isfinite(f), f, np.inf)))
+    a, b = w[max(k - 1, 0)], w[min(k + 1, points - 1)]
+    res = minimize_scalar(lambda x: fp(x), bounds=(a, b), method="bounded", options=dict(xatol=1e-7 * w[k]))
+    if np.isfinite(res.fun) and res.fun <= f[k]:
+        return float(res.x), float(res.fun)
+    return float(w[k]), float(f[k])
+
+
+def speed_range(
+    lk: FourBar,
+    dead_centre_extended: float,
+    dead_centre_folded: float,
+    wheel_torque: float,
+    inertia: float,
+    masses: Masses,
+    speed_fluctuation: float,
+    limit: float,
+    lowest: float,
+    highest: float,
+    best: float,
+    gravity: float = GRAVITY,
+):
+    """The mean speeds in [lowest, highest] with Fp* <= ``limit`` [rad/s]: (low, high), an interval
+    because Fp* is convex in w_bar^2 (:func:`best_speed`); ``best`` is its minimiser.  NaN, NaN when
+    none; an end of the interval at ``lowest`` or ``highest`` may continue beyond it."""
+    from scipy.optimize import brentq
+
+    design = (lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses)
+    fp = _at_speed(*design, speed_fluctuation, gravity)
+
+    def excess(w):
+        f = fp(w)
+        return min(f, 1e6 * limit) - limit  # the cap's inf as a large finite value
+
+    nan = float("nan")
+    if not np.isfinite(best) or excess(best) > 0:
+        return nan, nan
+    ends = []
+    for edge in (lowest, highest):
+        if excess(edge) <= 0:
+            ends.append(float(edge))
+        else:
+            ends.append(float(brentq(excess, *sorted((edge, best)), xtol=1e-9 * best, rtol=1e-12)))
+    return ends[0], ends[1]
+
+
+# ----------------------------------------------------------------------------- one design in detail
+@dataclass(frozen=True)
+class Scene:
+    """The dynamics of one design at one mean speed (SI units, radians).
+
+    Attributes
+    ----------
+    least_peak_force : the peak force Fp of the reported motion [N] (Fp* unless given).
+    mean_force : F_mean [N];  mean_speed, min_speed, max_speed : w_bar, w_lo, w_hi [rad/s].
+    The reported motion is the largest one of docs/models.md §3, e = min(upper, Q + past minimum
+    of (upper - Q), P + future minimum of (upper - P)): the operator pushes Fp with the grip,
+    rides the top of the band, or brakes with Fp against the grip's motion.
+    """
+
+    linkage: FourBar
+    dead_centre_extended: float
+    dead_centre_folded: float
+    wheel_torque: float
+    inertia: float
+    masses: Masses
+    gravity: float
+    mean_speed: float
+    speed_fluctuation: float
+    least_peak_force: float
+    mean_force: float
+    min_speed: float
+    max_speed: float
+    points: tuple  # refined extrema (x, base, local, up, lo) of the four functions at Fp, each (K,)
+    stroke: float  # grip stroke S [m]
+    travel: tuple  # the grip-travel arguments of pumplink.models.flywheel for this design
+
+
+def scene(
+    lk: FourBar,
+    dead_centre_extended: float,
+    dead_centre_folded: float,
+    wheel_torque: float,
+    inertia: float,
+    masses: Masses,
+    mean_speed: float,
+    speed_fluctuation: float,
+    gravity: float = GRAVITY,
+    force: float | None = None,
+) -> Scene:
+    """Solve one design: Fp* (or take ``force``), and the data of the reported motion."""
+    args = (lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses, mean_speed)
+    pb, _ = _problem(*args, speed_fluctuation, gravity)
+    fp = float(_solve(pb)[0]) if force is None else float(force)
+    pts = ()
+    if np.isfinite(fp):
+        pts = tuple(v[0] for v in _refined_points(pb, np.array([fp]), np.array([0]))[0])
+    return Scene(
+        lk,
+        float(dead_centre_extended),
+        float(dead_centre_folded),
+        float(wheel_torque),
+        float(inertia),
+        masses,
+        gravity,
+        float(mean_speed),
+        float(speed_fluctuation),
+        fp,
+        float(_qs.mean_force(wheel_torque, pb.stroke[0])),
+        float(pb.w_lo[0]),
+        float(pb.w_hi[0]),
+        pts,
+        float(pb.stroke[0]),
+        tuple(v[0] for v in pb.prep.args()),
+    )
+
+
+def _profile(sc: Scene, crank_angle):
+    """Energy e, regime (-1 brake, 0 ride, +1 push), upper, its rate, V, I and g at crank angles."""
+    th = np.atleast_1d(np.asarray(crank_angle, float))
+    fp, mw, s = sc.least_peak_force, sc.wheel_torque, sc.stroke
+    phi = np.mod(th - sc.dead_centre_extended, TWO_PI)
+    base, local = _fw._travel_parts(phi, *sc.travel)
+    g_phi = base + local
+    tm = terms(sc.linkage, th, sc.masses, sc.gravity)
+    i = sc.inertia + tm.inertia
+    up = tm.potential + 0.5 * i * sc.max_speed**2
+    dup = tm.potential_rate + 0.5 * tm.inertia_rate * sc.max_speed**2
+    x, kb, kl, kup, _klo = sc.points
+    gk = kb + kl
+    a = 2.0 * fp * s - TWO_PI * mw
+    b = -2.0 * fp * s - TWO_PI * mw
+    al = kup - (fp * gk - mw * x)  # upper - Q at the points
+    de = kup - (-fp * gk - mw * x)  # upper - P
+    col = phi[:, None]
+    past = np.where(x[None, :] < col, al, al + a).min(axis=1)  # t in (phi - 2 pi, phi)
+    future = np.where(x[None, :] > col, de, de - b).min(axis=1)  # t in (phi, phi + 2 pi)
+    cand = np.stack([fp * g_phi - mw * phi + past, up, -fp * g_phi - mw * phi + future])
+    regime = 1 - np.argmin(cand, axis=0)
+    return cand.min(axis=0), regime, dup, tm.potential, i, tm.grip_rate
+
+
+def regime(sc: Scene, crank_angle):
+    """-1 where the operator brakes with Fp, 0 where the motion rides the top of the band, +1 where
+    the operator pushes Fp with the grip."""
+    return _profile(sc, crank_angle)[1]
+
+
+def operator_force(sc: Scene, crank_angle):
+    """The reported operator force F(t) [N], +x positive (0 at a dead centre, where g = 0)."""
+    _e, regime, dup, _v, _i, g = _profile(sc, crank_angle)
+    with np.errstate(all="ignore"):
+        ride = (dup + sc.wheel_torque) / g  # Eq. (7) along the top of the band
+        f = np.where(regime == 0, ride, regime * sc.least_peak_force * np.sign(g))
+    out = np.where(g == 0, 0.0, f)
+    return out if np.ndim(crank_angle) else float(out[0])
+
+
+def wheel_speed(sc: Scene, crank_angle):
+    """Wheel speed w(t) [rad/s] of the reported motion: sqrt(2 (e - V) / I)."""
+    e, _r, _d, v, i, _g = _profile(sc, crank_angle)
+    with np.errstate(invalid="ignore"):
+        out = np.sqrt(2.0 * (e - v) / i)
+    return out if np.ndim(crank_angle) else float(out[0])
+
+
+def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> _fw.TimeIntegration:
+    """Integrate I t'' + I'/2 t'^2 + V' = F g - Mw (Eq. (7) in time, scipy ``solve_ivp``) under the
+    reported force profile F(t) (open loop), from the reported speed at the extended dead centre."""
+    from scipy.integrate import solve_ivp
+
+    t0 = sc.dead_centre_extended
+    w0 = wheel_speed(sc, t0)
+    mw = sc.wheel_torque
+
+    def rhs(_t, y):
+        tm = terms(sc.linkage, y[0], sc.masses, sc.gravity)
+        f = operator_force(sc, y[0])
+        i = sc.inertia + tm.inertia
+        return [y[1], (f * tm.grip_rate - mw - tm.potential_rate - 0.5 * tm.inertia_rate * y[1] ** 2) / i]
+
+    def turn(_t, y):
+        return np.sin(0.5 * (y[0] - t0))
+
+    turn.terminal = cycles + 1
+    horizon = 4.0 * cycles * TWO_PI / sc.min_speed
+    sol = solve_ivp(
+        rhs,
+        (0.0, horizon),
+        [t0, w0],
+        method="DOP853",
+        rtol=rtol,
+        atol=1e-12 * sc.max_speed,
+        events=turn,
+        dense_output=True,
+        max_step=TWO_PI / 64 / sc.max_speed,
+    )
+    times = sol.t_events[0]
+    times = times[times > 1e-9 * horizon][:cycles]
+    if times.size == 0:  # the wheel stopped or turned back: no revolution completed
+        nan = float("nan")
+        return _fw.TimeIntegration(0, np.array([w0]), np.inf, nan, nan, nan, nan, np.inf)
+    speeds = np.array([w0] + [float(sol.sol(t)[1]) for t in times])
+    last0, last1 = (times[-2] if times.size > 1 else 0.0), times[-1]
+    w = sol.sol(np.linspace(last0, last1, 40001))[1]
+    wmax, wmin = float(w.max()), float(w.min())
+    mean = 0.5 * (wmax + wmin)
+    return _fw.TimeIntegration(
+        int(times.size),
+        speeds,
+        float(np.max(np.abs(speeds - speeds[0])) / speeds[0]),
+        wmax,
+        wmin,
+        mean,
+        TWO_PI / (last1 - last0),
+        (wmax - wmin) / mean,
+    )
+
+
+def agrees(sc: Scene, sim: _fw.TimeIntegration, rtol: float = 1e-6) -> bool:
+    """The time integration is periodic, inside the band and at the mean speed, to ``rtol``."""
+    return bool(
+        sim.cycles > 0
+        and sim.periodicity <= rtol
+        and abs(sim.mean_speed - sc.mean_speed) <= rtol * sc.mean_speed
+        and sim.min_speed >= sc.min_speed * (1 - rtol)
+        and sim.max_speed <= sc.max_speed * (1 + rtol)
+    )

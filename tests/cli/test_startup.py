@@ -1,0 +1,90 @@
+"""Start-up guard: the commands a person waits for import only what they use.
+
+Importing ``scipy.optimize`` alone costs about 0.3 s; matplotlib, mpmath, loky, the optional
+extras (dask, pyarrow, numba) and pumplink's design search, batch, method study and piston pump
+are for other commands.  Each case runs the real entry point in a fresh interpreter, checks the
+command did its work, and lists the modules of that list it loaded.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+#: Never loaded by synth or force on a rope-pump spec without inertia (the quasi-static model).
+HEAVY = [
+    "scipy.optimize",
+    "scipy.integrate",
+    "matplotlib",
+    "mpmath",
+    "loky",
+    "dask",
+    "distributed",
+    "pyarrow",
+    "numba",
+    # pumplink's own modules for other commands and mechanisms
+    "pumplink.optimize",
+    "pumplink.batch",
+    "pumplink.methods",
+    "pumplink.accuracy",
+    "pumplink.piston",
+]
+
+PROBE = """
+import contextlib, io, json, sys
+from pumplink.cli import main
+out = io.StringIO()
+code = None
+with contextlib.redirect_stdout(out):
+    try:
+        main(sys.argv[1:])
+    except SystemExit as exc:
+        code = exc.code
+loaded = [h for h in HEAVY if h in sys.modules]
+print(json.dumps({"code": code, "out": out.getvalue(), "loaded": loaded, "modules": sorted(sys.modules)}))
+"""
+
+
+def _probe(*args: str) -> dict:
+    env = {**os.environ, "NO_COLOR": "1", "COLUMNS": "80"}
+    p = subprocess.run(
+        [sys.executable, "-c", f"HEAVY = {HEAVY!r}\n{PROBE}", *args],
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    return json.loads(p.stdout)
+
+
+@pytest.mark.parametrize(
+    "args, expect",
+    [
+        (["synth", "configs/prototype.toml"], "0.0998"),  # the crank length [m], Table 1 style
+        (["force", "configs/prototype.toml", "--summary"], "VERDICT: PASS"),
+        (["force", "configs/prototype.toml"], "DC extended"),  # the 360-sample sweep's rows
+    ],
+)
+def test_single_spec_commands_load_nothing_heavy(args, expect):
+    res = _probe(*args)
+    assert res["code"] == 0 and expect in res["out"], res["out"]  # the command really ran
+    assert res["loaded"] == [], f"{' '.join(args)} imported {res['loaded']}"
+
+
+def test_importing_the_cli_loads_no_library():
+    """``import pumplink.cli`` (and so ``pumplink --help``) leaves numpy, pydantic and scipy to
+    the commands that need them."""
+    res = _probe("--help")
+    assert res["code"] == 0 and "force" in res["out"] and "synth" in res["out"]
+    top = {m.split(".")[0] for m in res["modules"]}
+    assert not top & {"numpy", "scipy", "pydantic", "matplotlib", "mpmath"}, sorted(
+        top & {"numpy", "scipy", "pydantic", "matplotlib", "mpmath"}
+    )

@@ -1,0 +1,336 @@
+"""Full dynamics (``pumplink.models.dynamics``): I(t), V(t), the least peak force, its limits and
+scalings, and the time-domain cross-check.
+
+Expected values never come from the code under test.  They come from
+
+* the flywheel scene (``pumplink.models.flywheel``), itself tested against a brute-force
+  reservoir sweep: with no link masses the dynamics must give its least peak force;
+* closed forms: F_mean = pi Mw / S (docs/physics.md §4) for an infinite wheel, and the point
+  mass at the grip, whose I = J + m |dP/dt|^2 and V = m g Py are written down from the grip's
+  position;
+* the 50-digit reference linkage of ``tests/reference.py`` (positions by a different route):
+  kinetic energy from central differences of positions, I' and V' from central differences of
+  I and V, all in mpmath;
+* a brute-force lower bound: the pairs of (C1)-(C2) on 200,000 uniform crank angles.
+"""
+
+import math
+
+import mpmath
+import numpy as np
+import pytest
+import reference as R
+
+from pumplink.analysis import design
+from pumplink.constants import GRAVITY
+from pumplink.models import dynamics as dy
+from pumplink.models import flywheel as fw
+from pumplink.models.quasi_static import mean_force
+from pumplink.spec import load_spec, parse_spec
+
+EXAMPLE = "examples/well-12m-flywheel.toml"
+
+
+def _case(path=EXAMPLE, **linkage):
+    spec = load_spec(path)
+    if linkage:
+        data = spec.model_dump(exclude_none=True)
+        data["linkage"].update(linkage)
+        spec = parse_spec(data)
+    syn = design(spec).synthesis
+    return spec, syn, syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded
+
+
+@pytest.fixture(scope="module", params=[EXAMPLE, "configs/women-operators-6m.toml"])
+def case(request):
+    import pathlib
+
+    root = pathlib.Path(__file__).resolve().parents[2]
+    return _case(root / request.param)
+
+
+@pytest.mark.parametrize("speed_deg", [90.0, 180.0, 360.0, 540.0, 1080.0])
+def test_flywheel_is_the_special_case_without_link_masses(case, speed_deg):
+    spec, syn, lk, dce, dcf = case
+    w = math.radians(speed_deg)
+    ref = fw.least_peak_force(lk, dce, dcf, spec.wheel_torque, fw.energy_band(spec.inertia, w, 0.2))
+    got = dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, dy.Masses(), w, 0.2)
+    assert got == pytest.approx(ref, rel=1e-11)
+
+
+def test_zero_masses_give_the_flywheel_band_and_terms(case):
+    spec, syn, lk, dce, dcf = case
+    th = np.linspace(0, 2 * np.pi, 37)
+    lo, hi = dy.energy_band(lk, th, 0.5, dy.Masses(), 3.0, 0.2)
+    assert np.all(np.ptp(lo) == 0) and np.all(np.ptp(hi) == 0)  # no V, no link inertia: flat
+    assert lo[0] == pytest.approx(0.5 * 0.5 * 2.7**2, rel=1e-15)
+    assert hi[0] == pytest.approx(0.5 * 0.5 * 3.3**2, rel=1e-15)
+    assert hi[0] - lo[0] == pytest.approx(float(fw.energy_band(0.5, 3.0, 0.2)), rel=1e-14)
+
+
+def test_infinite_wheel_needs_only_the_mean_force(case):
+    spec, syn, lk, dce, dcf = case
+    ms = dy.bar_masses(lk, 1.56, 4.0)
+    got = dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, 1e9, ms, 2 * np.pi, 0.2)
+    stroke = 2 * spec.linkage.handle * math.sin(math.radians(spec.linkage.swing) / 2)
+    assert got == pytest.approx(float(mean_force(spec.wheel_torque, stroke)), rel=1e-9)
+
+
+def test_scaling_all_masses_and_the_load_scales_the_force(case):
+    spec, syn, lk, dce, dcf = case
+    ms = dy.bar_masses(lk, 1.56, 2.0)
+    base = dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 2 * np.pi, 0.2)
+    k = 3.0
+    ms3 = dy.Masses(k * ms.coupler, k * ms.handle, k * ms.grip)
+    got = dy.least_peak_force(lk, dce, dcf, k * spec.wheel_torque, k * spec.inertia, ms3, 2 * np.pi, 0.2)
+    assert got == pytest.approx(k * base, rel=1e-10)
+
+
+def test_time_scaling_speed_gravity_and_load_together(case):
+    """w -> s w, g -> s^2 g, Mw -> s^2 Mw: every energy scales by s^2, so Fp* does too."""
+    spec, syn, lk, dce, dcf = case
+    ms = dy.bar_masses(lk, 1.56, 3.0)
+    base = dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 2 * np.pi, 0.2)
+    s = 1.5
+    got = dy.least_peak_force(
+        lk, dce, dcf, s * s * spec.wheel_torque, spec.inertia, ms, s * 2 * np.pi, 0.2, gravity=s * s * GRAVITY
+    )
+    assert got == pytest.approx(s * s * base, rel=1e-10)
+
+
+# ----------------------------------------------------------------------------- I and V, independently
+def _ref_positions(ref, t2, arm):
+    """Coupler centre, handle-bar centre and grip at crank angle t2 (mpmath, 50 digits)."""
+    t4 = R.rocker_angle(ref, t2)
+    ax, ay = ref.crank * mpmath.cos(t2), ref.crank * mpmath.sin(t2)
+    bx, by = ref.ox + ref.rocker * mpmath.cos(t4), ref.oy + ref.rocker * mpmath.sin(t4)
+    u = mpmath.cos(t4), mpmath.sin(t4)
+    return dict(
+        a=(ax, ay),
+        b=(bx, by),
+        gc=((ax + bx) / 2, (ay + by) / 2),
+        gh=(ref.ox + arm / 2 * u[0], ref.oy + arm / 2 * u[1]),
+        p=(ref.ox + ref.handle * u[0], ref.oy + ref.handle * u[1]),
+        t3=mpmath.atan2(by - ay, bx - ax),
+        t4=t4,
+    )
+
+
+def _ref_energy(ref, t2, mc, mh, ma, arm):
+    """(I - J, V) at t2 by central differences of positions (step 1e-20 at 50 digits)."""
+    h = mpmath.mpf("1e-20")
+    p, m = _ref_positions(ref, t2 + h, arm), _ref_positions(ref, t2 - h, arm)
+    c = _ref_positions(ref, t2, arm)
+
+    def v2(key):
+        return ((p[key][0] - m[key][0]) / (2 * h)) ** 2 + ((p[key][1] - m[key][1]) / (2 * h)) ** 2
+
+    w3 = (p["t3"] - m["t3"]) / (2 * h)
+    w4 = (p["t4"] - m["t4"]) / (2 * h)
+    k = ref.coupler
+    inertia = (
+        mc * v2("gc") + mc * k * k / 12 * w3**2 + mh * v2("gh") + mh * arm * arm / 12 * w4**2 + ma * v2("p")
+    )
+    pot = GRAVITY * (mc * c["gc"][1] + mh * c["gh"][1] + ma * c["p"][1])
+    return inertia, pot
+
+
+@pytest.mark.parametrize("t2_deg", [3.0, 47.0, 130.0, 181.0, 250.0, 333.0])
+def test_inertia_and_potential_against_positions_in_mpmath(t2_deg):
+    spec, syn, lk, dce, dcf = _case()
+    ref = R.from_synthesis(syn)
+    mc, mh, ma = 1.1, 1.9, 3.7
+    arm = max(float(lk.handle), float(lk.rocker))
+    ms = dy.Masses(mc, mh, ma)
+    with mpmath.workdps(50):
+        t2 = mpmath.mpf(math.radians(t2_deg))
+        i0, v0 = _ref_energy(ref, t2, mc, mh, ma, arm)
+        e = mpmath.mpf("1e-12")
+        ip, vp = _ref_energy(ref, t2 + e, mc, mh, ma, arm)
+        im, vm = _ref_energy(ref, t2 - e, mc, mh, ma, arm)
+        di, dv = (ip - im) / (2 * e), (vp - vm) / (2 * e)
+    tm = dy.terms(lk, math.radians(t2_deg), ms)
+    scale_i = float(i0) + 1.0
+    assert float(tm.inertia) == pytest.approx(float(i0), abs=1e-12 * scale_i)
+    assert float(tm.inertia_rate) == pytest.approx(float(di), abs=1e-11 * scale_i)
+    assert float(tm.potential) == pytest.approx(float(v0), abs=1e-12 * 100)
+    assert float(tm.potential_rate) == pytest.approx(float(dv), abs=1e-11 * 100)
+
+
+def test_point_mass_at_the_grip_by_hand():
+    """Massless links, m at the grip: I = J + m |dP/dt|^2 = J + m H^2 (dt4/dt)^2, V = m g Py."""
+    spec, syn, lk, dce, dcf = _case()
+    ref = R.from_synthesis(syn)
+    m, j = 4.0, 0.5
+    for t2 in np.radians([10.0, 95.0, 200.0, 300.0]):
+        st = R.state(ref, t2)
+        i, _ = dy.reduced_inertia(lk, t2, j, dy.Masses(0.0, 0.0, m))
+        v, _ = dy.potential(lk, t2, dy.Masses(0.0, 0.0, m))
+        hand_i = j + m * float(ref.handle) ** 2 * float(st["rate"]) ** 2
+        hand_v = m * GRAVITY * float(ref.oy + ref.handle * mpmath.sin(st["rocker_angle"]))
+        assert float(i) == pytest.approx(hand_i, rel=1e-12)
+        assert float(v) == pytest.approx(hand_v, rel=1e-12)
+
+
+# ----------------------------------------------------------------------------- exactness
+def _brute_lower_bound(lk, dce, dcf, mw, j, ms, w, delta, n=200_000):
+    """Dinkelbach over the pairs of n uniform angles plus the grid nodes: a lower bound of Fp*."""
+    pb, _ = dy._problem(lk, dce, dcf, mw, j, ms, w, delta, GRAVITY)
+    x = np.sort(np.concatenate([np.linspace(0, 2 * np.pi, n, endpoint=False), pb.prep.nodes[0]]))[None, :]
+    base, local = fw._travel_parts(x, *(v[:, None] for v in pb.prep.args()))
+    up, lo = pb.edges(x)
+    cap = np.array([np.inf])
+    f_mean = mean_force(pb.mw, pb.stroke)
+    return float(dy._dinkelbach((x, base, local, up, lo), pb.mw, pb.stroke, f_mean, cap)[0])
+
+
+@pytest.mark.parametrize("speed_deg,arms", [(180.0, 0.0), (360.0, 0.0), (360.0, 4.0), (540.0, 4.0)])
+def test_least_force_is_exact_brute_force_and_margin(speed_deg, arms):
+    spec, syn, lk, dce, dcf = _case()
+    ms = dy.bar_masses(lk, 1.56, arms)
+    w, mw, j = math.radians(speed_deg), spec.wheel_torque, spec.inertia
+    got = dy.least_peak_force(lk, dce, dcf, mw, j, ms, w, 0.2)
+    low = _brute_lower_bound(lk, dce, dcf, mw, j, ms, w, 0.2)
+    # a lower bound from a 200,000-point grid: below, by at most its sampling error (~1e-6)
+    assert low <= got * (1 + 1e-12)
+    assert low >= got * (1 - 1e-6)
+    # the exact test of docs/models.md §3 holds at Fp* and fails just below it
+    assert dy.band_margin(lk, dce, dcf, mw, j, ms, w, 0.2, got) <= 1e-9
+    assert dy.band_margin(lk, dce, dcf, mw, j, ms, w, 0.2, got * (1 - 1e-3)) > 0
+
+
+def test_vectorised_equals_one_at_a_time():
+    spec, syn, lk, dce, dcf = _case()
+    speeds = np.radians([200.0, 300.0, 450.0, 700.0])
+    arms = np.array([0.0, 4.0, 2.0, 6.0])
+    n = speeds.size
+    rep = type(lk)(*(np.full(n, float(v)) for v in lk.parameters))
+    ms = dy.bar_masses(rep, 1.56, arms)
+    many = dy.least_peak_force(rep, dce, dcf, spec.wheel_torque, spec.inertia, ms, speeds, 0.2)
+    for i in range(n):
+        one = dy.least_peak_force(
+            lk, dce, dcf, spec.wheel_torque, spec.inertia, dy.bar_masses(lk, 1.56, arms[i]), speeds[i], 0.2
+        )
+        assert many[i] == pytest.approx(one, rel=1e-12)
+
+
+# ----------------------------------------------------------------------------- time domain
+def test_solve_ivp_confirms_the_profile_and_rejects_a_weaker_operator():
+    """At Fp* the reported profile, integrated open loop, is periodic inside the band at the mean
+    speed (to 1e-6); at Fp* (1 - 1e-3) the best motion leaves the band (negative control)."""
+    spec, syn, lk, dce, dcf = _case()
+    ms = dy.bar_masses(lk, 1.56, 4.0)
+    args = (lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 2 * np.pi, 0.2)
+    sc = dy.scene(*args)
+    th = np.linspace(0, 2 * np.pi, 721)
+    assert np.nanmax(np.abs(dy.operator_force(sc, th))) <= sc.least_peak_force * (1 + 1e-12)
+    sim = dy.integrate_motion(sc, cycles=3)
+    assert dy.agrees(sc, sim)
+    assert sim.mean_speed == pytest.approx(2 * np.pi, rel=1e-6)
+    weak = dy.scene(*args, force=sc.least_peak_force * (1 - 1e-3))
+    sim = dy.integrate_motion(weak, cycles=3)
+    assert not dy.agrees(weak, sim)
+    assert sim.min_speed < weak.min_speed * (1 - 1e-5)
+
+
+# ----------------------------------------------------------------------------- model choice sizes
+def test_effect_sizes_against_independent_routes():
+    """The sizes the model choice compares with the band, each by another route: the links' kinetic
+    energy by the uniform-bar formula m (vA^2 + vA.vB + vB^2)/6 of the flywheel module's estimate;
+    their weight from the float twin of the reference linkage's positions; the arms' kinetic energy
+    from a 200,000-point sweep of the reference rocker rate."""
+    spec, syn, lk, dce, dcf = _case()
+    ref = R.from_synthesis(syn)
+    mpl, arms, w = 1.56, 4.32, math.radians(300.0)
+    ms = dy.bar_masses(lk, mpl, arms)
+    link, weight, arm = dy.effect_sizes(lk, ms, w)
+    th = np.arange(dy.EFFECT_GRID) * (2 * np.pi / dy.EFFECT_GRID)
+    assert link == pytest.approx(float(np.max(fw.link_energy(lk, th, w, mpl))), rel=1e-12)
+    t4, _rate, _g = R.sweep_rocker(ref, th)
+    f = ref.floats()
+    long = max(f["handle"], f["rocker"])
+    y_coupler = 0.5 * (f["crank"] * np.sin(th) + f["oy"] + f["rocker"] * np.sin(t4))
+    y_handle = f["oy"] + 0.5 * long * np.sin(t4)
+    v = GRAVITY * (mpl * f["coupler"] * y_coupler + mpl * long * y_handle)
+    assert weight == pytest.approx(float(np.ptp(v)), rel=1e-11)
+    dense = np.linspace(0.0, 2 * np.pi, 200_001)
+    _t4, rate, _g = R.sweep_rocker(ref, dense)
+    top = 0.5 * arms * (f["handle"] * w * float(np.nanmax(np.abs(rate)))) ** 2
+    assert top <= arm * (1 + 1e-12) and arm == pytest.approx(top, rel=1e-8)
+
+
+def test_model_index_by_hand():
+    """The least model that is enough: 0 without inertia, 1 while every neglected effect is at most
+    10 % of the band, 2 beyond; the arms count only in the verdict; --model overrides."""
+    from pumplink.models import model_index
+
+    nan = float("nan")
+    assert model_index(nan, 1.0, 5.0, 5.0, 5.0) == 0  # no inertia: quasi-static, whatever the sizes
+    assert model_index(0.5, 1.0, 0.1, 0.1, 9.0) == 1  # at the limit; the arms not in the verdict
+    assert model_index(0.5, 1.0, 0.1 + 1e-12, 0.0, 0.0) == 2
+    assert model_index(0.5, 1.0, 0.0, 0.1 + 1e-12, 0.0) == 2
+    assert model_index(0.5, 1.0, 0.0, 0.0, 0.2, arms_in_verdict=True) == 2
+    assert model_index(0.5, 0.0, 0.0, 0.0, 0.0) == 1  # nothing left out of a zero band
+    assert model_index(0.5, 1.0, nan, nan, nan) == 1  # not known (infeasible): no call for more
+    assert model_index(0.5, 1.0, 5.0, 5.0, 5.0, forced="flywheel") == 1
+    assert model_index(0.5, 1.0, 0.0, 0.0, 0.0, forced="dynamics") == 2
+    assert model_index(0.5, 1.0, 5.0, 5.0, 5.0, forced="quasi-static") == 0
+    got = model_index(np.array([nan, 0.5, 0.5]), np.ones(3), np.array([0.0, 0.0, 0.2]), 0.0, 0.0)
+    assert got.tolist() == [0, 1, 2]
+
+
+# ----------------------------------------------------------------------------- best cadence
+def test_least_peak_force_is_convex_in_the_mean_speed_squared():
+    """Every pair's N is affine in w^2 and K does not depend on it (docs/models.md §3a), so Fp* is
+    the maximum of affine functions of w^2: convex.  Second differences on a uniform grid in w^2."""
+    spec, syn, lk, dce, dcf = _case()
+    ms = dy.bar_masses(lk, 1.56, 4.32)
+    u = np.linspace(math.radians(200.0) ** 2, math.radians(900.0) ** 2, 41)
+    rep = type(lk)(*(np.full(u.size, float(v)) for v in lk.parameters))
+    f = dy.least_peak_force(rep, dce, dcf, spec.wheel_torque, spec.inertia, ms, np.sqrt(u), 0.2)
+    second = f[:-2] - 2 * f[1:-1] + f[2:]
+    assert np.all(second >= -1e-9 * f[1:-1])
+    assert np.any(second > 1e-3)  # and not affine: the effort has a minimum inside
+
+
+def test_best_speed_is_the_minimum_of_a_dense_scan():
+    """The best cadence against 600 speeds scanned in one call: no scanned speed needs less effort,
+    and the nearest ones differ by no more than the scan's step allows."""
+    spec, syn, lk, dce, dcf = _case()
+    ms = dy.bar_masses(lk, 1.56, 4.32)
+    lo, hi = math.radians(60.0), math.radians(1440.0)
+    best, effort = dy.best_speed(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 0.2, lo, hi)
+    w = np.linspace(lo, hi, 600)
+    rep = type(lk)(*(np.full(w.size, float(v)) for v in lk.parameters))
+    f = dy.least_peak_force(rep, dce, dcf, spec.wheel_torque, spec.inertia, ms, w, 0.2)
+    assert effort <= np.nanmin(f) * (1 + 1e-12)
+    k = int(np.nanargmin(f))
+    assert w[k - 1] <= best <= w[k + 1]
+    assert effort == pytest.approx(
+        dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, best, 0.2), rel=1e-12
+    )
+    # without links or arms this is the flywheel: faster is never harder, and from some speed on the
+    # force is the mean force (an infinite flywheel's, the floor), where the search stops
+    none = dy.Masses()
+    at, floor = dy.best_speed(lk, dce, dcf, spec.wheel_torque, spec.inertia, none, 0.2, lo, hi)
+    stroke = 2 * spec.linkage.handle * math.sin(math.radians(spec.linkage.swing) / 2)
+    assert floor == pytest.approx(float(mean_force(spec.wheel_torque, stroke)), rel=1e-9)
+    faster = dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, none, hi, 0.2)
+    assert faster == pytest.approx(floor, rel=1e-9) and at < hi
+
+
+def test_speed_range_ends_where_the_force_meets_the_limit():
+    spec, syn, lk, dce, dcf = _case()
+    ms = dy.bar_masses(lk, 1.56, 4.32)
+    args = (lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 0.2)
+    lo, hi = math.radians(60.0), math.radians(1440.0)
+    best, effort = dy.best_speed(*args, lo, hi)
+    limit = 1.5 * effort  # an interval around the best cadence
+    a, b = dy.speed_range(*args, limit, lo, hi, best)
+    assert lo < a < best < b < hi
+    for end in (a, b):
+        assert dy.least_peak_force(*args[:6], end, 0.2) == pytest.approx(limit, rel=1e-7)
+    inside = dy.least_peak_force(*args[:6], np.array([a * (1 + 1e-4), b * (1 - 1e-4)]), 0.2)
+    outside = dy.least_peak_force(*args[:6], np.array([a * (1 - 1e-4), b * (1 + 1e-4)]), 0.2)
+    assert np.all(inside <= limit) and np.all(outside > limit)
+    assert all(math.isnan(x) for x in dy.speed_range(*args, 0.9 * effort, lo, hi, best))  # none passes

@@ -1,0 +1,77 @@
+"""pumplink.analysis: the best cadence and the speeds that pass, and the quasi-static --verify.
+
+References: the verdict of force_analysis itself at speeds just inside and just outside the
+reported range (the range must be where that verdict changes), and for --verify negative controls
+(a peak that is not the exact one must be caught).
+"""
+
+import dataclasses
+import math
+from pathlib import Path
+
+import pytest
+
+from pumplink.analysis import cadence, force_analysis, verify_quasi_static
+from pumplink.constants import GRIP_SPEED_FAIL_M_S, HOUR_POWER_W
+from pumplink.spec import load_spec
+
+ROOT = Path(__file__).resolve().parents[1]
+VILLAGE = ROOT / "configs" / "village-10m.toml"
+
+
+@pytest.fixture(scope="module")
+def village():
+    spec = load_spec(VILLAGE)
+    return spec, force_analysis(spec, keep_samples=False)
+
+
+def _at(spec, speed_rad_s):
+    return force_analysis(spec, math.degrees(speed_rad_s), keep_samples=False)
+
+
+def test_the_passing_speeds_are_where_the_verdict_changes(village):
+    """The village well: full dynamics decides; below the range the hand force fails, above it the
+    grip speed (or the power) fails, inside every check passes or warns."""
+    spec, r = village
+    c = cadence(r)
+    assert c.model == "dynamics" and r.dynamics
+    lo, hi = c.passing
+    assert lo < math.radians(spec.operator.speed) < hi
+    assert c.force_range[0] == lo  # the force sets the lower end
+    for inside in (lo * (1 + 1e-6), 0.5 * (lo + hi), hi * (1 - 1e-6)):
+        assert _at(spec, inside).passed
+    below, above = _at(spec, lo * (1 - 1e-6)), _at(spec, hi * (1 + 1e-6))
+    assert [c.key for c in below.verdict.failures] == ["peak_force"]
+    assert {c.key for c in above.verdict.failures} <= {"grip_speed", "power"} and not above.passed
+    edge = _at(spec, hi)  # the upper end is where a speed-dependent check meets its fail limit
+    assert max(
+        edge.verdict["grip_speed"].value / GRIP_SPEED_FAIL_M_S, edge.verdict["power"].value / HOUR_POWER_W
+    ) == pytest.approx(1.0, rel=1e-9)
+
+
+def test_the_best_cadence_needs_the_least_effort(village):
+    spec, r = village
+    c = cadence(r)
+    assert not c.at_edge and c.searched[0] < c.speed < c.searched[1]
+    assert c.power == pytest.approx(spec.wheel_torque * c.speed, rel=1e-15)
+    assert c.hand_force < c.effort  # the arms cost effort
+    for step in (0.97, 1.03):  # a slower or faster cadence needs more effort
+        assert _at(spec, c.speed * step).effort_peak_force > c.effort
+    assert _at(spec, c.speed).effort_peak_force == pytest.approx(c.effort, rel=1e-9)
+
+
+def test_no_speed_passes_the_12m_example_and_the_cadence_says_so():
+    """At 4 m/s the grip is too fast before the hand force comes within 100 N."""
+    r = force_analysis(load_spec(ROOT / "examples" / "well-12m-flywheel.toml"), keep_samples=False)
+    c = cadence(r)
+    assert all(math.isnan(x) for x in c.passing) and math.isfinite(c.force_range[0])
+
+
+def test_quasi_static_verify_agrees_and_catches_a_wrong_peak():
+    r = force_analysis(load_spec(ROOT / "configs" / "prototype.toml"), keep_samples=False)
+    ok = verify_quasi_static(r)
+    assert ok.agrees and ok.virtual_work < 1e-8 and ok.sweep_peak <= ok.peak * (1 + 1e-9)
+    for wrong in (r.dead_band_peak_force * (1 - 1e-4), r.dead_band_peak_force * (1 + 2e-3)):
+        assert not verify_quasi_static(dataclasses.replace(r, dead_band_peak_force=wrong)).agrees
+    # a peak found for another load: twice the torque, the sweep goes far above it
+    assert not verify_quasi_static(dataclasses.replace(r, wheel_torque=2 * r.wheel_torque)).agrees
