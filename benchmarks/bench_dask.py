@@ -1,12 +1,14 @@
 """Benchmark of `pumplink batch --scheduler local:2` (Dask) against the local pool (--workers 2).
 
 The real command end to end (start-up, cluster start and stop, evaluation, CSV written) in a
-subprocess, on configs/grids/design-space.toml (27,216 variants decided by the flywheel model,
-the village well's 8 kg wheel) and on the same grid without the wheel mass (quasi-static).
+subprocess, on configs/grids/design-space.toml (27,216 variants that give inertia, the village
+well's 8 kg wheel: the flywheel or full dynamics decides each) and on the same grid without the
+wheel mass (quasi-static).
 Wall and CPU time (user + system of the command and every process it started, from
 resource.getrusage in a wrapper process), medians of interleaved runs; the two backends' CSV files
-must be byte-identical.  One more Dask run on the flywheel grid leaves out the workers' malloc
-tuning (pumplink.batch.cluster.WorkerSetup), to show what it is worth.  The fixed cost of each
+must be byte-identical.  One more Dask run on the inertia grid leaves out the workers' malloc
+tuning (pumplink.batch.cluster.WorkerSetup), to show what it is worth.  With
+``PUMPLINK_BENCH_OUT`` set (``make bench``) the figures also go to the summary table.  The fixed cost of each
 backend (start and stop: two variants in two tasks) and the cost per variant beyond it give the
 extrapolation to 10 million variants; the quasi-static grid is also written as Parquet, for the
 size against the CSV.  The driver renders every row (the workers send arrays), so its rendering
@@ -33,6 +35,7 @@ from pathlib import Path
 import tomli_w
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _record import record  # noqa: E402
 from bench_batch import free_cores  # noqa: E402
 from bench_core import ROOT, machine  # noqa: E402
 
@@ -77,7 +80,7 @@ def quasi_static_copy(folder: Path) -> Path:
 
 def render_costs() -> dict[str, float]:
     """Seconds per variant the driver spends turning chunks into rows, by format (a twelfth of the
-    flywheel grid, evaluated here first)."""
+    inertia grid, evaluated here first)."""
     import time
 
     from pumplink import batch as B
@@ -124,7 +127,7 @@ def main() -> None:
             f"fixed cost (2 variants, 2 tasks): pool --workers 2 wall {walls['pool']:.2f} s CPU "
             f"{start['pool']:.2f} s; Dask local:2 wall {walls['dask']:.2f} s CPU {start['dask']:.2f} s"
         )
-        for label, grid in (("quasi-static", quasi_static_copy(tmp)), ("flywheel", GRID)):
+        for label, grid in (("quasi-static", quasi_static_copy(tmp)), ("inertia", GRID)):
             base = [str(grid), "--fail-on", "none", "--format", "csv", *chunk]
             runs = {
                 "pool": lambda out, b=base: (
@@ -134,7 +137,7 @@ def main() -> None:
                     [sys.executable, "-m", "pumplink", "batch", *b] + ["--scheduler", "local:2", "--out", out]
                 ),
             }
-            if label == "flywheel":
+            if label == "inertia":
                 runs["untuned"] = lambda out, b=base: (
                     [sys.executable, "-c", UNTUNED, "batch", *b]
                     + [
@@ -167,9 +170,30 @@ def main() -> None:
                     f"{label} grid, Dask local:2 without the workers' malloc tuning: wall {uw:.2f} s CPU "
                     f"{uc:.2f} s; the tuning saves {100 * (1 - dc / uc):.0f} % of Dask's CPU time"
                 )
+                record(
+                    "Dask without / with the workers' malloc plugin, CPU, inertia grid",
+                    uc / dc,
+                    "x",
+                    note="Dask's MALLOC_TRIM_THRESHOLD_=65536 pins glibc's mmap threshold at 128 kB",
+                )
             verdicts.append((label, dc / pc))
+            record(
+                f"Dask local:2 / pool --workers 2, CPU, {label} grid ({n:,} variants)",
+                dc / pc,
+                "x",
+                f"<= {TOLERANCE}x",
+                dc / pc <= TOLERANCE,
+                f"CPU {dc:.1f} s against {pc:.1f} s; wall {dw:.1f} s against {pw:.1f} s",
+            )
             per = {k: (med[k][1] - start[k]) / n for k in ("pool", "dask")}
             verdicts_per.append((label, per["dask"]))
+            record(
+                f"Dask / pool, CPU per variant beyond the start-up, {label} grid",
+                per["dask"] / per["pool"],
+                "x",
+                note=f"{per['dask'] * 1e6:.0f} us against {per['pool'] * 1e6:.0f} us; start-up: Dask "
+                f"{start['dask']:.1f} s CPU, pool {start['pool']:.1f} s",
+            )
             print(
                 f"{label} grid, CPU per variant beyond the fixed cost: pool {per['pool'] * 1e6:.0f} us, "
                 f"Dask {per['dask'] * 1e6:.0f} us (ratio {per['dask'] / per['pool']:.2f}); 10 million "
@@ -180,18 +204,24 @@ def main() -> None:
                 pq = tmp / "rows.parquet"
                 measure([*runs["pool"](str(pq))[:-2], "--format", "parquet", "--out", str(pq)])
                 csv_bytes, pq_bytes = len(data["pool"]), pq.stat().st_size
+                record(
+                    "batch --format parquet: bytes a row, quasi-static grid",
+                    pq_bytes / n,
+                    "B",
+                    note=f"CSV: {csv_bytes / n:.0f} B a row",
+                )
                 print(
                     f"{label} grid as Parquet: {pq_bytes / n:.0f} bytes a row against {csv_bytes / n:.0f} "
                     f"for the CSV; 10 million rows: {pq_bytes / n * 1e7 / 1e9:.2f} GB against "
                     f"{csv_bytes / n * 1e7 / 1e9:.1f} GB"
                 )
     cost = render_costs()
-    per_variant = dict(verdicts_per)["flywheel"]
+    per_variant = dict(verdicts_per)["inertia"]
     print(
         "driver rendering per variant: "
         + ", ".join(f"{k} {v * 1e6:.1f} us" for k, v in cost.items())
-        + f"; one driver keeps up with {per_variant / cost['Parquet']:.0f} flywheel workers writing Parquet, "
-        f"{per_variant / (cost['CSV'] + cost['JUnit']):.0f} writing CSV and JUnit"
+        + f"; one driver keeps up with {per_variant / cost['Parquet']:.0f} workers (inertia grid) "
+        f"writing Parquet, {per_variant / (cost['CSV'] + cost['JUnit']):.0f} writing CSV and JUnit"
     )
     for label, ratio in verdicts:
         met = "yes" if ratio <= TOLERANCE else "no"
