@@ -3,13 +3,22 @@
 from __future__ import annotations
 
 import sys
+from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, ModelOpt, StrictOpt, app, model_key
+from pumplink.cli.common import ModelOpt, StrictOpt, app, model_key
 from pumplink.errors import SpecError
+
+
+class BatchFormat(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
+    table = "table"
+    json = "json"
+    csv = "csv"
+    parquet = "parquet"
+
 
 #: Runs of at least this many variants print their size and estimated time before they start.
 LARGE_BATCH = 100_000
@@ -31,13 +40,14 @@ def batch(
         ),
     ] = 360,
     fmt: Annotated[
-        Format,
+        BatchFormat,
         typer.Option(
             "--format",
             "-f",
-            help="Rows as csv or json; table: the summary (and the rows, or the failures of a large run).",
+            help="Rows as csv or json, or parquet (with --out; needs pip install 'pumplink[parquet]'); "
+            "table: the summary (and the rows, or the failures of a large run).",
         ),
-    ] = Format.table,
+    ] = BatchFormat.table,
     out: Annotated[
         Optional[Path],
         typer.Option(
@@ -79,6 +89,16 @@ def batch(
             show_default=False,
         ),
     ] = None,
+    scheduler: Annotated[
+        Optional[str],
+        typer.Option(
+            "--scheduler",
+            help="Run on Dask instead of the local pool: local:N (a local cluster of N worker "
+            "processes) or the address of a running scheduler, tcp://host:8786 (needs pip "
+            "install 'pumplink[dask]'). Same rows, same order.",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """Evaluate many variants at once: a base spec plus axes to vary (Cartesian product).
 
@@ -99,7 +119,10 @@ def batch(
     Piston-pump specs and batch files (mechanism = "crank-slider") run alone, without --junit.
 
     Example: [bold]pumplink batch configs/grids/piston-bore.toml[/]
+
+    Grids too large for one machine run on Dask (README, "Grids too large for one machine").
     """
+    import contextlib
     import functools
     import os
     import time
@@ -113,49 +136,91 @@ def batch(
     sel = _batch.parse_fail_on(fail_on + (",warnings" if strict else ""))
     k_n = _batch.parse_chunk(chunk)
     if fmt.value == "table" and out is not None:
-        raise SpecError("--out writes rows: give --format csv or --format json with it")
+        raise SpecError("--out writes rows: give --format csv, json or parquet with it")
+    if fmt.value == "parquet":
+        if out is None:
+            raise SpecError("--format parquet writes a binary file: give --out FILE.parquet with it")
+        _need("pyarrow", "--format parquet", "parquet", "pyarrow")
     for opt, path in (("--out", out), ("--junit", junit)):  # before any work: fail fast, exit 2
         if path is not None:
             check_output(path, opt)
+    cluster = _dask() if scheduler is not None else None  # not installed: one line, exit 2
+    where = cluster.parse_scheduler(scheduler) if cluster is not None else None
+    if where is not None and workers != 1:
+        raise SpecError(
+            f"--workers {workers} is for the local pool; with --scheduler the cluster's workers run the "
+            "tasks (local:N sets how many)"
+        )
     from pumplink.cli import piston
 
     if piston.is_piston_input(inputs):  # mechanism = "crank-slider": docs/piston-pump.md
         if model is not None:
             raise SpecError("--model is for rope-pump batches; a piston pump's model follows its spec")
+        for flag, given in (("--scheduler", where is not None), ("--format parquet", fmt.value == "parquet")):
+            if given:
+                raise SpecError(f"{flag} is for rope-pump batches; piston-pump batches run whole, without it")
         piston.batch(inputs, fmt.value, out, set(sel), junit, chunk)
     batches = _batch.load_inputs(inputs)
     key = model_key(model)  # the flywheel and full dynamics decide where the variants give inertia
     tasks = _batch.plan(batches, k_n, _batch.run_module.task_designs(samples))
     total = sum(e - s for _, s, e in tasks)
-    n_workers = max(1, min(workers or os.cpu_count() or 1, len(tasks)))  # no idle processes
-    if total >= LARGE_BATCH:  # say what is coming before a long run starts
-        secs = _batch.run_module.estimate_seconds(batches, tasks, samples, n_workers)
-        sys.stderr.write(
-            f"batch: {total:,} variants in {len(tasks):,} tasks on {n_workers} worker"
-            f"{'s' if n_workers > 1 else ''}; estimated {duration(secs)} (Ctrl-C stops it, writing nothing)\n"
-        )
 
-    try:
-        with progress(total, "batch") as advance:
-            post = functools.partial(
-                rb.render_chunk,
-                fmt=fmt.value,
-                vkeys=rb.varied_keys(batches),
-                fail_on=sel,
-                junit=junit is not None,
-            )  # runs in the workers
-            results = _batch.run(batches, samples, k_n, n_workers, post=post, model=key)
-            summary, rows = rb.write_stream(
-                batches, results, total, fmt.value, out, junit, sel, samples, k_n, advance
+    with cluster.connect(where) if where is not None else contextlib.nullcontext() as client:
+        if client is not None:
+            n_workers = min(cluster.threads(client), len(tasks))
+        else:
+            n_workers = max(1, min(workers or os.cpu_count() or 1, len(tasks)))  # no idle processes
+        if total >= LARGE_BATCH:  # say what is coming before a long run starts
+            secs = _batch.run_module.estimate_seconds(batches, tasks, samples, n_workers)
+            on = f" (Dask, {where})" if where is not None else ""
+            sys.stderr.write(
+                f"batch: {total:,} variants in {len(tasks):,} tasks on {n_workers} worker"
+                f"{'s' if n_workers > 1 else ''}{on}; estimated {duration(secs)} "
+                "(Ctrl-C stops it, writing nothing)\n"
             )
-    except BrokenProcessPool:  # a worker was killed (SIGKILL, out of memory)
-        sys.stderr.write(
-            "interrupted: a worker process was killed (out of memory?); no output file written\n"
-        )
-        raise typer.Exit(130) from None
+        try:
+            with progress(total, "batch") as advance:
+                post = functools.partial(
+                    rb.render_chunk,
+                    fmt=fmt.value,
+                    vkeys=rb.varied_keys(batches),
+                    fail_on=sel,
+                    junit=junit is not None,
+                )  # runs in the local pool's workers; with Dask in this process, on the arrays sent back
+                if client is not None:
+                    results = cluster.run(batches, client, samples, k_n, post=post, model=key)
+                else:
+                    results = _batch.run(batches, samples, k_n, n_workers, post=post, model=key)
+                summary, rows = rb.write_stream(
+                    batches, results, total, fmt.value, out, junit, sel, samples, k_n, advance
+                )
+        except BrokenProcessPool as exc:  # a worker was killed (SIGKILL, out of memory), a cluster lost
+            what = str(exc) if client is not None else "a worker process was killed (out of memory?)"
+            sys.stderr.write(f"interrupted: {what}; no output file written\n")
+            raise typer.Exit(130) from None
     if fmt.value == "table":
         rb.render_table(summary, rows)
     else:
         wrote = [p for p in (out, junit) if p is not None]
         sys.stderr.write(rb.summary_line(summary, time.perf_counter() - t0, wrote) + "\n")
     raise typer.Exit(1 if summary["failed_selected"] else 0)
+
+
+def _need(module: str, option: str, extra: str, what: str) -> None:
+    """One line saying how to install an optional extra when ``module`` cannot be imported (exit 2)."""
+    import importlib
+
+    try:
+        importlib.import_module(module)
+    except ImportError:
+        raise SpecError(
+            f"{option} needs {what}, which is not installed; install it with pip install 'pumplink[{extra}]'"
+        ) from None
+
+
+def _dask():
+    """:mod:`pumplink.batch.cluster`, or one line saying how to install Dask (exit 2)."""
+    _need("distributed", "--scheduler", "dask", "Dask")
+    from pumplink.batch import cluster
+
+    return cluster

@@ -78,6 +78,12 @@ FIXED_COLUMNS = (
 )
 #: Rows shown by ``--format table``: all if the run has at most this many, else the failures.
 TABLE_ROWS = 100
+#: ``--format parquet``: the columns of :data:`FIXED_COLUMNS` that are numbers (float64) and
+#: booleans; the others are text.
+PARQUET_BOOLS = ("feasible", "pass")
+PARQUET_TEXT = ("reason", "model", "verdict", "failed", "warnings", *CHECK_COLUMNS)
+#: Rows per Parquet row group (chunks are gathered up to this many before they are written).
+PARQUET_ROWS = 65_536
 
 
 def varied_keys(batches: Sequence[Batch]) -> list[str]:
@@ -285,15 +291,89 @@ def junit_text(batch: Batch, c: Chunk, fail_on: Sequence[str]) -> tuple[str, int
     return "".join(parts), failures, skipped
 
 
+def parquet_schema(vkeys: Sequence[str]):
+    """The Parquet columns, named and ordered as the CSV's (:func:`columns`): text for the name,
+    the source and :data:`PARQUET_TEXT`, booleans for :data:`PARQUET_BOOLS`, float64 for the
+    rest.  A cell that is empty in the CSV is null, except the lists ``failed`` and ``warnings``,
+    which are empty text where nothing failed or warned."""
+    import pyarrow as pa
+
+    def kind(col: str):
+        if col in ("name", "source", *PARQUET_TEXT):
+            return pa.string()
+        return pa.bool_() if col in PARQUET_BOOLS else pa.float64()
+
+    return pa.schema([(col, kind(col)) for col in ["name", "source", *vkeys, *FIXED_COLUMNS]])
+
+
+def parquet_table(batch: Batch, c: Chunk, vkeys: Sequence[str]):
+    """The chunk's rows as an Arrow table of :func:`parquet_schema`, column by column from the
+    chunk's arrays: the values of :func:`csv_text`, numbers as float64 (NaN and inf: null)."""
+    import pyarrow as pa
+
+    n = len(c)
+
+    def num(a):
+        a = np.asarray(a, float)
+        return pa.array(a, pa.float64(), mask=~np.isfinite(a))
+
+    def text(values, empty_is_null: bool = True):
+        return pa.array([None if empty_is_null and v in ("", None) else v for v in values], pa.string())
+
+    cols: dict[str, Any] = {
+        "name": pa.array(variant_names(batch, c.start, c.stop), pa.string()),
+        "source": pa.array([batch.source] * n, pa.string()),
+    }
+    for k in vkeys:
+        cols[k] = num(c.values[:, batch.keys.index(k)]) if k in batch.keys else pa.nulls(n, pa.float64())
+    fly = c.flywheel.any()
+    none = np.full(n, np.nan)
+    cols.update(
+        {
+            "frame_length": num(c.frame_length),
+            "crank_length": num(c.crank_length),
+            "coupler_length": num(c.coupler_length),
+            "feasible": pa.array(c.feasible, pa.bool_()),
+            "reason": text(c.reason),
+            "time_ratio": num(c.time_ratio),
+            "transmission_min_deg": num(np.degrees(c.transmission_min)),
+            "transmission_max_deg": num(np.degrees(c.transmission_max)),
+            "mean_force_N": num(c.mean_force),
+            "peak_force_N": num(c.verdict_peak_force),
+            "dead_band_peak_force_N": num(c.dead_band_peak_force),
+            "sampled_peak_force_N": num(c.sampled_peak),
+            "power_W": num(c.power),
+            "grip_speed_m_s": num(c.grip_speed),
+            "stroke_m": num(c.stroke),
+            "force_limit_N": num(c.force_limit),
+            "model": text(_models(c)),
+            "inertia_kg_m2": num(c.inertia if fly else none),
+            "speed_fluctuation": num(c.speed_fluctuation if fly else none),
+            "least_peak_force_N": num(c.least_peak_force if fly else none),
+            "min_passing_speed_deg_s": num(np.degrees(c.min_passing_speed) if fly else none),
+            "verdict": text(_outcomes(c)),
+            "pass": pa.array(c.passed, pa.bool_()),
+            "failed": text(_failed_text(c), empty_is_null=False),
+            "warnings": text(_listed(c, 1), empty_is_null=False),
+            **{k: text(v) for k, v in _check_results(c).items()},
+        }
+    )
+    schema = parquet_schema(vkeys)
+    return pa.Table.from_arrays([cols[f.name] for f in schema], schema=schema)
+
+
 def render_chunk(
     batch: Batch, c: Chunk, fmt: str, vkeys: Sequence[str], fail_on: Sequence[str], junit: bool
 ) -> dict[str, Any]:
-    """Text for one chunk, built where the chunk was evaluated (a worker process)."""
+    """Text for one chunk (an Arrow table for parquet), built where the chunk was evaluated (a
+    worker of the local pool) or by the driver (Dask)."""
     out: dict[str, Any] = {"data": None, "junit": None}
     if fmt == "csv":
         out["data"] = csv_text(batch, c, vkeys)
     elif fmt == "json":
         out["data"] = json_text(batch, c)
+    elif fmt == "parquet":
+        out["data"] = parquet_table(batch, c, vkeys)
     if junit:
         out["junit"] = junit_text(batch, c, fail_on)
     return out
@@ -316,20 +396,41 @@ def _junit_case(name: str, classname: str, failure: str | None, skipped: str | N
 def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequence[str]):
     """(failure, skipped) message per variant: failures selected by --fail-on; infeasible
     variants not selected are reported as skipped, other unselected failures pass."""
+    n = len(c)
     out = []
     lim = cols["force_limit_N"]
-    for i in range(len(c)):
-        if not c.feasible[i]:
+    feasible, mean_ok, peak_ok = (
+        np.broadcast_to(np.asarray(a), (n,)).tolist() for a in (c.feasible, c.mean_ok, c.peak_ok)
+    )
+
+    models = c.model  # a list built on each access: once per chunk
+
+    def per_variant(a):
+        return None if a is None else np.broadcast_to(np.asarray(a), (n,))
+
+    # the other checks' levels, values and limits per variant, once per chunk (when --fail-on
+    # selects them)
+    others = [
+        (
+            ch,
+            per_variant(ch.level).tolist(),
+            *map(per_variant, (ch.value, ch.warn_limit, ch.fail_limit, ch.relation)),
+        )
+        for ch in c.verdict.checks
+        if ch.key not in ("mean_force", "peak_force") and ("checks" in fail_on or "warnings" in fail_on)
+    ]
+    for i in range(n):
+        if not feasible[i]:
             msg = f"infeasible: {c.reason[i]}"
             out.append((msg, None) if "infeasible" in fail_on else (None, msg))
             continue
         bad = []
-        if "mean" in fail_on and not c.mean_ok[i]:
+        if "mean" in fail_on and not mean_ok[i]:
             bad.append(f"mean force {cols['mean_force_N'][i]:.2f} N > limit {lim[i]:g} N")
-        if "peak" in fail_on and not c.peak_ok[i]:
+        if "peak" in fail_on and not peak_ok[i]:
             if c.flywheel[i]:
                 pk = float(c.least_peak_force[i])
-                how = "the flywheel" if c.model[i] == FLYWHEEL else c.model[i]
+                how = "the flywheel" if models[i] == FLYWHEEL else models[i]
                 what = f"peak force with {how} (δ ≤ {float(c.speed_fluctuation[i]):g})"
                 if pk == math.inf:
                     bad.append(
@@ -347,16 +448,12 @@ def _junit_messages(batch: Batch, c: Chunk, cols: dict[str, list], fail_on: Sequ
                     if pk is None
                     else f"peak force {pk:.2f} N > limit {lim[i]:g} N"
                 )
-        for ch in c.verdict.checks:
-            level = int(np.broadcast_to(np.asarray(ch.level), (len(c),))[i])
-            if ch.key in ("mean_force", "peak_force") or level == 0:
-                continue
+        for ch, levels, values, warn_limits, fail_limits, relations in others:
+            level = levels[i]
             if (level == 2 and "checks" in fail_on) or (level == 1 and "warnings" in fail_on):
-                value = float(np.broadcast_to(np.asarray(ch.value), (len(c),))[i])
-                limit = ch.fail_limit if level == 2 else ch.warn_limit
-                limit = float(np.broadcast_to(np.asarray(limit), (len(c),))[i])
-                rel = np.broadcast_to(np.asarray(ch.relation), (len(c),))[i]
-                side = ">" if rel == "<=" else "<"
+                value = float(values[i])
+                limit = float((fail_limits if level == 2 else warn_limits)[i])
+                side = ">" if relations[i] == "<=" else "<"
                 word = "fails" if level == 2 else "warns"
                 bad.append(f"{ch.key} {value:.4g} {ch.unit} {side} {limit:g} {ch.unit} ({word})")
         out.append(("; ".join(bad) if bad else None, None))
@@ -416,16 +513,32 @@ def write_stream(
 ):
     """Write the rendered chunks (from ``batch.run(..., post=render_chunk)``) as they come.
 
-    csv/json rows go to ``out`` (atomically) or stdout; JUnit to ``junit`` (atomically).
+    csv/json rows go to ``out`` (atomically) or stdout, parquet rows to ``out`` (row groups of
+    :data:`PARQUET_ROWS`); JUnit to ``junit`` (atomically).
     Returns (summary, table rows): with ``table`` the rows to show (all when ``total`` <=
     :data:`TABLE_ROWS`, else up to that many failures).
     """
     summary = _new_summary(total, fail_on, samples, chunk)
     table_rows: list[dict] = []
     with contextlib.ExitStack() as stack:
-        data = None
+        data = parquet = None
         if fmt in ("csv", "json"):
             data = stack.enter_context(atomic_write(out)) if out is not None else sys.stdout
+        elif fmt == "parquet":
+            import pyarrow as pa
+            import pyarrow.parquet as pq
+
+            target = stack.enter_context(atomic_write(out, binary=True))
+            parquet = stack.enter_context(
+                pq.ParquetWriter(target, parquet_schema(varied_keys(batches)), compression="zstd")
+            )
+            gathered: list = []
+
+            def flush_rows(final: bool = False) -> None:
+                if gathered and (final or sum(t.num_rows for t in gathered) >= PARQUET_ROWS):
+                    parquet.write_table(pa.concat_tables(gathered), row_group_size=PARQUET_ROWS * 2)
+                    gathered.clear()
+
         jfile = stack.enter_context(atomic_write(junit)) if junit is not None else None
         suite = (
             stack.enter_context(tempfile.TemporaryFile("w+", encoding="utf-8")) if junit is not None else None
@@ -462,6 +575,9 @@ def write_stream(
             elif fmt == "json" and len(c):
                 data.write(pending)
                 pending = text["data"]
+            elif fmt == "parquet":
+                gathered.append(text["data"])
+                flush_rows()
             elif fmt == "table" and len(table_rows) < TABLE_ROWS:
                 show = np.ones(len(c), bool) if total <= TABLE_ROWS else c.failed(fail_on)
                 pick = np.nonzero(show)[0][: TABLE_ROWS - len(table_rows)].tolist()
@@ -497,6 +613,8 @@ def write_stream(
                 + json.dumps(summary, allow_nan=False, ensure_ascii=False)
                 + "}\n"
             )
+        if parquet is not None:
+            flush_rows(final=True)
         if jfile is not None:
             flush_suite()
             jfile.write("</testsuites>\n")
