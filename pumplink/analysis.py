@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -34,12 +35,13 @@ from pumplink.mechanisms.fourbar import (
     per_design,
     synthesize,
 )
-from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC, Conditions, model_index
-from pumplink.models import dynamics as _dy
-from pumplink.models import flywheel as _fw
+from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC, Conditions, Masses, model_index
 from pumplink.models import quasi_static as _qs
 from pumplink.spec import PumpSpec
 from pumplink.verdict import Check, Verdict, assess
+
+if TYPE_CHECKING:  # the flywheel and dynamics modules load when a command first needs them
+    from pumplink.models import flywheel as _fw
 
 #: Crank angles of the curve a force chart draws (0.05 deg steps, both ends).
 CURVE_POINTS = 7201
@@ -215,13 +217,13 @@ def design(spec: PumpSpec) -> Design:
     return Design(spec, syn, infeasibility_reason(syn.reason, lk.L1, lk.D1, lk.b, swing))
 
 
-def link_masses(spec: PumpSpec, coupler_length, arms: bool) -> _dy.Masses:
+def link_masses(spec: PumpSpec, coupler_length, arms: bool) -> Masses:
     """Coupler, handle and grip masses [kg] from the spec (docs/models.md §3a): linkage.coupler_mass
     and linkage.handle_mass, else linkage.mass_per_length times the coupler's length and the
     handle's max(H, rocker); the grip carries operator.arm_mass when ``arms``, else nothing."""
     lk = spec.linkage
     mpl = lk.mass_per_length or LINK_MASS_PER_METRE
-    return _dy.Masses(
+    return Masses(
         lk.coupler_mass if lk.coupler_mass is not None else mpl * np.asarray(coupler_length, float),
         lk.handle_mass if lk.handle_mass is not None else mpl * max(lk.handle, lk.rocker),
         spec.operator.arm_mass_kg if arms else 0.0,
@@ -262,7 +264,7 @@ def energy_model(
     inertia,
     speed,
     speed_fluctuation,
-    masses: _dy.Masses,
+    masses: Masses,
     arms_in_verdict,
     forced: str | None = None,
     solve=True,
@@ -275,6 +277,9 @@ def energy_model(
     ``forced``: a model key that overrides the choice.  ``solve``: False (or False per design) to
     leave the force unsolved (NaN), e.g. for an infeasible design.
     """
+    from pumplink.models import dynamics as _dy  # loaded when first needed (start-up)
+    from pumplink.models import flywheel as _fw  # loaded when first needed (start-up)
+
     scalar, arrays = per_design(
         lk,
         dead_centre_extended,
@@ -355,6 +360,10 @@ def force_analysis(
     # the least model that is enough (docs/models.md §3), or the one asked for
     em = None
     if inertia is not None:
+        # the inertia models load here, not at start-up (a spec without inertia never needs them)
+        from pumplink.models import dynamics as _dy
+        from pumplink.models import flywheel as _fw
+
         em = energy_model(
             syn.linkage,
             syn.dead_centre_extended,
@@ -579,6 +588,9 @@ def force_curve(r: ForceResult, points: int = CURVE_POINTS) -> ForceCurve:
     f = kinematic_state(syn.linkage, theta, r.wheel_torque).force
     op = ws = None
     if r.flywheel and r.scene is not None and np.isfinite(r.scene.least_peak_force):
+        from pumplink.models import dynamics as _dy
+        from pumplink.models import flywheel as _fw
+
         m = _dy if r.dynamics else _fw
         op, ws = m.operator_force(r.scene, theta), m.wheel_speed(r.scene, theta)
     return ForceCurve(theta, f, op, ws, float(np.sign(np.interp(r.dead_band_peak_angle, theta, f))))
@@ -602,6 +614,9 @@ def verify(r: ForceResult, rtol: float = VERIFY_RTOL) -> Verification:
     ------
     SpecError : the result has no flywheel scene with a finite peak force.
     """
+    from pumplink.models import dynamics as _dy  # loaded when first needed (start-up)
+    from pumplink.models import flywheel as _fw  # loaded when first needed (start-up)
+
     if r.scene is None or not math.isfinite(r.scene.least_peak_force):
         raise SpecError("nothing to integrate: no finite peak force keeps the wheel turning")
     if r.dynamics:
@@ -654,6 +669,9 @@ def cadence(r: ForceResult, searched_deg_s=CADENCE_RANGE_DEG_S) -> Cadence:
     ------
     SpecError : the spec gives no inertia (then the force does not depend on speed).
     """
+    from pumplink.models import dynamics as _dy  # loaded when first needed (start-up)
+    from pumplink.models import flywheel as _fw  # loaded when first needed (start-up)
+
     spec = r.design.spec
     if spec.inertia is None:
         raise SpecError(
@@ -810,6 +828,9 @@ def speed_sweep(
     SpecError : the spec gives no inertia (the quasi-static force does not depend on speed).
     InfeasibleDesign : no crank-rocker for this spec.
     """
+    from pumplink.models import dynamics as _dy  # loaded when first needed (start-up)
+    from pumplink.models import flywheel as _fw  # loaded when first needed (start-up)
+
     if spec.inertia is None:
         raise SpecError(
             f"{spec.name}: the speed study needs the wheel's inertia (the quasi-static force does not "
@@ -912,6 +933,8 @@ def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
     flywheel leaves out (the links' kinetic energy and weight, the operator's arms) against its
     energy band, and a sentence naming the model that decided and why it is enough.
     """
+    from pumplink.models import dynamics as _dy  # loaded when first needed (start-up)
+
     spec = r.design.spec
     op = spec.operator
     nan = float("nan")

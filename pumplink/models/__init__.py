@@ -16,12 +16,29 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pumplink.models import dynamics, flywheel, quasi_static
+from pumplink.models import quasi_static
 
 #: Registry keys (the ``model`` of reports is :attr:`Model.label`).
 QUASI_STATIC = "quasi-static"
 FLYWHEEL = "flywheel"
 DYNAMICS = "dynamics"
+
+
+@dataclass(frozen=True)
+class Masses:
+    """Moving masses of the linkage (floats or arrays over designs) [kg].
+
+    Attributes
+    ----------
+    coupler : mass of the coupler, a uniform bar from the crank pin A to the joint B.
+    handle : mass of the handle, a uniform bar from the rocker pivot O4 along the rocker, of
+        length max(H, rocker).
+    grip : point mass at the grip (the operator's hands and forearms), 0 for the hand force.
+    """
+
+    coupler: np.ndarray | float = 0.0
+    handle: np.ndarray | float = 0.0
+    grip: np.ndarray | float = 0.0
 
 
 @dataclass(frozen=True)
@@ -41,7 +58,7 @@ class Conditions:
     dead_band: np.ndarray | float
     inertia: np.ndarray | float = np.nan
     speed_fluctuation: np.ndarray | float = np.nan
-    masses: dynamics.Masses = dynamics.Masses()  # coupler, handle, grip [kg] (full dynamics)
+    masses: Masses = Masses()  # coupler, handle, grip [kg] (full dynamics)
 
 
 @dataclass(frozen=True)
@@ -66,12 +83,16 @@ def _quasi_static_peak(
 
 def _flywheel_peak(fourbar, dead_centre_extended, dead_centre_folded, wheel_torque, conditions: Conditions):
     """Least peak force for a periodic motion inside the energy band [N] (docs/models.md §2, Eq. (4))."""
+    from pumplink.models import flywheel  # loaded when first needed: a start-up cost otherwise
+
     band = flywheel.energy_band(conditions.inertia, conditions.speed, conditions.speed_fluctuation)
     return flywheel.least_peak_force(fourbar, dead_centre_extended, dead_centre_folded, wheel_torque, band)
 
 
 def _dynamics_peak(fourbar, dead_centre_extended, dead_centre_folded, wheel_torque, conditions: Conditions):
     """Least peak force with link masses, weight and arms [N] (docs/models.md §3, (C1)-(C2))."""
+    from pumplink.models import dynamics  # loaded when first needed: a start-up cost otherwise
+
     return dynamics.least_peak_force(
         fourbar,
         dead_centre_extended,

@@ -53,6 +53,7 @@ import numpy as np
 from pumplink.constants import GRAVITY
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.fourbar import FourBar, loop_closure, per_design
+from pumplink.models import Masses  # defined beside Conditions, which carries it
 from pumplink.models import flywheel as _fw
 from pumplink.models import quasi_static as _qs
 
@@ -85,23 +86,6 @@ REFINE_STEP = 1e-6
 
 
 # ----------------------------------------------------------------------------- masses
-@dataclass(frozen=True)
-class Masses:
-    """Moving masses of the linkage (floats or arrays over designs) [kg].
-
-    Attributes
-    ----------
-    coupler : mass of the coupler, a uniform bar from the crank pin A to the joint B.
-    handle : mass of the handle, a uniform bar from the rocker pivot O4 along the rocker, of
-        length max(H, rocker).
-    grip : point mass at the grip (the operator's hands and forearms), 0 for the hand force.
-    """
-
-    coupler: np.ndarray | float = 0.0
-    handle: np.ndarray | float = 0.0
-    grip: np.ndarray | float = 0.0
-
-
 def bar_masses(lk: FourBar, mass_per_length, grip=0.0) -> Masses:
     """Coupler and handle as uniform bars of ``mass_per_length`` [kg/m]; ``grip`` [kg] at the grip."""
     return Masses(

@@ -35,6 +35,8 @@ HEAVY = [
     "pumplink.methods",
     "pumplink.accuracy",
     "pumplink.piston",
+    "pumplink.models.flywheel",  # the inertia models: a spec without inertia never needs them
+    "pumplink.models.dynamics",
 ]
 
 PROBE = """
@@ -77,6 +79,14 @@ def test_single_spec_commands_load_nothing_heavy(args, expect):
     res = _probe(*args)
     assert res["code"] == 0 and expect in res["out"], res["out"]  # the command really ran
     assert res["loaded"] == [], f"{' '.join(args)} imported {res['loaded']}"
+
+
+def test_a_spec_with_inertia_loads_the_inertia_models():
+    """The guard above is not vacuous: where the wheel's inertia decides, the force command loads
+    the flywheel and full-dynamics modules (and still none of the other heavy ones)."""
+    res = _probe("force", "examples/well-12m-flywheel.toml", "--summary")
+    assert "VERDICT" in res["out"], res["out"]
+    assert sorted(res["loaded"]) == ["pumplink.models.dynamics", "pumplink.models.flywheel"], res["loaded"]
 
 
 def test_importing_the_cli_loads_no_library():
