@@ -412,9 +412,12 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
 
 
 def _masses(spec: PumpSpec, coupler_length, handle, rocker, link_masses):
-    """The spec's link and arm masses for designs of these lengths (``analysis.link_masses``, with
-    the handle's default mass for each design's handle and rocker)."""
-    ms = link_masses(spec, coupler_length, arms=True)
+    """The spec's link masses, and the arms' where they are in the verdict, for designs of these
+    lengths (``analysis.link_masses``, with the handle's default mass for each design's handle and
+    rocker)."""
+    # the arms only when they are in the verdict: then they also enter the model choice; else
+    # their size is not needed and the search skips it (the same forces: docs/models.md §3)
+    ms = link_masses(spec, coupler_length, arms=bool(spec.operator.arms_in_verdict))
     lk = spec.linkage
     mpl = lk.mass_per_length or LINK_MASS_PER_METRE
     handle_mass = lk.handle_mass if lk.handle_mass is not None else mpl * np.maximum(handle, rocker)
@@ -519,12 +522,26 @@ def optimize(
     polished = False
     if polish:
         scale = problem.upper - problem.lower
+        gradient_points: dict[bytes, float] = {}
 
         def f(z):
+            key = np.asarray(z, float).tobytes()
+            if key in gradient_points:
+                return gradient_points.pop(key)
             return float(ev(problem.lower + z * scale).objective[0])
 
         def g(z):
-            return ev(problem.lower + z * scale).slack[:, 0]  # SLSQP asks f and g at the same points
+            # the constraints need the geometry only, no force model
+            x2 = (problem.lower + np.asarray(z, float) * scale)[:, None]
+            return _terms(problem, x2).slack[:, 0]
+
+        def gradient_map(fun, points):
+            # SLSQP's finite-difference gradient asks for n + 1 objective values at once: one
+            # vectorised evaluation of them all, then each handed back through ``fun``
+            zs = [np.asarray(z, float) for z in points]
+            objective = ev(problem.lower[:, None] + np.stack(zs, axis=1) * scale[:, None]).objective
+            gradient_points.update((z.tobytes(), float(v)) for z, v in zip(zs, objective))
+            return [fun(z) for z in zs]
 
         z0 = (x - problem.lower) / scale
         loc = minimize(
@@ -533,7 +550,7 @@ def optimize(
             method="SLSQP",
             bounds=[(0.0, 1.0)] * n,
             constraints=[{"type": "ineq", "fun": g}],
-            options=dict(maxiter=200, ftol=1e-12),
+            options=dict(maxiter=200, ftol=1e-12, workers=gradient_map),
         )
         xp = problem.lower + np.clip(loc.x, 0.0, 1.0) * scale
         cand = _pull_back(problem, x, xp)
@@ -585,16 +602,24 @@ def _pull_back(problem: Problem, good: np.ndarray, cand: np.ndarray, steps: int 
     idx = np.nonzero(ok)[0]
     if idx.size == 0 or idx[0] == steps:
         return None
-    # Bisect between the last infeasible and the first feasible sample.
+    # Bisect between the last infeasible and the first feasible sample.  The steps look at the
+    # constraints only (the geometry, no force model); the point they end at is checked in full,
+    # and only if its force is not finite is the bisection repeated with the force (the same
+    # point wherever the force is finite along the segment, at a fiftieth of the cost).
     lo_t, hi_t = t[idx[0]], t[idx[0] - 1]
-    for _ in range(50):
-        mid = 0.5 * (lo_t + hi_t)
-        em = evaluate_designs(problem, (good + (cand - good) * mid)[:, None])
-        if _feasible(em):
-            lo_t = mid
-        else:
-            hi_t = mid
-    return good + (cand - good) * lo_t
+    for full in (False, True):
+        lo, hi = lo_t, hi_t
+        for _ in range(50):
+            mid = 0.5 * (lo + hi)
+            x2 = (good + (cand - good) * mid)[:, None]
+            ok = _feasible(evaluate_designs(problem, x2)) if full else np.all(_terms(problem, x2).slack >= 0)
+            if ok:
+                lo = mid
+            else:
+                hi = mid
+        if _feasible(evaluate_designs(problem, (good + (cand - good) * lo)[:, None])):
+            break
+    return good + (cand - good) * lo
 
 
 def _fmt_x(problem: Problem, x) -> str:

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from scipy.optimize import minimize_scalar
 
 from pumplink.analysis import force_analysis
-from pumplink.constants import MIN_TRANSMISSION_DEG
+from pumplink.constants import LINK_MASS_PER_METRE, MIN_TRANSMISSION_DEG
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.optimize import (
     DEFAULT_BOUNDS,
@@ -327,3 +327,36 @@ def test_search_gives_the_optimum_of_the_reference_flywheel_route(monkeypatch):
     assert np.all(np.abs(fast.x - slow.x) <= 1e-5 * (problem.upper - problem.lower))
     assert fast.best_result.least_peak_force == pytest.approx(slow.best_result.least_peak_force, rel=1e-9)
     assert fast.at_best.least_peak_force[0] > 100.0  # a real flywheel optimum (fails the 100 N limit)
+
+
+def test_shortcuts_of_the_search_leave_the_optimum_unchanged(monkeypatch):
+    """Three shortcuts make a full-dynamics search cheaper without changing its answer: the polish's
+    finite-difference gradient asks for its n + 1 objective values in one vectorised call (SLSQP's
+    ``workers``), its constraints are taken from the geometry alone, and the arms' kinetic energy
+    is not computed when they are out of the verdict.  With the first and the last undone (scipy's
+    own one-point-at-a-time differences, and the arm mass passed as before) the same search gives
+    the same design and the same peak force, to the last bit."""
+    import scipy.optimize
+
+    from pumplink import optimize as opt
+
+    problem = make_problem(fly_spec(8.0, L1=1.5), {"D1": (-0.5, 0.8), "swing": (40.0, 100.0)}, **RELAXED)
+    fast = optimize(problem, seed=0, maxiter=40)
+    assert fast.polished and fast.best_result.model == "full dynamics"
+
+    minimize = scipy.optimize.minimize
+
+    def one_at_a_time(*args, options=None, **kwargs):
+        options = {k: v for k, v in (options or {}).items() if k != "workers"}
+        return minimize(*args, options=options, **kwargs)
+
+    def with_arms(spec, coupler_length, handle, rocker, link_masses):
+        ms = link_masses(spec, coupler_length, arms=True)  # the arms' mass, out of the verdict
+        handle_mass = (spec.linkage.mass_per_length or LINK_MASS_PER_METRE) * np.maximum(handle, rocker)
+        return type(ms)(ms.coupler, handle_mass, ms.grip)
+
+    monkeypatch.setattr(scipy.optimize, "minimize", one_at_a_time)
+    monkeypatch.setattr(opt, "_masses", with_arms)
+    slow = optimize(problem, seed=0, maxiter=40)
+    assert np.array_equal(fast.x, slow.x)
+    assert fast.at_best.objective[0] == slow.at_best.objective[0]

@@ -730,7 +730,8 @@ def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY):
     (link_energy, link_weight, arm_energy) [J]: the coupler's and handle's largest kinetic energy
     at w_bar and the range of their potential energy over a revolution (both on
     :data:`EFFECT_GRID` crank angles), and the largest kinetic energy of the arms at the grip,
-    m (H max|dt4/dt| w_bar)^2 / 2 (exact: :func:`pumplink.mechanisms.fourbar.peak_rocker_rate`).
+    m (H max|dt4/dt| w_bar)^2 / 2 (exact: :func:`pumplink.mechanisms.fourbar.peak_rocker_rate`;
+    0 where the arm mass is 0).
     """
     from pumplink.mechanisms.fourbar import peak_rocker_rate
 
@@ -742,7 +743,13 @@ def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY):
         tm = terms(col, th, Masses(mc[:, None], mh[:, None], 0.0), gravity)
         link = 0.5 * np.max(tm.inertia, axis=1) * w * w
         weight = np.ptp(tm.potential, axis=1)
-        arm = 0.5 * ma * (geom[5] * peak_rocker_rate(FourBar(*geom)) * w) ** 2
+        # the peak rate only where arms are carried: a search that leaves them out of the verdict
+        # passes no arm mass and skips the refinement (about half its cost per small batch)
+        arm = np.zeros(np.shape(ma))
+        r = np.nonzero(ma != 0.0)[0]
+        if r.size:
+            rate = peak_rocker_rate(FourBar(*(v[r] for v in geom)))
+            arm[r] = 0.5 * ma[r] * (geom[5][r] * rate * w[r]) ** 2
     out = (link, weight, arm)
     return tuple(float(v[0]) for v in out) if scalar else out
 
