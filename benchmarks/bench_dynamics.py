@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _record import record  # noqa: E402
 from bench_core import ROOT, machine  # noqa: E402
 
 from pumplink.analysis import cadence, design, force_analysis, link_masses  # noqa: E402
@@ -40,8 +41,10 @@ def timed(fn, repeat):
     return statistics.median(wall), statistics.median(cpu)
 
 
-def line(label, figure, target, met):
+def line(label, figure, target, met, value=float("nan"), unit=""):
+    """One line per target, and its figure for `make bench`'s summary table (benchmarks/_record.py)."""
     print(f"{label}: {figure}; target {target}; met: {'yes' if met else 'NO'}")
+    record(label, value, unit, target, met, figure)
 
 
 def batch_designs(spec, n, seed=12):
@@ -87,6 +90,8 @@ def main() -> None:
         f"cpu {cpu * 1e3:.2f} ms (wall {wall * 1e3:.2f})",
         "<= 5 ms",
         cpu <= 5e-3,
+        cpu * 1e3,
+        "ms CPU",
     )
     args = batch_designs(spec, BATCH)
     n = args[0].crank.size
@@ -96,6 +101,8 @@ def main() -> None:
         f"cpu {n / cpu:,.0f}/s (wall {n / wall:,.0f}/s)",
         ">= 10,000/s",
         n / cpu >= 10_000,
+        n / cpu,
+        "designs/s per core",
     )
     r = force_analysis(spec, keep_samples=False)
     wall, cpu = timed(lambda: cadence(r), 5)

@@ -397,7 +397,7 @@ def test_without_dask_the_scheduler_says_how_to_install_it():
     )
 
 
-def test_the_default_install_imports_neither_dask_nor_pyarrow(tmp_path, grids):
+def test_the_default_install_imports_neither_dask_pyarrow_nor_numba(tmp_path, grids):
     """`make run` (pumplink force) and a batch on the local pool, JUnit included, in one process:
     the optional extras stay unimported."""
     code = textwrap.dedent(
@@ -412,7 +412,8 @@ def test_the_default_install_imports_neither_dask_nor_pyarrow(tmp_path, grids):
                 main(args)
             except SystemExit as exc:
                 assert exc.code in (0, 1), (args, exc.code)
-        loaded = sorted(m for m in sys.modules if m.split(".")[0] in ("dask", "distributed", "pyarrow"))
+        extras = ("dask", "distributed", "pyarrow", "numba")
+        loaded = sorted(m for m in sys.modules if m.split(".")[0] in extras)
         print(loaded)
         """
     )
