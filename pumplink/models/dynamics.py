@@ -52,7 +52,7 @@ import numpy as np
 
 from pumplink.constants import GRAVITY
 from pumplink.mechanisms.angles import TWO_PI
-from pumplink.mechanisms.fourbar import FourBar, loop_closure, per_design
+from pumplink.mechanisms.fourbar import FourBar, per_design
 from pumplink.models import Masses  # defined beside Conditions, which carries it
 from pumplink.models import flywheel as _fw
 from pumplink.models import quasi_static as _qs
@@ -112,6 +112,101 @@ class Terms:
     grip_x: np.ndarray
 
 
+def _coefficients(lk: FourBar, masses: Masses) -> tuple:
+    """The per-design constants of :func:`terms` (scalars, arrays over designs or their columns).
+
+    Computed once per design and gathered with the designs (the solver evaluates the terms many
+    times on a few points each): the same expressions as written out in :func:`terms`, so the same
+    rounding.  Order: px, py, crank, |O4|^2 + crank^2, 2 crank, (coupler^2 - rocker^2) / 2,
+    coupler^2, coupler, rocker^2, branch (the loop closure of
+    :func:`pumplink.mechanisms.fourbar.loop_closure`); the coupler's mass, its moment of inertia
+    about its centre, the handle's and the arms' about O4, their first moment about O4 per metre
+    of the rocker, the handle's and the arms' weight moment arm term (mh + ma) py, H / rocker and
+    its negative.
+    """
+    px, py, c, k, r, hh = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle
+    mc, mh, ma = masses.coupler, masses.handle, masses.grip
+    arm = np.maximum(hh, r)  # the handle as a bar from O4, at least the rocker's length
+    hr = hh / r
+    return (
+        px,
+        py,
+        c,
+        px * px + py * py + c * c,
+        2.0 * c,
+        0.5 * (k * k - r * r),
+        k * k,
+        k,
+        r * r,
+        lk.branch,
+        mc,
+        mc * k * k / 12.0,  # coupler about its centre
+        mh * arm * arm / 3.0 + ma * hh * hh,  # handle and arms about O4
+        (0.5 * mh * arm + ma * hh) / r,  # first moment about O4 along the rocker, per metre of w
+        (mh + ma) * py,
+        hr,
+        -hr,
+    )
+
+
+def _gather(co: tuple, rows, column: bool = False) -> tuple:
+    """The entries ``rows`` of every array of a :func:`_coefficients`-like tuple (as columns)."""
+    if column:
+        return tuple(v[rows][:, None] for v in co)
+    return tuple(v[rows] for v in co)
+
+
+def _terms(co: tuple, th, gravity, rates_only: bool = False, fly_x: bool = False):
+    """:func:`terms` on the constants ``co`` of :func:`_coefficients` (no floating-point context).
+
+    Returns (inertia, inertia_rate, potential, potential_rate, grip_rate, grip_x, crank_x): the
+    first six as :class:`Terms`; ``crank_x`` (``fly_x``, else None) the grip's Px as
+    :func:`pumplink.models.flywheel._grip_x` computes it (its rounding), from the same loop closure.
+    """
+    px, py, c, o2, c2, hkr, kk, k, rr, branch, mc, ic, i4, lever, mpy, hr, nhr = co
+    cs, sn = np.cos(th), np.sin(th)
+    # the loop closure of pumplink.mechanisms.fourbar.loop_closure (t, q), written out
+    p1 = cs * px + sn * py
+    e2 = o2 - c2 * p1
+    t = 0.5 + hkr / e2
+    e = np.sqrt(e2)
+    ek = e + k
+    e_k = (e2 - kk) / ek
+    q = branch * (np.sqrt((rr - e_k * e_k) * (ek**2 - rr)) / (2.0 * e2))
+    ccs, csn = c * cs, c * sn  # the crank pin A
+    dx, dy = px - ccs, py - csn  # O4 - A
+    tdx, qdy = t * dx, q * dy
+    ux, uy = tdx - qdy, t * dy + q * dx  # B - A (Eq. (6) of pumplink.mechanisms.fourbar)
+    wx, wy = ux - dx, uy - dy  # B - O4
+    inv = 1.0 / (ux * wy - uy * wx)
+    h3 = (csn * wx - ccs * wy) * inv  # first derivative of the loop closure
+    h4 = (csn * ux - ccs * uy) * inv
+    h33, h44 = h3 * h3, h4 * h4
+    h33ux, h33uy = h33 * ux, h33 * uy
+    rx = ccs + h33ux - h44 * wx
+    ry = csn + h33uy - h44 * wy
+    d3 = (rx * wx + ry * wy) * inv  # second derivative
+    d4 = (rx * ux + ry * uy) * inv
+    # coupler centre A + u/2: velocity and acceleration coefficients
+    half3 = 0.5 * h3
+    ncsn = -csn
+    vx = ncsn - half3 * uy
+    vy = ccs + half3 * ux
+    ax = -ccs - 0.5 * (d3 * uy + h33ux)
+    ay = ncsn + 0.5 * (d3 * ux - h33uy)
+    rate = 2.0 * (mc * (vx * ax + vy * ay) + ic * h3 * d3 + i4 * h4 * d4)
+    inertia = potential = grip_x = crank_x = None
+    if not rates_only:
+        inertia = mc * (vx * vx + vy * vy) + ic * h33 + i4 * h44  # Eq. (5)
+        potential = gravity * (mc * (csn + 0.5 * uy) + mpy + lever * wy)  # Eq. (6)
+        grip_x = px + hr * wx
+    if fly_x:
+        crank_x = px + hr * ((ccs + tdx) - qdy - px)
+    potential_rate = gravity * (mc * vy + lever * h4 * wx)
+    grip_rate = nhr * h4 * wy
+    return inertia, rate, potential, potential_rate, grip_rate, grip_x, crank_x
+
+
 def terms(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only: bool = False) -> Terms:
     """I(t) - J, I'(t), V(t), V'(t) and g(t) of Eq. (5)-(7) (docs/models.md §3a).
 
@@ -127,41 +222,9 @@ def terms(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only:
     V' and g).
     """
     th = np.asarray(crank_angle, float)
-    cs, sn = np.cos(th), np.sin(th)
-    px, py, c, k, r, hh = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle
     with np.errstate(all="ignore"):
-        _p1, _p2, _e2, t, q = loop_closure(lk, cs, sn)
-        ccs, csn = c * cs, c * sn  # the crank pin A
-        dx, dy = px - ccs, py - csn  # O4 - A
-        ux, uy = t * dx - q * dy, t * dy + q * dx  # B - A (Eq. (6) of pumplink.mechanisms.fourbar)
-        wx, wy = ux - dx, uy - dy  # B - O4
-        inv = 1.0 / (ux * wy - uy * wx)
-        h3 = (csn * wx - ccs * wy) * inv  # first derivative of the loop closure
-        h4 = (csn * ux - ccs * uy) * inv
-        h33, h44 = h3 * h3, h4 * h4
-        rx = ccs + h33 * ux - h44 * wx
-        ry = csn + h33 * uy - h44 * wy
-        d3 = (rx * wx + ry * wy) * inv  # second derivative
-        d4 = (rx * ux + ry * uy) * inv
-        # coupler centre A + u/2: velocity and acceleration coefficients
-        vx = -csn - 0.5 * h3 * uy
-        vy = ccs + 0.5 * h3 * ux
-        ax = -ccs - 0.5 * (d3 * uy + h33 * ux)
-        ay = -csn + 0.5 * (d3 * ux - h33 * uy)
-        arm = np.maximum(hh, r)
-        mc, mh, ma = masses.coupler, masses.handle, masses.grip
-        ic = mc * k * k / 12.0
-        i4 = mh * arm * arm / 3.0 + ma * hh * hh  # about O4
-        rate = 2.0 * (mc * (vx * ax + vy * ay) + ic * h3 * d3 + i4 * h4 * d4)
-        lever = (0.5 * mh * arm + ma * hh) / r  # first moment about O4 along the rocker, per metre of w
-        inertia = potential = grip_x = None
-        if not rates_only:
-            inertia = mc * (vx * vx + vy * vy) + ic * h33 + i4 * h44  # Eq. (5)
-            potential = gravity * (mc * (csn + 0.5 * uy) + (mh + ma) * py + lever * wy)  # Eq. (6)
-            grip_x = px + (hh / r) * wx
-        potential_rate = gravity * (mc * vy + lever * h4 * wx)
-        grip_rate = -(hh / r) * h4 * wy
-    return Terms(inertia, rate, potential, potential_rate, grip_rate, grip_x)
+        out = _terms(_coefficients(lk, masses), th, gravity, rates_only)
+    return Terms(*out[:6])
 
 
 def reduced_inertia(lk: FourBar, crank_angle, inertia, masses: Masses):
@@ -208,6 +271,8 @@ class _Problem:
     stroke: np.ndarray
     up: np.ndarray | None  # upper edge of the band at the nodes (D, M) [J]
     lo: np.ndarray | None  # lower edge [J]
+    co: tuple  # the constants of the terms per design (_coefficients), (D,) arrays
+    kin: np.ndarray  # half the squared top and bottom speeds, (2, D) [rad^2/s^2]
 
     def points(self, rows=None):
         """The grid nodes of designs ``rows`` (all: None) as points (x, base, local, up, lo)."""
@@ -216,16 +281,24 @@ class _Problem:
             return p.nodes, p.base, p.local, self.up, self.lo
         return p.nodes[rows], p.base[rows], p.local[rows], self.up[rows], self.lo[rows]
 
-    def edges(self, phi, rows=None):
+    def _columns(self, rows):
+        """(constants of the terms, J, w_hi^2 / 2, w_lo^2 / 2, dce) of designs ``rows`` (all:
+        None) as columns (R, 1)."""
+        if rows is None or rows.size == self.mw.size:  # rows are sorted and distinct: all
+            return _gather(self.co, slice(None), True), self.inertia[:, None], *self.kin[:, :, None]
+        return _gather(self.co, rows, True), self.inertia[rows][:, None], *self.kin[:, rows][:, :, None]
+
+    def edges(self, phi, rows=None, fly_x: bool = False):
         """upper and lower edge of the band [J] at points phi [rad from the extended dead centre],
-        shape (R, K), of the designs ``rows`` (R,) (all: None)."""
-        take = (lambda v: v[:, None]) if rows is None else (lambda v: v[rows][:, None])  # noqa: E731
-        lk = FourBar(*(take(v) for v in self.lk.parameters))
-        ms = Masses(take(self.masses.coupler), take(self.masses.handle), take(self.masses.grip))
-        tm = terms(lk, take(self.prep.dce) + phi, ms, self.gravity)
-        i = take(self.inertia) + tm.inertia
-        hi, lo = 0.5 * take(self.w_hi) ** 2, 0.5 * take(self.w_lo) ** 2
-        return tm.potential + i * hi, tm.potential + i * lo  # Eq. (8)
+        shape (R, K), of the designs ``rows`` (R,) (all: None).  ``fly_x``: also the grip's Px [m]
+        as :func:`pumplink.models.flywheel._grip_x` computes it."""
+        co, j, hi, lo = self._columns(rows)
+        dce = self.prep.dce[:, None] if rows is None else self.prep.dce[rows][:, None]
+        with np.errstate(all="ignore"):
+            tm = _terms(co, dce + phi, self.gravity, fly_x=fly_x)
+            i = j + tm[0]
+            out = tm[2] + i * hi, tm[2] + i * lo  # Eq. (8)
+        return (*out, tm[6]) if fly_x else out
 
 
 def _node_travel(nodes, plus, grip_x, xe, xf, stroke):
@@ -254,22 +327,28 @@ def _problem(lk, dce, dcf, wheel_torque, inertia, masses, mean_speed, speed_fluc
         mean_speed,
         speed_fluctuation,
     )
+    return _problem_of(arrays, gravity), scalar
+
+
+def _problem_of(arrays, gravity) -> _Problem:
+    """:func:`_problem` of the 1-D arrays of :func:`pumplink.mechanisms.fourbar.per_design`."""
     geom, (dce, dcf, mw, j, mc, mh, ma, w, delta) = arrays[:7], arrays[7:]
     lk1 = FourBar(*geom)
+    ms = Masses(mc, mh, ma)
     w_lo, w_hi = speed_limits(w, delta)
     with np.errstate(all="ignore"):
-        xe = _fw._grip_x(dce, *geom)
-        xf = _fw._grip_x(dcf, *geom)
+        co = _coefficients(lk1, ms)
+        xe, xf = _fw._grip_x(np.stack([dce, dcf]), *geom)  # both dead centres in one call
         stroke = np.abs(xf - xe)
         nodes, plus = _fw._nodes(dce, dcf, GRID, CLUSTER)
-        col = FourBar(*(v[:, None] for v in geom))
-        tm = terms(col, dce[:, None] + nodes, Masses(mc[:, None], mh[:, None], ma[:, None]), gravity)
-        i = j[:, None] + tm.inertia
-        up = tm.potential + i * (0.5 * w_hi**2)[:, None]  # Eq. (8)
-        lo = tm.potential + i * (0.5 * w_lo**2)[:, None]
-        base, local = _node_travel(nodes, plus[:, None], tm.grip_x, xe[:, None], xf[:, None], stroke[:, None])
+        kin = np.stack([0.5 * w_hi**2, 0.5 * w_lo**2])
+        tm = _terms(_gather(co, slice(None), True), dce[:, None] + nodes, gravity)
+        i = j[:, None] + tm[0]
+        up = tm[2] + i * kin[0][:, None]  # Eq. (8)
+        lo = tm[2] + i * kin[1][:, None]
+        base, local = _node_travel(nodes, plus[:, None], tm[5], xe[:, None], xf[:, None], stroke[:, None])
     prep = _fw._Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
-    return _Problem(prep, lk1, j, Masses(mc, mh, ma), w_lo, w_hi, gravity, mw, stroke, up, lo), scalar
+    return _Problem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, co, kin)
 
 
 # The pairs of (C1)-(C2) in the form the sweeps use (docs/models.md §3a).  At the points x of a row
@@ -288,39 +367,68 @@ def _pairs(g, au, al, base, local, mw, stroke, lam):
     doubling the arrays: a running extremum one revolution back is the row's extremum shifted by
     the drift (a or b), so the later copy of a point always dominates its first copy.
     """
-    rows = np.arange(g.shape[0])
+    h, r = _pairs_held(_held(g, au, al, base, local, mw, stroke), lam)
+    return h.T, r.T
+
+
+def _held(g, au, al, base, local, mw, stroke) -> list:
+    """The arrays :func:`_pairs_held` reads: G, (au, -al), (al, au), base, local, (-2 pi Mw,
+    2 pi Mw), 2 pi Mw, 2 S and S; rows over designs (axis 1 of the stacked ones).
+
+    (C2) is swept negated beside (C1): its running maximum of lower - P is minus the running
+    minimum of -(lower - P), so both families take one pass of each operation.  Negation is exact,
+    so every value is the one the two families give apart.
+    """
+    turn = TWO_PI * mw
+    return [
+        g,
+        np.stack([au, -al]),
+        np.stack([al, au]),
+        np.ascontiguousarray(base),
+        np.ascontiguousarray(local),
+        np.stack([-turn, turn]),
+        turn,
+        2.0 * stroke,
+        stroke,
+    ]
+
+
+#: Axis over the designs of each array of :func:`_held` (the stacked ones carry the family first).
+_HELD_AXIS = (0, 1, 1, 0, 0, 1, 0, 0, 0)
+
+
+def _pairs_held(held, lam):
+    """:func:`_pairs` on the arrays of :func:`_held`: (h, ratio), each (2, D) (no floating-point
+    context)."""
+    g, au_nal, al_au, base, local, turns, turn, two_s, stroke = held
+    d, k = g.shape
     lg = lam[:, None] * g
-    out_h = np.empty((g.shape[0], 2))
-    out_r = np.empty((g.shape[0], 2))
-    two_s, turn = 2.0 * stroke, TWO_PI * mw
-
-    def ratio(i, j, wrap, num):
-        k = (base[rows, j] - base[rows, i]) + (local[rows, j] - local[rows, i])  # no cancellation at a DC
-        return num / (k + np.where(wrap, two_s, 0.0))
-
-    # (C1): lower(s) - Q(s) - min over t <= s of (upper(t) - Q(t)) <= 0
-    f = au - lg
-    run = np.minimum.accumulate(f, axis=1)
-    back = (run[:, -1] + 2.0 * lam * stroke - turn)[:, None]  # the minimum one revolution back
-    best = np.minimum(run, back)
-    v = al - lg - best
-    j = np.argmax(v, axis=1)
-    out_h[:, 0] = v[rows, j]
-    wrap = best[rows, j] < run[rows, j]
-    i = np.where(wrap, np.argmin(f, axis=1), np.argmax(f == run[rows, j][:, None], axis=1))
-    out_r[:, 0] = ratio(i, j, wrap, al[rows, j] - au[rows, i] + np.where(wrap, turn, 0.0))
-    # (C2): max over s <= t of (lower(s) - P(s)) - (upper(t) - P(t)) <= 0
-    f = al + lg
-    run = np.maximum.accumulate(f, axis=1)
-    back = (run[:, -1] - 2.0 * lam * stroke - turn)[:, None]
-    best = np.maximum(run, back)
-    v = best - au - lg
-    j = np.argmax(v, axis=1)
-    out_h[:, 1] = v[rows, j]
-    wrap = best[rows, j] > run[rows, j]
-    i = np.where(wrap, np.argmax(f, axis=1), np.argmax(f == run[rows, j][:, None], axis=1))
-    out_r[:, 1] = ratio(i, j, wrap, al[rows, i] - au[rows, j] - np.where(wrap, turn, 0.0))
-    return out_h, out_r
+    # (C1): lower(s) - Q(s) - min over t <= s of (upper(t) - Q(t)) <= 0;
+    # (C2): max over s <= t of (lower(s) - P(s)) - (upper(t) - P(t)) <= 0, swept negated
+    f = au_nal - lg  # upper - Q, -(lower - P)
+    run = np.minimum.accumulate(f, axis=2)
+    back = (run[:, :, -1] + 2.0 * lam * stroke) + turns  # the minimum one revolution back
+    best = np.minimum(run, back[:, :, None])
+    v = np.empty_like(f)
+    np.subtract(al_au[0], lg, out=v[0])
+    v[0] -= best[0]
+    np.negative(best[1], out=v[1])
+    v[1] -= al_au[1]
+    v[1] -= lg
+    j = v.argmax(axis=2)
+    off = np.arange(0, 2 * d * k, k).reshape(2, d)  # (family, row) in the flattened (2, D, K)
+    fj = off + j
+    h = v.take(fj)
+    run_j = run.take(fj)
+    wrap = best.take(fj) < run_j
+    i = np.where(wrap, f.argmin(axis=2), (f == run_j[:, :, None]).argmax(axis=2))
+    # N: (C1) al_j - au_i (+ 2 pi Mw), (C2) minus (au_j - al_i (+ 2 pi Mw))
+    num = (al_au.take(fj) - al_au.take(off[::-1] + i)) + np.where(wrap, turn, 0.0)
+    rj, ri = off[0] + j, off[0] + i
+    kk = (base.take(rj) - base.take(ri)) + (local.take(rj) - local.take(ri))  # no cancellation at a DC
+    r = num / (kk + np.where(wrap, two_s, 0.0))
+    np.negative(r[1], out=r[1])
+    return h, r
 
 
 def _dinkelbach(pts, mw, stroke, lam, cap, rtol=RTOL):
@@ -333,29 +441,30 @@ def _dinkelbach(pts, mw, stroke, lam, cap, rtol=RTOL):
     """
     x, base, local, up, lo = pts
     m = mw[:, None] * x
-    held = [base + local, up + m, lo + m, base, local, mw, stroke, cap]
+    held = _held(base + local, up + m, lo + m, base, local, mw, stroke)
     lam = np.array(lam, float)
     where = np.arange(lam.size)  # row of lam for each held row
     live = np.ones(lam.size, bool)
-    for _ in range(200):
-        n_live = int(live.sum())
-        if n_live == 0:
-            break
-        if n_live < 0.5 * live.size:
-            keep = np.nonzero(live)[0]
-            held, where, live = [v[keep] for v in held], where[keep], live[keep]
-        cur = lam[where]
-        with np.errstate(all="ignore"):
-            h, r = _pairs(*held[:7], cur)
+    with np.errstate(all="ignore"):
+        for _ in range(200):
+            n_live = np.count_nonzero(live)
+            if n_live == 0:
+                break
+            if n_live < 0.5 * live.size:
+                keep = np.nonzero(live)[0]
+                held = [v.take(keep, axis=ax) for v, ax in zip(held, _HELD_AXIS, strict=True)]
+                where, live, cap = where[keep], live[keep], cap[keep]
+            cur = lam[where]
+            h, r = _pairs_held(held, cur)
             r = np.where(h > 0, np.where(np.isnan(r), np.inf, r), -np.inf)
-            new = r.max(axis=1)
-        grow = live & (new > cur)
-        done = ~grow | (new - cur <= rtol * np.abs(new))
-        cur = np.where(grow, new, cur)
-        capped = ~(cur <= held[7])
-        cur[capped] = np.inf
-        lam[where[live]] = cur[live]
-        live &= ~(done | capped)
+            new = r.max(axis=0)
+            grow = live & (new > cur)
+            done = ~grow | (new - cur <= rtol * np.abs(new))
+            cur = np.where(grow, new, cur)
+            capped = ~(cur <= cap)
+            cur[capped] = np.inf
+            lam[where[live]] = cur[live]
+            live &= ~(done | capped)
     return lam
 
 
