@@ -149,11 +149,12 @@ def _coefficients(lk: FourBar, masses: Masses) -> tuple:
     )
 
 
-def _gather(co: tuple, rows, column: bool = False) -> tuple:
-    """The entries ``rows`` of every array of a :func:`_coefficients`-like tuple (as columns)."""
-    if column:
-        return tuple(v[rows][:, None] for v in co)
-    return tuple(v[rows] for v in co)
+#: Number of constants :func:`_coefficients` returns.
+_NCO = 17
+#: Evaluations of the terms on at most this many points take per-point copies of the per-design
+#: constants: a ufunc that broadcasts costs twice or three times one on equal shapes when the
+#: arrays are small (optimize's batches of 1-25 designs); larger ones broadcast (less memory).
+_SMALL = 4096
 
 
 def _terms(co: tuple, th, gravity, rates_only: bool = False, fly_x: bool = False):
@@ -271,8 +272,8 @@ class _Problem:
     stroke: np.ndarray
     up: np.ndarray | None  # upper edge of the band at the nodes (D, M) [J]
     lo: np.ndarray | None  # lower edge [J]
-    co: tuple  # the constants of the terms per design (_coefficients), (D,) arrays
-    kin: np.ndarray  # half the squared top and bottom speeds, (2, D) [rad^2/s^2]
+    design: np.ndarray  # per design (columns): the constants of _coefficients, then Mw, dce,
+    # w_hi^2 / 2, w_lo^2 / 2 and J (rows _NCO ... _NCO + 4)
 
     def points(self, rows=None):
         """The grid nodes of designs ``rows`` (all: None) as points (x, base, local, up, lo)."""
@@ -281,19 +282,16 @@ class _Problem:
             return p.nodes, p.base, p.local, self.up, self.lo
         return p.nodes[rows], p.base[rows], p.local[rows], self.up[rows], self.lo[rows]
 
-    def _columns(self, rows):
-        """(constants of the terms, J, w_hi^2 / 2, w_lo^2 / 2, dce) of designs ``rows`` (all:
-        None) as columns (R, 1)."""
-        if rows is None or rows.size == self.mw.size:  # rows are sorted and distinct: all
-            return _gather(self.co, slice(None), True), self.inertia[:, None], *self.kin[:, :, None]
-        return _gather(self.co, rows, True), self.inertia[rows][:, None], *self.kin[:, rows][:, :, None]
-
     def edges(self, phi, rows=None, fly_x: bool = False):
         """upper and lower edge of the band [J] at points phi [rad from the extended dead centre],
         shape (R, K), of the designs ``rows`` (R,) (all: None).  ``fly_x``: also the grip's Px [m]
         as :func:`pumplink.models.flywheel._grip_x` computes it."""
-        co, j, hi, lo = self._columns(rows)
-        dce = self.prep.dce[:, None] if rows is None else self.prep.dce[rows][:, None]
+        dm = self.design if rows is None or rows.size == self.mw.size else self.design.take(rows, axis=1)
+        if phi.size <= _SMALL:  # rows are sorted and distinct: all designs above
+            dm = np.repeat(dm[:, :, None], phi.shape[1], axis=2)
+        else:
+            dm = dm[:, :, None]
+        co, (_mw, dce, hi, lo, j) = dm[:_NCO], dm[_NCO:]
         with np.errstate(all="ignore"):
             tm = _terms(co, dce + phi, self.gravity, fly_x=fly_x)
             i = j + tm[0]
@@ -338,17 +336,18 @@ def _problem_of(arrays, gravity) -> _Problem:
     w_lo, w_hi = speed_limits(w, delta)
     with np.errstate(all="ignore"):
         co = _coefficients(lk1, ms)
+        kin = (0.5 * w_hi**2, 0.5 * w_lo**2)
         xe, xf = _fw._grip_x(np.stack([dce, dcf]), *geom)  # both dead centres in one call
         stroke = np.abs(xf - xe)
         nodes, plus = _fw._nodes(dce, dcf, GRID, CLUSTER)
-        kin = np.stack([0.5 * w_hi**2, 0.5 * w_lo**2])
-        tm = _terms(_gather(co, slice(None), True), dce[:, None] + nodes, gravity)
+        tm = _terms([v[:, None] for v in co], dce[:, None] + nodes, gravity)
         i = j[:, None] + tm[0]
         up = tm[2] + i * kin[0][:, None]  # Eq. (8)
         lo = tm[2] + i * kin[1][:, None]
+        dm = np.stack(np.broadcast_arrays(*co, mw, dce, *kin, j))
         base, local = _node_travel(nodes, plus[:, None], tm[5], xe[:, None], xf[:, None], stroke[:, None])
     prep = _fw._Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
-    return _Problem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, co, kin)
+    return _Problem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, dm)
 
 
 # The pairs of (C1)-(C2) in the form the sweeps use (docs/models.md §3a).  At the points x of a row
@@ -475,34 +474,39 @@ def _dinkelbach(pts, mw, stroke, lam, cap, rtol=RTOL):
 _FAMILIES = ((0, -1.0, -1), (1, -1.0, 1), (1, 1.0, 1), (0, 1.0, -1))
 
 
+_EDGE = np.array([f[0] for f in _FAMILIES])
+_SIGN = np.array([f[1] for f in _FAMILIES])
+
+
 def _extrema(pb: _Problem, lam, rows):
     """The local extrema of :data:`_FAMILIES` on the grid nodes of designs ``rows`` at Fp = lam (per
     row): (design, node, lo, hi, family) with the neighbouring nodes (lo, hi) as the bracket."""
-    x, base, local, up, low = pb.points(rows)
+    every = rows.size == pb.mw.size  # rows are sorted and distinct: all designs
+    x, base, local, up, low = pb.points(None if every else rows)
+    mw, stroke = (pb.mw, pb.stroke) if every else (pb.mw[rows], pb.stroke[rows])
     lg = lam[:, None] * (base + local)
-    m = pb.mw[rows][:, None] * x
-    a = 2.0 * lam * pb.stroke[rows] - TWO_PI * pb.mw[rows]
-    b = -2.0 * lam * pb.stroke[rows] - TWO_PI * pb.mw[rows]
+    m = mw[:, None] * x
+    ls2, turn = 2.0 * lam * stroke, TWO_PI * mw
+    a = ls2 - turn  # the drifts of Q and P over a revolution
+    b = -ls2 - turn
     last = x.shape[1] - 1
-    ext = np.empty(x.shape, bool)
-    out = []
-    for fam, (edge, sign, kind) in enumerate(_FAMILIES):
-        drift = a if sign < 0 else b
-        f = (up if edge == 0 else low) + m
-        f += sign * lg  # upper/lower minus Q (sign -1) or P (+1)
-        f *= -kind  # local maxima become minima
-        with np.errstate(invalid="ignore"):
-            np.less(f[:, 1:-1], f[:, 2:], out=ext[:, 1:-1])
-            ext[:, 1:-1] &= f[:, 1:-1] <= f[:, :-2]
-            # the neighbours across the period: f(x - 2 pi) = f(x) + drift (times -kind)
-            ext[:, 0] = (f[:, 0] <= f[:, -1] - kind * drift) & (f[:, 0] < f[:, 1])
-            ext[:, -1] = (f[:, -1] <= f[:, -2]) & (f[:, -1] < f[:, 0] + kind * drift)
-        d, k = np.nonzero(ext)
-        out.append((d, k, np.full(d.size, fam)))
-    d, k, fam = (np.concatenate(v) for v in zip(*out, strict=True))
-    node = x[d, k]
-    lo = np.where(k > 0, x[d, k - 1], x[d, last] - TWO_PI)
-    hi = np.where(k < last, x[d, np.minimum(k + 1, last)], x[d, 0] + TWO_PI)
+    # the four functions, maxima turned into minima (times -kind): upper - Q, -(lower - Q),
+    # -(lower - P), upper - P; and -kind times their drift (a for Q, b for P)
+    au, al = up + m, low + m
+    f = np.stack([au - lg, al - lg, al + lg, au + lg])
+    np.negative(f[1:3], out=f[1:3])
+    kd = np.stack([-a, a, b, -b])
+    ext = np.empty(f.shape, bool)
+    np.less(f[:, :, 1:-1], f[:, :, 2:], out=ext[:, :, 1:-1])
+    ext[:, :, 1:-1] &= f[:, :, 1:-1] <= f[:, :, :-2]
+    # the neighbours across the period: f(x - 2 pi) = f(x) + drift (times -kind)
+    ext[:, :, 0] = (f[:, :, 0] <= f[:, :, -1] - kd) & (f[:, :, 0] < f[:, :, 1])
+    ext[:, :, -1] = (f[:, :, -1] <= f[:, :, -2]) & (f[:, :, -1] < f[:, :, 0] + kd)
+    fam, d, k = np.nonzero(ext)
+    at = d * x.shape[1] + k  # flat index into (R, M)
+    node = x.take(at)
+    lo = np.where(k > 0, x.take(at - 1), x.take(at - k + last) - TWO_PI)
+    hi = np.where(k < last, x.take(np.minimum(at + 1, x.size - 1)), x.take(at - k) + TWO_PI)
     return d, node, lo, hi, fam
 
 
@@ -511,24 +515,33 @@ class _Slope:
     extremum): f' = V' + I' w^2/2 + sign lam |g| + Mw, with w the band's top or bottom speed."""
 
     def __init__(self, pb: _Problem, dd, fam, lam_e):
-        edge = np.array([f[0] for f in _FAMILIES])[fam]
-        sign = np.array([f[1] for f in _FAMILIES])[fam]
-        self.lk = FourBar(*(v[dd] for v in pb.lk.parameters))
-        self.ms = Masses(pb.masses.coupler[dd], pb.masses.handle[dd], pb.masses.grip[dd])
-        self.w2 = 0.5 * np.where(edge == 0, pb.w_hi[dd], pb.w_lo[dd]) ** 2
-        self.slam = sign * lam_e
-        self.mw, self.dce, self.gravity = pb.mw[dd], pb.prep.dce[dd], pb.gravity
+        e = dd.size
+        m = np.empty((_NCO + 4, e))  # the constants of the terms, Mw, dce, w^2 / 2, sign lam
+        m[: _NCO + 2] = pb.design[: _NCO + 2].take(dd, axis=1)
+        m[_NCO + 2] = pb.design[_NCO + 2 + _EDGE[fam], dd]  # the top (upper edge) or bottom speed
+        np.multiply(_SIGN[fam], lam_e, out=m[_NCO + 3])
+        # the Newton steps evaluate f' at two stacked points per extremum
+        self.m = np.repeat(m[:, None, :], 2, axis=1) if e <= _SMALL else m
+        self.size, self.gravity = e, pb.gravity
 
     def __call__(self, phi, idx=None):
-        """f' at phi [rad from the extended dead centre], shape (..., E) or (..., len(idx))."""
-        if idx is None:
-            lk, ms, w2, slam, mw, dce = self.lk, self.ms, self.w2, self.slam, self.mw, self.dce
-        else:
-            lk = self.lk.take(idx)
-            ms = Masses(self.ms.coupler[idx], self.ms.handle[idx], self.ms.grip[idx])
-            w2, slam, mw, dce = self.w2[idx], self.slam[idx], self.mw[idx], self.dce[idx]
-        tm = terms(lk, dce + phi, ms, self.gravity, rates_only=True)
-        return tm.potential_rate + tm.inertia_rate * w2 + slam * np.abs(tm.grip_rate) + mw
+        """f' at phi (2, E) or (2, len(idx)) [rad from the extended dead centre].
+
+        A few extrema of many are gathered first; otherwise f' is evaluated at all of them (the
+        others at phi = 0) and the wanted ones picked: fewer operations on small arrays, the same
+        values."""
+        pick, m = None, self.m
+        if idx is not None and idx.size < self.size:
+            if 2 * idx.size < self.size:
+                m = m.take(idx, axis=m.ndim - 1)
+            else:
+                pick, phi0 = idx, phi
+                phi = np.zeros((2, self.size))
+                phi[:, idx] = phi0
+        co, (mw, dce, w2, slam) = m[:_NCO], m[_NCO:]
+        tm = _terms(co, dce + phi, self.gravity, rates_only=True)
+        out = tm[3] + tm[1] * w2 + slam * np.abs(tm[4]) + mw
+        return out if pick is None else out[:, pick]
 
 
 def _newton(slope: _Slope, start, lo, hi, width):
@@ -536,20 +549,23 @@ def _newton(slope: _Slope, start, lo, hi, width):
     ``start`` without a bracket: the root where a step below REFINE_XTOL lands inside (lo, hi),
     NaN where it leaves the bracket or has not converged after WARM_ITER steps."""
     out = np.full(start.size, np.nan)
-    c = start.copy()
-    live = np.nonzero(np.isfinite(c))[0]
+    live = np.nonzero(np.isfinite(start))[0]
+    if live.size == start.size:
+        cc, lo_l, hi_l, step = start, lo, hi, REFINE_STEP * width
+    else:
+        cc, lo_l, hi_l, step = start[live], lo[live], hi[live], REFINE_STEP * width[live]
     for _ in range(WARM_ITER):
         if live.size == 0:
             break
-        cc = c[live]
-        step = REFINE_STEP * width[live]
         fc, fh = slope(np.stack([cc, cc + step]), live)
         new = np.where(fc == 0, cc, cc - fc * step / (fh - fc))
-        inside = (new > lo[live]) & (new < hi[live])
+        inside = (new > lo_l) & (new < hi_l)
         conv = inside & (np.abs(new - cc) <= REFINE_XTOL)
         out[live[conv]] = new[conv]
-        c[live] = new
-        live = live[inside & ~conv]
+        keep = inside & ~conv
+        if not keep.all():
+            live, new, lo_l, hi_l, step = live[keep], new[keep], lo_l[keep], hi_l[keep], step[keep]
+        cc = new
     return out
 
 
@@ -558,29 +574,27 @@ def _bracketed(slope: _Slope, lo, hi, node, idx):
     safeguarded by the bracket, until a step is below REFINE_XTOL (the extremum's value is then
     exact to rounding: the function is flat there).  Where f' does not change sign over the
     bracket (an extremum at a node, e.g. a dead centre) the node itself."""
-    a, b = lo[idx].copy(), hi[idx].copy()
+    a, b = lo[idx], hi[idx]
     root = node[idx].copy()
     with np.errstate(all="ignore"):
         fa, fb = slope(np.stack([a, b]), idx)
         live = np.nonzero(np.isfinite(fa) & np.isfinite(fb) & (np.sign(fa) * np.sign(fb) < 0))[0]
         c = (a * fb - b * fa) / (fb - fa)  # a secant step to start
+        al, bl, fal, cc, il = a[live], b[live], fa[live], c[live], idx[live]
         for _ in range(REFINE_ITER):
             if live.size == 0:
                 break
-            al, bl, fal = a[live], b[live], fa[live]
-            cc = c[live]
             cc = np.where((cc > al) & (cc < bl), cc, 0.5 * (al + bl))
             step = REFINE_STEP * np.maximum(bl - al, REFINE_XTOL)
-            fc, fh = slope(np.stack([cc, cc + step]), idx[live])
+            fc, fh = slope(np.stack([cc, cc + step]), il)
             left = np.sign(fc) == np.sign(fal)  # keep the root bracketed
-            al, bl = np.where(left, cc, al), np.where(left, bl, cc)
-            a[live], b[live], fa[live] = al, bl, np.where(left, fc, fal)
+            al, bl, fal = np.where(left, cc, al), np.where(left, bl, cc), np.where(left, fc, fal)
             new = np.where(fc == 0, cc, cc - fc * step / (fh - fc))
             conv = (np.abs(new - cc) <= REFINE_XTOL) | (bl - al <= REFINE_XTOL)
             root[live[conv]] = np.clip(new[conv], al[conv], bl[conv])
-            c[live] = new
-            live = live[~conv]
-        root[live] = 0.5 * (a[live] + b[live])
+            keep = ~conv
+            live, al, bl, fal, cc, il = live[keep], al[keep], bl[keep], fal[keep], new[keep], il[keep]
+        root[live] = 0.5 * (al + bl)
     return root
 
 
@@ -598,14 +612,24 @@ class _Track:
     def _fields(self):
         return (self.design, self.family, self.lo, self.hi, self.node, self.root)
 
+    def _among(self, rows):
+        """True for the entries of the designs ``rows``."""
+        if self.design.size == 0:
+            return np.zeros(0, bool)
+        mark = np.zeros(max(int(self.design.max()), int(rows.max(initial=0))) + 1, bool)
+        mark[rows] = True
+        return mark[self.design]
+
     def of(self, rows):
         """The entries of the designs ``rows``, in their order."""
-        keep = np.isin(self.design, rows)
+        keep = self._among(rows)
+        if keep.all():
+            return self
         return _Track(*(v[keep] for v in self._fields()))
 
     def updated(self, other: _Track, rows):
         """These entries with those of the designs ``rows`` replaced by ``other``'s."""
-        keep = ~np.isin(self.design, rows)
+        keep = ~self._among(rows)
         return _Track(*(np.concatenate([a[keep], b]) for a, b in zip(self._fields(), other._fields())))
 
 
@@ -615,8 +639,9 @@ def _warm_start(track: _Track | None, dd, fam, node, lo, hi):
     start = np.full(dd.size, np.nan)
     if track is None or track.root.size == 0 or dd.size == 0:
         return start
-    key = fam * (int(max(dd.max(), track.design.max())) + 1) + dd
-    wkey = track.family * (int(max(dd.max(), track.design.max())) + 1) + track.design
+    span = int(max(dd.max(), track.design.max())) + 1
+    key = fam * span + dd
+    wkey = track.family * span + track.design
     order = np.lexsort((track.root, wkey))
     wkey, wroot = wkey[order], track.root[order]
     pos = np.searchsorted(wkey * 8.0 + wroot, key * 8.0 + np.mod(node, TWO_PI))  # roots lie in [0, 2 pi)
@@ -643,16 +668,16 @@ def _refined_points(pb: _Problem, lam, rows, track: _Track | None = None, detect
     ``track`` to this lam without looking for new ones on the grid (cheap; the points are then
     only lower bounds, for the passes before the last).
     """
-    if detect:
-        d, node, lo, hi, fam = _extrema(pb, lam, rows)
-        dd = rows[d]
-    else:
-        track = track.of(rows)
-        dd, fam, lo, hi, node = track.design, track.family, track.lo, track.hi, track.node
-        d = np.searchsorted(rows, dd)
-    slope = _Slope(pb, dd, fam, lam[d])
-    width = hi - lo
     with np.errstate(all="ignore"):
+        if detect:
+            d, node, lo, hi, fam = _extrema(pb, lam, rows)
+            dd = rows[d]
+        else:
+            track = track.of(rows)
+            dd, fam, lo, hi, node = track.design, track.family, track.lo, track.hi, track.node
+            d = np.searchsorted(rows, dd)
+        slope = _Slope(pb, dd, fam, lam[d])
+        width = hi - lo
         start = _warm_start(track, dd, fam, node, lo, hi) if detect else track.root
         root = _newton(slope, start, lo, hi, width)
         if detect:
@@ -661,22 +686,23 @@ def _refined_points(pb: _Problem, lam, rows, track: _Track | None = None, detect
                 root[cold] = _bracketed(slope, lo, hi, node, cold)
         else:  # a root that could not be followed stays where it was (still a point of the curve)
             root = np.where(np.isfinite(root), root, start)
-    root = np.mod(root, TWO_PI)
-    # one sorted row of points per design; short rows repeat their last point (a repeated point
-    # adds no pair and keeps the row sorted), a design without extrema gets its extended dead centre
-    count = np.bincount(d, minlength=rows.size)
-    width_k = max(int(count.max()) if count.size else 1, 1)
-    order = np.lexsort((root, d))
-    ds, rs = d[order], root[order]
-    slot = np.arange(ds.size) - (np.cumsum(count) - count)[ds]
-    x = np.full((rows.size, width_k), np.nan)
-    x[ds, slot] = rs
-    last = np.where(count > 0, x[np.arange(rows.size), np.maximum(count - 1, 0)], 0.0)
-    x = np.where(np.isnan(x), last[:, None], x)
-    args = [v[rows][:, None] for v in pb.prep.args()]
-    with np.errstate(all="ignore"):
-        base, local = _fw._travel_parts(x, *args)
-        up, low = pb.edges(x, rows)
+        root = np.mod(root, TWO_PI)
+        # one sorted row of points per design; short rows repeat their last point (a repeated point
+        # adds no pair and keeps the row sorted), a design without extrema gets its extended dead
+        # centre
+        count = np.bincount(d, minlength=rows.size)
+        width_k = max(int(count.max()) if count.size else 1, 1)
+        order = np.lexsort((root, d))
+        ds, rs = d[order], root[order]
+        slot = np.arange(ds.size) - (np.cumsum(count) - count)[ds]
+        x = np.full((rows.size, width_k), np.nan)
+        x[ds, slot] = rs
+        last = np.where(count > 0, x[np.arange(rows.size), np.maximum(count - 1, 0)], 0.0)
+        x = np.where(np.isnan(x), last[:, None], x)
+        every = rows.size == pb.mw.size  # rows are sorted and distinct: all designs
+        args = [v[:, None] for v in pb.prep.args()] if every else [v[rows][:, None] for v in pb.prep.args()]
+        up, low, grip_x = pb.edges(x, None if every else rows, fly_x=True)
+        base, local = _fw._travel_parts(x, *args, grip_x=grip_x)
     return (x, base, local, up, low), _Track(dd, fam, lo, hi, node, root)
 
 
