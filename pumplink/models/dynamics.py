@@ -69,6 +69,10 @@ CHUNK = 1024
 RTOL = 1e-13
 #: Relative convergence of the iteration over the grid nodes (it only says where to refine).
 GRID_RTOL = 1e-3
+#: Designs from which the iteration over the grid nodes first runs on a quarter of them (fewer
+#: passes over the whole grid; on fewer designs the cost is per call, not per node, and the quarter
+#: does not pay: it ends on the same force, the same pair's ratio, on every design tried).
+QUARTER_FROM = 48
 #: Largest relative step of the force after which the next pass only follows the extrema already
 #: found (the passes converge quadratically; the last pass always looks at the whole grid).
 TRACK_RTOL = 1e-9
@@ -372,41 +376,39 @@ def _pairs(g, au, al, base, local, mw, stroke, lam):
 
 def _held(g, au, al, base, local, mw, stroke) -> list:
     """The arrays :func:`_pairs_held` reads: G, (au, -al), (al, au), base, local, (-2 pi Mw,
-    2 pi Mw), 2 pi Mw, 2 S and S; rows over designs (axis 1 of the stacked ones).
+    2 pi Mw), 2 pi Mw and 2 S; rows over designs (axis 1 of the stacked ones).
 
     (C2) is swept negated beside (C1): its running maximum of lower - P is minus the running
     minimum of -(lower - P), so both families take one pass of each operation.  Negation is exact,
     so every value is the one the two families give apart.
     """
-    turn = TWO_PI * mw
-    return [
-        g,
-        np.stack([au, -al]),
-        np.stack([al, au]),
-        np.ascontiguousarray(base),
-        np.ascontiguousarray(local),
-        np.stack([-turn, turn]),
-        turn,
-        2.0 * stroke,
-        stroke,
-    ]
+    al_au = np.empty((2,) + g.shape)
+    al_au[0], al_au[1] = al, au
+    au_nal = np.empty_like(al_au)
+    au_nal[0] = au
+    np.negative(al, out=au_nal[1])
+    turns = np.empty((2,) + mw.shape)
+    np.multiply(TWO_PI, mw, out=turns[1])
+    np.negative(turns[1], out=turns[0])
+    base, local = np.ascontiguousarray(base), np.ascontiguousarray(local)
+    return [g, au_nal, al_au, base, local, turns, turns[1], 2.0 * stroke]
 
 
 #: Axis over the designs of each array of :func:`_held` (the stacked ones carry the family first).
-_HELD_AXIS = (0, 1, 1, 0, 0, 1, 0, 0, 0)
+_HELD_AXIS = (0, 1, 1, 0, 0, 1, 0, 0)
 
 
 def _pairs_held(held, lam):
     """:func:`_pairs` on the arrays of :func:`_held`: (h, ratio), each (2, D) (no floating-point
     context)."""
-    g, au_nal, al_au, base, local, turns, turn, two_s, stroke = held
+    g, au_nal, al_au, base, local, turns, turn, two_s = held
     d, k = g.shape
     lg = lam[:, None] * g
     # (C1): lower(s) - Q(s) - min over t <= s of (upper(t) - Q(t)) <= 0;
     # (C2): max over s <= t of (lower(s) - P(s)) - (upper(t) - P(t)) <= 0, swept negated
     f = au_nal - lg  # upper - Q, -(lower - P)
     run = np.minimum.accumulate(f, axis=2)
-    back = (run[:, :, -1] + 2.0 * lam * stroke) + turns  # the minimum one revolution back
+    back = (run[:, :, -1] + lam * two_s) + turns  # the minimum one revolution back (2 lam S: exact)
     best = np.minimum(run, back[:, :, None])
     v = np.empty_like(f)
     np.subtract(al_au[0], lg, out=v[0])
@@ -544,6 +546,14 @@ class _Slope:
         return out if pick is None else out[:, pick]
 
 
+def _two(c, step):
+    """The points c and c + step stacked, (2, n)."""
+    out = np.empty((2, c.size))
+    out[0] = c
+    np.add(c, step, out=out[1])
+    return out
+
+
 def _newton(slope: _Slope, start, lo, hi, width):
     """Newton's method on f' (finite-difference second derivative, step REFINE_STEP * width) from
     ``start`` without a bracket: the root where a step below REFINE_XTOL lands inside (lo, hi),
@@ -557,7 +567,7 @@ def _newton(slope: _Slope, start, lo, hi, width):
     for _ in range(WARM_ITER):
         if live.size == 0:
             break
-        fc, fh = slope(np.stack([cc, cc + step]), live)
+        fc, fh = slope(_two(cc, step), live)
         new = np.where(fc == 0, cc, cc - fc * step / (fh - fc))
         inside = (new > lo_l) & (new < hi_l)
         conv = inside & (np.abs(new - cc) <= REFINE_XTOL)
@@ -577,7 +587,9 @@ def _bracketed(slope: _Slope, lo, hi, node, idx):
     a, b = lo[idx], hi[idx]
     root = node[idx].copy()
     with np.errstate(all="ignore"):
-        fa, fb = slope(np.stack([a, b]), idx)
+        ab = np.empty((2, idx.size))
+        ab[0], ab[1] = a, b
+        fa, fb = slope(ab, idx)
         live = np.nonzero(np.isfinite(fa) & np.isfinite(fb) & (np.sign(fa) * np.sign(fb) < 0))[0]
         c = (a * fb - b * fa) / (fb - fa)  # a secant step to start
         al, bl, fal, cc, il = a[live], b[live], fa[live], c[live], idx[live]
@@ -586,7 +598,7 @@ def _bracketed(slope: _Slope, lo, hi, node, idx):
                 break
             cc = np.where((cc > al) & (cc < bl), cc, 0.5 * (al + bl))
             step = REFINE_STEP * np.maximum(bl - al, REFINE_XTOL)
-            fc, fh = slope(np.stack([cc, cc + step]), il)
+            fc, fh = slope(_two(cc, step), il)
             left = np.sign(fc) == np.sign(fal)  # keep the root bracketed
             al, bl, fal = np.where(left, cc, al), np.where(left, bl, cc), np.where(left, fc, fal)
             new = np.where(fc == 0, cc, cc - fc * step / (fh - fc))
@@ -733,8 +745,10 @@ def _solve(pb: _Problem, max_passes: int = 24):
     # violated (an upper bound), Fp* up to the refinement tolerance.
     grid = pb.points(None if todo.size == n else todo)
     mw, stroke = pb.mw[todo], pb.stroke[todo]
-    lam = _dinkelbach(tuple(v[:, ::4] for v in grid), mw, stroke, f_mean[todo], cap[todo], GRID_RTOL)
-    lam = _dinkelbach(grid, mw, stroke, lam, cap[todo], GRID_RTOL)  # a quarter of the nodes first
+    lam = f_mean[todo]
+    if todo.size >= QUARTER_FROM:  # a quarter of the nodes first
+        lam = _dinkelbach(tuple(v[:, ::4] for v in grid), mw, stroke, lam, cap[todo], GRID_RTOL)
+    lam = _dinkelbach(grid, mw, stroke, lam, cap[todo], GRID_RTOL)
     live = np.nonzero(np.isfinite(lam))[0]
     follow = np.zeros(todo.size, bool)  # designs whose next pass only follows their extrema
     start = f_mean[todo]
@@ -754,7 +768,10 @@ def _solve(pb: _Problem, max_passes: int = 24):
         done = ~np.isfinite(new)
         if detect:  # certified where the full pass left the force where it was
             done |= step <= 4 * RTOL * np.abs(new)
-        live = np.setdiff1d(live, sel[done], assume_unique=True)
+        if done.any():
+            gone = np.zeros(todo.size, bool)
+            gone[sel[done]] = True
+            live = live[~gone[live]]
     out[todo] = lam
     return out
 
@@ -803,10 +820,8 @@ def least_peak_force(
     n = arrays[0].size
     out = np.empty(n)
     for start in range(0, n, CHUNK):  # chunks whose (designs, nodes) arrays stay in the cache
-        part = [v[start : start + CHUNK] for v in arrays]
-        ms = Masses(*part[11:14])
-        pb, _ = _problem(FourBar(*part[:7]), *part[7:11], ms, *part[14:], gravity)
-        out[start : start + CHUNK] = _solve(pb)
+        part = arrays if n <= CHUNK else [v[start : start + CHUNK] for v in arrays]
+        out[start : start + CHUNK] = _solve(_problem_of(part, gravity))
     return float(out[0]) if scalar else out
 
 
