@@ -821,7 +821,8 @@ def least_peak_force(
     out = np.empty(n)
     for start in range(0, n, CHUNK):  # chunks whose (designs, nodes) arrays stay in the cache
         part = arrays if n <= CHUNK else [v[start : start + CHUNK] for v in arrays]
-        out[start : start + CHUNK] = _solve(_problem_of(part, gravity))
+        pb = _problem_of(part, gravity)  # held until the next chunk's is made: freeing it first
+        out[start : start + CHUNK] = _solve(pb)  # costs ~10 % on 10,000 designs (the allocator)
     return float(out[0]) if scalar else out
 
 
