@@ -161,12 +161,14 @@ _NCO = 17
 _SMALL = 4096
 
 
-def _terms(co: tuple, th, gravity, rates_only: bool = False, fly_x: bool = False):
+def _terms(co: tuple, th, gravity, rates: bool = True, values: bool = True, fly_x: bool = False):
     """:func:`terms` on the constants ``co`` of :func:`_coefficients` (no floating-point context).
 
     Returns (inertia, inertia_rate, potential, potential_rate, grip_rate, grip_x, crank_x): the
-    first six as :class:`Terms`; ``crank_x`` (``fly_x``, else None) the grip's Px as
-    :func:`pumplink.models.flywheel._grip_x` computes it (its rounding), from the same loop closure.
+    first six as :class:`Terms` (the rates None unless ``rates``, I, V and Px None unless
+    ``values``: the band's edges need no second derivatives); ``crank_x`` (``fly_x``, else None)
+    the grip's Px as :func:`pumplink.models.flywheel._grip_x` computes it (its rounding), from the
+    same loop closure.
     """
     px, py, c, o2, c2, hkr, kk, k, rr, branch, mc, ic, i4, lever, mpy, hr, nhr = co
     cs, sn = np.cos(th), np.sin(th)
@@ -187,28 +189,29 @@ def _terms(co: tuple, th, gravity, rates_only: bool = False, fly_x: bool = False
     h3 = (csn * wx - ccs * wy) * inv  # first derivative of the loop closure
     h4 = (csn * ux - ccs * uy) * inv
     h33, h44 = h3 * h3, h4 * h4
-    h33ux, h33uy = h33 * ux, h33 * uy
-    rx = ccs + h33ux - h44 * wx
-    ry = csn + h33uy - h44 * wy
-    d3 = (rx * wx + ry * wy) * inv  # second derivative
-    d4 = (rx * ux + ry * uy) * inv
-    # coupler centre A + u/2: velocity and acceleration coefficients
+    # coupler centre A + u/2: velocity coefficients
     half3 = 0.5 * h3
     ncsn = -csn
     vx = ncsn - half3 * uy
     vy = ccs + half3 * ux
-    ax = -ccs - 0.5 * (d3 * uy + h33ux)
-    ay = ncsn + 0.5 * (d3 * ux - h33uy)
-    rate = 2.0 * (mc * (vx * ax + vy * ay) + ic * h3 * d3 + i4 * h4 * d4)
-    inertia = potential = grip_x = crank_x = None
-    if not rates_only:
+    inertia = rate = potential = potential_rate = grip_rate = grip_x = crank_x = None
+    if rates:
+        h33ux, h33uy = h33 * ux, h33 * uy
+        rx = ccs + h33ux - h44 * wx
+        ry = csn + h33uy - h44 * wy
+        d3 = (rx * wx + ry * wy) * inv  # second derivative
+        d4 = (rx * ux + ry * uy) * inv
+        ax = -ccs - 0.5 * (d3 * uy + h33ux)  # the coupler centre's acceleration coefficients
+        ay = ncsn + 0.5 * (d3 * ux - h33uy)
+        rate = 2.0 * (mc * (vx * ax + vy * ay) + ic * h3 * d3 + i4 * h4 * d4)
+        potential_rate = gravity * (mc * vy + lever * h4 * wx)
+        grip_rate = nhr * h4 * wy
+    if values:
         inertia = mc * (vx * vx + vy * vy) + ic * h33 + i4 * h44  # Eq. (5)
         potential = gravity * (mc * (csn + 0.5 * uy) + mpy + lever * wy)  # Eq. (6)
         grip_x = px + hr * wx
     if fly_x:
         crank_x = px + hr * ((ccs + tdx) - qdy - px)
-    potential_rate = gravity * (mc * vy + lever * h4 * wx)
-    grip_rate = nhr * h4 * wy
     return inertia, rate, potential, potential_rate, grip_rate, grip_x, crank_x
 
 
@@ -228,7 +231,7 @@ def terms(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only:
     """
     th = np.asarray(crank_angle, float)
     with np.errstate(all="ignore"):
-        out = _terms(_coefficients(lk, masses), th, gravity, rates_only)
+        out = _terms(_coefficients(lk, masses), th, gravity, values=not rates_only)
     return Terms(*out[:6])
 
 
@@ -297,7 +300,7 @@ class _Problem:
             dm = dm[:, :, None]
         co, (_mw, dce, hi, lo, j) = dm[:_NCO], dm[_NCO:]
         with np.errstate(all="ignore"):
-            tm = _terms(co, dce + phi, self.gravity, fly_x=fly_x)
+            tm = _terms(co, dce + phi, self.gravity, rates=False, fly_x=fly_x)
             i = j + tm[0]
             out = tm[2] + i * hi, tm[2] + i * lo  # Eq. (8)
         return (*out, tm[6]) if fly_x else out
@@ -344,7 +347,7 @@ def _problem_of(arrays, gravity) -> _Problem:
         xe, xf = _fw._grip_x(np.stack([dce, dcf]), *geom)  # both dead centres in one call
         stroke = np.abs(xf - xe)
         nodes, plus = _fw._nodes(dce, dcf, GRID, CLUSTER)
-        tm = _terms([v[:, None] for v in co], dce[:, None] + nodes, gravity)
+        tm = _terms([v[:, None] for v in co], dce[:, None] + nodes, gravity, rates=False)
         i = j[:, None] + tm[0]
         up = tm[2] + i * kin[0][:, None]  # Eq. (8)
         lo = tm[2] + i * kin[1][:, None]
@@ -541,7 +544,7 @@ class _Slope:
                 phi = np.zeros((2, self.size))
                 phi[:, idx] = phi0
         co, (mw, dce, w2, slam) = m[:_NCO], m[_NCO:]
-        tm = _terms(co, dce + phi, self.gravity, rates_only=True)
+        tm = _terms(co, dce + phi, self.gravity, values=False)
         out = tm[3] + tm[1] * w2 + slam * np.abs(tm[4]) + mw
         return out if pick is None else out[:, pick]
 
@@ -891,9 +894,9 @@ def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY):
     th = np.arange(EFFECT_GRID) * (TWO_PI / EFFECT_GRID)
     col = FourBar(*(v[:, None] for v in geom))
     with np.errstate(all="ignore"):
-        tm = terms(col, th, Masses(mc[:, None], mh[:, None], 0.0), gravity)
-        link = 0.5 * np.max(tm.inertia, axis=1) * w * w
-        weight = np.ptp(tm.potential, axis=1)
+        tm = _terms(_coefficients(col, Masses(mc[:, None], mh[:, None], 0.0)), th, gravity, rates=False)
+        link = 0.5 * tm[0].max(axis=1) * w * w
+        weight = np.ptp(tm[2], axis=1)
         # the peak rate only where arms are carried: a search that leaves them out of the verdict
         # passes no arm mass and skips the refinement (about half its cost per small batch)
         arm = np.zeros(np.shape(ma))
