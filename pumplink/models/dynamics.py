@@ -161,12 +161,15 @@ _NCO = 17
 _SMALL = 4096
 
 
-def _terms(co: tuple, th, gravity, rates: bool = True, values: bool = True, fly_x: bool = False):
+def _terms(
+    co: tuple, th, gravity, rates: bool = True, values: bool = True, fly_x: bool = False, grip: bool = True
+):
     """:func:`terms` on the constants ``co`` of :func:`_coefficients` (no floating-point context).
 
     Returns (inertia, inertia_rate, potential, potential_rate, grip_rate, grip_x, crank_x): the
     first six as :class:`Terms` (the rates None unless ``rates``, I, V and Px None unless
-    ``values``: the band's edges need no second derivatives); ``crank_x`` (``fly_x``, else None)
+    ``values``: the band's edges need no second derivatives; Px None unless ``grip`` too);
+    ``crank_x`` (``fly_x``, else None)
     the grip's Px as :func:`pumplink.models.flywheel._grip_x` computes it (its rounding), from the
     same loop closure.
     """
@@ -209,7 +212,8 @@ def _terms(co: tuple, th, gravity, rates: bool = True, values: bool = True, fly_
     if values:
         inertia = mc * (vx * vx + vy * vy) + ic * h33 + i4 * h44  # Eq. (5)
         potential = gravity * (mc * (csn + 0.5 * uy) + mpy + lever * wy)  # Eq. (6)
-        grip_x = px + hr * wx
+        if grip:
+            grip_x = px + hr * wx
     if fly_x:
         crank_x = px + hr * ((ccs + tdx) - qdy - px)
     return inertia, rate, potential, potential_rate, grip_rate, grip_x, crank_x
@@ -300,7 +304,7 @@ class _Problem:
             dm = dm[:, :, None]
         co, (_mw, dce, hi, lo, j) = dm[:_NCO], dm[_NCO:]
         with np.errstate(all="ignore"):
-            tm = _terms(co, dce + phi, self.gravity, rates=False, fly_x=fly_x)
+            tm = _terms(co, dce + phi, self.gravity, rates=False, fly_x=fly_x, grip=False)
             i = j + tm[0]
             out = tm[2] + i * hi, tm[2] + i * lo  # Eq. (8)
         return (*out, tm[6]) if fly_x else out
@@ -894,7 +898,8 @@ def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY):
     th = np.arange(EFFECT_GRID) * (TWO_PI / EFFECT_GRID)
     col = FourBar(*(v[:, None] for v in geom))
     with np.errstate(all="ignore"):
-        tm = _terms(_coefficients(col, Masses(mc[:, None], mh[:, None], 0.0)), th, gravity, rates=False)
+        co = _coefficients(col, Masses(mc[:, None], mh[:, None], 0.0))
+        tm = _terms(co, th, gravity, rates=False, grip=False)
         link = 0.5 * tm[0].max(axis=1) * w * w
         weight = np.ptp(tm[2], axis=1)
         # the peak rate only where arms are carried: a search that leaves them out of the verdict
