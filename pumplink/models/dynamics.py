@@ -391,9 +391,14 @@ def _held(g, au, al, base, local, mw, stroke) -> list:
     """
     al_au = np.empty((2,) + g.shape)
     al_au[0], al_au[1] = al, au
+    return _held_of(g, al_au, base, local, mw, stroke)
+
+
+def _held_of(g, al_au, base, local, mw, stroke) -> list:
+    """:func:`_held` from G and (al, au) stacked."""
     au_nal = np.empty_like(al_au)
-    au_nal[0] = au
-    np.negative(al, out=au_nal[1])
+    au_nal[0] = al_au[1]
+    np.negative(al_au[0], out=au_nal[1])
     turns = np.empty((2,) + mw.shape)
     np.multiply(TWO_PI, mw, out=turns[1])
     np.negative(turns[1], out=turns[0])
@@ -449,20 +454,18 @@ def _dinkelbach(pts, mw, stroke, lam, cap, rtol=RTOL):
     """
     x, base, local, up, lo = pts
     m = mw[:, None] * x
-    held = _held(base + local, up + m, lo + m, base, local, mw, stroke)
+    al_au = np.empty((2,) + x.shape)
+    np.add(lo, m, out=al_au[0])
+    np.add(up, m, out=al_au[1])
+    held = _held_of(base + local, al_au, base, local, mw, stroke)
     lam = np.array(lam, float)
-    where = np.arange(lam.size)  # row of lam for each held row
+    if lam.size == 0:
+        return lam
+    cur = lam  # the iterate of each held row (a row's stays put once it stops)
+    where = None  # row of lam for each held row, once gathered
     live = np.ones(lam.size, bool)
     with np.errstate(all="ignore"):
         for _ in range(200):
-            n_live = np.count_nonzero(live)
-            if n_live == 0:
-                break
-            if n_live < 0.5 * live.size:
-                keep = np.nonzero(live)[0]
-                held = [v.take(keep, axis=ax) for v, ax in zip(held, _HELD_AXIS, strict=True)]
-                where, live, cap = where[keep], live[keep], cap[keep]
-            cur = lam[where]
             h, r = _pairs_held(held, cur)
             r = np.where(h > 0, np.where(np.isnan(r), np.inf, r), -np.inf)
             new = r.max(axis=0)
@@ -471,8 +474,22 @@ def _dinkelbach(pts, mw, stroke, lam, cap, rtol=RTOL):
             cur = np.where(grow, new, cur)
             capped = ~(cur <= cap)
             cur[capped] = np.inf
-            lam[where[live]] = cur[live]
             live &= ~(done | capped)
+            n_live = np.count_nonzero(live)
+            if n_live == 0:
+                break
+            if n_live < 0.5 * live.size:
+                keep = np.nonzero(live)[0]
+                if where is None:
+                    lam, where = cur, keep
+                else:
+                    lam[where] = cur
+                    where = where[keep]
+                held = [v.take(keep, axis=ax) for v, ax in zip(held, _HELD_AXIS, strict=True)]
+                cur, live, cap = cur[keep], live[keep], cap[keep]
+    if where is None:
+        return cur
+    lam[where] = cur
     return lam
 
 
