@@ -285,6 +285,7 @@ class _Problem:
     lo: np.ndarray | None  # lower edge [J]
     design: np.ndarray  # per design (columns): the constants of _coefficients, then Mw, dce,
     # w_hi^2 / 2, w_lo^2 / 2 and J (rows _NCO ... _NCO + 4)
+    travel: list  # the grip-travel arguments of pumplink.models.flywheel as columns (D, 1)
 
     def points(self, rows=None):
         """The grid nodes of designs ``rows`` (all: None) as points (x, base, local, up, lo)."""
@@ -358,7 +359,8 @@ def _problem_of(arrays, gravity) -> _Problem:
         dm = np.stack(np.broadcast_arrays(*co, mw, dce, *kin, j))
         base, local = _node_travel(nodes, plus[:, None], tm[5], xe[:, None], xf[:, None], stroke[:, None])
     prep = _fw._Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
-    return _Problem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, dm)
+    travel = [v[:, None] for v in prep.args()]
+    return _Problem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, dm, travel)
 
 
 # The pairs of (C1)-(C2) in the form the sweeps use (docs/models.md §3a).  At the points x of a row
@@ -726,17 +728,20 @@ def _refined_points(pb: _Problem, lam, rows, track: _Track | None = None, detect
         # one sorted row of points per design; short rows repeat their last point (a repeated point
         # adds no pair and keeps the row sorted), a design without extrema gets its extended dead
         # centre
-        count = np.bincount(d, minlength=rows.size)
-        width_k = max(int(count.max()) if count.size else 1, 1)
-        order = np.lexsort((root, d))
-        ds, rs = d[order], root[order]
-        slot = np.arange(ds.size) - (np.cumsum(count) - count)[ds]
-        x = np.full((rows.size, width_k), np.nan)
-        x[ds, slot] = rs
-        last = np.where(count > 0, x[np.arange(rows.size), np.maximum(count - 1, 0)], 0.0)
-        x = np.where(np.isnan(x), last[:, None], x)
+        if rows.size == 1:  # one design: its roots sorted
+            x = np.sort(root, kind="stable")[None, :] if root.size else np.zeros((1, 1))
+        else:
+            count = np.bincount(d, minlength=rows.size)
+            width_k = max(int(count.max()) if count.size else 1, 1)
+            order = np.lexsort((root, d))
+            ds, rs = d[order], root[order]
+            slot = np.arange(ds.size) - (np.cumsum(count) - count)[ds]
+            x = np.full((rows.size, width_k), np.nan)
+            x[ds, slot] = rs
+            last = np.where(count > 0, x[np.arange(rows.size), np.maximum(count - 1, 0)], 0.0)
+            x = np.where(np.isnan(x), last[:, None], x)
         every = rows.size == pb.mw.size  # rows are sorted and distinct: all designs
-        args = [v[:, None] for v in pb.prep.args()] if every else [v[rows][:, None] for v in pb.prep.args()]
+        args = pb.travel if every else [v[rows][:, None] for v in pb.prep.args()]
         up, low, grip_x = pb.edges(x, None if every else rows, fly_x=True)
         base, local = _fw._travel_parts(x, *args, grip_x=grip_x)
     return (x, base, local, up, low), _Track(dd, fam, lo, hi, node, root)
