@@ -125,8 +125,8 @@ def _coefficients(lk: FourBar, masses: Masses) -> tuple:
     coupler^2, coupler, rocker^2, branch (the loop closure of
     :func:`pumplink.mechanisms.fourbar.loop_closure`); the coupler's mass, its moment of inertia
     about its centre, the handle's and the arms' about O4, their first moment about O4 per metre
-    of the rocker, the handle's and the arms' weight moment arm term (mh + ma) py, H / rocker and
-    its negative.
+    of the rocker, (mh + ma) py (their weight's term at the pivot's height), H / rocker and its
+    negative.
     """
     px, py, c, k, r, hh = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle
     mc, mh, ma = masses.coupler, masses.handle, masses.grip
@@ -169,9 +169,8 @@ def _terms(
     Returns (inertia, inertia_rate, potential, potential_rate, grip_rate, grip_x, crank_x): the
     first six as :class:`Terms` (the rates None unless ``rates``, I, V and Px None unless
     ``values``: the band's edges need no second derivatives; Px None unless ``grip`` too);
-    ``crank_x`` (``fly_x``, else None)
-    the grip's Px as :func:`pumplink.models.flywheel._grip_x` computes it (its rounding), from the
-    same loop closure.
+    ``crank_x`` (``fly_x``, else None) the grip's Px as :func:`pumplink.models.flywheel._grip_x`
+    computes it (its rounding), from the same loop closure.
     """
     px, py, c, o2, c2, hkr, kk, k, rr, branch, mc, ic, i4, lever, mpy, hr, nhr = co
     cs, sn = np.cos(th), np.sin(th)
@@ -298,8 +297,9 @@ class _Problem:
         """upper and lower edge of the band [J] at points phi [rad from the extended dead centre],
         shape (R, K), of the designs ``rows`` (R,) (all: None).  ``fly_x``: also the grip's Px [m]
         as :func:`pumplink.models.flywheel._grip_x` computes it."""
-        dm = self.design if rows is None or rows.size == self.mw.size else self.design.take(rows, axis=1)
-        if phi.size <= _SMALL:  # rows are sorted and distinct: all designs above
+        every = rows is None or rows.size == self.mw.size  # rows are sorted and distinct: all
+        dm = self.design if every else self.design.take(rows, axis=1)
+        if phi.size <= _SMALL:
             dm = np.repeat(dm[:, :, None], phi.shape[1], axis=2)
         else:
             dm = dm[:, :, None]
