@@ -52,7 +52,7 @@ import numpy as np
 
 from pumplink.constants import GRAVITY
 from pumplink.mechanisms.angles import TWO_PI
-from pumplink.mechanisms.fourbar import FourBar, loop_closure, per_design
+from pumplink.mechanisms.fourbar import FourBar, per_design
 from pumplink.models import Masses  # defined beside Conditions, which carries it
 from pumplink.models import flywheel as _fw
 from pumplink.models import quasi_static as _qs
@@ -69,6 +69,10 @@ CHUNK = 1024
 RTOL = 1e-13
 #: Relative convergence of the iteration over the grid nodes (it only says where to refine).
 GRID_RTOL = 1e-3
+#: Designs from which the iteration over the grid nodes first runs on a quarter of them (fewer
+#: passes over the whole grid; on fewer designs the cost is per call, not per node, and the quarter
+#: does not pay: it ends on the same force, the same pair's ratio, on every design tried).
+QUARTER_FROM = 48
 #: Largest relative step of the force after which the next pass only follows the extrema already
 #: found (the passes converge quadratically; the last pass always looks at the whole grid).
 TRACK_RTOL = 1e-9
@@ -112,6 +116,108 @@ class Terms:
     grip_x: np.ndarray
 
 
+def _coefficients(lk: FourBar, masses: Masses) -> tuple:
+    """The per-design constants of :func:`terms` (scalars, arrays over designs or their columns).
+
+    Computed once per design and gathered with the designs (the solver evaluates the terms many
+    times on a few points each): the same expressions as written out in :func:`terms`, so the same
+    rounding.  Order: px, py, crank, |O4|^2 + crank^2, 2 crank, (coupler^2 - rocker^2) / 2,
+    coupler^2, coupler, rocker^2, branch (the loop closure of
+    :func:`pumplink.mechanisms.fourbar.loop_closure`); the coupler's mass, its moment of inertia
+    about its centre, the handle's and the arms' about O4, their first moment about O4 per metre
+    of the rocker, (mh + ma) py (their weight's term at the pivot's height), H / rocker and its
+    negative.
+    """
+    px, py, c, k, r, hh = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle
+    mc, mh, ma = masses.coupler, masses.handle, masses.grip
+    arm = np.maximum(hh, r)  # the handle as a bar from O4, at least the rocker's length
+    hr = hh / r
+    return (
+        px,
+        py,
+        c,
+        px * px + py * py + c * c,
+        2.0 * c,
+        0.5 * (k * k - r * r),
+        k * k,
+        k,
+        r * r,
+        lk.branch,
+        mc,
+        mc * k * k / 12.0,  # coupler about its centre
+        mh * arm * arm / 3.0 + ma * hh * hh,  # handle and arms about O4
+        (0.5 * mh * arm + ma * hh) / r,  # first moment about O4 along the rocker, per metre of w
+        (mh + ma) * py,
+        hr,
+        -hr,
+    )
+
+
+#: Number of constants :func:`_coefficients` returns.
+_NCO = 17
+#: Evaluations of the terms on at most this many points take per-point copies of the per-design
+#: constants: a ufunc that broadcasts costs twice or three times one on equal shapes when the
+#: arrays are small (optimize's batches of 1-25 designs); larger ones broadcast (less memory).
+_SMALL = 4096
+
+
+def _terms(
+    co: tuple, th, gravity, rates: bool = True, values: bool = True, fly_x: bool = False, grip: bool = True
+):
+    """:func:`terms` on the constants ``co`` of :func:`_coefficients` (no floating-point context).
+
+    Returns (inertia, inertia_rate, potential, potential_rate, grip_rate, grip_x, crank_x): the
+    first six as :class:`Terms` (the rates None unless ``rates``, I, V and Px None unless
+    ``values``: the band's edges need no second derivatives; Px None unless ``grip`` too);
+    ``crank_x`` (``fly_x``, else None) the grip's Px as :func:`pumplink.models.flywheel._grip_x`
+    computes it (its rounding), from the same loop closure.
+    """
+    px, py, c, o2, c2, hkr, kk, k, rr, branch, mc, ic, i4, lever, mpy, hr, nhr = co
+    cs, sn = np.cos(th), np.sin(th)
+    # the loop closure of pumplink.mechanisms.fourbar.loop_closure (t, q), written out
+    p1 = cs * px + sn * py
+    e2 = o2 - c2 * p1
+    t = 0.5 + hkr / e2
+    e = np.sqrt(e2)
+    ek = e + k
+    e_k = (e2 - kk) / ek
+    q = branch * (np.sqrt((rr - e_k * e_k) * (ek**2 - rr)) / (2.0 * e2))
+    ccs, csn = c * cs, c * sn  # the crank pin A
+    dx, dy = px - ccs, py - csn  # O4 - A
+    tdx, qdy = t * dx, q * dy
+    ux, uy = tdx - qdy, t * dy + q * dx  # B - A (Eq. (6) of pumplink.mechanisms.fourbar)
+    wx, wy = ux - dx, uy - dy  # B - O4
+    inv = 1.0 / (ux * wy - uy * wx)
+    h3 = (csn * wx - ccs * wy) * inv  # first derivative of the loop closure
+    h4 = (csn * ux - ccs * uy) * inv
+    h33, h44 = h3 * h3, h4 * h4
+    # coupler centre A + u/2: velocity coefficients
+    half3 = 0.5 * h3
+    ncsn = -csn
+    vx = ncsn - half3 * uy
+    vy = ccs + half3 * ux
+    inertia = rate = potential = potential_rate = grip_rate = grip_x = crank_x = None
+    if rates:
+        h33ux, h33uy = h33 * ux, h33 * uy
+        rx = ccs + h33ux - h44 * wx
+        ry = csn + h33uy - h44 * wy
+        d3 = (rx * wx + ry * wy) * inv  # second derivative
+        d4 = (rx * ux + ry * uy) * inv
+        ax = -ccs - 0.5 * (d3 * uy + h33ux)  # the coupler centre's acceleration coefficients
+        ay = ncsn + 0.5 * (d3 * ux - h33uy)
+        rate = 2.0 * (mc * (vx * ax + vy * ay) + ic * h3 * d3 + i4 * h4 * d4)
+        potential_rate = gravity * (mc * vy + lever * h4 * wx)
+        grip_rate = nhr * h4 * wy
+    if values:
+        inertia = mc * (vx * vx + vy * vy) + ic * h33 + i4 * h44  # Eq. (5)
+        potential = gravity * (mc * (csn + 0.5 * uy) + mpy + lever * wy)  # Eq. (6)
+        if grip:
+            grip_x = px + hr * wx
+    if fly_x:
+        crank_x = px + hr * ((ccs + tdx) - qdy - px)
+    return inertia, rate, potential, potential_rate, grip_rate, grip_x, crank_x
+
+
 def terms(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only: bool = False) -> Terms:
     """I(t) - J, I'(t), V(t), V'(t) and g(t) of Eq. (5)-(7) (docs/models.md §3a).
 
@@ -127,41 +233,9 @@ def terms(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only:
     V' and g).
     """
     th = np.asarray(crank_angle, float)
-    cs, sn = np.cos(th), np.sin(th)
-    px, py, c, k, r, hh = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker, lk.handle
     with np.errstate(all="ignore"):
-        _p1, _p2, _e2, t, q = loop_closure(lk, cs, sn)
-        ccs, csn = c * cs, c * sn  # the crank pin A
-        dx, dy = px - ccs, py - csn  # O4 - A
-        ux, uy = t * dx - q * dy, t * dy + q * dx  # B - A (Eq. (6) of pumplink.mechanisms.fourbar)
-        wx, wy = ux - dx, uy - dy  # B - O4
-        inv = 1.0 / (ux * wy - uy * wx)
-        h3 = (csn * wx - ccs * wy) * inv  # first derivative of the loop closure
-        h4 = (csn * ux - ccs * uy) * inv
-        h33, h44 = h3 * h3, h4 * h4
-        rx = ccs + h33 * ux - h44 * wx
-        ry = csn + h33 * uy - h44 * wy
-        d3 = (rx * wx + ry * wy) * inv  # second derivative
-        d4 = (rx * ux + ry * uy) * inv
-        # coupler centre A + u/2: velocity and acceleration coefficients
-        vx = -csn - 0.5 * h3 * uy
-        vy = ccs + 0.5 * h3 * ux
-        ax = -ccs - 0.5 * (d3 * uy + h33 * ux)
-        ay = -csn + 0.5 * (d3 * ux - h33 * uy)
-        arm = np.maximum(hh, r)
-        mc, mh, ma = masses.coupler, masses.handle, masses.grip
-        ic = mc * k * k / 12.0
-        i4 = mh * arm * arm / 3.0 + ma * hh * hh  # about O4
-        rate = 2.0 * (mc * (vx * ax + vy * ay) + ic * h3 * d3 + i4 * h4 * d4)
-        lever = (0.5 * mh * arm + ma * hh) / r  # first moment about O4 along the rocker, per metre of w
-        inertia = potential = grip_x = None
-        if not rates_only:
-            inertia = mc * (vx * vx + vy * vy) + ic * h33 + i4 * h44  # Eq. (5)
-            potential = gravity * (mc * (csn + 0.5 * uy) + (mh + ma) * py + lever * wy)  # Eq. (6)
-            grip_x = px + (hh / r) * wx
-        potential_rate = gravity * (mc * vy + lever * h4 * wx)
-        grip_rate = -(hh / r) * h4 * wy
-    return Terms(inertia, rate, potential, potential_rate, grip_rate, grip_x)
+        out = _terms(_coefficients(lk, masses), th, gravity, values=not rates_only)
+    return Terms(*out[:6])
 
 
 def reduced_inertia(lk: FourBar, crank_angle, inertia, masses: Masses):
@@ -208,6 +282,9 @@ class _Problem:
     stroke: np.ndarray
     up: np.ndarray | None  # upper edge of the band at the nodes (D, M) [J]
     lo: np.ndarray | None  # lower edge [J]
+    design: np.ndarray  # per design (columns): the constants of _coefficients, then Mw, dce,
+    # w_hi^2 / 2, w_lo^2 / 2 and J (rows _NCO ... _NCO + 4)
+    travel: list  # the grip-travel arguments of pumplink.models.flywheel as columns (D, 1)
 
     def points(self, rows=None):
         """The grid nodes of designs ``rows`` (all: None) as points (x, base, local, up, lo)."""
@@ -216,16 +293,22 @@ class _Problem:
             return p.nodes, p.base, p.local, self.up, self.lo
         return p.nodes[rows], p.base[rows], p.local[rows], self.up[rows], self.lo[rows]
 
-    def edges(self, phi, rows=None):
+    def edges(self, phi, rows=None, fly_x: bool = False):
         """upper and lower edge of the band [J] at points phi [rad from the extended dead centre],
-        shape (R, K), of the designs ``rows`` (R,) (all: None)."""
-        take = (lambda v: v[:, None]) if rows is None else (lambda v: v[rows][:, None])  # noqa: E731
-        lk = FourBar(*(take(v) for v in self.lk.parameters))
-        ms = Masses(take(self.masses.coupler), take(self.masses.handle), take(self.masses.grip))
-        tm = terms(lk, take(self.prep.dce) + phi, ms, self.gravity)
-        i = take(self.inertia) + tm.inertia
-        hi, lo = 0.5 * take(self.w_hi) ** 2, 0.5 * take(self.w_lo) ** 2
-        return tm.potential + i * hi, tm.potential + i * lo  # Eq. (8)
+        shape (R, K), of the designs ``rows`` (R,) (all: None).  ``fly_x``: also the grip's Px [m]
+        as :func:`pumplink.models.flywheel._grip_x` computes it."""
+        every = rows is None or rows.size == self.mw.size  # rows are sorted and distinct: all
+        dm = self.design if every else self.design.take(rows, axis=1)
+        if phi.size <= _SMALL:
+            dm = np.repeat(dm[:, :, None], phi.shape[1], axis=2)
+        else:
+            dm = dm[:, :, None]
+        co, (_mw, dce, hi, lo, j) = dm[:_NCO], dm[_NCO:]
+        with np.errstate(all="ignore"):
+            tm = _terms(co, dce + phi, self.gravity, rates=False, fly_x=fly_x, grip=False)
+            i = j + tm[0]
+            out = tm[2] + i * hi, tm[2] + i * lo  # Eq. (8)
+        return (*out, tm[6]) if fly_x else out
 
 
 def _node_travel(nodes, plus, grip_x, xe, xf, stroke):
@@ -254,22 +337,30 @@ def _problem(lk, dce, dcf, wheel_torque, inertia, masses, mean_speed, speed_fluc
         mean_speed,
         speed_fluctuation,
     )
+    return _problem_of(arrays, gravity), scalar
+
+
+def _problem_of(arrays, gravity) -> _Problem:
+    """:func:`_problem` of the 1-D arrays of :func:`pumplink.mechanisms.fourbar.per_design`."""
     geom, (dce, dcf, mw, j, mc, mh, ma, w, delta) = arrays[:7], arrays[7:]
     lk1 = FourBar(*geom)
+    ms = Masses(mc, mh, ma)
     w_lo, w_hi = speed_limits(w, delta)
     with np.errstate(all="ignore"):
-        xe = _fw._grip_x(dce, *geom)
-        xf = _fw._grip_x(dcf, *geom)
+        co = _coefficients(lk1, ms)
+        kin = (0.5 * w_hi**2, 0.5 * w_lo**2)
+        xe, xf = _fw._grip_x(np.stack([dce, dcf]), *geom)  # both dead centres in one call
         stroke = np.abs(xf - xe)
         nodes, plus = _fw._nodes(dce, dcf, GRID, CLUSTER)
-        col = FourBar(*(v[:, None] for v in geom))
-        tm = terms(col, dce[:, None] + nodes, Masses(mc[:, None], mh[:, None], ma[:, None]), gravity)
-        i = j[:, None] + tm.inertia
-        up = tm.potential + i * (0.5 * w_hi**2)[:, None]  # Eq. (8)
-        lo = tm.potential + i * (0.5 * w_lo**2)[:, None]
-        base, local = _node_travel(nodes, plus[:, None], tm.grip_x, xe[:, None], xf[:, None], stroke[:, None])
+        tm = _terms([v[:, None] for v in co], dce[:, None] + nodes, gravity, rates=False)
+        i = j[:, None] + tm[0]
+        up = tm[2] + i * kin[0][:, None]  # Eq. (8)
+        lo = tm[2] + i * kin[1][:, None]
+        dm = np.stack(np.broadcast_arrays(*co, mw, dce, *kin, j))
+        base, local = _node_travel(nodes, plus[:, None], tm[5], xe[:, None], xf[:, None], stroke[:, None])
     prep = _fw._Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
-    return _Problem(prep, lk1, j, Masses(mc, mh, ma), w_lo, w_hi, gravity, mw, stroke, up, lo), scalar
+    travel = [v[:, None] for v in prep.args()]
+    return _Problem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, dm, travel)
 
 
 # The pairs of (C1)-(C2) in the form the sweeps use (docs/models.md §3a).  At the points x of a row
@@ -288,39 +379,71 @@ def _pairs(g, au, al, base, local, mw, stroke, lam):
     doubling the arrays: a running extremum one revolution back is the row's extremum shifted by
     the drift (a or b), so the later copy of a point always dominates its first copy.
     """
-    rows = np.arange(g.shape[0])
+    h, r = _pairs_held(_held(g, au, al, base, local, mw, stroke), lam)
+    return h.T, r.T
+
+
+def _held(g, au, al, base, local, mw, stroke) -> list:
+    """The arrays :func:`_pairs_held` reads: G, (au, -al), (al, au), base, local, (-2 pi Mw,
+    2 pi Mw), 2 pi Mw and 2 S; rows over designs (axis 1 of the stacked ones).
+
+    (C2) is swept negated beside (C1): its running maximum of lower - P is minus the running
+    minimum of -(lower - P), so both families take one pass of each operation.  Negation is exact,
+    so every value is the one the two families give apart.
+    """
+    al_au = np.empty((2,) + g.shape)
+    al_au[0], al_au[1] = al, au
+    return _held_of(g, al_au, base, local, mw, stroke)
+
+
+def _held_of(g, al_au, base, local, mw, stroke) -> list:
+    """:func:`_held` from G and (al, au) stacked."""
+    au_nal = np.empty_like(al_au)
+    au_nal[0] = al_au[1]
+    np.negative(al_au[0], out=au_nal[1])
+    turns = np.empty((2,) + mw.shape)
+    np.multiply(TWO_PI, mw, out=turns[1])
+    np.negative(turns[1], out=turns[0])
+    base, local = np.ascontiguousarray(base), np.ascontiguousarray(local)
+    return [g, au_nal, al_au, base, local, turns, turns[1], 2.0 * stroke]
+
+
+#: Axis over the designs of each array of :func:`_held` (the stacked ones carry the family first).
+_HELD_AXIS = (0, 1, 1, 0, 0, 1, 0, 0)
+
+
+def _pairs_held(held, lam):
+    """:func:`_pairs` on the arrays of :func:`_held`: (h, ratio), each (2, D) (no floating-point
+    context)."""
+    g, au_nal, al_au, base, local, turns, turn, two_s = held
+    d, k = g.shape
     lg = lam[:, None] * g
-    out_h = np.empty((g.shape[0], 2))
-    out_r = np.empty((g.shape[0], 2))
-    two_s, turn = 2.0 * stroke, TWO_PI * mw
-
-    def ratio(i, j, wrap, num):
-        k = (base[rows, j] - base[rows, i]) + (local[rows, j] - local[rows, i])  # no cancellation at a DC
-        return num / (k + np.where(wrap, two_s, 0.0))
-
-    # (C1): lower(s) - Q(s) - min over t <= s of (upper(t) - Q(t)) <= 0
-    f = au - lg
-    run = np.minimum.accumulate(f, axis=1)
-    back = (run[:, -1] + 2.0 * lam * stroke - turn)[:, None]  # the minimum one revolution back
-    best = np.minimum(run, back)
-    v = al - lg - best
-    j = np.argmax(v, axis=1)
-    out_h[:, 0] = v[rows, j]
-    wrap = best[rows, j] < run[rows, j]
-    i = np.where(wrap, np.argmin(f, axis=1), np.argmax(f == run[rows, j][:, None], axis=1))
-    out_r[:, 0] = ratio(i, j, wrap, al[rows, j] - au[rows, i] + np.where(wrap, turn, 0.0))
-    # (C2): max over s <= t of (lower(s) - P(s)) - (upper(t) - P(t)) <= 0
-    f = al + lg
-    run = np.maximum.accumulate(f, axis=1)
-    back = (run[:, -1] - 2.0 * lam * stroke - turn)[:, None]
-    best = np.maximum(run, back)
-    v = best - au - lg
-    j = np.argmax(v, axis=1)
-    out_h[:, 1] = v[rows, j]
-    wrap = best[rows, j] > run[rows, j]
-    i = np.where(wrap, np.argmax(f, axis=1), np.argmax(f == run[rows, j][:, None], axis=1))
-    out_r[:, 1] = ratio(i, j, wrap, al[rows, i] - au[rows, j] - np.where(wrap, turn, 0.0))
-    return out_h, out_r
+    # (C1): lower(s) - Q(s) - min over t <= s of (upper(t) - Q(t)) <= 0;
+    # (C2): max over s <= t of (lower(s) - P(s)) - (upper(t) - P(t)) <= 0, swept negated
+    f = au_nal - lg  # upper - Q, -(lower - P)
+    run = np.minimum.accumulate(f, axis=2)
+    back = (run[:, :, -1] + lam * two_s) + turns  # the minimum one revolution back (2 lam S: exact)
+    best = np.minimum(run, back[:, :, None])
+    v = np.empty_like(f)
+    np.subtract(al_au[0], lg, out=v[0])
+    v[0] -= best[0]
+    np.negative(best[1], out=v[1])
+    v[1] -= al_au[1]
+    v[1] -= lg
+    j = v.argmax(axis=2)
+    off = np.arange(0, 2 * d * k, k).reshape(2, d)  # (family, row) in the flattened (2, D, K)
+    fj = off + j
+    h = v.take(fj)
+    run_j = run.take(fj)
+    wrap = best.take(fj) < run_j
+    i = np.where(wrap, f.argmin(axis=2), (f == run_j[:, :, None]).argmax(axis=2))
+    # N: (C1) al_j - au_i (+ 2 pi Mw), (C2) minus (au_j - al_i (+ 2 pi Mw))
+    num = (al_au.take(fj) - al_au.take(off[::-1] + i)) + np.where(wrap, turn, 0.0)
+    rj, ri = off[0] + j, off[0] + i
+    kk = (base.take(rj) - base.take(ri)) + (local.take(rj) - local.take(ri))  # no cancellation at a DC
+    r = num / (kk + np.where(wrap, two_s, 0.0))
+    np.negative(r[1], out=r[1])
+    return h, r
 
 
 def _dinkelbach(pts, mw, stroke, lam, cap, rtol=RTOL):
@@ -333,29 +456,42 @@ def _dinkelbach(pts, mw, stroke, lam, cap, rtol=RTOL):
     """
     x, base, local, up, lo = pts
     m = mw[:, None] * x
-    held = [base + local, up + m, lo + m, base, local, mw, stroke, cap]
+    al_au = np.empty((2,) + x.shape)
+    np.add(lo, m, out=al_au[0])
+    np.add(up, m, out=al_au[1])
+    held = _held_of(base + local, al_au, base, local, mw, stroke)
     lam = np.array(lam, float)
-    where = np.arange(lam.size)  # row of lam for each held row
+    if lam.size == 0:
+        return lam
+    cur = lam  # the iterate of each held row (a row's stays put once it stops)
+    where = None  # row of lam for each held row, once gathered
     live = np.ones(lam.size, bool)
-    for _ in range(200):
-        n_live = int(live.sum())
-        if n_live == 0:
-            break
-        if n_live < 0.5 * live.size:
-            keep = np.nonzero(live)[0]
-            held, where, live = [v[keep] for v in held], where[keep], live[keep]
-        cur = lam[where]
-        with np.errstate(all="ignore"):
-            h, r = _pairs(*held[:7], cur)
+    with np.errstate(all="ignore"):
+        for _ in range(200):
+            h, r = _pairs_held(held, cur)
             r = np.where(h > 0, np.where(np.isnan(r), np.inf, r), -np.inf)
-            new = r.max(axis=1)
-        grow = live & (new > cur)
-        done = ~grow | (new - cur <= rtol * np.abs(new))
-        cur = np.where(grow, new, cur)
-        capped = ~(cur <= held[7])
-        cur[capped] = np.inf
-        lam[where[live]] = cur[live]
-        live &= ~(done | capped)
+            new = r.max(axis=0)
+            grow = live & (new > cur)
+            done = ~grow | (new - cur <= rtol * np.abs(new))
+            cur = np.where(grow, new, cur)
+            capped = ~(cur <= cap)
+            cur[capped] = np.inf
+            live &= ~(done | capped)
+            n_live = np.count_nonzero(live)
+            if n_live == 0:
+                break
+            if n_live < 0.5 * live.size:
+                keep = np.nonzero(live)[0]
+                if where is None:
+                    lam, where = cur, keep
+                else:
+                    lam[where] = cur
+                    where = where[keep]
+                held = [v.take(keep, axis=ax) for v, ax in zip(held, _HELD_AXIS, strict=True)]
+                cur, live, cap = cur[keep], live[keep], cap[keep]
+    if where is None:
+        return cur
+    lam[where] = cur
     return lam
 
 
@@ -366,34 +502,39 @@ def _dinkelbach(pts, mw, stroke, lam, cap, rtol=RTOL):
 _FAMILIES = ((0, -1.0, -1), (1, -1.0, 1), (1, 1.0, 1), (0, 1.0, -1))
 
 
+_EDGE = np.array([f[0] for f in _FAMILIES])
+_SIGN = np.array([f[1] for f in _FAMILIES])
+
+
 def _extrema(pb: _Problem, lam, rows):
     """The local extrema of :data:`_FAMILIES` on the grid nodes of designs ``rows`` at Fp = lam (per
     row): (design, node, lo, hi, family) with the neighbouring nodes (lo, hi) as the bracket."""
-    x, base, local, up, low = pb.points(rows)
+    every = rows.size == pb.mw.size  # rows are sorted and distinct: all designs
+    x, base, local, up, low = pb.points(None if every else rows)
+    mw, stroke = (pb.mw, pb.stroke) if every else (pb.mw[rows], pb.stroke[rows])
     lg = lam[:, None] * (base + local)
-    m = pb.mw[rows][:, None] * x
-    a = 2.0 * lam * pb.stroke[rows] - TWO_PI * pb.mw[rows]
-    b = -2.0 * lam * pb.stroke[rows] - TWO_PI * pb.mw[rows]
+    m = mw[:, None] * x
+    ls2, turn = 2.0 * lam * stroke, TWO_PI * mw
+    a = ls2 - turn  # the drifts of Q and P over a revolution
+    b = -ls2 - turn
     last = x.shape[1] - 1
-    ext = np.empty(x.shape, bool)
-    out = []
-    for fam, (edge, sign, kind) in enumerate(_FAMILIES):
-        drift = a if sign < 0 else b
-        f = (up if edge == 0 else low) + m
-        f += sign * lg  # upper/lower minus Q (sign -1) or P (+1)
-        f *= -kind  # local maxima become minima
-        with np.errstate(invalid="ignore"):
-            np.less(f[:, 1:-1], f[:, 2:], out=ext[:, 1:-1])
-            ext[:, 1:-1] &= f[:, 1:-1] <= f[:, :-2]
-            # the neighbours across the period: f(x - 2 pi) = f(x) + drift (times -kind)
-            ext[:, 0] = (f[:, 0] <= f[:, -1] - kind * drift) & (f[:, 0] < f[:, 1])
-            ext[:, -1] = (f[:, -1] <= f[:, -2]) & (f[:, -1] < f[:, 0] + kind * drift)
-        d, k = np.nonzero(ext)
-        out.append((d, k, np.full(d.size, fam)))
-    d, k, fam = (np.concatenate(v) for v in zip(*out, strict=True))
-    node = x[d, k]
-    lo = np.where(k > 0, x[d, k - 1], x[d, last] - TWO_PI)
-    hi = np.where(k < last, x[d, np.minimum(k + 1, last)], x[d, 0] + TWO_PI)
+    # the four functions, maxima turned into minima (times -kind): upper - Q, -(lower - Q),
+    # -(lower - P), upper - P; and -kind times their drift (a for Q, b for P)
+    au, al = up + m, low + m
+    f = np.stack([au - lg, al - lg, al + lg, au + lg])
+    np.negative(f[1:3], out=f[1:3])
+    kd = np.stack([-a, a, b, -b])
+    ext = np.empty(f.shape, bool)
+    np.less(f[:, :, 1:-1], f[:, :, 2:], out=ext[:, :, 1:-1])
+    ext[:, :, 1:-1] &= f[:, :, 1:-1] <= f[:, :, :-2]
+    # the neighbours across the period: f(x - 2 pi) = f(x) + drift (times -kind)
+    ext[:, :, 0] = (f[:, :, 0] <= f[:, :, -1] - kd) & (f[:, :, 0] < f[:, :, 1])
+    ext[:, :, -1] = (f[:, :, -1] <= f[:, :, -2]) & (f[:, :, -1] < f[:, :, 0] + kd)
+    fam, d, k = np.nonzero(ext)
+    at = d * x.shape[1] + k  # flat index into (R, M)
+    node = x.take(at)
+    lo = np.where(k > 0, x.take(at - 1), x.take(at - k + last) - TWO_PI)
+    hi = np.where(k < last, x.take(np.minimum(at + 1, x.size - 1)), x.take(at - k) + TWO_PI)
     return d, node, lo, hi, fam
 
 
@@ -402,24 +543,41 @@ class _Slope:
     extremum): f' = V' + I' w^2/2 + sign lam |g| + Mw, with w the band's top or bottom speed."""
 
     def __init__(self, pb: _Problem, dd, fam, lam_e):
-        edge = np.array([f[0] for f in _FAMILIES])[fam]
-        sign = np.array([f[1] for f in _FAMILIES])[fam]
-        self.lk = FourBar(*(v[dd] for v in pb.lk.parameters))
-        self.ms = Masses(pb.masses.coupler[dd], pb.masses.handle[dd], pb.masses.grip[dd])
-        self.w2 = 0.5 * np.where(edge == 0, pb.w_hi[dd], pb.w_lo[dd]) ** 2
-        self.slam = sign * lam_e
-        self.mw, self.dce, self.gravity = pb.mw[dd], pb.prep.dce[dd], pb.gravity
+        e = dd.size
+        m = np.empty((_NCO + 4, e))  # the constants of the terms, Mw, dce, w^2 / 2, sign lam
+        m[: _NCO + 2] = pb.design[: _NCO + 2].take(dd, axis=1)
+        m[_NCO + 2] = pb.design[_NCO + 2 + _EDGE[fam], dd]  # the top (upper edge) or bottom speed
+        np.multiply(_SIGN[fam], lam_e, out=m[_NCO + 3])
+        # the Newton steps evaluate f' at two stacked points per extremum
+        self.m = np.repeat(m[:, None, :], 2, axis=1) if e <= _SMALL else m
+        self.size, self.gravity = e, pb.gravity
 
     def __call__(self, phi, idx=None):
-        """f' at phi [rad from the extended dead centre], shape (..., E) or (..., len(idx))."""
-        if idx is None:
-            lk, ms, w2, slam, mw, dce = self.lk, self.ms, self.w2, self.slam, self.mw, self.dce
-        else:
-            lk = self.lk.take(idx)
-            ms = Masses(self.ms.coupler[idx], self.ms.handle[idx], self.ms.grip[idx])
-            w2, slam, mw, dce = self.w2[idx], self.slam[idx], self.mw[idx], self.dce[idx]
-        tm = terms(lk, dce + phi, ms, self.gravity, rates_only=True)
-        return tm.potential_rate + tm.inertia_rate * w2 + slam * np.abs(tm.grip_rate) + mw
+        """f' at phi (2, E) or (2, len(idx)) [rad from the extended dead centre].
+
+        A few extrema of many are gathered first; otherwise f' is evaluated at all of them (the
+        others at phi = 0) and the wanted ones picked: fewer operations on small arrays, the same
+        values."""
+        pick, m = None, self.m
+        if idx is not None and idx.size < self.size:
+            if 2 * idx.size < self.size:
+                m = m.take(idx, axis=m.ndim - 1)
+            else:
+                pick, phi0 = idx, phi
+                phi = np.zeros((2, self.size))
+                phi[:, idx] = phi0
+        co, (mw, dce, w2, slam) = m[:_NCO], m[_NCO:]
+        tm = _terms(co, dce + phi, self.gravity, values=False)
+        out = tm[3] + tm[1] * w2 + slam * np.abs(tm[4]) + mw
+        return out if pick is None else out[:, pick]
+
+
+def _two(c, step):
+    """The points c and c + step stacked, (2, n)."""
+    out = np.empty((2, c.size))
+    out[0] = c
+    np.add(c, step, out=out[1])
+    return out
 
 
 def _newton(slope: _Slope, start, lo, hi, width):
@@ -427,20 +585,23 @@ def _newton(slope: _Slope, start, lo, hi, width):
     ``start`` without a bracket: the root where a step below REFINE_XTOL lands inside (lo, hi),
     NaN where it leaves the bracket or has not converged after WARM_ITER steps."""
     out = np.full(start.size, np.nan)
-    c = start.copy()
-    live = np.nonzero(np.isfinite(c))[0]
+    live = np.nonzero(np.isfinite(start))[0]
+    if live.size == start.size:
+        cc, lo_l, hi_l, step = start, lo, hi, REFINE_STEP * width
+    else:
+        cc, lo_l, hi_l, step = start[live], lo[live], hi[live], REFINE_STEP * width[live]
     for _ in range(WARM_ITER):
         if live.size == 0:
             break
-        cc = c[live]
-        step = REFINE_STEP * width[live]
-        fc, fh = slope(np.stack([cc, cc + step]), live)
+        fc, fh = slope(_two(cc, step), live)
         new = np.where(fc == 0, cc, cc - fc * step / (fh - fc))
-        inside = (new > lo[live]) & (new < hi[live])
+        inside = (new > lo_l) & (new < hi_l)
         conv = inside & (np.abs(new - cc) <= REFINE_XTOL)
         out[live[conv]] = new[conv]
-        c[live] = new
-        live = live[inside & ~conv]
+        keep = inside & ~conv
+        if not keep.all():
+            live, new, lo_l, hi_l, step = live[keep], new[keep], lo_l[keep], hi_l[keep], step[keep]
+        cc = new
     return out
 
 
@@ -449,29 +610,29 @@ def _bracketed(slope: _Slope, lo, hi, node, idx):
     safeguarded by the bracket, until a step is below REFINE_XTOL (the extremum's value is then
     exact to rounding: the function is flat there).  Where f' does not change sign over the
     bracket (an extremum at a node, e.g. a dead centre) the node itself."""
-    a, b = lo[idx].copy(), hi[idx].copy()
+    a, b = lo[idx], hi[idx]
     root = node[idx].copy()
     with np.errstate(all="ignore"):
-        fa, fb = slope(np.stack([a, b]), idx)
+        ab = np.empty((2, idx.size))
+        ab[0], ab[1] = a, b
+        fa, fb = slope(ab, idx)
         live = np.nonzero(np.isfinite(fa) & np.isfinite(fb) & (np.sign(fa) * np.sign(fb) < 0))[0]
         c = (a * fb - b * fa) / (fb - fa)  # a secant step to start
+        al, bl, fal, cc, il = a[live], b[live], fa[live], c[live], idx[live]
         for _ in range(REFINE_ITER):
             if live.size == 0:
                 break
-            al, bl, fal = a[live], b[live], fa[live]
-            cc = c[live]
             cc = np.where((cc > al) & (cc < bl), cc, 0.5 * (al + bl))
             step = REFINE_STEP * np.maximum(bl - al, REFINE_XTOL)
-            fc, fh = slope(np.stack([cc, cc + step]), idx[live])
+            fc, fh = slope(_two(cc, step), il)
             left = np.sign(fc) == np.sign(fal)  # keep the root bracketed
-            al, bl = np.where(left, cc, al), np.where(left, bl, cc)
-            a[live], b[live], fa[live] = al, bl, np.where(left, fc, fal)
+            al, bl, fal = np.where(left, cc, al), np.where(left, bl, cc), np.where(left, fc, fal)
             new = np.where(fc == 0, cc, cc - fc * step / (fh - fc))
             conv = (np.abs(new - cc) <= REFINE_XTOL) | (bl - al <= REFINE_XTOL)
             root[live[conv]] = np.clip(new[conv], al[conv], bl[conv])
-            c[live] = new
-            live = live[~conv]
-        root[live] = 0.5 * (a[live] + b[live])
+            keep = ~conv
+            live, al, bl, fal, cc, il = live[keep], al[keep], bl[keep], fal[keep], new[keep], il[keep]
+        root[live] = 0.5 * (al + bl)
     return root
 
 
@@ -489,14 +650,24 @@ class _Track:
     def _fields(self):
         return (self.design, self.family, self.lo, self.hi, self.node, self.root)
 
+    def _among(self, rows):
+        """True for the entries of the designs ``rows``."""
+        if self.design.size == 0:
+            return np.zeros(0, bool)
+        mark = np.zeros(max(int(self.design.max()), int(rows.max(initial=0))) + 1, bool)
+        mark[rows] = True
+        return mark[self.design]
+
     def of(self, rows):
         """The entries of the designs ``rows``, in their order."""
-        keep = np.isin(self.design, rows)
+        keep = self._among(rows)
+        if keep.all():
+            return self
         return _Track(*(v[keep] for v in self._fields()))
 
     def updated(self, other: _Track, rows):
         """These entries with those of the designs ``rows`` replaced by ``other``'s."""
-        keep = ~np.isin(self.design, rows)
+        keep = ~self._among(rows)
         return _Track(*(np.concatenate([a[keep], b]) for a, b in zip(self._fields(), other._fields())))
 
 
@@ -506,8 +677,9 @@ def _warm_start(track: _Track | None, dd, fam, node, lo, hi):
     start = np.full(dd.size, np.nan)
     if track is None or track.root.size == 0 or dd.size == 0:
         return start
-    key = fam * (int(max(dd.max(), track.design.max())) + 1) + dd
-    wkey = track.family * (int(max(dd.max(), track.design.max())) + 1) + track.design
+    span = int(max(dd.max(), track.design.max())) + 1
+    key = fam * span + dd
+    wkey = track.family * span + track.design
     order = np.lexsort((track.root, wkey))
     wkey, wroot = wkey[order], track.root[order]
     pos = np.searchsorted(wkey * 8.0 + wroot, key * 8.0 + np.mod(node, TWO_PI))  # roots lie in [0, 2 pi)
@@ -534,16 +706,16 @@ def _refined_points(pb: _Problem, lam, rows, track: _Track | None = None, detect
     ``track`` to this lam without looking for new ones on the grid (cheap; the points are then
     only lower bounds, for the passes before the last).
     """
-    if detect:
-        d, node, lo, hi, fam = _extrema(pb, lam, rows)
-        dd = rows[d]
-    else:
-        track = track.of(rows)
-        dd, fam, lo, hi, node = track.design, track.family, track.lo, track.hi, track.node
-        d = np.searchsorted(rows, dd)
-    slope = _Slope(pb, dd, fam, lam[d])
-    width = hi - lo
     with np.errstate(all="ignore"):
+        if detect:
+            d, node, lo, hi, fam = _extrema(pb, lam, rows)
+            dd = rows[d]
+        else:
+            track = track.of(rows)
+            dd, fam, lo, hi, node = track.design, track.family, track.lo, track.hi, track.node
+            d = np.searchsorted(rows, dd)
+        slope = _Slope(pb, dd, fam, lam[d])
+        width = hi - lo
         start = _warm_start(track, dd, fam, node, lo, hi) if detect else track.root
         root = _newton(slope, start, lo, hi, width)
         if detect:
@@ -552,22 +724,26 @@ def _refined_points(pb: _Problem, lam, rows, track: _Track | None = None, detect
                 root[cold] = _bracketed(slope, lo, hi, node, cold)
         else:  # a root that could not be followed stays where it was (still a point of the curve)
             root = np.where(np.isfinite(root), root, start)
-    root = np.mod(root, TWO_PI)
-    # one sorted row of points per design; short rows repeat their last point (a repeated point
-    # adds no pair and keeps the row sorted), a design without extrema gets its extended dead centre
-    count = np.bincount(d, minlength=rows.size)
-    width_k = max(int(count.max()) if count.size else 1, 1)
-    order = np.lexsort((root, d))
-    ds, rs = d[order], root[order]
-    slot = np.arange(ds.size) - (np.cumsum(count) - count)[ds]
-    x = np.full((rows.size, width_k), np.nan)
-    x[ds, slot] = rs
-    last = np.where(count > 0, x[np.arange(rows.size), np.maximum(count - 1, 0)], 0.0)
-    x = np.where(np.isnan(x), last[:, None], x)
-    args = [v[rows][:, None] for v in pb.prep.args()]
-    with np.errstate(all="ignore"):
-        base, local = _fw._travel_parts(x, *args)
-        up, low = pb.edges(x, rows)
+        root = np.mod(root, TWO_PI)
+        # one sorted row of points per design; short rows repeat their last point (a repeated point
+        # adds no pair and keeps the row sorted), a design without extrema gets its extended dead
+        # centre
+        if rows.size == 1:  # one design: its roots sorted
+            x = np.sort(root, kind="stable")[None, :] if root.size else np.zeros((1, 1))
+        else:
+            count = np.bincount(d, minlength=rows.size)
+            width_k = max(int(count.max()) if count.size else 1, 1)
+            order = np.lexsort((root, d))
+            ds, rs = d[order], root[order]
+            slot = np.arange(ds.size) - (np.cumsum(count) - count)[ds]
+            x = np.full((rows.size, width_k), np.nan)
+            x[ds, slot] = rs
+            last = np.where(count > 0, x[np.arange(rows.size), np.maximum(count - 1, 0)], 0.0)
+            x = np.where(np.isnan(x), last[:, None], x)
+        every = rows.size == pb.mw.size  # rows are sorted and distinct: all designs
+        args = pb.travel if every else [v[rows][:, None] for v in pb.prep.args()]
+        up, low, grip_x = pb.edges(x, None if every else rows, fly_x=True)
+        base, local = _fw._travel_parts(x, *args, grip_x=grip_x)
     return (x, base, local, up, low), _Track(dd, fam, lo, hi, node, root)
 
 
@@ -598,8 +774,10 @@ def _solve(pb: _Problem, max_passes: int = 24):
     # violated (an upper bound), Fp* up to the refinement tolerance.
     grid = pb.points(None if todo.size == n else todo)
     mw, stroke = pb.mw[todo], pb.stroke[todo]
-    lam = _dinkelbach(tuple(v[:, ::4] for v in grid), mw, stroke, f_mean[todo], cap[todo], GRID_RTOL)
-    lam = _dinkelbach(grid, mw, stroke, lam, cap[todo], GRID_RTOL)  # a quarter of the nodes first
+    lam = f_mean[todo]
+    if todo.size >= QUARTER_FROM:  # a quarter of the nodes first
+        lam = _dinkelbach(tuple(v[:, ::4] for v in grid), mw, stroke, lam, cap[todo], GRID_RTOL)
+    lam = _dinkelbach(grid, mw, stroke, lam, cap[todo], GRID_RTOL)
     live = np.nonzero(np.isfinite(lam))[0]
     follow = np.zeros(todo.size, bool)  # designs whose next pass only follows their extrema
     start = f_mean[todo]
@@ -619,7 +797,10 @@ def _solve(pb: _Problem, max_passes: int = 24):
         done = ~np.isfinite(new)
         if detect:  # certified where the full pass left the force where it was
             done |= step <= 4 * RTOL * np.abs(new)
-        live = np.setdiff1d(live, sel[done], assume_unique=True)
+        if done.any():
+            gone = np.zeros(todo.size, bool)
+            gone[sel[done]] = True
+            live = live[~gone[live]]
     out[todo] = lam
     return out
 
@@ -668,10 +849,9 @@ def least_peak_force(
     n = arrays[0].size
     out = np.empty(n)
     for start in range(0, n, CHUNK):  # chunks whose (designs, nodes) arrays stay in the cache
-        part = [v[start : start + CHUNK] for v in arrays]
-        ms = Masses(*part[11:14])
-        pb, _ = _problem(FourBar(*part[:7]), *part[7:11], ms, *part[14:], gravity)
-        out[start : start + CHUNK] = _solve(pb)
+        part = arrays if n <= CHUNK else [v[start : start + CHUNK] for v in arrays]
+        pb = _problem_of(part, gravity)  # held until the next chunk's is made: freeing it first
+        out[start : start + CHUNK] = _solve(pb)  # costs ~10 % on 10,000 designs (the allocator)
     return float(out[0]) if scalar else out
 
 
@@ -740,9 +920,10 @@ def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY):
     th = np.arange(EFFECT_GRID) * (TWO_PI / EFFECT_GRID)
     col = FourBar(*(v[:, None] for v in geom))
     with np.errstate(all="ignore"):
-        tm = terms(col, th, Masses(mc[:, None], mh[:, None], 0.0), gravity)
-        link = 0.5 * np.max(tm.inertia, axis=1) * w * w
-        weight = np.ptp(tm.potential, axis=1)
+        co = _coefficients(col, Masses(mc[:, None], mh[:, None], 0.0))
+        tm = _terms(co, th, gravity, rates=False, grip=False)
+        link = 0.5 * tm[0].max(axis=1) * w * w
+        weight = np.ptp(tm[2], axis=1)
         # the peak rate only where arms are carried: a search that leaves them out of the verdict
         # passes no arm mass and skips the refinement (about half its cost per small batch)
         arm = np.zeros(np.shape(ma))

@@ -140,7 +140,21 @@ def _grip_rate(theta, px, py, crank, coupler, rocker, handle, branch):
 
 
 def _travel_parts(
-    phi, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke, integrate=True
+    phi,
+    px,
+    py,
+    crank,
+    coupler,
+    rocker,
+    handle,
+    branch,
+    dce,
+    plus,
+    xe,
+    xf,
+    stroke,
+    integrate=True,
+    grip_x=None,
 ):
     """Grip travel G = base + local [m] from the extended dead centre to crank angle dce + phi.
 
@@ -149,6 +163,8 @@ def _travel_parts(
     from them local comes from positions; within TRAVEL_INTEGRATION_ARC it is integrated from the rate.
     Differences of G near one dead centre are then (local - local): no cancellation.
     ``integrate=False``: from positions everywhere (absolute error ~1e-16 m; enough to rank arcs).
+    ``grip_x``: Px at crank angles dce + phi as :func:`_grip_x` gives it (from a caller that has the
+    loop closure there already), used where phi lies in the first turn [0, 2 pi).
     """
     turns = np.floor(phi / TWO_PI)
     p = phi - turns * TWO_PI
@@ -157,7 +173,10 @@ def _travel_parts(
     at_fold = np.abs(to_fold) <= np.minimum(p, TWO_PI - p)
     s = np.where(at_fold, to_fold, np.where(p <= TWO_PI - p, p, p - TWO_PI))  # signed offset from it
     base = np.where(at_fold, stroke, np.where(s >= 0, 0.0, 2.0 * stroke)) + 2.0 * stroke * turns
-    x = _grip_x(dce + p, px, py, crank, coupler, rocker, handle, branch)
+    if grip_x is not None and not turns.any():  # p is phi: Px at dce + phi is given
+        x = grip_x
+    else:
+        x = _grip_x(dce + p, px, py, crank, coupler, rocker, handle, branch)
     ref = np.where(at_fold, xf, xe)
     local = np.sign(s) * np.abs(x - ref)
     near = np.abs(s) < TRAVEL_INTEGRATION_ARC
