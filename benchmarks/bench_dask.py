@@ -40,22 +40,12 @@ import tomli_w
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _record import record  # noqa: E402
-from bench_batch import free_cores  # noqa: E402
+from bench_batch import WRAPPER, free_cores  # noqa: E402  (one measuring wrapper: wall, CPU)
 from bench_core import ROOT, machine  # noqa: E402
 
 GRID = ROOT / "configs" / "grids" / "design-space.toml"
 #: Measurement spread allowed by the target (repeated runs here differ by a few per cent).
 TOLERANCE = 1.05
-
-WRAPPER = r"""
-import json, resource, subprocess, sys, time
-t = time.perf_counter()
-r = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-wall = time.perf_counter() - t
-u = resource.getrusage(resource.RUSAGE_CHILDREN)
-print(json.dumps({"wall": wall, "cpu": u.ru_utime + u.ru_stime, "rc": r.returncode,
-                  "stderr": r.stderr.strip()}))
-"""
 
 # pumplink batch with the malloc plugin left out (the driver never registers it).
 UNTUNED = (

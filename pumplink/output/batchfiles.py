@@ -152,31 +152,44 @@ def _models(c: Chunk) -> list[str]:
     return c.model
 
 
+#: Numeric columns only the energy models fill (empty where the quasi-static model decided).
+ENERGY_COLUMNS = ("inertia_kg_m2", "speed_fluctuation", "least_peak_force_N", "min_passing_speed_deg_s")
+
+
+def _number_columns(c: Chunk) -> dict[str, np.ndarray]:
+    """The chunk's numeric columns by output name [SI units, angles in degrees], in output order
+    up to ``force_limit_N``, then :data:`ENERGY_COLUMNS`: the one table the JSON, CSV and Parquet
+    writers convert."""
+    return {
+        "frame_length": c.frame_length,
+        "crank_length": c.crank_length,
+        "coupler_length": c.coupler_length,
+        "time_ratio": c.time_ratio,
+        "transmission_min_deg": np.degrees(c.transmission_min),
+        "transmission_max_deg": np.degrees(c.transmission_max),
+        "mean_force_N": c.mean_force,
+        "peak_force_N": c.verdict_peak_force,
+        "dead_band_peak_force_N": c.dead_band_peak_force,
+        "sampled_peak_force_N": c.sampled_peak,
+        "power_W": c.power,
+        "grip_speed_m_s": c.grip_speed,
+        "stroke_m": c.stroke,
+        "force_limit_N": c.force_limit,
+        "inertia_kg_m2": c.inertia,
+        "speed_fluctuation": c.speed_fluctuation,
+        "least_peak_force_N": c.least_peak_force,
+        "min_passing_speed_deg_s": np.degrees(c.min_passing_speed),
+    }
+
+
 def chunk_columns(batch: Batch, c: Chunk) -> dict[str, list]:
     """The chunk's rows as columns of JSON-safe values (NaN -> None; angles in degrees)."""
     return {
         "name": variant_names(batch, c.start, c.stop),
-        "frame_length": _floats(c.frame_length),
-        "crank_length": _floats(c.crank_length),
-        "coupler_length": _floats(c.coupler_length),
+        **{k: _floats(v) for k, v in _number_columns(c).items()},
         "feasible": c.feasible.tolist(),
         "reason": c.reason,
-        "time_ratio": _floats(c.time_ratio),
-        "transmission_min_deg": _floats(np.degrees(c.transmission_min)),
-        "transmission_max_deg": _floats(np.degrees(c.transmission_max)),
-        "mean_force_N": _floats(c.mean_force),
-        "peak_force_N": _floats(c.verdict_peak_force),
-        "dead_band_peak_force_N": _floats(c.dead_band_peak_force),
-        "sampled_peak_force_N": _floats(c.sampled_peak),
-        "power_W": _floats(c.power),
-        "grip_speed_m_s": _floats(c.grip_speed),
-        "stroke_m": _floats(c.stroke),
-        "force_limit_N": _floats(c.force_limit),
         "model": _models(c),
-        "inertia_kg_m2": _floats(c.inertia),
-        "speed_fluctuation": _floats(c.speed_fluctuation),
-        "least_peak_force_N": _floats(c.least_peak_force),
-        "min_passing_speed_deg_s": _floats(np.degrees(c.min_passing_speed)),
         "verdict": _outcomes(c),
         "pass": c.passed.tolist(),
         "failed": _failed_text(c),
@@ -329,28 +342,13 @@ def parquet_table(batch: Batch, c: Chunk, vkeys: Sequence[str]):
     fly = c.flywheel.any()
     none = np.full(n, np.nan)
     cols.update(
+        {k: num(v if fly or k not in ENERGY_COLUMNS else none) for k, v in _number_columns(c).items()}
+    )
+    cols.update(
         {
-            "frame_length": num(c.frame_length),
-            "crank_length": num(c.crank_length),
-            "coupler_length": num(c.coupler_length),
             "feasible": pa.array(c.feasible, pa.bool_()),
             "reason": text(c.reason),
-            "time_ratio": num(c.time_ratio),
-            "transmission_min_deg": num(np.degrees(c.transmission_min)),
-            "transmission_max_deg": num(np.degrees(c.transmission_max)),
-            "mean_force_N": num(c.mean_force),
-            "peak_force_N": num(c.verdict_peak_force),
-            "dead_band_peak_force_N": num(c.dead_band_peak_force),
-            "sampled_peak_force_N": num(c.sampled_peak),
-            "power_W": num(c.power),
-            "grip_speed_m_s": num(c.grip_speed),
-            "stroke_m": num(c.stroke),
-            "force_limit_N": num(c.force_limit),
             "model": text(_models(c)),
-            "inertia_kg_m2": num(c.inertia if fly else none),
-            "speed_fluctuation": num(c.speed_fluctuation if fly else none),
-            "least_peak_force_N": num(c.least_peak_force if fly else none),
-            "min_passing_speed_deg_s": num(np.degrees(c.min_passing_speed) if fly else none),
             "verdict": text(_outcomes(c)),
             "pass": pa.array(c.passed, pa.bool_()),
             "failed": text(_failed_text(c), empty_is_null=False),
