@@ -13,7 +13,9 @@ is the goal in words ("<= 0.25 s") or null, ``met`` true/false or null without a
 from __future__ import annotations
 
 import json
+import math
 import os
+import platform
 import sys
 from pathlib import Path
 
@@ -50,3 +52,32 @@ def record(
     }
     with open(path, "a", encoding="utf-8") as f:
         f.write(json.dumps(row) + "\n")
+
+
+def machine() -> str:
+    """CPU model, cores, Python and numpy versions of this machine (numpy's without importing it)."""
+    model = "unknown CPU"
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    try:
+        from importlib.metadata import version
+
+        np_version = f", numpy {version('numpy')}"
+    except Exception:  # noqa: BLE001 -- the header only
+        np_version = ""
+    return f"{model}, {os.cpu_count()} cores, Python {platform.python_version()}{np_version}"
+
+
+def result(
+    what: str, figure: str, target: str, met: bool, beside: str = "", value: float = math.nan, unit: str = ""
+) -> None:
+    """One ``RESULT`` line per target (the figure, the target, whether it is met and what is
+    beside it), and the figure for the summary table (:func:`record`)."""
+    extra = f"  [{beside}]" if beside else ""
+    print(f"RESULT {what}: {figure} (target {target}) met: {'yes' if met else 'NO'}{extra}")
+    record(what, value, unit, target, met, beside)

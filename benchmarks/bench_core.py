@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import compileall
 import os
-import platform
 import resource
 import statistics
 import subprocess
@@ -25,7 +24,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from _record import record
+from _record import machine, record
 
 from pumplink.analysis import design
 from pumplink.mechanisms.angles import offset_table, shifted_directions
@@ -67,18 +66,6 @@ def median_time(fn, repeat=7):
         fn()
         ts.append(time.perf_counter() - t0)
     return statistics.median(ts)
-
-
-def machine() -> str:
-    model = "unknown CPU"
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                model = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return f"{model}, {os.cpu_count()} cores, Python {platform.python_version()}, numpy {np.__version__}"
 
 
 def run(args: list[str]) -> tuple[float, float]:

@@ -39,9 +39,9 @@ from pathlib import Path
 import tomli_w
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _record import record  # noqa: E402
+from _record import machine, record  # noqa: E402
 from bench_batch import WRAPPER, free_cores  # noqa: E402  (one measuring wrapper: wall, CPU)
-from bench_core import ROOT, machine  # noqa: E402
+from bench_core import ROOT  # noqa: E402
 
 GRID = ROOT / "configs" / "grids" / "design-space.toml"
 #: Measurement spread allowed by the target (repeated runs here differ by a few per cent).

@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _record import record  # noqa: E402
-from bench_core import ROOT, machine  # noqa: E402
+from _record import machine, record  # noqa: E402
+from bench_core import ROOT  # noqa: E402
 
 from pumplink.analysis import cadence, design, force_analysis, link_masses  # noqa: E402
 from pumplink.mechanisms.fourbar import synthesize  # noqa: E402

@@ -11,7 +11,6 @@ line starting with ``RESULT``: figure, target, met yes/no.  Run with `make bench
 
 from __future__ import annotations
 
-import math
 import os
 import statistics
 import subprocess
@@ -22,8 +21,8 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _record import record  # noqa: E402
-from bench_core import EXE, ROOT, machine, median_time  # noqa: E402
+from _record import machine, result
+from bench_core import EXE, ROOT, median_time  # noqa: E402
 
 from pumplink.analysis import design  # noqa: E402
 from pumplink.mechanisms.fourbar import FourBar, synthesize  # noqa: E402
@@ -33,16 +32,6 @@ from pumplink.spec import load_spec  # noqa: E402
 
 EXAMPLE = ROOT / "examples" / "well-12m-flywheel.toml"
 DEAD_BAND = np.radians(20)
-
-
-def result(
-    what: str, figure: str, target: str, met: bool, beside: str = "", value: float = math.nan, unit: str = ""
-) -> None:
-    """One line per target: the figure, the target and whether it is met (and the figure for
-    `make bench`'s summary table, benchmarks/_record.py)."""
-    extra = f"  [{beside}]" if beside else ""
-    print(f"RESULT {what}: {figure} (target {target}) met: {'yes' if met else 'NO'}{extra}")
-    record(what, value, unit, target, met, beside)
 
 
 def wall_and_cpu(fn, repeat):

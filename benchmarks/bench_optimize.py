@@ -21,7 +21,7 @@ import tomllib
 from pathlib import Path
 
 import numpy as np
-from _record import record
+from _record import result
 
 from pumplink.mechanisms.crank_rocker import optimal_crank_rocker
 from pumplink.optimize import make_problem, optimize
@@ -39,16 +39,6 @@ def median_time(fn, repeats=REPEATS):
         out = fn()
         times.append(time.perf_counter() - t)
     return statistics.median(times), out
-
-
-def result(
-    what: str, figure: str, target: str, met: bool, beside: str = "", value: float = math.nan, unit: str = ""
-) -> None:
-    """One line per target: the figure, the target and whether it is met (and the figure for
-    `make bench`'s summary table, benchmarks/_record.py)."""
-    extra = f"  [{beside}]" if beside else ""
-    print(f"RESULT {what}: {figure} (target {target}) met: {'yes' if met else 'NO'}{extra}")
-    record(what, value, unit, target, met, beside)
 
 
 def main():

@@ -11,34 +11,14 @@ from __future__ import annotations
 
 import json
 import os
-import platform
 import sys
 from pathlib import Path
 
-from _record import ENV
+from _record import ENV, machine
 from rich import box
 from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
-
-
-def machine() -> str:
-    """CPU model, cores, Python and numpy versions of this machine."""
-    model = "unknown CPU"
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                model = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    try:
-        from importlib.metadata import version
-
-        np_version = f", numpy {version('numpy')}"
-    except Exception:  # noqa: BLE001 -- the header only
-        np_version = ""
-    return f"{model}, {os.cpu_count()} cores, Python {platform.python_version()}{np_version}"
 
 
 def figure(value: float, unit: str) -> str:

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from scipy.optimize import minimize_scalar
 
 from pumplink.analysis import force_analysis
-from pumplink.constants import LINK_MASS_PER_METRE, MIN_TRANSMISSION_DEG
+from pumplink.constants import MIN_TRANSMISSION_DEG
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.optimize import (
     DEFAULT_BOUNDS,
@@ -350,10 +350,11 @@ def test_shortcuts_of_the_search_leave_the_optimum_unchanged(monkeypatch):
         options = {k: v for k, v in (options or {}).items() if k != "workers"}
         return minimize(*args, options=options, **kwargs)
 
+    masses = opt._masses
+
     def with_arms(spec, coupler_length, handle, rocker, link_masses):
         ms = link_masses(spec, coupler_length, arms=True)  # the arms' mass, out of the verdict
-        handle_mass = (spec.linkage.mass_per_length or LINK_MASS_PER_METRE) * np.maximum(handle, rocker)
-        return type(ms)(ms.coupler, handle_mass, ms.grip)
+        return type(ms)(ms.coupler, masses(spec, coupler_length, handle, rocker, link_masses).handle, ms.grip)
 
     monkeypatch.setattr(scipy.optimize, "minimize", one_at_a_time)
     monkeypatch.setattr(opt, "_masses", with_arms)
