@@ -87,22 +87,21 @@ def main():
 
     problem = make_problem(load_spec(VILLAGE))
     fast = optimize(problem, seed=0)
-    minimize, masses = scipy.optimize.minimize, opt._masses
+    minimize, evaluate = scipy.optimize.minimize, opt.evaluate
 
     def one_at_a_time(*args, options=None, **kwargs):
         return minimize(*args, options={k: v for k, v in (options or {}).items() if k != "workers"}, **kwargs)
 
-    def with_arms(spec, coupler_length, handle, rocker, link_masses):
-        ms = link_masses(spec, coupler_length, arms=True)
-        return type(ms)(ms.coupler, masses(spec, coupler_length, handle, rocker, link_masses).handle, ms.grip)
+    def with_arms(*args, **kwargs):
+        return evaluate(*args, **kwargs, arm_energy=True)
 
-    scipy.optimize.minimize, opt._masses = one_at_a_time, with_arms
+    scipy.optimize.minimize, opt.evaluate = one_at_a_time, with_arms
     try:
         t0 = time.perf_counter()
         slow = optimize(problem, seed=0)
         slow_t = time.perf_counter() - t0
     finally:
-        scipy.optimize.minimize, opt._masses = minimize, masses
+        scipy.optimize.minimize, opt.evaluate = minimize, evaluate
     dpeak = abs(fast.at_best.verdict_peak_force[0] / slow.at_best.verdict_peak_force[0] - 1.0)
     dx = float(np.max(np.abs(fast.x - slow.x) / (problem.upper - problem.lower)))
     result(

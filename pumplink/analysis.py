@@ -23,6 +23,7 @@ from pumplink.constants import (
     SUSTAINED_POWER_W,
 )
 from pumplink.errors import InfeasibleDesign, SpecError
+from pumplink.evaluate import evaluate, pump_designs
 from pumplink.mechanisms.fourbar import (
     FourBar,
     State,
@@ -37,7 +38,7 @@ from pumplink.mechanisms.fourbar import (
 )
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC, Conditions, Masses, model_index
 from pumplink.models import quasi_static as _qs
-from pumplink.spec import PumpSpec
+from pumplink.spec import PumpSpec, spec_values
 from pumplink.verdict import Check, Verdict, assess
 
 if TYPE_CHECKING:  # the flywheel and dynamics modules load when a command first needs them
@@ -213,8 +214,17 @@ def design(spec: PumpSpec) -> Design:
     """Run the dead-centre synthesis (Eq. 1-2 of the pump paper) for one spec."""
     lk = spec.linkage
     swing = np.radians(lk.swing)
-    syn = synthesize(lk.L1, lk.D1, lk.b, lk.rocker, swing, lk.handle)
-    return Design(spec, syn, infeasibility_reason(syn.reason, lk.L1, lk.D1, lk.b, swing))
+    return _design(spec, synthesize(lk.L1, lk.D1, lk.b, lk.rocker, swing, lk.handle))
+
+
+def _design(spec: PumpSpec, syn: Synthesis) -> Design:
+    """The :class:`Design` of one spec from its synthesis (scalars, or the first of arrays)."""
+    from dataclasses import fields
+
+    if np.ndim(syn.reason):
+        syn = Synthesis(**{f.name: getattr(syn, f.name)[0] for f in fields(syn)})
+    lk = spec.linkage
+    return Design(spec, syn, infeasibility_reason(syn.reason, lk.L1, lk.D1, lk.b, np.radians(lk.swing)))
 
 
 def link_masses(spec: PumpSpec, coupler_length, arms: bool) -> Masses:
@@ -343,50 +353,34 @@ def force_analysis(
     model : "quasi-static", "flywheel" or "dynamics" to override the choice of the least model that
         is enough (the energy models need the wheel's inertia).
     """
-    d = design(spec)
     op = spec.operator
     speed_deg = float(op.speed if speed_deg_s is None else speed_deg_s)
     speed = np.radians(speed_deg)
-    mw = spec.wheel_torque
-    band = np.radians(op.dead_band)
-    syn = d.synthesis
-    nan = float("nan")
     inertia = spec.inertia
     if model is not None and model != QUASI_STATIC and inertia is None:
         raise SpecError(
             f"--model {model} needs the wheel's inertia, but {spec.name} gives none; add wheel.mass [kg] "
             "or wheel.inertia [kg m^2] to the spec"
         )
-    # the least model that is enough (docs/models.md §3), or the one asked for
-    em = None
-    if inertia is not None:
-        # the inertia models load here, not at start-up (a spec without inertia never needs them)
-        from pumplink.models import dynamics as _dy
-        from pumplink.models import flywheel as _fw
-
-        em = energy_model(
-            syn.linkage,
-            syn.dead_centre_extended,
-            syn.dead_centre_folded,
-            mw,
-            inertia,
-            speed,
-            op.speed_fluctuation,
-            link_masses(spec, syn.coupler_length, arms=True),
-            bool(op.arms_in_verdict),
-            forced=model,
-            solve=d.feasible,
-        )
-    model = MODELS[model] if model == QUASI_STATIC else MODELS[ORDER[0 if em is None else em.index]]
+    ev = evaluate(
+        pump_designs(spec_values(spec), speed_deg),
+        model,
+        effort=True,
+        arm_energy=True,
+        samples=samples if at_deg is None else 0,
+        progress=progress,
+    )
+    d = _design(spec, ev.synthesis)
+    syn = d.synthesis
+    mw = spec.wheel_torque
+    band = np.radians(op.dead_band)
+    nan = float("nan")
+    em = None if ev.energy is None else ev.energy.design(0)
+    model = MODELS[model] if model == QUASI_STATIC else MODELS[ORDER[int(ev.model_index[0])]]
     fly = (
         {}
         if inertia is None
-        else dict(
-            inertia=inertia,
-            speed_fluctuation=op.speed_fluctuation,
-            energy_band=float(_fw.energy_band(inertia, speed, op.speed_fluctuation)),
-            effects=em,
-        )
+        else dict(inertia=inertia, speed_fluctuation=op.speed_fluctuation, energy_band=em.band, effects=em)
     )
     if not d.feasible:
         return ForceResult(
@@ -410,8 +404,8 @@ def force_analysis(
         )
     lk = syn.linkage
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
-    mean = float(_qs.mean_force(mw, grip_stroke(spec.linkage.handle, syn.swing)))
-    peak, peak_angle = _qs.dead_band_peak_force(lk, dce, dcf, band, mw)
+    mean = float(ev.mean_force[0])
+    peak, peak_angle = float(ev.dead_band_peak_force[0]), float(ev.dead_band_peak_angle[0])
 
     # Kept samples: the given --at angles, else the uniform sweep.  The sampled peak of a
     # uniform sweep always comes from the one streamed route (so --summary does not change it).
@@ -432,35 +426,33 @@ def force_analysis(
         sampled = float(f.max()) if f.size and np.isfinite(f.max()) else nan
         n = int(theta.size)
     else:
-        sampled = _qs.sampled_peak(lk, samples, mw, dce, dcf, band, progress=progress)
+        sampled = float(ev.sampled_peak[0])
         n = samples
 
     marks = kinematic_state(lk, np.array([dce, dcf, peak_angle]), mw)
     link = nan if em is None else em.link_energy
-    share = None
-    verdict_peak = peak
     if model.key in (FLYWHEEL, DYNAMICS):
+        from pumplink.models import dynamics as _dy
+        from pumplink.models import flywheel as _fw
+
         delta = op.speed_fluctuation
         if model.key == DYNAMICS:
-            ms = link_masses(spec, syn.coupler_length, bool(op.arms_in_verdict))
+            ms = Masses(
+                *(
+                    float(np.broadcast_to(m, (1,))[0])
+                    for m in (ev.masses.coupler, ev.masses.handle, ev.masses.grip)
+                )
+            )
             sc = _dy.scene(lk, dce, dcf, mw, inertia, ms, float(speed), delta, force=em.peak_force)
-            m, lowest = _dy, nan  # faster is not always easier: pumplink speed gives the range
+            m = _dy  # faster is not always easier: pumplink speed gives the range
         else:
             sc = _fw.scene(lk, dce, dcf, mw, inertia, float(speed), delta, solved=em.peak_force)
-            m, lowest = _fw, float(_fw.min_passing_speed(lk, dce, dcf, mw, op.force_limit, inertia, delta))
-            share = 100.0 * link / fly["energy_band"] if fly["energy_band"] > 0 else np.inf  # J = 0: no band
-        # the operator's effort: the hand force plus accelerating and lifting their own arms
-        effort = float(
-            MODELS[DYNAMICS].peak_force(
-                lk,
-                dce,
-                dcf,
-                mw,
-                Conditions(speed, band, inertia, delta, link_masses(spec, syn.coupler_length, arms=True)),
-            )
+            m = _fw
+        fly.update(
+            least_peak_force=sc.least_peak_force, scene=sc, min_passing_speed=float(ev.min_passing_speed[0])
         )
-        fly.update(least_peak_force=sc.least_peak_force, scene=sc, min_passing_speed=lowest)
-        fly.update(effort_peak_force=effort)
+        # the operator's effort: the hand force plus accelerating and lifting their own arms
+        fly.update(effort_peak_force=float(ev.effort_peak_force[0]))
         if np.isfinite(sc.least_peak_force):
             fly.update(
                 mark_operator_force=m.operator_force(sc, marks.crank_angle),
@@ -472,23 +464,6 @@ def force_analysis(
                     wheel_speed=m.wheel_speed(sc, theta),
                     on_ceiling=(_dy.regime(sc, theta) == 0) if m is _dy else _fw.on_ceiling(sc, theta),
                 )
-        verdict_peak = sc.least_peak_force
-    verdict = judge(
-        True,
-        mean,
-        verdict_peak,
-        op.force_limit,
-        share,
-        d.transmission_angle,
-        mw * speed,
-        peak_rocker_rate(lk)
-        * top_speed(speed, op.speed_fluctuation if model.key in (FLYWHEEL, DYNAMICS) else None)
-        * spec.linkage.handle,
-        spec.linkage.handle,
-        syn.swing,
-        spec.linkage.D1,
-        spec.wheel.axle_height,
-    )
     return ForceResult(
         d,
         speed_deg,
@@ -502,7 +477,7 @@ def force_analysis(
         peak_angle,
         sampled,
         n,
-        verdict,
+        ev.verdict.design(0),
         state if keep_samples or at_deg is not None else None,
         band_mask,
         marks,
@@ -828,7 +803,6 @@ def speed_sweep(
     SpecError : the spec gives no inertia (the quasi-static force does not depend on speed).
     InfeasibleDesign : no crank-rocker for this spec.
     """
-    from pumplink.models import dynamics as _dy  # loaded when first needed (start-up)
     from pumplink.models import flywheel as _fw  # loaded when first needed (start-up)
 
     if spec.inertia is None:
@@ -841,44 +815,22 @@ def speed_sweep(
         raise InfeasibleDesign(f"{spec.name}: {d.error}")
     syn, op, mw, j = d.synthesis, spec.operator, spec.wheel_torque, spec.inertia
     given = np.asarray(speeds_deg_s, float)
-    w = np.radians(np.append(given, op.speed))  # the spec's own speed last
-    lk = syn.linkage
-    rep = type(lk)(*(np.full(w.size, float(v)) for v in lk.parameters))  # one design per speed
-    dce, dcf, delta = syn.dead_centre_extended, syn.dead_centre_folded, op.speed_fluctuation
-    arms_in = bool(op.arms_in_verdict)
-    with_arms = link_masses(spec, syn.coupler_length, arms=True)
-    em = energy_model(rep, dce, dcf, mw, j, w, delta, with_arms, arms_in, forced=model)
-    cond = Conditions(w, np.radians(op.dead_band), j, delta)
-    fly = MODELS[FLYWHEEL].peak_force(rep, dce, dcf, mw, cond)
-    judged = link_masses(spec, syn.coupler_length, arms_in)
-    hand = _dy.least_peak_force(rep, dce, dcf, mw, j, judged, w, delta)
-    effort = _dy.least_peak_force(rep, dce, dcf, mw, j, with_arms, w, delta)
-    index = np.asarray(em.index)
-    energy = index > 0
-    req = np.where(energy, em.peak_force, np.nan)
-    mean = float(_qs.mean_force(mw, grip_stroke(spec.linkage.handle, syn.swing)))
-    qs = _qs.dead_band_peak_force(lk, dce, dcf, np.radians(op.dead_band), mw)[0]
-    if not energy.all():  # --model quasi-static: the dead-band peak decides at every speed
-        req = np.where(energy, req, qs)
-    mps = float(_fw.min_passing_speed(lk, dce, dcf, mw, op.force_limit, j, delta))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        share = np.where(em.band > 0, 100.0 * em.link_energy / em.band, np.inf)
-    share = np.where(index == ORDER.index(FLYWHEEL), share, 0.0)  # a check of the flywheel only
-    grip = peak_rocker_rate(lk) * np.where(energy, top_speed(w, delta), w) * spec.linkage.handle
-    verdict = judge(
-        True,
-        mean,
-        req,
-        op.force_limit,
-        share,
-        d.transmission_angle,
-        mw * w,
-        grip,
-        spec.linkage.handle,
-        syn.swing,
-        spec.linkage.D1,
-        spec.wheel.axle_height,
+    designs = pump_designs(spec_values(spec), np.append(given, op.speed))  # the spec's own speed last
+    w = np.asarray(designs.speed)
+    ev = evaluate(designs, model, effort=True, passing_speed=False)
+    # the least peak force of each energy model at every speed (the chart's curves)
+    fly, hand = (
+        evaluate(designs, key, judge=False, dead_band_peak=False, passing_speed=False).least_peak_force
+        for key in (FLYWHEEL, DYNAMICS)
     )
+    effort = ev.effort_peak_force
+    lk, dce, dcf, delta = syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, op.speed_fluctuation
+    index = ev.model_index
+    req = ev.peak_force
+    mean, qs = float(ev.mean_force[0]), float(ev.dead_band_peak_force[0])
+    mps = float(_fw.min_passing_speed(lk, dce, dcf, mw, op.force_limit, j, delta))
+    grip = ev.grip_speed
+    verdict = ev.verdict
     result = force_analysis(spec, keep_samples=False, samples=0, model=model)
     passed = np.asarray(verdict.passed)
     keys = np.asarray(ORDER, dtype=object)[index]
@@ -892,7 +844,7 @@ def speed_sweep(
         mps,
         given,
         w[:-1],
-        em.band[:-1],
+        ev.energy_band[:-1],
         req[:-1],
         mw * w[:-1],
         passed[:-1],

@@ -39,12 +39,12 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.constants import LINK_MASS_PER_METRE, MIN_TRANSMISSION_DEG
+from pumplink.constants import MIN_TRANSMISSION_DEG
 from pumplink.errors import InfeasibleDesign, SpecError
-from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_stroke, synthesize
-from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC, Conditions
-from pumplink.models import quasi_static as _qs
-from pumplink.spec import PumpSpec, parse_spec, spec_to_dict
+from pumplink.evaluate import PumpDesigns, evaluate, pump_designs
+from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_heights, grip_stroke, synthesize
+from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC
+from pumplink.spec import PumpSpec, parse_spec, spec_to_dict, spec_values
 
 #: Keys that may vary (the [linkage] table of the spec), with their units.
 VARIABLE_UNITS = {"L1": "m", "D1": "m", "b": "m", "rocker": "m", "handle": "m", "swing": "deg"}
@@ -310,12 +310,14 @@ class _Terms:
     rocker: np.ndarray  # [m], per design
 
 
-def _terms(problem: Problem, x) -> _Terms:
-    """Synthesis and constraint slacks for x of shape (variables, designs) (vectorised)."""
+def _terms(problem: Problem, x, syn=None) -> _Terms:
+    """Synthesis and constraint slacks for x of shape (variables, designs) (vectorised); ``syn``:
+    the designs' synthesis when it is already known."""
     p = _columns(problem, x)
     sw = np.radians(p["swing"])
     h = p["handle"]
-    syn = synthesize(p["L1"], p["D1"], p["b"], p["rocker"], sw, h)
+    if syn is None:
+        syn = synthesize(p["L1"], p["D1"], p["b"], p["rocker"], sw, h)
     ok = syn.feasible
     band = math.radians(problem.spec.operator.dead_band)
 
@@ -323,9 +325,7 @@ def _terms(problem: Problem, x) -> _Terms:
     margin = np.where(syn.frame_length > 1e-6, margin, -1.0)
     mu = np.minimum(syn.transmission_min, np.pi - syn.transmission_max)
     g_mu = np.where(ok, np.degrees(mu) - MIN_TRANSMISSION_DEG, 0.0)
-    pivot_h = problem.axle_height - p["D1"]
-    grip_low = pivot_h + h * np.cos(0.5 * sw)
-    grip_high = pivot_h + h
+    grip_low, grip_high = grip_heights(problem.axle_height, p["D1"], h, sw)
     stroke = grip_stroke(h, sw)
     plus = syn.stroke_plus_x
     win = np.where(ok, np.degrees(np.minimum(plus, 2 * np.pi - plus) - 2 * band), 0.0)
@@ -345,56 +345,45 @@ def _terms(problem: Problem, x) -> _Terms:
     return _Terms(syn, ok, slack, mu, grip_low, grip_high, stroke, win, h, p["rocker"])
 
 
+def designs(problem: Problem, x) -> PumpDesigns:
+    """The evaluation's columns for x of shape (variables, designs): the varied linkage keys, the
+    rest of the spec fixed."""
+    p = _columns(problem, x)
+    base = spec_values(problem.spec)
+
+    def value(key: str):
+        section, name = key.split(".")
+        if section == "linkage" and name in p:
+            return p[name]
+        return problem.axle_height if key == "wheel.axle_height" else base(key)
+
+    return pump_designs(value)
+
+
 def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
     """Objective and constraint slacks for x of shape (variables, designs) (vectorised).
 
     Slacks are in degrees (angles) or metres (heights, stroke); a design satisfies every
     constraint iff all its slacks are >= 0.  ``search``: only the force the objective needs (the
     flywheel's or the dead-band peak, neither for the mean objective); the other stays NaN.
+    The forces come from :func:`pumplink.evaluate.evaluate` (the verdict's own route).
     """
-    tm = _terms(problem, x)
-    syn, ok = tm.syn, tm.ok
-    spec = problem.spec
-    mw = spec.wheel_torque
-    band = math.radians(spec.operator.dead_band)
-    mean = _qs.mean_force(mw, tm.stroke)
-    op = spec.operator
-    cond = Conditions(
-        float(np.radians(float(op.speed))),
-        band,
-        np.nan if spec.inertia is None else spec.inertia,
-        op.speed_fluctuation,
-    )
     objective_peak = problem.objective == "peak"
-    peak = np.full(ok.shape, np.nan)
-    live = ok & (tm.win > 0)
-    lk = syn.linkage
-    if live.any() and not (search and (problem.flywheel or not objective_peak)):
-        sub = lk.take(live)
-        peak[live] = MODELS[QUASI_STATIC].peak_force(
-            sub, syn.dead_centre_extended[live], syn.dead_centre_folded[live], mw, cond
-        )
-    required = np.full(ok.shape, np.nan)
-    if problem.flywheel and ok.any() and not (search and not objective_peak):
-        # the least peak force of the least model that is enough at the spec's speed, as pumplink force
-        from pumplink.analysis import energy_model, link_masses
-
-        sub = lk.take(ok)
-        em = energy_model(
-            sub,
-            syn.dead_centre_extended[ok],
-            syn.dead_centre_folded[ok],
-            mw,
-            spec.inertia,
-            cond.speed,
-            op.speed_fluctuation,
-            _masses(spec, syn.coupler_length[ok], tm.handle[ok], tm.rocker[ok], link_masses),
-            bool(op.arms_in_verdict),
-            forced=problem.forced,
-        )
-        required[ok] = em.peak_force
+    ev = evaluate(
+        designs(problem, x),
+        problem.forced,
+        judge=False,
+        passing_speed=False,
+        dead_band_peak=not search,
+        peak=objective_peak or not search,
+    )
+    tm = _terms(problem, x, ev.synthesis)
+    ok = tm.ok
+    # the dead-band peak is defined where the crank arcs outside the dead bands are not empty
+    peak = np.where(ok & (tm.win > 0), ev.dead_band_peak_force, np.nan)
+    required = ev.least_peak_force if problem.flywheel else np.full(ok.shape, np.nan)
     verdict = required if problem.flywheel else peak
-    mean = np.where(ok, mean, np.nan)
+    mean = np.where(ok, ev.mean_force, np.nan)
     obj = verdict if objective_peak else mean
     obj = np.where(np.isfinite(obj), obj, INFEASIBLE_OBJECTIVE)
     return Evaluation(
@@ -409,19 +398,6 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
         required,
         problem.flywheel,
     )
-
-
-def _masses(spec: PumpSpec, coupler_length, handle, rocker, link_masses):
-    """The spec's link masses, and the arms' where they are in the verdict, for designs of these
-    lengths (``analysis.link_masses``, with the handle's default mass for each design's handle and
-    rocker)."""
-    # the arms only when they are in the verdict: then they also enter the model choice; else
-    # their size is not needed and the search skips it (the same forces: docs/models.md §3)
-    ms = link_masses(spec, coupler_length, arms=bool(spec.operator.arms_in_verdict))
-    lk = spec.linkage
-    mpl = lk.mass_per_length or LINK_MASS_PER_METRE
-    handle_mass = lk.handle_mass if lk.handle_mass is not None else mpl * np.maximum(handle, rocker)
-    return type(ms)(ms.coupler, handle_mass, ms.grip)
 
 
 def _spec_with(problem: Problem, x) -> PumpSpec:

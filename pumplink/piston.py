@@ -32,12 +32,12 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 
 from pumplink.constants import DEFAULT_SPEED_FLUCTUATION, FORCE_LIMIT_N, PERMISSIBLE_PRESSURE_SLIDING_DEG
 from pumplink.errors import SpecError
+from pumplink.evaluate import evaluate, piston_designs
 from pumplink.mechanisms import crank_slider as cs
-from pumplink.models import FLYWHEEL, choose_model
-from pumplink.models import flywheel as _fw
+from pumplink.models import FLYWHEEL, ORDER
 from pumplink.models import piston as _pm
-from pumplink.spec import batch_base, is_piston_data, read_toml
-from pumplink.verdict import Verdict, assess
+from pumplink.spec import batch_base, is_piston_data, read_toml, spec_values
+from pumplink.verdict import Verdict
 
 #: The mechanism kinds a spec may name (the rope pump's four-bar has no key).
 MECHANISMS = ("crank-slider",)
@@ -218,11 +218,11 @@ def force_analysis(
     w = math.radians(speed_deg)
     load = spec.load_force
     inertia = spec.inertia
-    model = choose_model(inertia is not None)
+    ev = evaluate(piston_designs(spec_values(spec), speed_deg))
+    model = ORDER[int(ev.model_index[0])]
     nan = float("nan")
     empty = np.empty(0)
-    error = None
-    if not bool(cs.turns_fully(r, rod, e)):
+    if not ev.feasible[0]:
         error = (
             f"rod {rod:g} m is not longer than crank {r:g} m + |offset| {abs(e):g} m, so the crank cannot "
             f"turn fully; lengthen the rod beyond {r + abs(e):g} m"
@@ -239,7 +239,7 @@ def force_analysis(
             nan,
             nan,
             nan,
-            model.key,
+            model,
             inertia,
             None,
             None,
@@ -252,16 +252,7 @@ def force_analysis(
             empty,
             empty,
         )
-    stroke = float(cs.stroke(r, rod, e))
-    f_mean = _pm.mean_force(r, rod, e, load, op.handle)  # Eq. (P.3)
-    qs_peak, qs_angle = _pm.quasi_static_peak(r, rod, e, load, op.handle)
-    band = least = None
-    if inertia is not None:
-        band = float(_fw.energy_band(inertia, w, op.speed_fluctuation))
-        least = _pm.least_peak_force(r, rod, e, load, op.handle, band)
-    peak = least if least is not None else qs_peak
-    power = load * stroke * w / (2.0 * math.pi)  # the work F_load H per revolution
-    verdict = assess(True, f_mean, peak, op.force_limit, power=power)
+    flywheel = inertia is not None
     if at_deg is not None:
         t = np.radians(np.asarray(at_deg, float))
     elif keep_samples:
@@ -275,18 +266,18 @@ def force_analysis(
         speed_deg_s=speed_deg,
         speed=w,
         load_force=load,
-        stroke=stroke,
-        time_ratio=float(cs.time_ratio(r, rod, e)),
-        largest_pressure_angle=float(cs.largest_pressure_angle(r, rod, e)),
-        mean_force=f_mean,
-        quasi_static_peak=qs_peak,
-        quasi_static_peak_angle=qs_angle,
-        model=model.key,
+        stroke=float(ev.stroke[0]),
+        time_ratio=float(ev.time_ratio[0]),
+        largest_pressure_angle=float(ev.largest_pressure_angle[0]),
+        mean_force=float(ev.mean_force[0]),
+        quasi_static_peak=float(ev.quasi_static_peak[0]),
+        quasi_static_peak_angle=float(ev.quasi_static_peak_angle[0]),
+        model=model,
         inertia=inertia,
-        energy_band=band,
-        least_peak_force=least,
-        power=power,
-        verdict=verdict,
+        energy_band=float(ev.energy_band[0]) if flywheel else None,
+        least_peak_force=float(ev.least_peak_force[0]) if flywheel else None,
+        power=float(ev.power[0]),
+        verdict=ev.verdict.design(0),
         samples=t,
         slider_position=np.asarray(cs.slider_position(r, rod, e, t), float),
         velocity_ratio=np.asarray(cs.velocity_ratio(r, rod, e, t), float),

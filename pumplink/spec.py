@@ -419,6 +419,17 @@ def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
         raise SpecError(f"{source}: {first}{more}.") from None
 
 
+def spec_values(spec):
+    """``value(key)`` for :func:`pumplink.evaluate.pump_designs`: the spec's value of a dotted key
+    ("linkage.swing"), None where the spec does not give it."""
+
+    def value(key: str):
+        section, name = key.split(".")
+        return getattr(getattr(spec, section), name, None)
+
+    return value
+
+
 #: Largest input file read [bytes]: a spec is under 1 kB; a batch axis of a million values written
 #: out as a list is about 8 MB.  Anything larger is refused before it is read.
 MAX_INPUT_BYTES = 10_000_000

@@ -114,6 +114,21 @@ class Verdict:
         """'PASS', 'PASS with warnings' or 'FAIL' (per design)."""
         return _scalar(np.asarray(OUTCOMES, dtype=object)[np.asarray(self.level)])
 
+    def design(self, i: int) -> Verdict:
+        """The verdict of design ``i`` alone (scalars), from a verdict over designs."""
+
+        def at(x):
+            if x is None:
+                return None
+            a = np.asarray(x)
+            return a.item() if a.ndim == 0 else a[i].item()
+
+        checks = tuple(
+            Check(c.key, at(c.value), at(c.relation), c.unit, at(c.warn_limit), at(c.fail_limit), at(c.level))
+            for c in self.checks
+        )
+        return Verdict(checks, at(self.level))
+
     @property
     def warnings(self) -> tuple[Check, ...]:
         """The checks that warn (one design)."""

@@ -350,14 +350,13 @@ def test_shortcuts_of_the_search_leave_the_optimum_unchanged(monkeypatch):
         options = {k: v for k, v in (options or {}).items() if k != "workers"}
         return minimize(*args, options=options, **kwargs)
 
-    masses = opt._masses
+    evaluate = opt.evaluate
 
-    def with_arms(spec, coupler_length, handle, rocker, link_masses):
-        ms = link_masses(spec, coupler_length, arms=True)  # the arms' mass, out of the verdict
-        return type(ms)(ms.coupler, masses(spec, coupler_length, handle, rocker, link_masses).handle, ms.grip)
+    def with_arms(*args, **kwargs):
+        return evaluate(*args, **kwargs, arm_energy=True)  # the arms' energy, out of the verdict
 
     monkeypatch.setattr(scipy.optimize, "minimize", one_at_a_time)
-    monkeypatch.setattr(opt, "_masses", with_arms)
+    monkeypatch.setattr(opt, "evaluate", with_arms)
     slow = optimize(problem, seed=0, maxiter=40)
     assert np.array_equal(fast.x, slow.x)
     assert fast.at_best.objective[0] == slow.at_best.objective[0]

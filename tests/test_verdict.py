@@ -130,10 +130,11 @@ def test_arrays_decide_as_each_design_alone(rows):
 
 
 def test_every_command_decides_through_assess(monkeypatch, tmp_path):
-    """force, speed, batch and optimize all decide through pumplink.verdict.assess (via
-    pumplink.analysis.judge): replace it with one that fails every design and each of them
-    reports FAIL."""
+    """force, speed, batch, optimize and piston pumps all decide through pumplink.verdict.assess,
+    called by the one evaluation (pumplink.evaluate): replace it there with one that fails every
+    design and each of them reports FAIL."""
     import pumplink.analysis
+    import pumplink.evaluate
     import pumplink.optimize
     import pumplink.verdict as verdict
     from pumplink.spec import default_spec
@@ -144,7 +145,7 @@ def test_every_command_decides_through_assess(monkeypatch, tmp_path):
         v = real(feasible, *a, **k)
         return verdict.Verdict(v.checks, np.full(np.shape(v.level), verdict.FAIL) if np.ndim(v.level) else 2)
 
-    monkeypatch.setattr(pumplink.analysis, "assess", never)
+    monkeypatch.setattr(pumplink.evaluate, "assess", never)
     spec = default_spec()
     assert real(True, 1.0, 1.0, 100.0).passed  # the real one passes such a design
     assert not pumplink.analysis.force_analysis(spec, keep_samples=False).passed
@@ -157,3 +158,12 @@ def test_every_command_decides_through_assess(monkeypatch, tmp_path):
     assert not result.best_result.passed and not result.spec_result.passed
     fly = spec.model_copy(update={"wheel": spec.wheel.model_copy(update={"mass": 4.0})})
     assert not pumplink.analysis.speed_sweep(fly, [360.0]).passed.any()
+    from pumplink.piston import force_analysis, parse_piston
+
+    piston = {
+        "mechanism": "crank-slider",
+        "piston": {"bore": 0.05, "head": 5.0, "efficiency": 0.8},
+        "crank_slider": {"crank": 0.05, "rod": 0.3},
+        "operator": {"handle": 0.3},
+    }
+    assert real(True, 1.0, 1.0, 100.0).passed and not force_analysis(parse_piston(piston)).passed

@@ -15,20 +15,10 @@ from typing import Any
 
 import numpy as np
 
-from pumplink import spec
-from pumplink.analysis import energy_model, judge, top_speed
 from pumplink.batch.files import Batch, axis_indices
-from pumplink.constants import LINK_MASS_PER_METRE
-from pumplink.mechanisms.fourbar import (
-    grip_stroke,
-    infeasibility_reason,
-    peak_rocker_rate,
-    synthesize,
-)
-from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC, Conditions
-from pumplink.models import flywheel as _fw
-from pumplink.models import quasi_static as _qs
-from pumplink.models.dynamics import Masses
+from pumplink.evaluate import evaluate, pump_designs
+from pumplink.mechanisms.fourbar import infeasibility_reason
+from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
 from pumplink.verdict import FAIL, WARN, Verdict
 
 #: The ``model`` column's words for the models a batch variant can be decided by.
@@ -140,42 +130,17 @@ class Chunk:
         return out
 
 
-def _field(batch: Batch, cols: dict[str, np.ndarray], key: str, n: int):
-    if key in cols:
-        return cols[key]
-    section, name = key.split(".")
-    return np.full(n, getattr(getattr(batch.spec, section), name), dtype=float)
+def batch_values(batch: Batch, cols: dict[str, np.ndarray]):
+    """``value(key)`` for :func:`pumplink.evaluate.pump_designs`: the varied values of a key (an
+    array over the chunk's variants), else the base spec's value (None where it gives none)."""
 
+    def value(key: str):
+        if key in cols:
+            return cols[key]
+        section, name = key.split(".")
+        return getattr(getattr(batch.spec, section), name, None)
 
-def _given(batch: Batch, cols: dict[str, np.ndarray], key: str, n: int):
-    """Per-variant values of a spec key, or None where the variants do not set it."""
-    return _field(batch, cols, key, n) if batch.given(key) else None
-
-
-def spec_physics(batch: Batch, cols: dict[str, np.ndarray], n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Rope force Fw [N] and inertia J [kg m^2] per variant, by the spec's own functions
-    (:func:`pumplink.spec.rope_force`, :func:`~pumplink.spec.inertia`); J is NaN where the
-    variants give no inertia (the quasi-static model decides them)."""
-
-    def get(key):
-        return _given(batch, cols, key, n)
-
-    fw = spec.rope_force(
-        get("load.rope_force"), get("load.head"), get("load.pipe_diameter"), get("load.efficiency")
-    )
-    fw = np.broadcast_to(fw, (n,))
-    if not batch.flywheel:
-        return fw, np.full(n, np.nan)
-    mass = spec.moving_mass(get("load.moving_mass"), get("load.head"), get("load.pipe_diameter"))
-    j = spec.inertia(_field(batch, cols, "wheel.radius", n), get("wheel.inertia"), get("wheel.mass"), mass)
-    return fw, np.broadcast_to(j, (n,))
-
-
-def _rows(cond: Conditions, idx) -> Conditions:
-    """The conditions of the designs ``idx``."""
-    return Conditions(
-        *(np.asarray(v)[idx] for v in (cond.speed, cond.dead_band, cond.inertia, cond.speed_fluctuation))
-    )
+    return value
 
 
 def evaluate_chunk(
@@ -183,9 +148,9 @@ def evaluate_chunk(
 ) -> Chunk:
     """Synthesis, force checks and verdict for variants ``start..stop-1`` of a batch.
 
-    Vectorised over the variants; the numbers equal :func:`pumplink.analysis.force_analysis`
-    (``keep_samples=False``) on each variant's spec exactly, the flywheel scene included where
-    the variant gives inertia (the verdict then uses its least peak force).
+    One call of :func:`pumplink.evaluate.evaluate` over the variants; the numbers equal
+    :func:`pumplink.analysis.force_analysis` (``keep_samples=False``) on each variant's spec
+    exactly, the energy models included where the variant gives inertia.
 
     Parameters
     ----------
@@ -193,7 +158,7 @@ def evaluate_chunk(
         The peak force itself is exact whatever the sampling
         (:func:`pumplink.models.quasi_static.dead_band_peak_force`).
     model : a model key (``--model``) to decide every variant that gives inertia; default the
-        least model that is enough, per variant (:func:`pumplink.analysis.energy_model`).
+        least model that is enough, per variant.
     """
     n = stop - start
     if batch.axes:
@@ -202,111 +167,21 @@ def evaluate_chunk(
     else:
         values = np.empty((n, 0))
     cols = {a.key: values[:, j] for j, a in enumerate(batch.axes)}
+    value = batch_values(batch, cols)
+    designs = pump_designs(value)
+    ev = evaluate(designs, model, samples=samples)
 
-    def get(key):
-        return _field(batch, cols, key, n)
+    def column(x):
+        return np.broadcast_to(np.asarray(x, float), (n,))
 
-    swing = np.radians(get("linkage.swing"))
-    L1, D1, b = get("linkage.L1"), get("linkage.D1"), get("linkage.b")
-    handle = get("linkage.handle")
-    syn = synthesize(L1, D1, b, get("linkage.rocker"), swing, handle)
-    feasible = np.asarray(syn.feasible, bool)
-    fw, j = spec_physics(batch, cols, n)
-    mw = fw * get("wheel.radius")  # Mw = Fw rw, Eq. (3) of the pump paper
-    speed = np.radians(get("operator.speed"))
-    band = np.radians(get("operator.dead_band"))
-    limit = get("operator.force_limit")
-    power = mw * speed
-
-    mean = np.full(n, np.nan)
-    peak = np.full(n, np.nan)
-    sampled = np.full(n, np.nan)
-    lk = syn.linkage
-    cond = Conditions(speed, band, j, np.where(np.isnan(j), np.nan, get("operator.speed_fluctuation")))
-    ok = np.nonzero(feasible)[0]
-    if ok.size:
-        sub = lk.take(ok)
-        dce, dcf = syn.dead_centre_extended[ok], syn.dead_centre_folded[ok]
-        mean[ok] = _qs.mean_force(mw[ok], grip_stroke(handle[ok], syn.swing[ok]))
-        # one call per chunk: the refinement (scipy find_minimum) costs ~10 ms per call
-        peak[ok] = MODELS[QUASI_STATIC].peak_force(sub, dce, dcf, mw[ok], _rows(cond, ok))
-        for s0 in range(0, ok.size, SUB_DESIGNS):  # cache-sized blocks of designs
-            s = slice(s0, s0 + SUB_DESIGNS)
-            part = sub.take(s)
-            sampled[ok[s]] = _qs.sampled_peak(part, samples, mw[ok][s], dce[s], dcf[s], band[ok][s])
-    # The energy models, only for the variants that give inertia: the least one that is enough
-    # (or the one asked for), decided and solved by the route pumplink force takes.
-    fly = ~np.isnan(j)
-    delta = cond.speed_fluctuation
-    required = np.full(n, np.nan)
-    passing = np.full(n, np.nan)
-    index = np.zeros(n, int)
-    share = None
-    if fly.any():
-        mpl = _given(batch, cols, "linkage.mass_per_length", n)
-        mpl = np.full(n, LINK_MASS_PER_METRE) if mpl is None else np.nan_to_num(mpl, nan=LINK_MASS_PER_METRE)
-        coupler = _given(batch, cols, "linkage.coupler_mass", n)
-        handle_mass = _given(batch, cols, "linkage.handle_mass", n)
-        arm = _given(batch, cols, "operator.arm_mass", n)
-        masses = Masses(
-            mpl * np.asarray(syn.coupler_length) if coupler is None else coupler,
-            mpl * np.maximum(handle, get("linkage.rocker")) if handle_mass is None else handle_mass,
-            batch.spec.operator.arm_mass_kg if arm is None else arm,
-        )
-        em = energy_model(
-            lk,
-            syn.dead_centre_extended,
-            syn.dead_centre_folded,
-            mw,
-            j,
-            speed,
-            delta,
-            masses,
-            bool(batch.spec.operator.arms_in_verdict),
-            forced=model,
-            solve=fly & feasible,
-        )
-        index = np.where(fly, em.index, 0)
-        required = np.where(fly & feasible, em.peak_force, np.nan)
-        rows = np.nonzero(fly & feasible & (index == ORDER.index(FLYWHEEL)))[0]
-        if rows.size:
-            part = lk.take(rows)
-            dce, dcf = syn.dead_centre_extended[rows], syn.dead_centre_folded[rows]
-            passing[rows] = _fw.min_passing_speed(part, dce, dcf, mw[rows], limit[rows], j[rows], delta[rows])
-        # the flywheel's neglected link energy (a check of the flywheel model only: 0 elsewhere,
-        # where the output leaves the column empty)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            share = np.where(em.band > 0, 100.0 * em.link_energy / em.band, np.inf)
-        share = np.where(index == ORDER.index(FLYWHEEL), share, 0.0)
-    rate = np.full(n, np.nan)
-    if ok.size:
-        rate[ok] = peak_rocker_rate(sub)
-    fly = fly & (index > 0)  # an energy model decides (not where --model quasi-static asks otherwise)
-    top = np.where(fly, top_speed(speed, np.where(fly, delta, 0.0)), speed)  # flywheel and dynamics
-    grip_speed = rate * top * handle
-    axle = _field(batch, cols, "wheel.axle_height", n) if batch.given("wheel.axle_height") else None
-    tmin, tmax = np.asarray(syn.transmission_min), np.asarray(syn.transmission_max)
-    verdict = judge(
-        feasible,
-        mean,
-        np.where(fly, required, peak),
-        limit,
-        share,
-        np.minimum(tmin, np.pi - tmax),
-        power,
-        grip_speed,
-        handle,
-        swing,
-        D1,
-        axle,
-    )
-    mean_ok, peak_ok = verdict["mean_force"].passed, verdict["peak_force"].passed
-
+    syn, verdict, feasible = ev.synthesis, ev.verdict, ev.feasible
+    j = column(designs.inertia)
     reasons: list = [None] * n
     bad = np.nonzero(~feasible)[0]
     if bad.size:
         cache: dict = {}
         codes = np.asarray(syn.reason)
+        L1, D1, b, swing = (column(v) for v in (designs.L1, designs.D1, designs.b, designs.swing))
         for i in bad.tolist():
             k = (int(codes[i]), float(L1[i]), float(D1[i]), float(b[i]), float(swing[i]))
             if k not in cache:
@@ -325,23 +200,23 @@ def evaluate_chunk(
         np.asarray(syn.time_ratio),
         np.asarray(syn.transmission_min),
         np.asarray(syn.transmission_max),
-        mean,
-        peak,
-        sampled,
-        power,
-        limit,
-        mean_ok,
-        peak_ok,
+        ev.mean_force,
+        ev.dead_band_peak_force,
+        ev.sampled_peak,
+        ev.power,
+        column(designs.force_limit),
+        verdict["mean_force"].passed,
+        verdict["peak_force"].passed,
         verdict.passed,
-        flywheel=fly,
+        flywheel=ev.energy_decides,
         inertia=j,
-        speed_fluctuation=delta,
-        least_peak_force=required,
-        min_passing_speed=passing,
-        grip_speed=grip_speed,
-        stroke=grip_stroke(handle, swing),
+        speed_fluctuation=np.where(np.isnan(j), np.nan, column(designs.speed_fluctuation)),
+        least_peak_force=ev.least_peak_force,
+        min_passing_speed=ev.min_passing_speed,
+        grip_speed=ev.grip_speed,
+        stroke=ev.stroke,
         verdict=verdict,
-        model_index=index,
+        model_index=ev.model_index,
     )
 
 

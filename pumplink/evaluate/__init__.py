@@ -1,0 +1,520 @@
+"""The one evaluation: design columns in; every quantity the verdict and the renderers need out;
+the verdict from :func:`pumplink.verdict.assess`, called once per evaluation.
+
+``pumplink force``, ``speed``, ``batch``, ``optimize``, ``report``, ``suggest`` and the piston
+pumps all judge designs through :func:`evaluate`: one design is the n = 1 case of the same
+vectorised route, so they cannot disagree.  Two mechanisms share it:
+
+* the rope pump's four-bar (:class:`PumpDesigns`): dead-centre synthesis (Eq. 1-2 of the pump
+  paper), the mean force (docs/physics.md §4), the quasi-static peak outside the dead bands
+  (docs/models.md §1), the least model that is enough with the wheel's inertia and its least peak
+  force (§2-3), the link-energy share, the grip's peak speed, stroke and heights, the power, and
+  the operator's effort (§3a);
+* the piston pump's crank-slider (:class:`PistonDesigns`, docs/piston-pump.md): the mean force
+  (Eq. P.3), the quasi-static peak and the flywheel's least peak force (Eq. P.4), the power.
+
+:func:`pump_designs` and :func:`piston_designs` build the columns from spec values (a spec is one
+design of floats; a batch chunk gives arrays for the keys it varies), so the inputs of the
+evaluation are also assembled in one place.  :mod:`pumplink.evaluate.motion` holds the rest of
+what runs a force model: the deciding model's motion of one design (profiles, the time-domain
+check, the best cadence).  Nothing outside this package calls a force model.
+
+Pure functions on floats and numpy arrays; SI units, radians.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, fields
+from typing import Any
+
+import numpy as np
+
+from pumplink.constants import DEFAULT_ARM_MASS, LINK_MASS_PER_METRE
+from pumplink.mechanisms import crank_slider as cs
+from pumplink.mechanisms.fourbar import (
+    Synthesis,
+    grip_heights,
+    grip_stroke,
+    peak_rocker_rate,
+    synthesize,
+)
+from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, Conditions, Masses
+from pumplink.models import load as _load
+from pumplink.models import quasi_static as _qs
+from pumplink.models.choice import EnergyModel, energy_model
+from pumplink.verdict import Verdict, assess
+
+#: Spec keys that give the wheel's inertia (the flywheel or full dynamics can then decide).
+INERTIA_KEYS = ("wheel.inertia", "wheel.mass", "load.moving_mass")
+#: The words of each model, by index into :data:`pumplink.models.ORDER` (reports, the model column).
+MODEL_LABELS = tuple(MODELS[k].label for k in ORDER)
+#: Designs swept together for the sampled peak: the kernel's temporaries (designs x samples)
+#: stay in the processor's cache.
+SUB_DESIGNS = 128
+
+
+# ----------------------------------------------------------------------------- the inputs
+@dataclass(frozen=True)
+class PumpDesigns:
+    """Rope-pump designs (the pump paper's four-bar) and their operating conditions, as columns.
+
+    Floats for one design, 1-D arrays over designs otherwise (broadcast together); SI units,
+    angles in radians.
+
+    Attributes
+    ----------
+    L1, D1, b : frame placement [m] (docs/physics.md §1);  rocker, handle : [m];  swing : [rad].
+    wheel_torque : Mw = Fw rw [N m];  inertia : J about the axle [kg m^2] (NaN: not given).
+    speed : mean wheel speed ω̄ [rad/s];  dead_band : [rad];  speed_fluctuation : δ [-].
+    force_limit : [N];  mass_per_length : [kg/m] of the handle and coupler tube.
+    coupler_mass, handle_mass : [kg] (NaN: bars of ``mass_per_length``);  arm_mass : [kg].
+    arms_in_verdict : the operator's arms in the verdict's force (one flag for all designs).
+    axle_height : [m], or None (no height checks).
+    """
+
+    L1: Any
+    D1: Any
+    b: Any
+    rocker: Any
+    handle: Any
+    swing: Any
+    wheel_torque: Any
+    inertia: Any
+    speed: Any
+    dead_band: Any
+    speed_fluctuation: Any
+    force_limit: Any
+    mass_per_length: Any
+    coupler_mass: Any
+    handle_mass: Any
+    arm_mass: Any
+    arms_in_verdict: bool = False
+    axle_height: Any = None
+
+
+def _or(value, default):
+    return default if value is None else value
+
+
+def pump_designs(value: Callable[[str], Any], speed=None) -> PumpDesigns:
+    """The columns of rope-pump designs from their spec values.
+
+    Parameters
+    ----------
+    value : ``value("linkage.swing")`` gives a spec key's value in spec units (degrees, deg/s):
+        a float, an array over designs, or None where the key is not given.
+    speed : mean wheel speed [deg/s] instead of ``operator.speed`` (a float or an array).
+    """
+    inertia = np.nan
+    if any(value(k) is not None for k in INERTIA_KEYS):
+        mass = _load.moving_mass(value("load.moving_mass"), value("load.head"), value("load.pipe_diameter"))
+        inertia = _load.inertia(value("wheel.radius"), value("wheel.inertia"), value("wheel.mass"), mass)
+    rope = _load.rope_force(
+        value("load.rope_force"), value("load.head"), value("load.pipe_diameter"), value("load.efficiency")
+    )
+    return PumpDesigns(
+        L1=value("linkage.L1"),
+        D1=value("linkage.D1"),
+        b=value("linkage.b"),
+        rocker=value("linkage.rocker"),
+        handle=value("linkage.handle"),
+        swing=np.radians(value("linkage.swing")),
+        wheel_torque=rope * value("wheel.radius"),  # Mw = Fw rw, Eq. (3) of the pump paper
+        inertia=inertia,
+        speed=np.radians(value("operator.speed") if speed is None else speed),
+        dead_band=np.radians(value("operator.dead_band")),
+        speed_fluctuation=value("operator.speed_fluctuation"),
+        force_limit=value("operator.force_limit"),
+        mass_per_length=_or(value("linkage.mass_per_length"), LINK_MASS_PER_METRE),
+        coupler_mass=_or(value("linkage.coupler_mass"), np.nan),
+        handle_mass=_or(value("linkage.handle_mass"), np.nan),
+        arm_mass=_or(value("operator.arm_mass"), DEFAULT_ARM_MASS),
+        arms_in_verdict=bool(value("operator.arms_in_verdict")),
+        axle_height=value("wheel.axle_height"),
+    )
+
+
+@dataclass(frozen=True)
+class PistonDesigns:
+    """Piston pumps (a crank-slider turned by a hand crank, docs/piston-pump.md) as columns.
+
+    crank, rod, offset : r, l, e [m];  handle : radius R of the crank the operator turns [m];
+    load_force : the piston's force on its working stroke [N] (Eq. P.1);  speed : [rad/s];
+    force_limit : [N];  inertia : J on the crank shaft [kg m^2] (NaN: none);  speed_fluctuation : δ.
+    """
+
+    crank: Any
+    rod: Any
+    offset: Any
+    handle: Any
+    load_force: Any
+    speed: Any
+    force_limit: Any
+    inertia: Any
+    speed_fluctuation: Any
+
+
+def piston_designs(value: Callable[[str], Any], speed=None) -> PistonDesigns:
+    """The columns of piston pumps from their spec values (``value`` as in :func:`pump_designs`)."""
+    from pumplink.models import piston as _pm
+
+    inertia = np.nan
+    if value("wheel.inertia") is not None:
+        inertia = value("wheel.inertia")
+    elif value("wheel.mass") is not None:
+        inertia = value("wheel.mass") * value("wheel.radius") ** 2  # a rim on the crank shaft
+    return PistonDesigns(
+        crank=value("crank_slider.crank"),
+        rod=value("crank_slider.rod"),
+        offset=_or(value("crank_slider.offset"), 0.0),
+        handle=value("operator.handle"),
+        load_force=_pm.load_force(value("piston.bore"), value("piston.head"), value("piston.efficiency")),
+        speed=np.radians(value("operator.speed") if speed is None else speed),
+        force_limit=value("operator.force_limit"),
+        inertia=inertia,
+        speed_fluctuation=value("operator.speed_fluctuation"),
+    )
+
+
+def _columns(designs) -> tuple[int, dict[str, np.ndarray]]:
+    """The designs' numeric fields as 1-D float arrays of one length (the number of designs)."""
+    names = [f.name for f in fields(designs) if f.name not in ("arms_in_verdict", "axle_height")]
+    arrays = np.broadcast_arrays(*(np.asarray(getattr(designs, k), float) for k in names))
+    cols = {k: np.atleast_1d(a).ravel() for k, a in zip(names, arrays)}
+    return next(iter(cols.values())).size, cols
+
+
+# ----------------------------------------------------------------------------- the results
+@dataclass(frozen=True)
+class Evaluation:
+    """Every quantity the verdict and the renderers need, for rope-pump designs (arrays over
+    designs; SI units, radians).
+
+    Attributes
+    ----------
+    designs : the input columns;  synthesis : the dead-centre synthesis (Eq. 1-2).
+    feasible : a crank-rocker with the requested swing exists.
+    mean_force : F_mean = π Mw / S [N] (docs/physics.md §4).
+    dead_band_peak_force, dead_band_peak_angle : the quasi-static peak outside the dead bands [N]
+        and where [rad] (NaN where not computed).
+    sampled_peak : the peak over a uniform sweep of ``samples`` crank angles outside the dead
+        bands [N] (NaN where not asked for).
+    model_index : 0 quasi-static, 1 flywheel, 2 full dynamics (:data:`pumplink.models.ORDER`).
+    energy : the energy-model choice and its solved force (None without any inertia).
+    least_peak_force : the energy model's least peak force [N] (NaN where none decides).
+    min_passing_speed : the flywheel's slowest passing speed [rad/s] (NaN where it does not decide).
+    effort_peak_force : least peak effort, the hand force plus the arms (full dynamics) [N].
+    masses : the links' masses and, where the verdict takes them, the arms' [kg].
+    power : Mw ω̄ [W];  grip_speed : the grip's peak speed at the wheel's top speed [m/s].
+    stroke : horizontal grip stroke [m];  grip_height : (lowest, highest) or None.
+    link_energy_share : the flywheel's neglected link energy / its band [%] (0 where the flywheel
+        does not decide; None where it decides nowhere).
+    verdict : :func:`pumplink.verdict.assess` (None when not asked for).
+    """
+
+    designs: PumpDesigns
+    synthesis: Synthesis
+    feasible: np.ndarray
+    mean_force: np.ndarray
+    dead_band_peak_force: np.ndarray
+    dead_band_peak_angle: np.ndarray
+    sampled_peak: np.ndarray
+    model_index: np.ndarray
+    energy: EnergyModel | None
+    least_peak_force: np.ndarray
+    min_passing_speed: np.ndarray
+    effort_peak_force: np.ndarray
+    masses: Masses
+    power: np.ndarray
+    grip_speed: np.ndarray
+    stroke: np.ndarray
+    grip_height: tuple[np.ndarray, np.ndarray] | None
+    link_energy_share: np.ndarray | None
+    verdict: Verdict | None
+
+    def __len__(self) -> int:
+        return int(np.size(self.feasible))
+
+    @property
+    def energy_decides(self) -> np.ndarray:
+        """True where an energy model (the flywheel or full dynamics) decides."""
+        return self.model_index > 0
+
+    @property
+    def peak_force(self) -> np.ndarray:
+        """The peak force that decides the verdict [N]: the energy model's, else the dead-band peak."""
+        return np.where(self.energy_decides, self.least_peak_force, self.dead_band_peak_force)
+
+    @property
+    def model(self) -> np.ndarray:
+        """The deciding model's key per design (:data:`pumplink.models.ORDER`)."""
+        return np.asarray(ORDER, dtype=object)[self.model_index]
+
+    @property
+    def transmission_angle(self) -> np.ndarray:
+        """The effective smallest transmission angle min(γmin, 180° − γmax) [rad]."""
+        syn = self.synthesis
+        return np.minimum(syn.transmission_min, np.pi - np.asarray(syn.transmission_max))
+
+    @property
+    def energy_band(self) -> np.ndarray:
+        """W = J ω̄² δ [J] (NaN without inertia)."""
+        return np.full(len(self), np.nan) if self.energy is None else self.energy.band
+
+
+@dataclass(frozen=True)
+class PistonEvaluation:
+    """Every quantity the verdict and the renderers need, for piston pumps (arrays over designs)."""
+
+    designs: PistonDesigns
+    feasible: np.ndarray  # the crank turns fully: rod > crank + |offset|
+    stroke: np.ndarray  # [m]
+    time_ratio: np.ndarray  # [-]
+    largest_pressure_angle: np.ndarray  # [rad]
+    mean_force: np.ndarray  # [N] (Eq. P.3)
+    quasi_static_peak: np.ndarray  # [N]
+    quasi_static_peak_angle: np.ndarray  # [rad]
+    model_index: np.ndarray  # 0 quasi-static, 1 flywheel
+    energy_band: np.ndarray  # W = J ω² δ [J] (NaN without a flywheel)
+    least_peak_force: np.ndarray  # the flywheel's Fp* [N] (Eq. P.4; NaN without one)
+    power: np.ndarray  # F_load H ω / 2π [W]
+    verdict: Verdict | None
+
+    def __len__(self) -> int:
+        return int(np.size(self.feasible))
+
+    @property
+    def peak_force(self) -> np.ndarray:
+        """The peak force that decides the verdict [N]."""
+        return np.where(self.model_index > 0, self.least_peak_force, self.quasi_static_peak)
+
+    @property
+    def model(self) -> np.ndarray:
+        return np.asarray(ORDER, dtype=object)[self.model_index]
+
+
+# ----------------------------------------------------------------------------- the evaluation
+def evaluate(
+    designs: PumpDesigns | PistonDesigns,
+    model: str | None = None,
+    *,
+    judge: bool = True,
+    dead_band_peak: bool = True,
+    peak: bool = True,
+    passing_speed: bool = True,
+    effort: bool = False,
+    arm_energy: bool = False,
+    samples: int = 0,
+    progress=None,
+) -> Evaluation | PistonEvaluation:
+    """Judge designs: every quantity of the verdict, and the verdict.
+
+    Parameters
+    ----------
+    designs : rope pumps (:class:`PumpDesigns`) or piston pumps (:class:`PistonDesigns`).
+    model : a model key to decide every design that gives inertia (``--model``); default the least
+        model that is enough, per design (docs/models.md §3).
+    judge : False to leave the verdict out (a search that needs only the forces).
+    dead_band_peak : the quasi-static peak outside the dead bands for every feasible design (it is
+        reported beside an energy model's); False: only where it decides.
+    peak : False for no peak force at all (a search on the mean force).
+    passing_speed : the flywheel's slowest passing speed where it decides.
+    effort : the operator's least peak effort (the hand force plus their arms, full dynamics)
+        wherever the wheel's inertia is given.
+    arm_energy : the arms' kinetic energy in the model-choice report even when they are not in the
+        verdict (they always are where ``operator.arms_in_verdict``).
+    samples : crank samples per revolution for :attr:`Evaluation.sampled_peak` (0: none);
+        ``progress`` is given the fraction of that sweep done (one design at a time).
+    """
+    if isinstance(designs, PistonDesigns):
+        return _evaluate_piston(designs, judge)
+    n, c = _columns(designs)
+    syn = synthesize(c["L1"], c["D1"], c["b"], c["rocker"], c["swing"], c["handle"])
+    feasible = np.asarray(syn.feasible, bool)
+    lk = syn.linkage
+    mw, speed, band, limit = c["wheel_torque"], c["speed"], c["dead_band"], c["force_limit"]
+    dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
+    nan = np.full(n, np.nan)
+    ok = np.nonzero(feasible)[0]
+    stroke = grip_stroke(c["handle"], c["swing"])
+    mean, sampled = nan.copy(), nan.copy()
+    qs_peak, qs_angle = nan.copy(), nan.copy()
+    rate = nan.copy()
+    sub = lk.take(ok)
+    if ok.size:
+        mean[ok] = _qs.mean_force(mw[ok], stroke[ok])
+        if judge:  # the grip's peak speed, a check of the verdict
+            rate[ok] = peak_rocker_rate(sub)
+        if samples:
+            for s0 in range(0, ok.size, SUB_DESIGNS):  # cache-sized blocks of designs
+                s = ok[s0 : s0 + SUB_DESIGNS]
+                sampled[s] = _qs.sampled_peak(
+                    lk.take(s), samples, mw[s], dce[s], dcf[s], band[s], progress=progress
+                )
+
+    # the energy models where the inertia is given: the least one that is enough, or the one asked for
+    fly = ~np.isnan(c["inertia"])
+    j, delta = c["inertia"], c["speed_fluctuation"]
+    index = np.zeros(n, int)
+    em = None
+    least, passing, effort_force = nan.copy(), nan.copy(), nan.copy()
+    # the links' masses, with the arms at the grip where the verdict takes them (``masses``); the
+    # model choice also sizes the arms when a report asks (their energy is not in its force then)
+    masses = _load.link_masses(
+        syn.coupler_length,
+        c["handle"],
+        c["rocker"],
+        c["mass_per_length"],
+        c["coupler_mass"],
+        c["handle_mass"],
+        c["arm_mass"] if designs.arms_in_verdict else 0.0,
+    )
+    sized = (
+        masses
+        if designs.arms_in_verdict or not arm_energy
+        else Masses(masses.coupler, masses.handle, c["arm_mass"])
+    )
+    if fly.any() and peak:
+        em = energy_model(
+            lk,
+            dce,
+            dcf,
+            mw,
+            j,
+            speed,
+            delta,
+            sized,
+            designs.arms_in_verdict,
+            forced=model,
+            solve=fly & feasible,
+        )
+        index = np.where(fly, em.index, 0)
+        least = np.where(fly & feasible, em.peak_force, np.nan)
+        flywheel = np.nonzero(fly & feasible & (index == ORDER.index(FLYWHEEL)))[0]
+        if passing_speed and flywheel.size:
+            from pumplink.models import flywheel as _fw
+
+            passing[flywheel] = _fw.min_passing_speed(
+                lk.take(flywheel), dce[flywheel], dcf[flywheel], mw[flywheel], limit[flywheel],
+                j[flywheel], delta[flywheel],
+            )  # fmt: skip
+        rows = np.nonzero(fly & feasible)[0]
+        if effort and rows.size:  # the hand force plus accelerating and lifting the operator's arms
+            arms = Masses(
+                *(np.broadcast_to(m, (n,))[rows] for m in (masses.coupler, masses.handle, c["arm_mass"]))
+            )
+            cond = Conditions(speed[rows], band[rows], j[rows], delta[rows], arms)
+            effort_force[rows] = MODELS[DYNAMICS].peak_force(
+                lk.take(rows), dce[rows], dcf[rows], mw[rows], cond
+            )
+    energy = index > 0
+    todo = feasible & (dead_band_peak | ~energy) & peak
+    if todo.any():
+        r = np.nonzero(todo)[0]
+        qs_peak[r], qs_angle[r] = _qs.dead_band_peak_force(lk.take(r), dce[r], dcf[r], band[r], mw[r])
+    share = None
+    if em is not None and (index == ORDER.index(FLYWHEEL)).any():
+        # the flywheel's neglected link energy: a check of the flywheel model only (0 elsewhere)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            share = np.where(em.band > 0, 100.0 * em.link_energy / em.band, np.inf)
+        share = np.where(index == ORDER.index(FLYWHEEL), share, 0.0)
+    top = np.where(energy, _load.top_speed(speed, np.where(energy, delta, 0.0)), speed)
+    grip_speed = rate * top * c["handle"]
+    axle = designs.axle_height
+    heights = None if axle is None else grip_heights(axle, c["D1"], c["handle"], c["swing"])
+    power = mw * speed
+    verdict = None
+    if judge:
+        mu = np.minimum(syn.transmission_min, np.pi - np.asarray(syn.transmission_max))
+        verdict = assess(
+            feasible,
+            mean,
+            np.where(energy, least, qs_peak),
+            limit,
+            link_energy_share=share,
+            transmission_angle=np.degrees(mu),
+            power=power,
+            grip_speed=grip_speed,
+            stroke=stroke,
+            grip_height=heights,
+            axle_height=axle,
+        )
+    return Evaluation(
+        designs,
+        syn,
+        feasible,
+        mean,
+        qs_peak,
+        qs_angle,
+        sampled,
+        index,
+        em,
+        least,
+        passing,
+        effort_force,
+        masses,
+        power,
+        grip_speed,
+        stroke,
+        heights,
+        share,
+        verdict,
+    )
+
+
+def _evaluate_piston(designs: PistonDesigns, judge: bool) -> PistonEvaluation:
+    """:func:`evaluate` for piston pumps (docs/piston-pump.md); the crank-slider's kernels take
+    one design at a time, so the designs are solved in turn."""
+    from pumplink.models import flywheel as _fw
+    from pumplink.models import piston as _pm
+
+    n, c = _columns(designs)
+    r, rod, e, handle, load = c["crank"], c["rod"], c["offset"], c["handle"], c["load_force"]
+    feasible = np.asarray(cs.turns_fully(r, rod, e), bool)
+    out = {k: np.full(n, np.nan) for k in ("stroke", "ratio", "pressure", "mean", "peak", "angle", "least")}
+    band = np.where(
+        np.isnan(c["inertia"]), np.nan, _fw.energy_band(c["inertia"], c["speed"], c["speed_fluctuation"])
+    )
+    index = np.where(np.isnan(c["inertia"]), 0, ORDER.index(FLYWHEEL))
+    for i in np.nonzero(feasible)[0].tolist():
+        args = (r[i], rod[i], e[i])
+        out["stroke"][i] = float(cs.stroke(*args))
+        out["ratio"][i] = float(cs.time_ratio(*args))
+        out["pressure"][i] = float(cs.largest_pressure_angle(*args))
+        out["mean"][i] = _pm.mean_force(*args, load[i], handle[i])  # Eq. (P.3)
+        out["peak"][i], out["angle"][i] = _pm.quasi_static_peak(*args, load[i], handle[i])
+        if index[i]:
+            out["least"][i] = _pm.least_peak_force(*args, load[i], handle[i], band[i])  # Eq. (P.4)
+    power = load * out["stroke"] * c["speed"] / (2.0 * math.pi)  # the work F_load H per revolution
+    peak = np.where(index > 0, out["least"], out["peak"])
+    verdict = assess(feasible, out["mean"], peak, c["force_limit"], power=power) if judge else None
+    return PistonEvaluation(
+        designs,
+        feasible,
+        out["stroke"],
+        out["ratio"],
+        out["pressure"],
+        out["mean"],
+        out["peak"],
+        out["angle"],
+        index,
+        band,
+        out["least"],
+        power,
+        verdict,
+    )
+
+
+__all__ = [
+    "INERTIA_KEYS",
+    "MODEL_LABELS",
+    "Evaluation",
+    "PistonDesigns",
+    "PistonEvaluation",
+    "PumpDesigns",
+    "evaluate",
+    "piston_designs",
+    "pump_designs",
+]
