@@ -26,10 +26,10 @@ from pathlib import Path
 import numpy as np
 from _record import machine, record
 
-from pumplink.analysis import design
+from pumplink.inputs.pump import default_spec
 from pumplink.mechanisms.angles import offset_table, shifted_directions
 from pumplink.mechanisms.fourbar import force_kernel, kernel_work, kinematic_state
-from pumplink.spec import default_spec
+from pumplink.studies.force import design
 
 ROOT = Path(__file__).resolve().parents[1]
 EXE = str(Path(sys.executable).with_name("pumplink"))

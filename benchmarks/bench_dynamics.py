@@ -20,10 +20,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _record import machine, record  # noqa: E402
 from bench_core import ROOT  # noqa: E402
 
-from pumplink.analysis import cadence, design, force_analysis, link_masses  # noqa: E402
+from pumplink.inputs.pump import load_spec  # noqa: E402
 from pumplink.mechanisms.fourbar import synthesize  # noqa: E402
 from pumplink.models import dynamics as dy  # noqa: E402
-from pumplink.spec import load_spec  # noqa: E402
+from pumplink.studies.force import design, force_analysis, link_masses
+from pumplink.studies.speed import cadence  # noqa: E402
 
 EXAMPLE = ROOT / "examples" / "well-12m-flywheel.toml"
 BATCH = 10_000

@@ -24,11 +24,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _record import machine, result
 from bench_core import EXE, ROOT, median_time  # noqa: E402
 
-from pumplink.analysis import design  # noqa: E402
+from pumplink.inputs.pump import load_spec  # noqa: E402
 from pumplink.mechanisms.fourbar import FourBar, synthesize  # noqa: E402
 from pumplink.models import flywheel as fw  # noqa: E402
 from pumplink.models.quasi_static import dead_band_peak_force, mean_force  # noqa: E402
-from pumplink.spec import load_spec  # noqa: E402
+from pumplink.studies.force import design  # noqa: E402
 
 EXAMPLE = ROOT / "examples" / "well-12m-flywheel.toml"
 DEAD_BAND = np.radians(20)
@@ -132,7 +132,7 @@ def main() -> None:
         value=rel,
         unit="relative",
     )
-    stroke = np.abs(fw._grip_x(rdcf, *rlk.parameters) - fw._grip_x(rdce, *rlk.parameters))
+    stroke = np.abs(fw.grip_position(rdcf, *rlk.parameters) - fw.grip_position(rdce, *rlk.parameters))
     limit = mean_force(rmw, stroke) * 10.0 ** np.random.default_rng(1).uniform(0.0, 2.0, m)  # to 100 F_mean
     _, te = wall_and_cpu(lambda: fw.min_passing_speed(rlk, rdce, rdcf, rmw, limit, 1.0, 0.2), 5)
     print(f"slowest passing speed (energy deficit), {m:,} random designs: {m / te:,.0f} designs/s per core")

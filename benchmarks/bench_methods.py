@@ -15,11 +15,11 @@ import time
 import numpy as np
 from _record import record
 
-from pumplink.analysis import design
+from pumplink.inputs.pump import default_spec
 from pumplink.mechanisms.angles import grid_directions
 from pumplink.mechanisms.fourbar import FourBar, force_kernel, kernel_work, synthesize
-from pumplink.methods import numeric, vector
-from pumplink.spec import default_spec
+from pumplink.studies.force import design
+from pumplink.studies.methods import numeric, vector
 
 REPEATS = 7
 

@@ -23,9 +23,9 @@ from pathlib import Path
 import numpy as np
 from _record import result
 
+from pumplink.inputs.pump import load_spec
 from pumplink.mechanisms.crank_rocker import optimal_crank_rocker
-from pumplink.optimize import make_problem, optimize
-from pumplink.spec import load_spec
+from pumplink.search.optimize import make_problem, optimize
 
 REPEATS = 3
 ROOT = Path(__file__).resolve().parent.parent
@@ -83,7 +83,7 @@ def main():
     # time (scipy's own), the arms' energy computed although they are out of the verdict
     import scipy.optimize
 
-    from pumplink import optimize as opt
+    from pumplink.search import optimize as opt
 
     problem = make_problem(load_spec(VILLAGE))
     fast = optimize(problem, seed=0)
@@ -117,7 +117,7 @@ def main():
 
 def grid_check(path: Path, m: int) -> None:
     """Brute force over the default bounds: is the optimiser's answer really the best there is?"""
-    from pumplink.optimize import evaluate_designs
+    from pumplink.search.optimize import evaluate_designs
 
     problem = make_problem(load_spec(path))
     axes = [np.linspace(lo, hi, m) for lo, hi in zip(problem.lower, problem.upper)]

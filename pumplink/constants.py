@@ -73,3 +73,23 @@ DEFAULT_ARM_MASS = ARM_MASS_FRACTION * ARM_BODY_MASS_KG
 #: deg for mechanisms with revolute pairs only (docs/mechanisms.md §4).
 PERMISSIBLE_PRESSURE_SLIDING_DEG = (30.0, 45.0)
 PERMISSIBLE_PRESSURE_REVOLUTE_DEG = (45.0, 60.0)
+
+#: The words of each force model in reports, by its key (``pumplink.models.ORDER``).
+MODEL_WORDS = {
+    "quasi-static": "quasi-static + dead band",
+    "flywheel": "flywheel",
+    "dynamics": "full dynamics",
+}
+
+#: Kinds of crank position the method comparison samples (``pumplink methods``; the keys of its
+#: JSON): a uniform sweep, near and exactly at a dead centre, and the positions where a textbook
+#: formula breaks down (docs/physics.md §3).
+UNIFORM = "uniform"
+NEAR_DEAD_CENTRE = "near_dead_centre"
+DEAD_CENTRE = "dead_centre"
+CRANK_PERPENDICULAR = "crank_perpendicular"
+ROCKER_PERPENDICULAR = "rocker_perpendicular"
+CRANK_PARALLEL_ROCKER = "crank_parallel_rocker"
+CRANK_ALONG_FRAME = "crank_along_frame"
+#: Every danger point together (and 1e-9 rad either side), a sample set of the comparison.
+DANGER = "danger_points"

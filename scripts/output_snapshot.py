@@ -6,6 +6,7 @@ compare the two folders byte for byte.
     python scripts/output_snapshot.py write /tmp/before      # on the old commit
     python scripts/output_snapshot.py write /tmp/after       # on the new one
     python scripts/output_snapshot.py compare /tmp/before /tmp/after
+    python scripts/output_snapshot.py compare /tmp/before /tmp/after --stdout   # stdout only
     python scripts/output_snapshot.py write /tmp/after force_   # only the names with force_
 
 Each file holds a command's stdout, its stderr after a ``--- stderr`` line, and, on the last
@@ -48,8 +49,9 @@ def commands() -> dict[str, list[str]]:
         out[f"force_{stem}"] = ["force", str(rel), "--format", "json"]
         out[f"force_summary_{stem}"] = ["force", str(rel), "--summary", "--format", "json"]
         out[f"force_table_{stem}"] = ["force", str(rel)]
-        out[f"force_explain_{stem}"] = ["force", str(rel), "--summary", "--explain", "--verify", "--format", "json"]
-        out[f"force_explain_table_{stem}"] = ["force", str(rel), "--summary", "--explain", "--verify"]
+        explain = ["--summary", "--explain", "--verify"]
+        out[f"force_explain_{stem}"] = ["force", str(rel), *explain, "--format", "json"]
+        out[f"force_explain_table_{stem}"] = ["force", str(rel), *explain]
         out[f"speed_{stem}"] = ["speed", str(rel), "--format", "json"]
         out[f"speed_table_{stem}"] = ["speed", str(rel)]
         out[f"optimize_{stem}"] = ["optimize", str(rel), "--format", "json"]
@@ -71,13 +73,21 @@ def write(folder: Path, only: str = "") -> None:
         print(f"{name}: exit {proc.returncode}", file=sys.stderr)
 
 
-def compare(a: Path, b: Path) -> int:
-    """Byte-compare the snapshots of ``b`` with those of the same name in ``a``."""
+def _part(path: Path, stdout_only: bool) -> bytes | None:
+    if not path.exists():
+        return None
+    data = path.read_bytes()
+    return data.split(b"\n--- stderr\n")[0] if stdout_only else data
+
+
+def compare(a: Path, b: Path, stdout_only: bool = False) -> int:
+    """Byte-compare the snapshots of ``b`` with those of the same name in ``a`` (their stdout
+    alone with ``stdout_only``: the JSON, CSV and tables, not the messages beside them)."""
     names = sorted(p.name for p in b.glob("*.txt"))
     bad = [
         n
         for n in names
-        if not (a / n).exists() or not (b / n).exists() or (a / n).read_bytes() != (b / n).read_bytes()
+        if _part(a / n, stdout_only) is None or _part(a / n, stdout_only) != _part(b / n, stdout_only)
     ]
     for n in bad:
         print(f"differs: {n}")
@@ -88,7 +98,7 @@ def compare(a: Path, b: Path) -> int:
 if __name__ == "__main__":
     if len(sys.argv) in (3, 4) and sys.argv[1] == "write":
         write(Path(sys.argv[2]), *sys.argv[3:])
-    elif len(sys.argv) == 4 and sys.argv[1] == "compare":
-        sys.exit(compare(Path(sys.argv[2]), Path(sys.argv[3])))
+    elif len(sys.argv) in (4, 5) and sys.argv[1] == "compare":
+        sys.exit(compare(Path(sys.argv[2]), Path(sys.argv[3]), "--stdout" in sys.argv[4:]))
     else:
         sys.exit(__doc__)

@@ -1,4 +1,4 @@
-"""pumplink.analysis: the best cadence and the speeds that pass, and the quasi-static --verify.
+"""pumplink.studies.force: the best cadence and the speeds that pass, and the quasi-static --verify.
 
 References: the verdict of force_analysis itself at speeds just inside and just outside the
 reported range (the range must be where that verdict changes), and for --verify negative controls
@@ -11,9 +11,11 @@ from pathlib import Path
 
 import pytest
 
-from pumplink.analysis import cadence, force_analysis, verify_quasi_static
 from pumplink.constants import GRIP_SPEED_FAIL_M_S, HOUR_POWER_W
-from pumplink.spec import load_spec
+from pumplink.inputs.pump import load_spec
+from pumplink.studies.force import force_analysis
+from pumplink.studies.speed import cadence
+from pumplink.studies.verify import verify_quasi_static
 
 ROOT = Path(__file__).resolve().parents[1]
 VILLAGE = ROOT / "configs" / "village-10m.toml"

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 import pumplink
-from pumplink.spec import DEFAULT_SPEC, parse_spec, spec_template
+from pumplink.inputs.pump import DEFAULT_SPEC, parse_spec, spec_template
 
 ROOT = Path(__file__).resolve().parents[1]
 #: Every shipped rope-pump spec (batch files and other mechanisms' specs are checked elsewhere).
@@ -48,7 +48,7 @@ def test_help_shows_the_api():
         check=True,
         env={"PAGER": "cat", "TERM": "dumb", "PATH": ""},
     ).stdout
-    for name in ("load(", "analyse(", "synthesize(", "default(", "examples("):
+    for name in ("load(", "analyse(", "synthesize(", "default(", "to_dict(", "to_html(", "examples("):
         assert name in out, name
 
 
@@ -56,10 +56,11 @@ def test_results_have_a_short_repr_a_dict_and_html():
     r = pumplink.analyse(pumplink.default())
     text = repr(r)
     assert len(text) < 300 and "Prototype" in text and r.outcome in text
-    d = r.to_dict()
+    d = pumplink.to_dict(r)
     json.dumps(d, allow_nan=False)  # JSON-safe
     assert d["verdict"] == r.outcome and d["peak_force_N"] == pytest.approx(r.verdict_peak_force)
-    html = r._repr_html_()
+    assert not hasattr(r, "to_dict") and not hasattr(r, "_repr_html_")  # results do not render themselves
+    html = pumplink.to_html(r)
     assert html.count("<tr>") == len(r.checks) + 1 and "grip speed" in html
     assert len(repr(pumplink.synthesize(pumplink.default()))) < 200
     assert set(pumplink.examples()) >= {"prototype", "village-10m", "women-operators-6m", "well-12m-flywheel"}
@@ -99,7 +100,7 @@ def test_force_batch_and_optimize_agree_on_every_shipped_config(path):
     assert row["peak_force_N"] == force["peak_force_N"]
     results = {c["key"]: c["result"] for c in force["checks"]}
     assert {k.removeprefix("check_"): v for k, v in row.items() if k.startswith("check_") and v} == results
-    from pumplink.optimize import make_problem, optimize
+    from pumplink.search.optimize import make_problem, optimize
 
     problem = make_problem(pumplink.load(path), grip_height=(0.0, 5.0), stroke=(0.0, 5.0))
     res = optimize(problem, maxiter=3, polish=False)

@@ -1,4 +1,4 @@
-"""The geometry behind the drawings and templates (pumplink.drawing) and the template tiling.
+"""The geometry behind the drawings and templates (pumplink.studies.drawing) and the template tiling.
 
 Reference lengths from the 50-digit synthesis of tests/reference.py (its own route to Eq. (2)).
 """
@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 import reference as ref
 
-from pumplink.drawing import drawing, motion
+from pumplink.inputs.pump import DEFAULT_SPEC, parse_spec
 from pumplink.output.template import OVERLAP, tiles
-from pumplink.spec import DEFAULT_SPEC, parse_spec
+from pumplink.studies.drawing import drawing, motion
 
 PROTO = dict(L1=0.40, D1=0.20, b=0.10, rocker=0.20, swing=math.radians(60.0))
 

@@ -31,7 +31,7 @@ from hypothesis import strategies as st
 
 import pumplink.cli as cli
 from pumplink.batch import VARIABLE_KEYS
-from pumplink.spec import PumpSpec
+from pumplink.inputs.pump import PumpSpec
 
 ROOT = Path(__file__).parents[1]
 SHIPPED = sorted([*ROOT.glob("configs/*.toml"), *ROOT.glob("examples/*.toml")])

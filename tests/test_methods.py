@@ -1,6 +1,6 @@
 """Stability and accuracy of the force methods (methods comparison), and the `methods` command.
 
-Ground truth is ``pumplink.methods.reference``: a different route from every method under test
+Ground truth is ``pumplink.studies.methods.reference``: a different route from every method under test
 (rocker angle from d . u4 = (l4^2 + |d|^2 - l3^2) / (2 l4) and the textbook velocity ratio
 l2 sin(t3 - t2) / (l4 sin(t3 - t4))) evaluated in mpmath at 50 digits at the same double
 crank angles.  Its own agreement with an independent closed form is checked first.
@@ -18,10 +18,12 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from pumplink import accuracy
-from pumplink.analysis import design
+from pumplink.inputs.pump import default_spec
+from pumplink.mechanisms.angles import angular_distance
 from pumplink.mechanisms.fourbar import synthesize
-from pumplink.methods import (
+from pumplink.studies import accuracy
+from pumplink.studies.force import design
+from pumplink.studies.methods import (
     CRANK_ALONG_FRAME,
     CRANK_PARALLEL_ROCKER,
     CRANK_PERPENDICULAR,
@@ -37,7 +39,6 @@ from pumplink.methods import (
     seed_frame,
     vector,
 )
-from pumplink.spec import default_spec
 
 SETTINGS = settings(
     max_examples=12, deadline=None, suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow]
@@ -104,7 +105,7 @@ def test_vector_meets_item4_targets(syn, away_deg, side):
     lk = syn.linkage
     dc = np.array([syn.dead_centre_extended, syn.dead_centre_folded])
     far = dc + side * np.radians(away_deg)
-    far = far[(accuracy._force.angular_distance(far[:, None], dc[None, :]) >= np.radians(1.0)).all(axis=1)]
+    far = far[(angular_distance(far[:, None], dc[None, :]) >= np.radians(1.0)).all(axis=1)]
     near = np.concatenate([dc + np.radians(1e-6), dc - np.radians(1e-6)])
     pts = danger_points(lk)
     danger = np.concatenate([pts[k] for k in DANGER_KINDS])
@@ -199,7 +200,7 @@ def test_paper_route_divides_by_zero_exactly_where_registered():
 
 def test_seed_plus_root_is_the_assembly_branch_for_half_the_cycle_only():
     # The seed prints xB = (-b + sqrt(b^2 - 4ac)) / 2a.  Against the reference's B, that root is
-    # right only where the assembly branch and the sign of yA agree (pumplink.methods.paper).
+    # right only where the assembly branch and the sign of yA agree (pumplink.studies.methods.paper).
     syn = design(default_spec()).synthesis
     lk = syn.linkage
     th = np.linspace(0.0, 2 * np.pi, 73)[:-1] + 0.01
@@ -216,16 +217,10 @@ def test_seed_plus_root_is_the_assembly_branch_for_half_the_cycle_only():
 
 
 def test_sampling_study_converges_and_never_overshoots():
-    s = default_spec()
-    syn = design(s).synthesis
-    rows = accuracy.sampling_study(
-        syn.linkage,
-        syn.dead_centre_extended,
-        syn.dead_centre_folded,
-        np.radians(s.operator.dead_band),
-        s.wheel_torque,
-        syn.swing,
-    )
+    from pumplink.evaluate import pump_designs
+    from pumplink.inputs.pump import spec_values
+
+    rows = accuracy.sampling_study(pump_designs(spec_values(default_spec())))
     for r in rows:
         assert r["sampled_peak"] <= r["exact_peak"] * (1 + 1e-12)  # samples are points of the window
         assert r["sampled_max"] >= r["sampled_peak"]

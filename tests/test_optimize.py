@@ -15,17 +15,11 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from scipy.optimize import minimize_scalar
 
-from pumplink.analysis import force_analysis
 from pumplink.constants import MIN_TRANSMISSION_DEG
 from pumplink.errors import InfeasibleDesign, SpecError
-from pumplink.optimize import (
-    DEFAULT_BOUNDS,
-    evaluate_designs,
-    make_problem,
-    optimize,
-    parse_bounds,
-)
-from pumplink.spec import default_spec, parse_spec, spec_to_dict
+from pumplink.inputs.pump import default_spec, parse_spec, spec_to_dict
+from pumplink.search.optimize import DEFAULT_BOUNDS, evaluate_designs, make_problem, optimize, parse_bounds
+from pumplink.studies.force import force_analysis
 
 RELAXED = dict(grip_height=(0.0, 5.0), stroke=(0.0, 5.0))
 
@@ -338,7 +332,7 @@ def test_shortcuts_of_the_search_leave_the_optimum_unchanged(monkeypatch):
     the same design and the same peak force, to the last bit."""
     import scipy.optimize
 
-    from pumplink import optimize as opt
+    from pumplink.search import optimize as opt
 
     problem = make_problem(fly_spec(8.0, L1=1.5), {"D1": (-0.5, 0.8), "swing": (40.0, 100.0)}, **RELAXED)
     fast = optimize(problem, seed=0, maxiter=40)

@@ -17,8 +17,9 @@ import numpy as np
 import pytest
 
 from pumplink.errors import SpecError
+from pumplink.inputs.piston import load_piston, parse_piston
 from pumplink.models import piston as P
-from pumplink.piston import expand_batch, force_analysis, load_piston, parse_piston
+from pumplink.studies.piston import force_analysis
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "piston-pump.toml"
@@ -107,10 +108,15 @@ def test_rod_too_short_is_infeasible_not_a_mechanism():
 
 
 def test_batch_grid_expands_in_file_order():
-    variants = expand_batch(ROOT / "configs" / "grids" / "piston-bore.toml")
-    assert len(variants) == 8
-    assert variants[1][1] == {"piston.bore": 0.04, "operator.handle": 0.3}  # last axis fastest
-    assert variants[1][0] == "piston-bore#1[bore=0.04 handle=0.3]"
+    """A piston-pump grid is a batch like any other (one variant expander): the last axis
+    varies fastest and the variants are named as a rope pump's."""
+    from pumplink.inputs.batch import load_batch, variant_name, variant_spec
+
+    b = load_batch(ROOT / "configs" / "grids" / "piston-bore.toml")
+    assert b.mechanism == "crank-slider" and b.size == 8
+    one = variant_spec(b, 1)
+    assert (one["piston"]["bore"], one["operator"]["handle"]) == (0.04, 0.3)  # last axis fastest
+    assert variant_name(b, 1) == "piston-bore#1[bore=0.04 handle=0.3]"
 
 
 FLYWHEEL_SPEC = """\
@@ -139,7 +145,7 @@ def test_verify_checks_the_work_the_peak_and_the_flywheels_deficit(tmp_path):
     arc at Fp* is the band W; a slightly weaker operator (negative control) loses more than W."""
     import dataclasses
 
-    from pumplink.piston import explain, verify
+    from pumplink.studies.piston import explain, verify
 
     qs = force_analysis(load_piston(EXAMPLE))
     check = verify(qs)

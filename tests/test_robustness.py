@@ -21,11 +21,13 @@ import tomli_w
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from pumplink.analysis import design, force_analysis
 from pumplink.batch import load_batch
 from pumplink.errors import SpecError
-from pumplink.output.tables import render_designs, render_force
-from pumplink.spec import MAX_INPUT_BYTES, MAX_NESTING, PumpSpec, load_spec, parse_spec
+from pumplink.inputs.pump import PumpSpec, load_spec, parse_spec
+from pumplink.inputs.toml import MAX_INPUT_BYTES, MAX_NESTING
+from pumplink.output.force import render_force
+from pumplink.output.synth import render_designs
+from pumplink.studies.force import design, force_analysis
 
 KEYS = [
     "name",
@@ -188,7 +190,7 @@ BATCH_KEYS = [
 )
 def test_arbitrary_batch_files_give_a_batch_or_a_spec_error(top, vary):
     from pumplink.batch import parse_batch
-    from pumplink.spec import DEFAULT_SPEC
+    from pumplink.inputs.pump import DEFAULT_SPEC
 
     data = {**top, "base": DEFAULT_SPEC, "vary": vary} if "vary" in top else top
     try:

@@ -16,9 +16,9 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from pumplink import schema as sch
 from pumplink.errors import SpecError
-from pumplink.spec import DEFAULT_SPEC, parse_spec
+from pumplink.inputs import schema as sch
+from pumplink.inputs.pump import DEFAULT_SPEC, parse_spec
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -1,4 +1,4 @@
-"""Unit tests of pumplink.spec: validation messages, the head-based rope force, defaults and the
+"""Unit tests of pumplink.inputs.pump: validation messages, the head-based rope force, defaults and the
 TOML round trip (spec_to_dict -> tomli_w -> load_spec).
 
 The allowed ranges are read from the model's declared constraints (the contract the messages must
@@ -19,7 +19,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from pumplink.errors import PumplinkError, SpecError
-from pumplink.spec import PumpSpec, default_spec, load_spec, parse_spec, spec_to_dict
+from pumplink.inputs.pump import PumpSpec, default_spec, load_spec, parse_spec, spec_to_dict
 
 ROPE = {
     "name": "t",

@@ -1,4 +1,4 @@
-"""The synthesis commands' library (pumplink.synthesis): every result re-simulated, the
+"""The synthesis commands' library (pumplink.studies.textbook): every result re-simulated, the
 realisability boundaries from both sides, the K = 1 cases and the published example.
 
 Independent routes: a dense brute-force sweep written here (no refinement, no kernel synthesis
@@ -15,9 +15,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pumplink import synthesis as S
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.mechanisms import crank_rocker as cr
+from pumplink.studies import textbook as S
 
 
 def brute_slider(r, rod, e, n=2_000_001):

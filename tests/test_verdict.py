@@ -133,11 +133,12 @@ def test_every_command_decides_through_assess(monkeypatch, tmp_path):
     """force, speed, batch, optimize and piston pumps all decide through pumplink.verdict.assess,
     called by the one evaluation (pumplink.evaluate): replace it there with one that fails every
     design and each of them reports FAIL."""
-    import pumplink.analysis
     import pumplink.evaluate
-    import pumplink.optimize
+    import pumplink.search.optimize
+    import pumplink.studies.force
+    import pumplink.studies.speed
     import pumplink.verdict as verdict
-    from pumplink.spec import default_spec
+    from pumplink.inputs.pump import default_spec
 
     real = verdict.assess
 
@@ -148,17 +149,18 @@ def test_every_command_decides_through_assess(monkeypatch, tmp_path):
     monkeypatch.setattr(pumplink.evaluate, "assess", never)
     spec = default_spec()
     assert real(True, 1.0, 1.0, 100.0).passed  # the real one passes such a design
-    assert not pumplink.analysis.force_analysis(spec, keep_samples=False).passed
+    assert not pumplink.studies.force.force_analysis(spec, keep_samples=False).passed
     from pumplink import batch
 
     chunk = batch.evaluate_chunk(batch.spec_batch(spec, "default"), 0, 1, 0)
     assert not chunk.passed.any()
-    problem = pumplink.optimize.make_problem(spec)
-    result = pumplink.optimize.optimize(problem, maxiter=30, polish=False)
+    problem = pumplink.search.optimize.make_problem(spec)
+    result = pumplink.search.optimize.optimize(problem, maxiter=30, polish=False)
     assert not result.best_result.passed and not result.spec_result.passed
     fly = spec.model_copy(update={"wheel": spec.wheel.model_copy(update={"mass": 4.0})})
-    assert not pumplink.analysis.speed_sweep(fly, [360.0]).passed.any()
-    from pumplink.piston import force_analysis, parse_piston
+    assert not pumplink.studies.speed.speed_sweep(fly, [360.0]).passed.any()
+    from pumplink.inputs.piston import parse_piston
+    from pumplink.studies.piston import force_analysis
 
     piston = {
         "mechanism": "crank-slider",

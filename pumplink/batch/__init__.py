@@ -1,8 +1,22 @@
-"""Batch runs over design variants: batch files (:mod:`~pumplink.batch.files`) and their
+"""Batch runs over design variants: batch files (:mod:`~pumplink.inputs.batch`) and their
 evaluation in chunks on any executor (:mod:`~pumplink.batch.runner`)."""
 
 from pumplink.batch import runner as run_module
-from pumplink.batch.files import (
+from pumplink.batch.runner import (
+    CHUNK_DESIGNS,
+    DYNAMICS_LABEL,
+    FLYWHEEL_DESIGNS,
+    FLYWHEEL_LABEL,
+    MODEL_LABELS,
+    QUASI_STATIC_LABEL,
+    SUB_DESIGNS,
+    TASK_SAMPLES,
+    Chunk,
+    evaluate_chunk,
+    plan,
+    run,
+)
+from pumplink.inputs.batch import (
     FAIL_CHECKS,
     INERTIA_KEYS,
     MAX_AXIS_VALUES,
@@ -21,20 +35,6 @@ from pumplink.batch.files import (
     variant_name,
     variant_names,
     variant_spec,
-)
-from pumplink.batch.runner import (
-    CHUNK_DESIGNS,
-    DYNAMICS_LABEL,
-    FLYWHEEL_DESIGNS,
-    FLYWHEEL_LABEL,
-    MODEL_LABELS,
-    QUASI_STATIC_LABEL,
-    SUB_DESIGNS,
-    TASK_SAMPLES,
-    Chunk,
-    evaluate_chunk,
-    plan,
-    run,
 )
 
 __all__ = [

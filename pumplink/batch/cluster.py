@@ -38,9 +38,9 @@ from typing import Any
 import dask
 import distributed
 
-from pumplink.batch.files import Batch
 from pumplink.batch.runner import Chunk, evaluate_chunk, plan, task_designs
 from pumplink.errors import SpecError, shown
+from pumplink.inputs.batch import Batch
 
 #: Seconds to wait for a remote scheduler to answer (a reachable one answers in milliseconds).
 CONNECT_TIMEOUT = 5.0
@@ -211,15 +211,14 @@ def fingerprint() -> str:
     """pumplink's version and a digest of its source files: the driver and the workers must run
     the same code, or the rows would not be those of ``--workers 1``."""
     import hashlib
+    from importlib.metadata import version
     from pathlib import Path
 
-    import pumplink
-
-    root = Path(pumplink.__file__).parent
+    root = Path(__file__).resolve().parents[1]  # the pumplink package
     digest = hashlib.sha256()
     for path in sorted(root.rglob("*.py")):
         digest.update(path.relative_to(root).as_posix().encode() + b"\0" + path.read_bytes())
-    return f"{pumplink.__version__} ({digest.hexdigest()[:12]})"
+    return f"{version('pumplink')} ({digest.hexdigest()[:12]})"
 
 
 def _check_workers(client: distributed.Client, scheduler: Scheduler) -> None:

@@ -3,7 +3,7 @@
 Chunks are planned in variant order and evaluated in this process or on a pool of worker
 processes (loky, which notices a worker that dies - SIGKILL, the out-of-memory killer - and
 raises instead of waiting for it forever); the rows come back in order.  The numbers
-per variant are bit-for-bit those of :func:`pumplink.analysis.force_analysis` (``pumplink force
+per variant are bit-for-bit those of :func:`pumplink.studies.force.force_analysis` (``pumplink force
 --summary``) on the same variant: the same kernels, vectorised over designs.
 """
 
@@ -15,8 +15,9 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.batch.files import Batch, axis_indices
-from pumplink.evaluate import evaluate, pump_designs
+from pumplink.evaluate import PistonEvaluation, evaluate, piston_designs, pump_designs
+from pumplink.inputs.batch import CRANK_SLIDER, FOUR_BAR, Batch, axis_indices
+from pumplink.mechanisms import crank_slider as cs
 from pumplink.mechanisms.fourbar import infeasibility_reason
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
 from pumplink.verdict import FAIL, WARN, Verdict
@@ -47,8 +48,40 @@ SUB_DESIGNS = 128
 FLYWHEEL_DESIGNS = 1024
 
 
+class _Judged:
+    """What a chunk of either pump gives the run: its size, the verdict's level per variant and
+    the one ``--fail-on`` rule (``feasible``, ``mean_ok``, ``peak_ok`` and ``verdict`` per variant)."""
+
+    def __len__(self) -> int:
+        return self.stop - self.start
+
+    @property
+    def level(self) -> np.ndarray:
+        """The verdict per variant: 0 PASS, 1 PASS with warnings, 2 FAIL."""
+        return np.asarray(self.verdict.level)
+
+    def failed(self, fail_on: Sequence[str]) -> np.ndarray:
+        """True where a variant fails one of the checks selected by ``--fail-on``: ``mean``,
+        ``peak``, ``infeasible``, ``checks`` (any other check that fails) and ``warnings`` (any
+        check that warns, as ``--strict``)."""
+        out = np.zeros(len(self), bool)
+        if "infeasible" in fail_on:
+            out |= ~self.feasible
+        if "mean" in fail_on:
+            out |= self.feasible & ~self.mean_ok
+        if "peak" in fail_on:
+            out |= self.feasible & ~self.peak_ok
+        for c in self.verdict.checks:
+            level = np.asarray(c.level)
+            if "checks" in fail_on and c.key not in ("mean_force", "peak_force"):
+                out |= self.feasible & (level == FAIL)
+            if "warnings" in fail_on:
+                out |= self.feasible & (level == WARN)
+        return out
+
+
 @dataclass(frozen=True)
-class Chunk:
+class Chunk(_Judged):
     """Results for variants ``start..stop-1`` of one batch (arrays over those variants, SI units).
 
     ``reason`` holds the infeasibility sentence (None when feasible); the checks follow
@@ -91,6 +124,8 @@ class Chunk:
     verdict: Verdict | None = None  # every check, per variant (:func:`pumplink.verdict.assess`)
     model_index: np.ndarray | None = None  # 0 quasi-static, 1 flywheel, 2 full dynamics (models.ORDER)
 
+    mechanism = FOUR_BAR
+
     @property
     def model(self) -> list[str]:
         """The words of the model that decided each variant (``model`` column)."""
@@ -98,36 +133,78 @@ class Chunk:
         return [MODEL_LABELS[i] for i in index.tolist()]
 
     @property
-    def level(self) -> np.ndarray:
-        """The verdict per variant: 0 PASS, 1 PASS with warnings, 2 FAIL."""
-        return np.asarray(self.verdict.level)
-
-    @property
     def verdict_peak_force(self) -> np.ndarray:
         """The peak force that decides the verdict [N]: flywheel or windowed dead-band peak."""
         return np.where(self.flywheel, self.least_peak_force, self.dead_band_peak_force)
 
-    def __len__(self) -> int:
-        return self.stop - self.start
 
-    def failed(self, fail_on: Sequence[str]) -> np.ndarray:
-        """True where a variant fails one of the checks selected by ``--fail-on``: ``mean``,
-        ``peak``, ``infeasible``, ``checks`` (any other check that fails) and ``warnings`` (any
-        check that warns, as ``--strict``)."""
-        out = np.zeros(len(self), bool)
-        if "infeasible" in fail_on:
-            out |= ~self.feasible
-        if "mean" in fail_on:
-            out |= self.feasible & ~self.mean_ok
-        if "peak" in fail_on:
-            out |= self.feasible & ~self.peak_ok
-        for c in self.verdict.checks:
-            level = np.asarray(c.level)
-            if "checks" in fail_on and c.key not in ("mean_force", "peak_force"):
-                out |= self.feasible & (level == FAIL)
-            if "warnings" in fail_on:
-                out |= self.feasible & (level == WARN)
-        return out
+@dataclass(frozen=True)
+class PistonChunk(_Judged):
+    """Results for piston-pump variants ``start..stop-1`` of one batch: the one evaluation's
+    (:class:`pumplink.evaluate.PistonEvaluation`) with the variants' spec values it shows
+    (``spec``: dotted key -> a value per variant, spec units) and the infeasibility sentences."""
+
+    batch: int
+    start: int
+    stop: int
+    values: np.ndarray  # (n, axes) varied values
+    evaluation: PistonEvaluation
+    spec: dict[str, np.ndarray]
+    reason: list
+
+    mechanism = CRANK_SLIDER
+
+    @property
+    def feasible(self) -> np.ndarray:
+        return self.evaluation.feasible
+
+    @property
+    def verdict(self) -> Verdict:
+        return self.evaluation.verdict
+
+    @property
+    def mean_ok(self) -> np.ndarray:
+        return np.asarray(self.verdict["mean_force"].passed)
+
+    @property
+    def peak_ok(self) -> np.ndarray:
+        return np.asarray(self.verdict["peak_force"].passed)
+
+    @property
+    def passed(self) -> np.ndarray:
+        return np.asarray(self.verdict.passed)
+
+    @property
+    def mean_force(self) -> np.ndarray:
+        return self.evaluation.mean_force
+
+    @property
+    def verdict_peak_force(self) -> np.ndarray:
+        return self.evaluation.peak_force
+
+    @property
+    def least_peak_force(self) -> np.ndarray:
+        return self.evaluation.least_peak_force
+
+    @property
+    def flywheel(self) -> np.ndarray:
+        return self.evaluation.model_index > 0
+
+    @property
+    def inertia(self) -> np.ndarray:
+        return np.broadcast_to(np.asarray(self.evaluation.designs.inertia, float), (len(self),))
+
+    @property
+    def speed_fluctuation(self) -> np.ndarray:
+        return self.spec["operator.speed_fluctuation"]
+
+    @property
+    def force_limit(self) -> np.ndarray:
+        return self.spec["operator.force_limit"]
+
+    @property
+    def model(self) -> list[str]:
+        return [MODEL_LABELS[i] for i in self.evaluation.model_index.tolist()]
 
 
 def batch_values(batch: Batch, cols: dict[str, np.ndarray]):
@@ -149,7 +226,7 @@ def evaluate_chunk(
     """Synthesis, force checks and verdict for variants ``start..stop-1`` of a batch.
 
     One call of :func:`pumplink.evaluate.evaluate` over the variants; the numbers equal
-    :func:`pumplink.analysis.force_analysis` (``keep_samples=False``) on each variant's spec
+    :func:`pumplink.studies.force.force_analysis` (``keep_samples=False``) on each variant's spec
     exactly, the energy models included where the variant gives inertia.
 
     Parameters
@@ -168,6 +245,8 @@ def evaluate_chunk(
         values = np.empty((n, 0))
     cols = {a.key: values[:, j] for j, a in enumerate(batch.axes)}
     value = batch_values(batch, cols)
+    if batch.mechanism == CRANK_SLIDER:
+        return _piston_chunk(batch, start, stop, batch_index, values, value)
     designs = pump_designs(value)
     ev = evaluate(designs, model, samples=samples)
 
@@ -220,7 +299,36 @@ def evaluate_chunk(
     )
 
 
-# ----------------------------------------------------------------------------- scheduling
+#: The piston spec's keys a batch row shows, per variant (spec units).
+PISTON_KEYS = (
+    "crank_slider.crank",
+    "crank_slider.rod",
+    "crank_slider.offset",
+    "operator.handle",
+    "piston.bore",
+    "piston.head",
+    "operator.speed",
+    "operator.force_limit",
+    "operator.speed_fluctuation",
+)
+
+
+def _piston_chunk(batch: Batch, start: int, stop: int, batch_index: int, values, value) -> PistonChunk:
+    """:func:`evaluate_chunk` for a piston-pump batch (one evaluation over its variants)."""
+    n = stop - start
+    ev = evaluate(piston_designs(value))
+    spec = {
+        k: np.broadcast_to(np.asarray(value(k) if value(k) is not None else 0.0, float), (n,))
+        for k in PISTON_KEYS
+    }
+    reasons: list = [None] * n
+    for i in np.nonzero(~ev.feasible)[0].tolist():
+        reasons[i] = cs.infeasibility_reason(
+            spec["crank_slider.crank"][i], spec["crank_slider.rod"][i], spec["crank_slider.offset"][i]
+        )
+    return PistonChunk(batch_index, start, stop, values, ev, spec, reasons)
+
+
 # ----------------------------------------------------------------------------- scheduling
 def plan(
     batches: Sequence[Batch], chunk: tuple[int, int] = (1, 1), designs: int = CHUNK_DESIGNS

@@ -50,7 +50,7 @@ def _interrupt(signum, frame):  # Ctrl-C and SIGTERM unwind: temp files removed,
 def _option_error(exc, args: list[str]) -> str:
     """A usage error (bad option value, unknown option, missing argument) as one line in the
     style of the spec errors: the option, the value given, what is allowed, where to look."""
-    from typer._click import exceptions as ce
+    from typer._click import exceptions as ce  # noqa: PLC2701 (typer's bundled click has no public path)
 
     ctx = getattr(exc, "ctx", None)
     where = f" (see `{ctx.command_path} --help`)" if ctx is not None else ""
@@ -143,7 +143,7 @@ def _interrupted(say: bool = True) -> None:
 
 
 def _run(args: list[str]) -> int:
-    from typer._click import exceptions as ce
+    from typer._click import exceptions as ce  # noqa: PLC2701 (typer's bundled click has no public path)
     from typer.exceptions import Abort
 
     if hasattr(signal, "SIGPIPE"):  # `pumplink ... | head` ends quietly, like any Unix filter (not exit 1)

@@ -116,9 +116,10 @@ def batch(
 
     Example: [bold]pumplink batch configs/ --junit report.xml[/]
 
-    Piston-pump specs and batch files (mechanism = "crank-slider") run alone, without --junit.
+    Piston-pump specs and batch files (mechanism = "crank-slider") run the same way, with every
+    option; a run holds one kind of pump.
 
-    Example: [bold]pumplink batch configs/grids/piston-bore.toml[/]
+    Example: [bold]pumplink batch configs/grids/piston-bore.toml --junit piston.xml[/]
 
     Grids too large for one machine run on Dask (README, "Grids too large for one machine").
     """
@@ -151,16 +152,17 @@ def batch(
             f"--workers {workers} is for the local pool; with --scheduler the cluster's workers run the "
             "tasks (local:N sets how many)"
         )
-    from pumplink.cli import piston
-
-    if piston.is_piston_input(inputs):  # mechanism = "crank-slider": docs/piston-pump.md
-        if model is not None:
-            raise SpecError("--model is for rope-pump batches; a piston pump's model follows its spec")
-        for flag, given in (("--scheduler", where is not None), ("--format parquet", fmt.value == "parquet")):
-            if given:
-                raise SpecError(f"{flag} is for rope-pump batches; piston-pump batches run whole, without it")
-        piston.batch(inputs, fmt.value, out, set(sel), junit, chunk)
     batches = _batch.load_inputs(inputs)
+    kinds = {b.mechanism for b in batches}
+    if len(kinds) > 1:
+        raise SpecError(
+            "give piston-pump files (mechanism = 'crank-slider') and rope-pump files in separate runs "
+            "(their rows have different columns)"
+        )
+    if model is not None and kinds == {"crank-slider"}:
+        raise SpecError(
+            "--model is for rope pumps; a piston pump's model follows its spec (a flywheel or none)"
+        )
     key = model_key(model)  # the flywheel and full dynamics decide where the variants give inertia
     tasks = _batch.plan(batches, k_n, _batch.run_module.task_designs(samples))
     total = sum(e - s for _, s, e in tasks)
@@ -198,7 +200,11 @@ def batch(
             what = str(exc) if client is not None else "a worker process was killed (out of memory?)"
             sys.stderr.write(f"interrupted: {what}; no output file written\n")
             raise typer.Exit(130) from None
-    if fmt.value == "table":
+    if fmt.value == "table" and kinds == {"crank-slider"}:
+        from pumplink.output.piston import render_batch_table
+
+        render_batch_table(rows, summary)
+    elif fmt.value == "table":
         rb.render_table(summary, rows)
     else:
         wrote = [p for p in (out, junit) if p is not None]

@@ -194,7 +194,7 @@ def _main(
 
 
 def load_specs(paths: list[Path]):
-    from pumplink.spec import load_spec
+    from pumplink.inputs.pump import load_spec
 
     return [load_spec(p) for p in paths]
 
@@ -202,7 +202,7 @@ def load_specs(paths: list[Path]):
 def spec_or_default(path: Path | None):
     """The spec at ``path``; without one, ``./pump.toml`` if it exists (saying so on stderr), else
     the built-in design."""
-    from pumplink.spec import default_spec, load_spec
+    from pumplink.inputs.pump import default_spec, load_spec
 
     if path is not None:
         return load_spec(path)

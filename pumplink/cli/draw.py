@@ -60,8 +60,8 @@ def draw(
     if out is not None:
         check_path(out)
     pyplot()
-    from pumplink.drawing import drawing, motion
     from pumplink.output.drawings import animation, linkage_drawing
+    from pumplink.studies.drawing import drawing, motion
 
     s = load_specs([spec])[0]
     dr = drawing(s, peak=peak)

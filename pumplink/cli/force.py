@@ -103,8 +103,8 @@ def force(
     """
     import math
 
-    from pumplink.analysis import force_analysis
-    from pumplink.output.tables import render_force
+    from pumplink.output.force import render_force
+    from pumplink.studies.force import force_analysis
 
     if at and any(not math.isfinite(a) for a in at):
         raise SpecError(
@@ -116,12 +116,10 @@ def force(
             f"--samples {samples} keeps too many rows (at most {SAMPLE_LIMIT_KEPT:,}); "
             "add --summary to stream them"
         )
-    from pumplink.spec import is_piston_file
+    from pumplink.inputs.toml import is_piston_file
 
     if spec is not None and is_piston_file(spec):  # mechanism = "crank-slider": docs/piston-pump.md
-        from pumplink.cli import piston
-
-        piston.force(spec, speed, samples, at, summary, plot, explain, verify, fmt.value)
+        _piston(spec, speed, samples, at, summary, plot, explain, verify, fmt.value)
     if plot is not None:
         from pumplink.output.charts import check_path, pyplot
 
@@ -150,12 +148,13 @@ def force(
     extra, agrees = {}, True
     best = None
     if explain and result.design.feasible:
-        from pumplink.analysis import cadence
-        from pumplink.analysis import explain as explain_model
-        from pumplink.output.tables import cadence_row, explain_rows
+        from pumplink.output.force import explain_rows
+        from pumplink.output.speed import cadence_row
+        from pumplink.studies.explain import explain as explain_model
+        from pumplink.studies.speed import cadence
 
         effects, why = explain_model(result)
-        best = cadence(result) if s.inertia is not None else None
+        best = cadence(result) if s.gives_inertia else None
         extra["explain"] = {
             "model": result.model,
             "effects": explain_rows(effects),
@@ -164,15 +163,15 @@ def force(
         }
     scene_ok = result.scene is not None and math.isfinite(result.scene.least_peak_force)
     if verify and not result.flywheel and result.design.feasible:  # the quasi-static model decided
-        from pumplink.analysis import verify_quasi_static
-        from pumplink.output.tables import static_verify_row
+        from pumplink.output.force import static_verify_row
+        from pumplink.studies.verify import verify_quasi_static
 
         check = verify_quasi_static(result)
         extra["verify"] = static_verify_row(check)
         agrees = check.agrees
     elif verify and scene_ok:
-        from pumplink.analysis import verify as verify_motion
-        from pumplink.output.tables import verify_row
+        from pumplink.output.force import verify_row
+        from pumplink.studies.verify import verify as verify_motion
 
         check = verify_motion(result)
         extra["verify"] = verify_row(check)
@@ -182,12 +181,12 @@ def force(
             f"verify: nothing to integrate; no finite peak force keeps the wheel turning "
             f"(energy band J·ω̄²·δ = {result.energy_band:.3g} J)\n"
         )
-    from pumplink.analysis import suggest
+    from pumplink.search.suggest import suggest
 
     advice = suggest(s, result) if result.design.feasible else []
     render_force(result, fmt.value, summary=summary, extra=extra, strict=strict, advice=advice)
     if fmt.value != "json":  # the reports follow the table; with CSV on stdout they go to stderr
-        from pumplink.output.tables import render_explain, render_verify
+        from pumplink.output.force import render_explain, render_verify
 
         side = sys.stdout if fmt.value == "table" else sys.stderr
         if "explain" in extra:
@@ -195,9 +194,31 @@ def force(
         if "verify" in extra:
             render_verify(extra["verify"], out=side)
     if plot is not None and result.design.feasible:
-        from pumplink.analysis import force_curve as curve
         from pumplink.output.charts import force_curve
+        from pumplink.studies.force import force_curve as curve
 
         force_curve(result, curve(result), plot)
         sys.stderr.write(f"wrote {plot}\n")
     raise typer.Exit(0 if result.passed_strict(strict) and agrees else 1)
+
+
+def _piston(spec: Path, speed, samples: int, at, summary: bool, plot, explain: bool, verify: bool, fmt: str):
+    """``pumplink force SPEC`` for a piston-pump spec; exits 0 (PASS) or 1 (FAIL, infeasible, a
+    --verify disagreement)."""
+    if plot is not None:
+        raise SpecError(
+            f"--plot is for rope-pump specs; {spec} is a piston pump (mechanism = 'crank-slider')"
+        )
+    from pumplink.inputs.piston import load_piston
+    from pumplink.output.piston import render_checks, render_force
+    from pumplink.studies import piston
+
+    result = piston.force_analysis(
+        load_piston(spec), speed, samples, at_deg=at or None, keep_samples=not summary
+    )
+    why = piston.explain(result) if explain and result.feasible else None
+    check = piston.verify(result) if verify and result.feasible else None
+    render_force(result, fmt, summary=summary, why=why, check=check)
+    if fmt != "json":
+        render_checks(result, why, check)
+    raise typer.Exit(0 if result.passed and (check is None or check.agrees) else 1)

@@ -38,7 +38,7 @@ def init(
     Example: [bold]pumplink init village.toml --example village-10m[/]
     """
     from pumplink.examples import example_names, example_text
-    from pumplink.spec import spec_template
+    from pumplink.inputs.pump import spec_template
 
     if example == "list":
         for name, title in example_names().items():

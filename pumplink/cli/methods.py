@@ -61,15 +61,11 @@ def methods(
 
     Example: [bold]pumplink methods --plot methods.png --samples-plot sampling.svg --format json[/]
     """
-    import numpy as np
-
-    from pumplink import accuracy
-    from pumplink.analysis import design
-    from pumplink.errors import InfeasibleDesign
-    from pumplink.methods import METHODS
+    from pumplink.inputs.pump import default_spec, load_spec
     from pumplink.output.charts import check_path, plot_methods, plot_sampling, pyplot
-    from pumplink.output.tables import render_methods
-    from pumplink.spec import default_spec, load_spec
+    from pumplink.output.methods import render_methods
+    from pumplink.studies import accuracy
+    from pumplink.studies.methods import METHODS
 
     names = method or list(METHODS)
     unknown = [m for m in names if m not in METHODS]
@@ -86,26 +82,11 @@ def methods(
         raise SpecError("the 50-digit reference needs mpmath; install it with: pip install mpmath") from None
 
     s = load_spec(spec) if spec is not None else default_spec()
-    d = design(s)
-    if not d.feasible:
-        raise InfeasibleDesign(f"{s.name}: {d.error}")
-    syn, mw = d.synthesis, s.wheel_torque
-    lk = syn.linkage
     from pumplink.output.formats import progress
 
-    n_sets = len(accuracy.sample_sets(lk, syn.dead_centre_extended, syn.dead_centre_folded, 1))
-    with progress((len(names) + 1) * n_sets, "methods") as advance:
-        rows = accuracy.compare_methods(
-            lk, syn.dead_centre_extended, syn.dead_centre_folded, mw, names, samples, repeats, advance
-        )
-    study = accuracy.sampling_study(
-        lk,
-        syn.dead_centre_extended,
-        syn.dead_centre_folded,
-        float(np.radians(s.operator.dead_band)),
-        mw,
-        syn.swing,
-    )
+    with progress(accuracy.method_steps(names), "methods") as advance:
+        found = accuracy.method_study(s, names, samples, repeats, advance)
+    rows, study = found.methods, found.sampling
     render_methods(s.name, rows, study, fmt.value, dead_band_deg=s.operator.dead_band)
     if plot is not None:
         plot_methods(rows, plot, title=s.name)

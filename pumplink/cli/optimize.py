@@ -83,17 +83,9 @@ def optimize(
 
     Example: [bold]pumplink optimize configs/prototype.toml --write best.toml[/]
     """  # noqa: E501 -- typer prints this docstring as the --help text, keeping its line breaks
-    from pumplink.optimize import (
-        GRIP_HEIGHT_M,
-        STROKE_M,
-        make_problem,
-        parse_bounds,
-        parse_range,
-    )
-    from pumplink.optimize import (
-        optimize as run,
-    )
-    from pumplink.output.tables import optimize_row, render_optimize
+    from pumplink.output.optimize import optimize_row, render_optimize
+    from pumplink.search.optimize import GRIP_HEIGHT_M, STROKE_M, make_problem, parse_bounds, parse_range
+    from pumplink.search.optimize import optimize as run
 
     bounds = parse_bounds(vary)
     gh = parse_range("grip-height", grip_height, GRIP_HEIGHT_M)
@@ -116,8 +108,8 @@ def optimize(
     if write is not None:
         import tomli_w
 
-        from pumplink.optimize import best_spec_dict
         from pumplink.output.formats import atomic_write
+        from pumplink.search.optimize import best_spec_dict
 
         with atomic_write(write) as f:
             f.write(tomli_w.dumps(best_spec_dict(result)))

@@ -34,10 +34,10 @@ def report(
     pyplot()
     import tomli_w
 
-    from pumplink.analysis import force_analysis, force_curve
-    from pumplink.drawing import drawing
+    from pumplink.inputs.pump import spec_to_dict
     from pumplink.output.report import report_html
-    from pumplink.spec import spec_to_dict
+    from pumplink.studies.drawing import drawing
+    from pumplink.studies.force import force_analysis, force_curve
 
     s = load_specs([spec])[0]
     dr = drawing(s)

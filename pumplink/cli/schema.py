@@ -36,7 +36,7 @@ def schema(
     """
     import json
 
-    from pumplink.schema import schema as build
+    from pumplink.inputs.schema import schema as build
 
     text = json.dumps(build(kind.value), indent=2, ensure_ascii=False) + "\n"
     if out is None:

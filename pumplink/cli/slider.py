@@ -37,7 +37,7 @@ def slider(
     Example: [bold]pumplink slider --stroke 0.1 --rod-ratio 4 --time-ratio 1.2[/]
     """
     from pumplink.output.mechanisms import render_synthesis, synthesis_labels, synthesis_row
-    from pumplink.synthesis import slider as synthesise
+    from pumplink.studies.textbook import slider as synthesise
 
     rep = synthesise(stroke, rod_ratio, time_ratio, offset_ratio)
     render_synthesis(synthesis_row(rep), synthesis_labels(rep), fmt.value)

@@ -39,7 +39,7 @@ def slotted(
     Example: [bold]pumplink slotted --time-ratio 1.5 --stroke 0.3[/]
     """
     from pumplink.output.mechanisms import render_synthesis, synthesis_labels, synthesis_row
-    from pumplink.synthesis import slotted as synthesise
+    from pumplink.studies.textbook import slotted as synthesise
 
     rep = synthesise(time_ratio, stroke, frame)
     render_synthesis(synthesis_row(rep), synthesis_labels(rep), fmt.value)

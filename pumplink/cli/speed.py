@@ -61,8 +61,8 @@ def speed(
     """
     import numpy as np
 
-    from pumplink.analysis import speed_sweep
-    from pumplink.output.tables import render_speed
+    from pumplink.output.speed import render_speed
+    from pumplink.studies.speed import speed_sweep
 
     if hi < lo:
         raise SpecError(f"--to {hi:g} is below --from {lo:g}; give --from LOW --to HIGH in deg/s")

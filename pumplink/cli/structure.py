@@ -30,8 +30,8 @@ def structure(
 
     Example: [bold]pumplink structure configs/mechanisms/double-parallelogram.toml --format json[/]
     """
+    from pumplink.inputs.structure import analyse, load_structure
     from pumplink.output.mechanisms import render_structure, structure_row
-    from pumplink.structure_spec import analyse, load_structure
 
     spec = load_structure(mechanism)
     a = analyse(spec, str(mechanism))

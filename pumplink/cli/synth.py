@@ -21,8 +21,8 @@ def synth(
 
     Example: [bold]pumplink synth configs/prototype.toml configs/village-10m.toml --format json[/]
     """
-    from pumplink.analysis import design
-    from pumplink.output.tables import render_designs
+    from pumplink.output.synth import render_designs
+    from pumplink.studies.force import design
 
     designs = [design(s) for s in load_specs(specs)]
     render_designs(designs, fmt.value)

@@ -46,8 +46,8 @@ def template(
 
     if out.suffix.lower() != ".dxf":
         pyplot()
-    from pumplink.drawing import drawing
     from pumplink.output.template import write_template
+    from pumplink.studies.drawing import drawing
 
     s = load_specs([spec])[0]
     dr = drawing(s)

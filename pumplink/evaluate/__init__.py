@@ -66,7 +66,9 @@ class PumpDesigns:
     Attributes
     ----------
     L1, D1, b : frame placement [m] (docs/physics.md §1);  rocker, handle : [m];  swing : [rad].
-    wheel_torque : Mw = Fw rw [N m];  inertia : J about the axle [kg m^2] (NaN: not given).
+    wheel_radius : rw [m];  rope_force : Fw at the rim [N];  wheel_torque : Mw = Fw rw [N m].
+    moving_mass : rope and water moving with the rim [kg];  inertia : J about the axle [kg m^2]
+    (NaN: not given).
     speed : mean wheel speed ω̄ [rad/s];  dead_band : [rad];  speed_fluctuation : δ [-].
     force_limit : [N];  mass_per_length : [kg/m] of the handle and coupler tube.
     coupler_mass, handle_mass : [kg] (NaN: bars of ``mass_per_length``);  arm_mass : [kg].
@@ -80,7 +82,10 @@ class PumpDesigns:
     rocker: Any
     handle: Any
     swing: Any
+    wheel_radius: Any
+    rope_force: Any
     wheel_torque: Any
+    moving_mass: Any
     inertia: Any
     speed: Any
     dead_band: Any
@@ -108,8 +113,8 @@ def pump_designs(value: Callable[[str], Any], speed=None) -> PumpDesigns:
     speed : mean wheel speed [deg/s] instead of ``operator.speed`` (a float or an array).
     """
     inertia = np.nan
+    mass = _load.moving_mass(value("load.moving_mass"), value("load.head"), value("load.pipe_diameter"))
     if any(value(k) is not None for k in INERTIA_KEYS):
-        mass = _load.moving_mass(value("load.moving_mass"), value("load.head"), value("load.pipe_diameter"))
         inertia = _load.inertia(value("wheel.radius"), value("wheel.inertia"), value("wheel.mass"), mass)
     rope = _load.rope_force(
         value("load.rope_force"), value("load.head"), value("load.pipe_diameter"), value("load.efficiency")
@@ -121,7 +126,10 @@ def pump_designs(value: Callable[[str], Any], speed=None) -> PumpDesigns:
         rocker=value("linkage.rocker"),
         handle=value("linkage.handle"),
         swing=np.radians(value("linkage.swing")),
+        wheel_radius=value("wheel.radius"),
+        rope_force=rope,
         wheel_torque=rope * value("wheel.radius"),  # Mw = Fw rw, Eq. (3) of the pump paper
+        moving_mass=mass,
         inertia=inertia,
         speed=np.radians(value("operator.speed") if speed is None else speed),
         dead_band=np.radians(value("operator.dead_band")),
@@ -158,19 +166,17 @@ class PistonDesigns:
 
 def piston_designs(value: Callable[[str], Any], speed=None) -> PistonDesigns:
     """The columns of piston pumps from their spec values (``value`` as in :func:`pump_designs`)."""
-    from pumplink.models import piston as _pm
-
     inertia = np.nan
-    if value("wheel.inertia") is not None:
-        inertia = value("wheel.inertia")
-    elif value("wheel.mass") is not None:
-        inertia = value("wheel.mass") * value("wheel.radius") ** 2  # a rim on the crank shaft
+    if value("wheel.inertia") is not None or value("wheel.mass") is not None:
+        inertia = _load.rim_inertia(value("wheel.inertia"), value("wheel.mass"), value("wheel.radius"))
     return PistonDesigns(
         crank=value("crank_slider.crank"),
         rod=value("crank_slider.rod"),
         offset=_or(value("crank_slider.offset"), 0.0),
         handle=value("operator.handle"),
-        load_force=_pm.load_force(value("piston.bore"), value("piston.head"), value("piston.efficiency")),
+        load_force=_load.piston_load_force(
+            value("piston.bore"), value("piston.head"), value("piston.efficiency")
+        ),
         speed=np.radians(value("operator.speed") if speed is None else speed),
         force_limit=value("operator.force_limit"),
         inertia=inertia,

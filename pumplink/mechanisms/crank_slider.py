@@ -398,3 +398,15 @@ def synthesize_from_time_ratio(stroke, time_ratio, rod_ratio):
         nu = (Lg * Lg - 1) * np.sin(theta) / h  # Eq. (1.11b)
         r = np.where(reason == OK, H, 1.0) / h
     return _design(r, Lg * r, nu * r, reason, TIME_RATIO_TOO_LARGE)
+
+
+def infeasibility_reason(crank_length, rod_length, offset) -> str | None:
+    """Why the crank of this crank-slider cannot turn a full revolution, with the fix, or None
+    when it can (:func:`turns_fully`; one design, lengths in metres)."""
+    r, rod, e = float(crank_length), float(rod_length), float(offset)
+    if bool(turns_fully(r, rod, e)):
+        return None
+    return (
+        f"rod {rod:g} m is not longer than crank {r:g} m + |offset| {abs(e):g} m, so the crank cannot "
+        f"turn fully; lengthen the rod beyond {r + abs(e):g} m"
+    )

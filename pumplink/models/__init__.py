@@ -16,49 +16,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pumplink.constants import MODEL_WORDS
 from pumplink.models import quasi_static
+from pumplink.models.conditions import Conditions, Masses  # noqa: F401 (with the registry: what a model is given)
 
 #: Registry keys (the ``model`` of reports is :attr:`Model.label`).
 QUASI_STATIC = "quasi-static"
 FLYWHEEL = "flywheel"
 DYNAMICS = "dynamics"
-
-
-@dataclass(frozen=True)
-class Masses:
-    """Moving masses of the linkage (floats or arrays over designs) [kg].
-
-    Attributes
-    ----------
-    coupler : mass of the coupler, a uniform bar from the crank pin A to the joint B.
-    handle : mass of the handle, a uniform bar from the rocker pivot O4 along the rocker, of
-        length max(H, rocker).
-    grip : point mass at the grip (the operator's hands and forearms), 0 for the hand force.
-    """
-
-    coupler: np.ndarray | float = 0.0
-    handle: np.ndarray | float = 0.0
-    grip: np.ndarray | float = 0.0
-
-
-@dataclass(frozen=True)
-class Conditions:
-    """Operating conditions of designs (floats or arrays over designs, SI units).
-
-    Attributes
-    ----------
-    speed : mean wheel speed ω̄ [rad/s].
-    masses : moving link masses and the point mass at the grip [kg] (full dynamics only).
-    dead_band : crank angle each side of a dead centre left to the wheel's inertia [rad].
-    inertia : J about the wheel axle [kg m^2]; NaN where not given.
-    speed_fluctuation : δ = (ωmax − ωmin)/ω̄ allowed [-].
-    """
-
-    speed: np.ndarray | float
-    dead_band: np.ndarray | float
-    inertia: np.ndarray | float = np.nan
-    speed_fluctuation: np.ndarray | float = np.nan
-    masses: Masses = Masses()  # coupler, handle, grip [kg] (full dynamics)
 
 
 @dataclass(frozen=True)
@@ -108,7 +73,7 @@ def _dynamics_peak(fourbar, dead_centre_extended, dead_centre_folded, wheel_torq
 MODELS: dict[str, Model] = {
     QUASI_STATIC: Model(
         QUASI_STATIC,
-        "quasi-static + dead band",
+        MODEL_WORDS[QUASI_STATIC],
         _quasi_static_peak,
         ("dead_band",),
         "Eq. (3) of the pump paper; infinite at the dead centres, so the peak is taken outside "
@@ -116,7 +81,7 @@ MODELS: dict[str, Model] = {
     ),
     FLYWHEEL: Model(
         FLYWHEEL,
-        "flywheel",
+        MODEL_WORDS[FLYWHEEL],
         _flywheel_peak,
         ("inertia", "speed", "speed_fluctuation"),
         "the wheel's inertia carries the dead centres: least peak force for a periodic motion with "
@@ -124,7 +89,7 @@ MODELS: dict[str, Model] = {
     ),
     DYNAMICS: Model(
         DYNAMICS,
-        "full dynamics",
+        MODEL_WORDS[DYNAMICS],
         _dynamics_peak,
         ("inertia", "speed", "speed_fluctuation", "masses"),
         "the wheel, the coupler and the handle as masses, their weight and (for the effort) the "

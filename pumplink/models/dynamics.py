@@ -53,9 +53,9 @@ import numpy as np
 from pumplink.constants import GRAVITY
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.fourbar import FourBar, per_design
-from pumplink.models import Masses  # defined beside Conditions, which carries it
 from pumplink.models import flywheel as _fw
 from pumplink.models import quasi_static as _qs
+from pumplink.models.conditions import Masses
 
 #: Uniform grid nodes per revolution that bracket the extrema before refinement (the refinement
 #: makes the answer exact; features of the four functions narrower than a cell, 3.75 deg, are merged).
@@ -169,7 +169,7 @@ def _terms(
     Returns (inertia, inertia_rate, potential, potential_rate, grip_rate, grip_x, crank_x): the
     first six as :class:`Terms` (the rates None unless ``rates``, I, V and Px None unless
     ``values``: the band's edges need no second derivatives; Px None unless ``grip`` too);
-    ``crank_x`` (``fly_x``, else None) the grip's Px as :func:`pumplink.models.flywheel._grip_x`
+    ``crank_x`` (``fly_x``, else None) the grip's Px as :func:`pumplink.models.flywheel.grip_position`
     computes it (its rounding), from the same loop closure.
     """
     px, py, c, o2, c2, hkr, kk, k, rr, branch, mc, ic, i4, lever, mpy, hr, nhr = co
@@ -271,7 +271,7 @@ def energy_band(
 class _Problem:
     """Per-design data (1-D arrays over D designs) and the band's edges at the grid nodes (D, M)."""
 
-    prep: object  # flywheel._Prepared: geometry, dead centres, stroke, grip travel at the nodes
+    prep: object  # flywheel.Prepared: geometry, dead centres, stroke, grip travel at the nodes
     lk: FourBar  # (D,) arrays
     inertia: np.ndarray
     masses: Masses  # (D,) arrays
@@ -296,7 +296,7 @@ class _Problem:
     def edges(self, phi, rows=None, fly_x: bool = False):
         """upper and lower edge of the band [J] at points phi [rad from the extended dead centre],
         shape (R, K), of the designs ``rows`` (R,) (all: None).  ``fly_x``: also the grip's Px [m]
-        as :func:`pumplink.models.flywheel._grip_x` computes it."""
+        as :func:`pumplink.models.flywheel.grip_position` computes it."""
         every = rows is None or rows.size == self.mw.size  # rows are sorted and distinct: all
         dm = self.design if every else self.design.take(rows, axis=1)
         if phi.size <= _SMALL:
@@ -313,7 +313,7 @@ class _Problem:
 
 def _node_travel(nodes, plus, grip_x, xe, xf, stroke):
     """Grip travel G = base + local [m] at the grid nodes from their positions: the split at the
-    nearest dead centre of :func:`pumplink.models.flywheel._travel_parts`, without its integration
+    nearest dead centre of :func:`pumplink.models.flywheel.travel_parts`, without its integration
     next to a dead centre.  The grid only brackets the extrema and starts the iteration (every
     reported force comes from refined points, whose travel is integrated there), so position
     differences, exact to ~1e-16 m, are enough."""
@@ -349,16 +349,16 @@ def _problem_of(arrays, gravity) -> _Problem:
     with np.errstate(all="ignore"):
         co = _coefficients(lk1, ms)
         kin = (0.5 * w_hi**2, 0.5 * w_lo**2)
-        xe, xf = _fw._grip_x(np.stack([dce, dcf]), *geom)  # both dead centres in one call
+        xe, xf = _fw.grip_position(np.stack([dce, dcf]), *geom)  # both dead centres in one call
         stroke = np.abs(xf - xe)
-        nodes, plus = _fw._nodes(dce, dcf, GRID, CLUSTER)
+        nodes, plus = _fw.crank_nodes(dce, dcf, GRID, CLUSTER)
         tm = _terms([v[:, None] for v in co], dce[:, None] + nodes, gravity, rates=False)
         i = j[:, None] + tm[0]
         up = tm[2] + i * kin[0][:, None]  # Eq. (8)
         lo = tm[2] + i * kin[1][:, None]
         dm = np.stack(np.broadcast_arrays(*co, mw, dce, *kin, j))
         base, local = _node_travel(nodes, plus[:, None], tm[5], xe[:, None], xf[:, None], stroke[:, None])
-    prep = _fw._Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
+    prep = _fw.Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
     travel = [v[:, None] for v in prep.args()]
     return _Problem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, dm, travel)
 
@@ -743,7 +743,7 @@ def _refined_points(pb: _Problem, lam, rows, track: _Track | None = None, detect
         every = rows.size == pb.mw.size  # rows are sorted and distinct: all designs
         args = pb.travel if every else [v[rows][:, None] for v in pb.prep.args()]
         up, low, grip_x = pb.edges(x, None if every else rows, fly_x=True)
-        base, local = _fw._travel_parts(x, *args, grip_x=grip_x)
+        base, local = _fw.travel_parts(x, *args, grip_x=grip_x)
     return (x, base, local, up, low), _Track(dd, fam, lo, hi, node, root)
 
 
@@ -1097,7 +1097,7 @@ def _profile(sc: Scene, crank_angle):
     th = np.atleast_1d(np.asarray(crank_angle, float))
     fp, mw, s = sc.least_peak_force, sc.wheel_torque, sc.stroke
     phi = np.mod(th - sc.dead_centre_extended, TWO_PI)
-    base, local = _fw._travel_parts(phi, *sc.travel)
+    base, local = _fw.travel_parts(phi, *sc.travel)
     g_phi = base + local
     tm = terms(sc.linkage, th, sc.masses, sc.gravity)
     i = sc.inertia + tm.inertia

@@ -110,7 +110,7 @@ def energy_band(inertia, mean_speed, speed_fluctuation):
 
 
 # ----------------------------------------------------------------------------- grip travel G
-def _grip_x(theta, px, py, crank, coupler, rocker, handle, branch):
+def grip_position(theta, px, py, crank, coupler, rocker, handle, branch):
     """Horizontal grip position Px [m] at crank angles theta (vector loop closure)."""
     cs, sn = np.cos(theta), np.sin(theta)
     lk = FourBar(px, py, crank, coupler, rocker, handle, branch)
@@ -139,7 +139,7 @@ def _grip_rate(theta, px, py, crank, coupler, rocker, handle, branch):
     return (handle / rocker) * ry * crank * w / (q * e2)
 
 
-def _travel_parts(
+def travel_parts(
     phi,
     px,
     py,
@@ -163,7 +163,7 @@ def _travel_parts(
     from them local comes from positions; within TRAVEL_INTEGRATION_ARC it is integrated from the rate.
     Differences of G near one dead centre are then (local - local): no cancellation.
     ``integrate=False``: from positions everywhere (absolute error ~1e-16 m; enough to rank arcs).
-    ``grip_x``: Px at crank angles dce + phi as :func:`_grip_x` gives it (from a caller that has the
+    ``grip_x``: Px at crank angles dce + phi as :func:`grip_position` gives it (from a caller that has the
     loop closure there already), used where phi lies in the first turn [0, 2 pi).
     """
     turns = np.floor(phi / TWO_PI)
@@ -176,7 +176,7 @@ def _travel_parts(
     if grip_x is not None and not turns.any():  # p is phi: Px at dce + phi is given
         x = grip_x
     else:
-        x = _grip_x(dce + p, px, py, crank, coupler, rocker, handle, branch)
+        x = grip_position(dce + p, px, py, crank, coupler, rocker, handle, branch)
     ref = np.where(at_fold, xf, xe)
     local = np.sign(s) * np.abs(x - ref)
     near = np.abs(s) < TRAVEL_INTEGRATION_ARC
@@ -192,11 +192,11 @@ def _travel_parts(
 
 def _travel(phi, *args):
     """Grip travel G [m] from the extended dead centre to crank angle dce + phi (phi unrolled)."""
-    base, local = _travel_parts(phi, *args)
+    base, local = travel_parts(phi, *args)
     return base + local
 
 
-def _nodes(dce, dcf, grid=GRID, cluster=CLUSTER):
+def crank_nodes(dce, dcf, grid=GRID, cluster=CLUSTER):
     """Grid nodes phi in [0, 2 pi) per design, sorted, shape (D, M): uniform (half-cell offset)
     plus geometric clusters at both dead centres (phi = 0 and phi = plus)."""
     h = TWO_PI / grid
@@ -217,7 +217,11 @@ def _nodes(dce, dcf, grid=GRID, cluster=CLUSTER):
 
 
 @dataclass(frozen=True)
-class _Prepared:
+class Prepared:
+    """One problem's geometry at the grid nodes, shared by the flywheel's and full dynamics'
+    solvers: the four-bar, the dead centres and the crank travel between them, the grip's Px at
+    both, the stroke, Mw, and the grip travel (base + local) at each node."""
+
     geom: tuple  # px, py, crank, coupler, rocker, handle, branch as (D,) arrays
     dce: np.ndarray
     plus: np.ndarray
@@ -237,15 +241,15 @@ class _Prepared:
 def _prepare(lk: FourBar, dce, dcf, wheel_torque, grid=GRID, cluster=CLUSTER):
     scalar, (*geom, dce, dcf, mw) = per_design(lk, dce, dcf, wheel_torque)
     with np.errstate(all="ignore"):
-        xe = _grip_x(dce, *geom)
-        xf = _grip_x(dcf, *geom)
+        xe = grip_position(dce, *geom)
+        xf = grip_position(dcf, *geom)
         stroke = np.abs(xf - xe)
-        nodes, plus = _nodes(dce, dcf, grid, cluster)
+        nodes, plus = crank_nodes(dce, dcf, grid, cluster)
         g2 = [p[:, None] for p in geom]
-        base, local = _travel_parts(
+        base, local = travel_parts(
             nodes, *g2, dce[:, None], plus[:, None], xe[:, None], xf[:, None], stroke[:, None]
         )
-    return _Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local), scalar
+    return Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local), scalar
 
 
 def _u_integral(phi, force, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke, mw):
@@ -260,13 +264,11 @@ def _u_relative(
     phi, force, ref_base, ref_x, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke, mw
 ):
     """U(phi) - (Fp ref_base - Mw ref_x) [J], computed without the large constant (for the refinement)."""
-    base, local = _travel_parts(
-        phi, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke
-    )
+    base, local = travel_parts(phi, px, py, crank, coupler, rocker, handle, branch, dce, plus, xe, xf, stroke)
     return force * ((base - ref_base) + local) - mw * (phi - ref_x)
 
 
-def _refined_extrema(prep: _Prepared, force, rows=None, refine: bool = True):
+def _refined_extrema(prep: Prepared, force, rows=None, refine: bool = True):
     """Nodes, U and the grip travel (base, local) with every local extremum of U refined.
 
     Returns (x, u, base, local, a) with shape (D, M) (rows: the designs to do) and the drift
@@ -309,7 +311,7 @@ def _refined_extrema(prep: _Prepared, force, rows=None, refine: bool = True):
         at_node = f_el * local[d_idx, n_idx]  # the node's own relative U
         better = np.isfinite(res.f_x) & ((-res.f_x >= at_node) if sign < 0 else (res.f_x <= at_node))
         xi = np.where(better, res.x, rx)
-        b_new, l_new = _travel_parts(xi, *args)
+        b_new, l_new = travel_parts(xi, *args)
         x[d_idx, n_idx] = xi
         base[d_idx, n_idx] = b_new
         local[d_idx, n_idx] = l_new
@@ -395,7 +397,7 @@ def _reference_least_peak_force(
     return float(out[0]) if scalar else out
 
 
-def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool, cap):
+def _dinkelbach(prep: Prepared, lam, band, active, refine: bool, cap):
     """Dinkelbach's iteration for Eq. (4) from ``lam`` (a lower bound) on the designs ``active``."""
     lam = lam.copy()
     for _ in range(100):
@@ -422,7 +424,7 @@ def _dinkelbach(prep: _Prepared, lam, band, active, refine: bool, cap):
 # (where g = 0: every deficit arc around a dead centre is bracketed however short it is); for each
 # force the crossings of the level are located in that table and refined by a safeguarded secant
 # iteration on |g| itself, and the drawdown of Eq. (3) is taken over them, with the grip travel of
-# :func:`_travel_parts` as in the reference route.  Dinkelbach's iteration starts at the dead-centre
+# :func:`travel_parts` as in the reference route.  Dinkelbach's iteration starts at the dead-centre
 # asymptote and runs first on crossings interpolated linearly in the table, then on refined ones;
 # every arc's ratio in Eq. (4) is a lower bound of Fp*, so the starting value and the interpolated
 # arcs cost no exactness, only steps.  Far below the answer, where D(Fp) ~ 1/Fp (the dead-centre
@@ -623,7 +625,7 @@ def _fast_drawdown(tab: _Table, rows, force, refine):
     if d.size == 0:
         nan = np.full(n, np.nan)
         return nan, nan, nan, ok
-    base, local = _travel_parts(x, *par[:12], integrate=False)  # enough to rank the arcs
+    base, local = travel_parts(x, *par[:12], integrate=False)  # enough to rank the arcs
     u = force[d] * (base + local) - par[_MW] * x
     # per design in rows of width max(count), the last extremum repeated (no new drop, same maximum)
     width = max(int(count.max()), 1)
@@ -637,7 +639,7 @@ def _fast_drawdown(tab: _Table, rows, force, refine):
     at = np.arange(n)
     ends = np.concatenate([g[at, i % width], g[at, j % width]])
     phi = x[ends] + TWO_PI * np.concatenate([i // width, j // width])
-    eb, el = _travel_parts(phi, *par[:12, ends])
+    eb, el = travel_parts(phi, *par[:12, ends])
     length = phi[n:] - phi[:n]
     travel = (eb[n:] - eb[:n]) + (el[n:] - el[:n])
     return mw * length - force * travel, length, travel, ok  # Eq. (3): U(s) - U(t)
@@ -706,8 +708,8 @@ def _fast_route(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_tor
         lk, dead_centre_extended, dead_centre_folded, wheel_torque, value
     )
     with np.errstate(all="ignore"):  # NaN for an infeasible design
-        xe = _grip_x(dce, *geom)
-        xf = _grip_x(dcf, *geom)
+        xe = grip_position(dce, *geom)
+        xf = grip_position(dcf, *geom)
     stroke = np.abs(xf - xe)
 
     def tables(rows):

@@ -34,6 +34,20 @@ def rope_force(rope_force=None, head=None, pipe_diameter=None, efficiency=None):
     return WATER_DENSITY * GRAVITY * head * math.pi * (pipe_diameter * pipe_diameter) / 4.0 / eff
 
 
+def piston_load_force(bore, head, efficiency):
+    """A single-acting piston pump's force on its working stroke [N] (Eq. P.1 of
+    docs/piston-pump.md): rho g head (pi bore^2 / 4) / efficiency."""
+    return (
+        WATER_DENSITY
+        * GRAVITY
+        * np.asarray(head, float)
+        * math.pi
+        * np.asarray(bore, float) ** 2
+        / 4.0
+        / efficiency
+    )
+
+
 def moving_mass(moving_mass=None, head=None, pipe_diameter=None):
     """Mass moving at rim speed [kg]: ``moving_mass``, else the water column in the rising main
     rho head pi d^2 / 4 when ``head`` is given, else 0 (docs/models.md §2)."""
@@ -61,6 +75,14 @@ def inertia(radius, wheel_inertia=None, wheel_mass=None, moving_mass_kg=0.0):
     else:
         wheel = 0.0 * radius * radius
     return wheel + moving_mass_kg * radius * radius
+
+
+def rim_inertia(inertia=None, mass=None, radius=None):
+    """A flywheel's inertia [kg m^2]: ``inertia``, else ``mass`` as a rim of ``radius``,
+    J = mass radius^2 (docs/piston-pump.md: the flywheel on a piston pump's crank shaft)."""
+    if inertia is not None:
+        return inertia
+    return mass * radius**2
 
 
 def link_masses(

@@ -45,15 +45,8 @@ import numpy as np
 
 from pumplink.mechanisms import crank_slider as cs
 
-#: Water density [kg/m^3] and gravity [m/s^2] (as in pumplink.constants; models import no spec).
-_RHO_G = 1000.0 * 9.81
 #: Crank angles per revolution on which the arcs of (P.4) are scanned before refinement.
 SCAN = 8192
-
-
-def load_force(bore, head, efficiency):
-    """Piston force on the working stroke [N] (Eq. P.1): rho g head (pi bore^2/4) / efficiency."""
-    return _RHO_G * np.asarray(head, float) * math.pi * np.asarray(bore, float) ** 2 / 4.0 / efficiency
 
 
 def working_sign(offset) -> float:

@@ -16,21 +16,27 @@ import sys
 import tempfile
 from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
-from pumplink.batch import FLYWHEEL_LABEL as FLYWHEEL
-from pumplink.batch import QUASI_STATIC_LABEL as QUASI_STATIC
-from pumplink.batch import Batch, Chunk, variant_name, variant_names
+from pumplink.constants import MODEL_WORDS
 from pumplink.errors import escape_control
 from pumplink.output.formats import atomic_write
-from pumplink.output.tables import CHECK_LABELS
+from pumplink.output.piston import BATCH_COLUMNS, batch_csv, batch_json, batch_rows
+from pumplink.output.words import CHECK_LABELS
+
+if TYPE_CHECKING:
+    from pumplink.batch.runner import Chunk
+    from pumplink.inputs.batch import Batch
+
+#: The words of the flywheel and of the quasi-static model (the ``model`` column).
+FLYWHEEL, QUASI_STATIC = MODEL_WORDS["flywheel"], MODEL_WORDS["quasi-static"]
 
 #: Per-variant columns after the name, the source and the varied keys (CSV order).  The
 #: flywheel scene's columns are named as in ``pumplink force --format json``
-#: (``pumplink.output.tables.force_summary``); empty (null) for quasi-static variants.
+#: (``pumplink.output.force.force_summary``); empty (null) for quasi-static variants.
 SCENE_COLUMNS = (
     "model",
     "inertia_kg_m2",
@@ -185,7 +191,7 @@ def _number_columns(c: Chunk) -> dict[str, np.ndarray]:
 def chunk_columns(batch: Batch, c: Chunk) -> dict[str, list]:
     """The chunk's rows as columns of JSON-safe values (NaN -> None; angles in degrees)."""
     return {
-        "name": variant_names(batch, c.start, c.stop),
+        "name": batch.names(c.start, c.stop),
         **{k: _floats(v) for k, v in _number_columns(c).items()},
         "feasible": c.feasible.tolist(),
         "reason": c.reason,
@@ -240,7 +246,7 @@ def _csv_floats(a) -> list[str]:
 def csv_text(batch: Batch, c: Chunk, vkeys: Sequence[str]) -> str:
     """The chunk's CSV lines (columns as :func:`columns`), built column-wise for speed."""
     n = len(c)
-    names = variant_names(batch, c.start, c.stop)
+    names = batch.names(c.start, c.stop)
     if any(_csv_cell(x) != x for x in (batch.label,)):
         names = [_csv_cell(x) for x in names]
     cols: list[list[str]] = [names, [_csv_cell(batch.source)] * n]
@@ -296,12 +302,37 @@ def junit_text(batch: Batch, c: Chunk, fail_on: Sequence[str]) -> tuple[str, int
     }
     cls = f"pumplink.batch.{Path(batch.source).stem}"
     parts, failures, skipped = [], 0, 0
-    names = variant_names(batch, c.start, c.stop)
+    names = batch.names(c.start, c.stop)
     for name, (fail, skip) in zip(names, _junit_messages(batch, c, cols, fail_on)):
         parts.append(_junit_case(name, cls, fail, skip))
         failures += fail is not None
         skipped += skip is not None
     return "".join(parts), failures, skipped
+
+
+#: The text and boolean columns of a piston-pump batch's Parquet file (the rest are float64).
+PISTON_TEXT = ("variant", "mechanism", "error", "model", "verdict")
+PISTON_BOOLS = ("feasible", "pass")
+
+
+def piston_parquet_schema():
+    """The Parquet columns of a piston-pump batch, named and ordered as its CSV's."""
+    import pyarrow as pa
+
+    def kind(col: str):
+        if col in PISTON_TEXT:
+            return pa.string()
+        return pa.bool_() if col in PISTON_BOOLS else pa.float64()
+
+    return pa.schema([(col, kind(col)) for col in BATCH_COLUMNS])
+
+
+def piston_parquet_table(rows: list[dict]):
+    """Piston-pump batch rows as an Arrow table of :func:`piston_parquet_schema` (None: null)."""
+    import pyarrow as pa
+
+    schema = piston_parquet_schema()
+    return pa.Table.from_pylist([{k: r[k] for k in BATCH_COLUMNS} for r in rows], schema=schema)
 
 
 def parquet_schema(vkeys: Sequence[str]):
@@ -334,7 +365,7 @@ def parquet_table(batch: Batch, c: Chunk, vkeys: Sequence[str]):
         return pa.array([None if empty_is_null and v in ("", None) else v for v in values], pa.string())
 
     cols: dict[str, Any] = {
-        "name": pa.array(variant_names(batch, c.start, c.stop), pa.string()),
+        "name": pa.array(batch.names(c.start, c.stop), pa.string()),
         "source": pa.array([batch.source] * n, pa.string()),
     }
     for k in vkeys:
@@ -366,7 +397,15 @@ def render_chunk(
     """Text for one chunk (an Arrow table for parquet), built where the chunk was evaluated (a
     worker of the local pool) or by the driver (Dask)."""
     out: dict[str, Any] = {"data": None, "junit": None}
-    if fmt == "csv":
+    if c.mechanism == "crank-slider":  # a piston pump's rows (docs/piston-pump.md)
+        rows = batch_rows(batch.names(c.start, c.stop), c) if fmt != "table" else []
+        if fmt == "csv":
+            out["data"] = batch_csv(rows)
+        elif fmt == "json":
+            out["data"] = batch_json(rows)
+        elif fmt == "parquet":
+            out["data"] = piston_parquet_table(rows)
+    elif fmt == "csv":
         out["data"] = csv_text(batch, c, vkeys)
     elif fmt == "json":
         out["data"] = json_text(batch, c)
@@ -488,7 +527,7 @@ def _update_summary(s: dict, batch: Batch, c: Chunk, fail_on) -> None:
         i = int(np.argmin(peak))  # first of equal peaks: the lowest variant index wins ties
         if math.isfinite(peak[i]) and (s["best"] is None or peak[i] < s["best"]["peak_force_N"]):
             s["best"] = {
-                "name": variant_name(batch, c.start + i),
+                "name": batch.name(c.start + i),
                 "model": c.model[i],
                 "peak_force_N": float(peak[i]),
                 "mean_force_N": float(c.mean_force[i]),
@@ -527,9 +566,12 @@ def write_stream(
             import pyarrow.parquet as pq
 
             target = stack.enter_context(atomic_write(out, binary=True))
-            parquet = stack.enter_context(
-                pq.ParquetWriter(target, parquet_schema(varied_keys(batches)), compression="zstd")
+            schema = (
+                piston_parquet_schema()
+                if batches and batches[0].mechanism == "crank-slider"
+                else parquet_schema(varied_keys(batches))
             )
+            parquet = stack.enter_context(pq.ParquetWriter(target, schema, compression="zstd"))
             gathered: list = []
 
             def flush_rows(final: bool = False) -> None:
@@ -560,18 +602,20 @@ def write_stream(
 
         if jfile is not None:
             jfile.write('<?xml version="1.0" encoding="UTF-8"?>\n<testsuites name="pumplink batch">\n')
+        piston = bool(batches) and batches[0].mechanism == "crank-slider"
         if fmt == "csv":
-            data.write(",".join(_csv_cell(x) for x in columns(batches)) + "\n")
-        pending = ""  # json: the previous row's trailing ",\n" is dropped before "]"
+            head = BATCH_COLUMNS if piston else columns(batches)
+            data.write(",".join(_csv_cell(x) for x in head) + "\n")
+        pending = ""  # json: the previous row's trailing separator is dropped before "]"
         if fmt == "json":
-            data.write('{"variants": [\n')
+            data.write('{\n  "variants": [' if piston else '{"variants": [\n')
         for c, text in results:
             b = batches[c.batch]
             _update_summary(summary, b, c, fail_on)
             if fmt == "csv":
                 data.write(text["data"])
             elif fmt == "json" and len(c):
-                data.write(pending)
+                data.write(("\n    " if piston and not pending else "") + pending)
                 pending = text["data"]
             elif fmt == "parquet":
                 gathered.append(text["data"])
@@ -579,7 +623,11 @@ def write_stream(
             elif fmt == "table" and len(table_rows) < TABLE_ROWS:
                 show = np.ones(len(c), bool) if total <= TABLE_ROWS else c.failed(fail_on)
                 pick = np.nonzero(show)[0][: TABLE_ROWS - len(table_rows)].tolist()
-                if pick:
+                if pick and piston:
+                    rows = batch_rows(b.names(c.start, c.stop), c)
+                    failed = c.failed(fail_on)
+                    table_rows.extend({**rows[i], "failed": bool(failed[i])} for i in pick)
+                elif pick:
                     cc = chunk_columns(b, c)
                     vals = c.values.tolist()
                     table_rows.extend(
@@ -603,7 +651,12 @@ def write_stream(
                 counts["skipped"] += skipped
             if advance is not None:
                 advance(len(c))
-        if fmt == "json":
+        if fmt == "json" and piston:  # indented, as the piston pump's force JSON
+            data.write(
+                (pending.removesuffix(",\n    ") + "\n  ]" if pending else "]")
+                + f',\n  "failed": {summary["failed_selected"]},\n  "total": {summary["variants"]}\n}}\n'
+            )
+        elif fmt == "json":
             data.write(
                 pending.removesuffix(",\n")
                 + ("\n" if pending else "")

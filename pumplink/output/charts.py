@@ -9,8 +9,9 @@ from pathlib import Path
 
 import numpy as np
 
+from pumplink.constants import DANGER, DEAD_CENTRE, NEAR_DEAD_CENTRE, UNIFORM
 from pumplink.errors import SpecError
-from pumplink.methods import DANGER, DEAD_CENTRE, NEAR_DEAD_CENTRE, POINT_LABELS, UNIFORM
+from pumplink.output.methods import POINT_LABELS
 
 PLOT_HINT = "install it with: pip install 'pumplink[plot]'"
 SUFFIXES = (".png", ".svg", ".pdf")
@@ -62,8 +63,8 @@ def force_curve(result, curve, path) -> Path:
 
     Parameters
     ----------
-    result : :class:`pumplink.analysis.ForceResult`.
-    curve : :class:`pumplink.analysis.ForceCurve` of that result (the curves to draw).
+    result : :class:`pumplink.studies.force.ForceResult`.
+    curve : :class:`pumplink.studies.force.ForceCurve` of that result (the curves to draw).
     path : output file (.png, .svg, .pdf).
     """
     path = check_path(path)
@@ -138,7 +139,7 @@ def speed_chart(sweep, path) -> Path:
 
     Parameters
     ----------
-    sweep : :class:`pumplink.analysis.SpeedSweep` (with its cadence).
+    sweep : :class:`pumplink.studies.speed.SpeedSweep` (with its cadence).
     path : output file (.png, .svg, .pdf).
     """
     path = check_path(path)

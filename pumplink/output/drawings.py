@@ -1,6 +1,6 @@
 """The linkage drawing (to scale, dimensioned) and its animation over one revolution.
 
-Renderers only: every position, path and length comes from :mod:`pumplink.drawing`.  matplotlib
+Renderers only: every position, path and length comes from :mod:`pumplink.studies.drawing`.  matplotlib
 through the one loader :func:`pumplink.output.charts.pyplot`.
 """
 
@@ -178,7 +178,7 @@ def linkage_drawing(dr, path) -> tuple[Path, float]:
 
     Parameters
     ----------
-    dr : :class:`pumplink.drawing.Drawing`.
+    dr : :class:`pumplink.studies.drawing.Drawing`.
     path : output file (.png, .svg, .pdf).
 
     Returns
@@ -273,8 +273,8 @@ def animation(dr, mo, path, fps: int = 12) -> Path:
 
     Parameters
     ----------
-    dr : :class:`pumplink.drawing.Drawing` (the static scene).
-    mo : :class:`pumplink.drawing.Motion` (the frames).
+    dr : :class:`pumplink.studies.drawing.Drawing` (the static scene).
+    mo : :class:`pumplink.studies.drawing.Motion` (the frames).
     path : output .gif (Pillow, through matplotlib's PillowWriter).
     """
     path = check_animation_path(path)

@@ -1,6 +1,6 @@
 """Rows and tables of the textbook-mechanism commands (``slider``, ``slotted``, ``rocker``,
-``structure``).  Renderers only: every number comes from :mod:`pumplink.synthesis` or
-:mod:`pumplink.structure_spec`.  Degrees appear here only.  Tables fit 80 columns.
+``structure``).  Renderers only: every number comes from :mod:`pumplink.studies.textbook` or
+:mod:`pumplink.inputs.structure`.  Degrees appear here only.  Tables fit 80 columns.
 """
 
 from __future__ import annotations

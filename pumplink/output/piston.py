@@ -1,18 +1,21 @@
 """Rows and tables of the piston-pump spec under ``pumplink force`` and ``pumplink batch``.
 
-Renderers only: every number comes from :func:`pumplink.piston.force_analysis`.  Degrees here
+Renderers only: every number comes from :func:`pumplink.studies.piston.force_analysis`.  Degrees here
 only; tables fit 80 columns.
 """
 
 from __future__ import annotations
 
+import json
 import math
 import sys
 from typing import Any
 
+import numpy as np
+
 from pumplink.output.formats import console, deg, num, write_csv, write_json
 from pumplink.output.formats import fmt as _f
-from pumplink.output.tables import check_row as verdict_check_row
+from pumplink.output.words import check_row as verdict_check_row
 
 #: Rows of the condensed sweep in the table (every k-th sample).
 TABLE_ROWS = 24
@@ -25,7 +28,7 @@ _CHECK_LABELS = {
 
 
 def _checks(r) -> list[dict[str, Any]]:
-    """The verdict's checks in the rope pump's JSON shape (``pumplink.output.tables.check_row``)."""
+    """The verdict's checks in the rope pump's JSON shape (``pumplink.output.words.check_row``)."""
     checks = r.verdict.checks if r.verdict is not None else ()
     return [{**verdict_check_row(c), "name": _CHECK_LABELS.get(c.key, c.key)} for c in checks]
 
@@ -103,7 +106,7 @@ def _verdict_line(row) -> str:
 
 
 def check_row(check) -> dict[str, Any]:
-    """The dense-sweep check of a piston pump (:class:`pumplink.piston.PistonCheck`) as JSON."""
+    """The dense-sweep check of a piston pump (:class:`pumplink.studies.piston.PistonCheck`) as JSON."""
     return {
         "method": "trapezoid rule and a dense sweep",
         "samples": check.samples,
@@ -227,30 +230,119 @@ def render_force(r, fmt: str, summary: bool = False, out=None, why=None, check=N
     c.print(_verdict_line(row), markup=False)
 
 
-def render_batch(variants, fmt: str, failed: list[bool], out=None) -> None:
-    """``pumplink batch`` over piston-pump variants: one row each, then a summary line."""
-    out = out or sys.stdout
-    rows = [
-        {"variant": v.name, **{k: val for k, val in summary_row(v.result).items() if k != "name"}}
-        for v in variants
-    ]
-    n_fail = sum(failed)
-    if fmt == "json":
-        return write_json({"variants": rows, "failed": n_fail, "total": len(rows)}, out)
-    if fmt == "csv":
-        flat = [
+#: Columns of a piston-pump batch row in CSV and Parquet, in order (the JSON rows add
+#: ``permissible_pressure_angle_deg`` and the checks).
+BATCH_COLUMNS = (
+    "variant",
+    "mechanism",
+    "feasible",
+    "error",
+    "crank_m",
+    "rod_m",
+    "offset_m",
+    "handle_m",
+    "bore_m",
+    "head_m",
+    "load_force_N",
+    "stroke_m",
+    "time_ratio",
+    "largest_pressure_angle_deg",
+    "speed_deg_s",
+    "power_W",
+    "mean_force_N",
+    "quasi_static_peak_N",
+    "quasi_static_peak_angle_deg",
+    "model",
+    "inertia_kg_m2",
+    "energy_band_J",
+    "least_peak_force_N",
+    "force_limit_N",
+    "verdict",
+    "pass",
+)
+#: The permissible pressure angle of a sliding driven link [deg] (docs/mechanisms.md §4).
+_PERMISSIBLE = [30.0, 45.0]
+
+
+def batch_rows(names: list[str], c) -> list[dict[str, Any]]:
+    """The JSON rows of a piston-pump batch chunk (``pumplink.batch.runner.PistonChunk``): the
+    contract of :func:`summary_row`, named by variant."""
+    ev, sp = c.evaluation, c.spec
+    n = len(names)
+    load = np.broadcast_to(np.asarray(ev.designs.load_force, float), (n,))
+    inertia = np.broadcast_to(np.asarray(ev.designs.inertia, float), (n,))
+    rows = []
+    for i, name in enumerate(names):
+        ok, fly = bool(ev.feasible[i]), bool(ev.model_index[i] > 0)
+        verdict = ev.verdict.design(i) if ok else None
+        checks = (
+            []
+            if verdict is None
+            else [
+                {**verdict_check_row(ch), "name": _CHECK_LABELS.get(ch.key, ch.key)} for ch in verdict.checks
+            ]
+        )
+        rows.append(
             {
-                k: ("" if val is None else val)
-                for k, val in r.items()
-                if k not in ("checks", "permissible_pressure_angle_deg")
+                "variant": name,
+                "mechanism": "crank-slider",
+                "feasible": ok,
+                "error": c.reason[i],
+                "crank_m": float(sp["crank_slider.crank"][i]),
+                "rod_m": float(sp["crank_slider.rod"][i]),
+                "offset_m": float(sp["crank_slider.offset"][i]),
+                "handle_m": float(sp["operator.handle"][i]),
+                "bore_m": float(sp["piston.bore"][i]),
+                "head_m": float(sp["piston.head"][i]),
+                "load_force_N": num(load[i]),
+                "stroke_m": num(ev.stroke[i]),
+                "time_ratio": num(ev.time_ratio[i]),
+                "largest_pressure_angle_deg": deg(ev.largest_pressure_angle[i]),
+                "permissible_pressure_angle_deg": list(_PERMISSIBLE),
+                "speed_deg_s": float(sp["operator.speed"][i]),
+                "power_W": num(ev.power[i]),
+                "mean_force_N": num(ev.mean_force[i]),
+                "quasi_static_peak_N": num(ev.quasi_static_peak[i]),
+                "quasi_static_peak_angle_deg": deg(ev.quasi_static_peak_angle[i]),
+                "model": str(ev.model[i]),
+                "inertia_kg_m2": num(inertia[i]) if fly else None,
+                "energy_band_J": num(ev.energy_band[i]) if fly and ok else None,
+                "least_peak_force_N": num(ev.least_peak_force[i]) if fly and ok else None,
+                "force_limit_N": float(sp["operator.force_limit"][i]),
+                "verdict": "FAIL" if verdict is None else verdict.outcome,
+                "pass": bool(ok and verdict.passed),
+                "checks": checks,
             }
-            for r in rows
-        ]
-        return write_csv(flat, out)
+        )
+    return rows
+
+
+def batch_csv(rows: list[dict[str, Any]]) -> str:
+    """CSV lines of piston-pump batch rows (columns :data:`BATCH_COLUMNS`, empty for None)."""
+    import csv
+    import io
+
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    for r in rows:
+        w.writerow(["" if r[k] is None else r[k] for k in BATCH_COLUMNS])
+    return buf.getvalue()
+
+
+def batch_json(rows: list[dict[str, Any]]) -> str:
+    """JSON of piston-pump batch rows as items of the ``variants`` list (indented as
+    :func:`pumplink.output.formats.write_json` would), each followed by ',\n    '."""
+    return "".join(json.dumps(r, indent=2, allow_nan=False).replace("\n", "\n    ") + ",\n    " for r in rows)
+
+
+def render_batch_table(rows: list[dict[str, Any]], summary: dict[str, Any], out=None) -> None:
+    """``pumplink batch --format table`` over piston-pump variants: one row each, then a summary."""
     from rich.markup import escape
     from rich.table import Table
 
-    c = console(out)
+    failed = [r["failed"] for r in rows]
+    n_fail = summary["failed_selected"]
+    c = console(out or sys.stdout)
     t = Table(title="Piston-pump variants", title_justify="left")
     for h in ("variant", "mean [N]", "peak [N]", "verdict"):
         t.add_column(escape(h), justify="left" if h == "variant" else "right")
@@ -264,8 +356,9 @@ def render_batch(variants, fmt: str, failed: list[bool], out=None) -> None:
         )
     c.print(t)
     best = min((r for r in rows if r["feasible"]), key=lambda r: r["mean_force_N"], default=None)
+    total = summary["variants"]
     c.print(
-        f"{len(rows)} variants, {len(rows) - n_fail} pass the --fail-on checks, {n_fail} fail (*)"
+        f"{total} variants, {total - n_fail} pass the --fail-on checks, {n_fail} fail (*)"
         + (f"\nlowest mean force: {best['variant']}" if best else ""),
         markup=False,
     )

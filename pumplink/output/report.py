@@ -2,7 +2,7 @@
 
 Spec, synthesis table, verdict with its model and checks, the force chart, the linkage drawing
 and the cut list.  Renderers only: every number comes from the library's results
-(:class:`pumplink.analysis.ForceResult`, :class:`pumplink.drawing.Drawing`).
+(:class:`pumplink.studies.force.ForceResult`, :class:`pumplink.studies.drawing.Drawing`).
 """
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ from pumplink.errors import SpecError
 from pumplink.output.charts import force_curve
 from pumplink.output.drawings import linkage_drawing
 from pumplink.output.formats import atomic_write, check_output, fmt
-from pumplink.output.tables import check_label, model_line
 from pumplink.output.template import cut_list_rows
+from pumplink.output.words import check_label, model_line
 
 REPORT_SUFFIXES = (".html", ".htm")
 

@@ -6,7 +6,7 @@
 * SVG: one canvas at 1:1 (for a vector editor or a cutter), no tiling.
 * DXF: millimetres, one layer per link (ezdxf, optional extra ``pumplink[dxf]``).
 
-Renderers only: hole centres, diameters and lengths come from :class:`pumplink.drawing.Part`.
+Renderers only: hole centres, diameters and lengths come from :class:`pumplink.studies.drawing.Part`.
 1 mm on the paper is 72 / 25.4 = 2.8346 pt in the PDF and SVG.
 """
 

@@ -27,11 +27,11 @@ import pytest
 import tomli_w
 
 from pumplink import batch as B
-from pumplink.analysis import force_analysis
 from pumplink.errors import SpecError
+from pumplink.inputs.pump import parse_spec
 from pumplink.mechanisms.fourbar import FourBar, synthesize
 from pumplink.models import quasi_static as F
-from pumplink.spec import parse_spec
+from pumplink.studies.force import force_analysis
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIGS = ROOT / "configs"

@@ -364,9 +364,10 @@ def test_bad_scheduler_options_exit_2_with_one_line(args, words):
     assert r.stderr.count("\n") == 1 and words in r.stderr and "Traceback" not in r.stderr, r.stderr
 
 
-def test_piston_batches_refuse_the_scheduler():
-    r = pumplink("batch", "configs/grids/piston-bore.toml", "--scheduler", "local:2")
-    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "--scheduler is for rope-pump" in r.stderr
+def test_a_run_holds_one_kind_of_pump():
+    """Piston-pump and rope-pump files have different columns: one line and exit 2 when mixed."""
+    r = pumplink("batch", "configs/grids/piston-bore.toml", PROTOTYPE)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "separate runs" in r.stderr
 
 
 def test_an_unreachable_scheduler_fails_in_seconds():

@@ -638,7 +638,7 @@ def _sub(old: str, new: str) -> str:
 
 def _bounds(section: str, key: str) -> list[str]:
     """The allowed range declared on the model (so the message can be checked to state it)."""
-    from pumplink.spec import PumpSpec
+    from pumplink.inputs.pump import PumpSpec
 
     info = PumpSpec.model_fields[section].annotation.model_fields[key]
     out = []
@@ -811,7 +811,7 @@ def test_init_writes_a_spec_that_loads_and_passes(tmp_path):
     written = tmp_path / "pump.toml"
     data = tomllib.loads(written.read_text(encoding="utf-8"))
     assert {"wheel", "linkage", "load"} <= data.keys()
-    from pumplink.spec import load_spec
+    from pumplink.inputs.pump import load_spec
 
     load_spec(written)  # validates
     out = jrun("force", written, "--summary", expect=0)

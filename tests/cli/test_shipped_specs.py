@@ -29,7 +29,7 @@ def _shipped() -> list[Path]:
 
 
 SHIPPED = _shipped()
-#: The words each model's reason starts with (pumplink.analysis.explain, pumplink.piston.explain).
+#: The words each model's reason starts with (studies.explain.explain, studies.piston.explain).
 DECIDED = {
     "quasi-static + dead band": "Quasi-static + dead band decided",
     "flywheel": "Flywheel decided",

@@ -30,11 +30,11 @@ HEAVY = [
     "pyarrow",
     "numba",
     # pumplink's own modules for other commands and mechanisms
-    "pumplink.optimize",
+    "pumplink.search.optimize",
     "pumplink.batch",
-    "pumplink.methods",
-    "pumplink.accuracy",
-    "pumplink.piston",
+    "pumplink.studies.methods",
+    "pumplink.studies.accuracy",
+    "pumplink.studies.piston",
     "pumplink.models.flywheel",  # the inertia models: a spec without inertia never needs them
     "pumplink.models.dynamics",
 ]

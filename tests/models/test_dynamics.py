@@ -21,12 +21,12 @@ import numpy as np
 import pytest
 import reference as R
 
-from pumplink.analysis import design
 from pumplink.constants import GRAVITY
+from pumplink.inputs.pump import load_spec, parse_spec
 from pumplink.models import dynamics as dy
 from pumplink.models import flywheel as fw
 from pumplink.models.quasi_static import mean_force
-from pumplink.spec import load_spec, parse_spec
+from pumplink.studies.force import design
 
 EXAMPLE = "examples/well-12m-flywheel.toml"
 
@@ -177,7 +177,7 @@ def _brute_lower_bound(lk, dce, dcf, mw, j, ms, w, delta, n=200_000):
     """Dinkelbach over the pairs of n uniform angles plus the grid nodes: a lower bound of Fp*."""
     pb, _ = dy._problem(lk, dce, dcf, mw, j, ms, w, delta, GRAVITY)
     x = np.sort(np.concatenate([np.linspace(0, 2 * np.pi, n, endpoint=False), pb.prep.nodes[0]]))[None, :]
-    base, local = fw._travel_parts(x, *(v[:, None] for v in pb.prep.args()))
+    base, local = fw.travel_parts(x, *(v[:, None] for v in pb.prep.args()))
     up, lo = pb.edges(x)
     cap = np.array([np.inf])
     f_mean = mean_force(pb.mw, pb.stroke)

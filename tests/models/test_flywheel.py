@@ -35,11 +35,11 @@ import reference as R
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from pumplink.analysis import design
+from pumplink.inputs.pump import default_spec, parse_spec
 from pumplink.mechanisms.fourbar import FourBar, grip_stroke, kinematic_state, synthesize
 from pumplink.models import flywheel as fw
 from pumplink.models.quasi_static import mean_force
-from pumplink.spec import default_spec, parse_spec
+from pumplink.studies.force import design
 
 TWO_PI = 2.0 * math.pi
 DEG = math.pi / 180.0

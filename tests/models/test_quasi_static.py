@@ -14,10 +14,10 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from mpmath import mp, mpf
 
-from pumplink.analysis import force_analysis
+from pumplink.inputs.pump import DEFAULT_SPEC, parse_spec
 from pumplink.mechanisms.fourbar import FourBar, grip_stroke, kinematic_state, synthesize
 from pumplink.models.quasi_static import dead_band_peak_force, mean_force, wheel_torque
-from pumplink.spec import DEFAULT_SPEC, parse_spec
+from pumplink.studies.force import force_analysis
 
 DEG = math.pi / 180
 MIN_CRANK = R.MIN_CRANK
@@ -197,7 +197,7 @@ def test_vectorised_peak_force_equals_per_design_calls(items):
 
 def test_sampled_peak_does_not_depend_on_keeping_the_samples():
     """`force` and `force --summary` report the same sampled peak (one route for uniform sweeps)."""
-    from pumplink.analysis import force_analysis
+    from pumplink.studies.force import force_analysis
 
     spec = parse_spec(DEFAULT_SPEC)
     for n in (12, 360, 3600, 100001):

@@ -16,19 +16,11 @@ import re
 import numpy as np
 import pytest
 
-from pumplink.analysis import design, force_analysis
-from pumplink.output.tables import (
-    console,
-    deg,
-    design_row,
-    force_summary,
-    num,
-    render_designs,
-    render_force,
-    sample_rows,
-    write_csv,
-)
-from pumplink.spec import parse_spec
+from pumplink.inputs.pump import parse_spec
+from pumplink.output.force import force_summary, render_force, sample_rows
+from pumplink.output.synth import design_row, render_designs
+from pumplink.output.tables import console, deg, num, write_csv
+from pumplink.studies.force import design, force_analysis
 
 BASE = {
     "name": "Report test",

@@ -23,27 +23,23 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import Field
 
 from pumplink.errors import SpecError
+from pumplink.inputs.toml import Section, read_toml, spec_name, validate
 from pumplink.mechanisms import structure as _structure
-from pumplink.spec import read_toml
 
 Name = str
 
 
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True, frozen=True)
-
-
-class JointSpec(_Strict):
+class JointSpec(Section):
     kind: Literal["revolute", "prismatic", "higher"] = Field(
         description="pair class: revolute or prismatic (lower, 1 freedom) or higher (2 freedoms)"
     )
     links: list[Name] = Field(min_length=2, description="names of the links the joint connects")
 
 
-class StructureSpec(_Strict):
+class StructureSpec(Section):
     name: str = Field(default="mechanism", min_length=1, max_length=200, description="name")
     frame: Name = Field(description="name of the fixed link")
     links: list[Name] = Field(min_length=2, description="names of all links, the frame included")
@@ -56,29 +52,6 @@ class StructureSpec(_Strict):
 
     def joint_tuples(self) -> list[tuple[str, str, tuple[str, ...]]]:
         return [(name, j.kind, tuple(j.links)) for name, j in self.joints.items()]
-
-
-_KEYS = {
-    "top": ", ".join(StructureSpec.model_fields),
-    "joint": ", ".join(JointSpec.model_fields),
-}
-
-
-def _describe(err: dict) -> str:
-    loc = [str(p) for p in err["loc"]]
-    key = ".".join(loc) or "the file"
-    kind = err["type"]
-    if kind == "missing":
-        return f"missing key '{key}'"
-    if kind == "extra_forbidden":
-        where = "a joint" if loc[0] == "joints" else "the top level"
-        allowed = _KEYS["joint"] if loc[0] == "joints" else _KEYS["top"]
-        return f"unknown key '{key}'; allowed keys in {where}: {allowed}"
-    if kind == "literal_error":
-        return f"'{key}' = {err.get('input')!r} must be revolute, prismatic or higher"
-    if kind in ("too_short", "string_too_short"):
-        return f"'{key}' is too short: {err['msg'].lower()}"
-    return f"'{key}' = {err.get('input')!r}: {err['msg']}"
 
 
 def parse_structure(data, source: str = "mechanism") -> StructureSpec:
@@ -96,21 +69,12 @@ def parse_structure(data, source: str = "mechanism") -> StructureSpec:
             f"{source}: not a mechanism file: expected frame, links and a [joints] table "
             "(see configs/mechanisms/six-link.toml)"
         )
-    try:
-        return StructureSpec.model_validate(data)
-    except ValidationError as exc:
-        # an unknown key is usually a typo that also causes a "missing" error: report it first
-        errs = sorted(exc.errors(), key=lambda e: e["type"] != "extra_forbidden")
-        more = f" (and {len(errs) - 1} more)" if len(errs) > 1 else ""
-        raise SpecError(f"{source}: {_describe(errs[0])}{more}.") from None
+    return validate(StructureSpec, data, source)
 
 
 def load_structure(path: str | Path) -> StructureSpec:
     """Read and validate a mechanism TOML file; the name defaults to the file stem."""
-    data = read_toml(path, expected="a mechanism TOML")
-    if isinstance(data, dict) and data and "name" not in data:
-        data = {"name": Path(path).stem, **data}
-    return parse_structure(data, source=str(path))
+    return parse_structure(spec_name(read_toml(path, expected="a mechanism TOML"), path), source=str(path))
 
 
 def analyse(spec: StructureSpec, source: str = "mechanism") -> _structure.StructureAnalysis:

@@ -17,11 +17,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pumplink.analysis import Design, design, force_analysis
 from pumplink.constants import LINK_MASS_PER_METRE
 from pumplink.errors import InfeasibleDesign
+from pumplink.inputs.pump import PumpSpec
 from pumplink.mechanisms.fourbar import FourBar, kinematic_state
-from pumplink.spec import PumpSpec
+from pumplink.studies.force import Design, design, force_analysis
 
 #: Names of the joints, in the order of :attr:`Pose.joints`.
 JOINTS = ("O2", "A", "B", "O4", "P")

@@ -6,7 +6,7 @@ the verdict (as ``pumplink force``) or the mean force pi Mw / (2 H sin(swing/2))
 The peak of the verdict depends on the model: when the spec gives inertia
 (``wheel.inertia``, ``wheel.mass`` or ``load.moving_mass``) it is the least peak force at the
 spec's speed and speed fluctuation of the least model that is enough for each candidate, the
-flywheel or full dynamics (``pumplink.analysis.energy_model``, vectorised over the population), or
+flywheel or full dynamics (``pumplink.models.choice.energy_model``, vectorised over the population), or
 of the model ``--model`` asks for; otherwise the exact windowed peak outside the dead bands
 (``pumplink.models.quasi_static.peak_force``).  The pass flag is that verdict: mean and peak within the force
 limit.  Constraints (all ``g >= 0``):
@@ -14,7 +14,7 @@ limit.  Constraints (all ``g >= 0``):
 * the dead-centre synthesis gives a crank-rocker with the exact swing: 0 < psi2 < psi1 < pi
   (``pumplink.mechanisms.fourbar``);
 * transmission angle: min(gamma_min, 180 deg - gamma_max) >= 45 deg
-  (``pumplink.analysis.MIN_TRANSMISSION_DEG``, docs/models.md §4, the lever-mechanism textbook:
+  (``pumplink.constants.MIN_TRANSMISSION_DEG``, docs/models.md §4, the lever-mechanism textbook:
   [lambda_max] <= 45 deg for a rotating driven link);
 * hand-grip height over the whole swing within 0.5-0.9 m above the ground (docs/physics.md §5,
   "efficient push height ~0.84 m, range 0.5-0.9 m"); the grip is at axle height - D1 + H sin(theta4);
@@ -42,9 +42,9 @@ import numpy as np
 from pumplink.constants import MIN_TRANSMISSION_DEG
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.evaluate import PumpDesigns, evaluate, pump_designs
+from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
 from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_heights, grip_stroke, synthesize
 from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC
-from pumplink.spec import PumpSpec, parse_spec, spec_to_dict, spec_values
 
 #: Keys that may vary (the [linkage] table of the spec), with their units.
 VARIABLE_UNITS = {"L1": "m", "D1": "m", "b": "m", "rocker": "m", "handle": "m", "swing": "deg"}
@@ -89,7 +89,12 @@ class Problem:
     def flywheel(self) -> bool:
         """True when an energy model (flywheel or full dynamics) decides the peak: the spec gives
         inertia and --model does not ask for the quasi-static model."""
-        return self.spec.inertia is not None and self.forced != QUASI_STATIC
+        return self.spec.gives_inertia and self.forced != QUASI_STATIC
+
+    @property
+    def inertia(self) -> float | None:
+        """J about the wheel axle [kg m^2] (None: the spec gives no inertia)."""
+        return float(pump_designs(spec_values(self.spec)).inertia) if self.spec.gives_inertia else None
 
     @property
     def model(self) -> str:
@@ -156,6 +161,29 @@ class OptimizationResult:
     best_result: Any = None  # ... and of the optimum (its verdict decides the exit code)
     force_evaluations: int = 0  # designs whose force was computed: those meeting every constraint
 
+    @property
+    def variable_units(self) -> tuple[str, ...]:
+        """The unit of each varied key, in :attr:`Problem.names` order."""
+        return tuple(VARIABLE_UNITS[k] for k in self.problem.names)
+
+    @property
+    def constraint_units(self) -> tuple[str, ...]:
+        """The unit of each constraint's slack, in :meth:`Problem.constraint_names` order."""
+        return tuple(u for _, u in CONSTRAINTS[: len(self.problem.constraint_names())])
+
+    @property
+    def spec_violates(self) -> tuple[str, ...]:
+        """The constraints the spec's own design misses (empty: it meets them all)."""
+        names = self.problem.constraint_names()
+        return tuple(n for n, g in zip(names, self.at_spec.slack[:, 0]) if g < 0)
+
+    @property
+    def improvement(self) -> float | None:
+        """How much lower the optimum's objective is than the spec's [N] (None when the spec's
+        design has no finite objective)."""
+        spec, best = float(self.at_spec.objective[0]), float(self.at_best.objective[0])
+        return spec - best if spec < INFEASIBLE_OBJECTIVE / 10 else None
+
 
 def parse_bounds(items: list[str] | None) -> dict[str, tuple[float, float]]:
     """``KEY=LO:HI`` strings -> {key: (lo, hi)}; default :data:`DEFAULT_BOUNDS`.
@@ -199,7 +227,7 @@ def parse_bounds(items: list[str] | None) -> dict[str, tuple[float, float]]:
 
 def _check_spec_range(key: str, lo: float, hi: float) -> None:
     """Bounds must lie inside the spec's allowed range for the key (spec.Linkage fields)."""
-    from pumplink.spec import Linkage
+    from pumplink.inputs.pump import Linkage
 
     info = Linkage.model_fields[key]
     gt = ge = lt = le = None
@@ -250,14 +278,19 @@ def make_problem(
     ``wheel.axle_height``, else :data:`DEFAULT_AXLE_HEIGHT_M`.  ``model``: a model key that decides
     the peak (``--model``), else the least model that is enough for each design."""
     bounds = dict(DEFAULT_BOUNDS) if bounds is None else bounds
-    if model not in (None, QUASI_STATIC) and spec.inertia is None:
+    if model not in (None, QUASI_STATIC) and not spec.gives_inertia:
         raise SpecError(
             f"--model {model} needs the wheel's inertia, but {spec.name} gives none; add wheel.mass [kg] "
             "or wheel.inertia [kg m^2] to the spec"
         )
     if objective not in ("peak", "mean"):
         raise SpecError(f"--objective {objective!r} is unknown; use peak or mean")
-    if spec.inertia == 0.0 and objective == "peak" and model == FLYWHEEL:
+    if (
+        spec.gives_inertia
+        and float(pump_designs(spec_values(spec)).inertia) == 0.0
+        and objective == "peak"
+        and model == FLYWHEEL
+    ):
         raise SpecError(
             f"{spec.name}: the inertia is 0 kg m^2 (load.moving_mass = 0 and no wheel mass), so there is no "
             "energy band (J w^2 delta = 0) and every design needs an infinite peak force; give wheel.mass "
@@ -544,7 +577,7 @@ def optimize(
         for k, v, lo, hi, s in zip(problem.names, x, problem.lower, problem.upper, span)
         if min(abs(v - lo), abs(hi - v)) <= 1e-6 * s
     )
-    from pumplink.analysis import force_analysis
+    from pumplink.studies.force import force_analysis
 
     best = _spec_with(problem, x)
     return OptimizationResult(

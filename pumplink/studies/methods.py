@@ -27,29 +27,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pumplink.constants import (
+    CRANK_ALONG_FRAME,
+    CRANK_PARALLEL_ROCKER,
+    CRANK_PERPENDICULAR,
+    DEAD_CENTRE,
+    NEAR_DEAD_CENTRE,
+    ROCKER_PERPENDICULAR,
+    UNIFORM,
+)
 from pumplink.mechanisms.fourbar import SINGULAR_SIN, FourBar, kinematic_state
 
-#: Kinds of crank positions a method is tested at (identifiers; :data:`POINT_LABELS` has the words).
-UNIFORM = "uniform"
-NEAR_DEAD_CENTRE = "near_dead_centre"
-DEAD_CENTRE = "dead_centre"
-CRANK_PERPENDICULAR = "crank_perpendicular"
-ROCKER_PERPENDICULAR = "rocker_perpendicular"
-CRANK_PARALLEL_ROCKER = "crank_parallel_rocker"
-CRANK_ALONG_FRAME = "crank_along_frame"
-#: Every danger point together (and 1e-9 rad either side), a sample set of the comparison.
-DANGER = "danger_points"
-#: What reports call each kind of position (and the keys of ``pumplink methods --format json``).
-POINT_LABELS = {
-    UNIFORM: "uniform sweep",
-    NEAR_DEAD_CENTRE: "near a dead centre (down to 1e-6 deg)",
-    DEAD_CENTRE: "exactly at a dead centre",
-    CRANK_PERPENDICULAR: "crank perpendicular to the frame line",
-    ROCKER_PERPENDICULAR: "rocker perpendicular to the frame line",
-    CRANK_PARALLEL_ROCKER: "crank parallel to the rocker",
-    CRANK_ALONG_FRAME: "crank along the frame line",
-    DANGER: "danger points",
-}
+#: The kinds of position where a textbook formula breaks down (identifiers in
+#: :mod:`pumplink.constants`; their words are the output layer's).
 POINT_KINDS = (
     UNIFORM,
     NEAR_DEAD_CENTRE,

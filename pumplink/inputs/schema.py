@@ -7,8 +7,8 @@ out-of-range value as it is typed.  The schemas are built from the same models a
 say (a swing below 2π "looks like radians", give the inertia or the mass but not both) is still
 said by pumplink when the file is read.
 
-Three kinds of file: ``spec`` (a rope-pump spec, :class:`pumplink.spec.PumpSpec`), ``piston`` (a
-piston-pump spec, :class:`pumplink.piston.PistonSpec`) and ``batch`` (a base spec and the keys to
+Three kinds of file: ``spec`` (a rope-pump spec, :class:`pumplink.inputs.pump.PumpSpec`), ``piston`` (a
+piston-pump spec, :class:`pumplink.studies.piston.PistonSpec`) and ``batch`` (a base spec and the keys to
 vary, README: "Batch files").
 """
 
@@ -52,7 +52,7 @@ def _document(model, title: str, description: str) -> dict[str, Any]:
 
 def spec_schema() -> dict[str, Any]:
     """JSON Schema of a rope-pump spec (``[wheel]``, ``[linkage]``, ``[load]``, ``[operator]``)."""
-    from pumplink.spec import PumpSpec
+    from pumplink.inputs.pump import PumpSpec
 
     return _document(
         PumpSpec,
@@ -63,7 +63,7 @@ def spec_schema() -> dict[str, Any]:
 
 def piston_schema() -> dict[str, Any]:
     """JSON Schema of a piston-pump spec (``mechanism = "crank-slider"``, docs/piston-pump.md)."""
-    from pumplink.piston import PistonSpec
+    from pumplink.inputs.piston import PistonSpec
 
     return _document(
         PistonSpec,
@@ -74,7 +74,7 @@ def piston_schema() -> dict[str, Any]:
 
 def _piston_keys() -> tuple[str, ...]:
     """Dotted keys of a piston-pump spec's numbers (what a piston batch file may vary)."""
-    from pumplink.piston import PistonSpec
+    from pumplink.inputs.piston import PistonSpec
 
     props = piston_schema()
     defs = props.get("$defs", {})
@@ -93,7 +93,7 @@ def batch_schema() -> dict[str, Any]:
     """JSON Schema of a batch file: ``base`` (a spec's path, or the spec inline, rope or piston
     pump) and ``[vary]`` (dotted spec keys, each a list of numbers or a ``{start, stop, num}``
     range)."""
-    from pumplink.batch.files import MAX_AXIS_VALUES, VARIABLE_KEYS
+    from pumplink.inputs.batch import MAX_AXIS_VALUES, VARIABLE_KEYS
 
     inline, defs = [], {}
     for doc in (spec_schema(), piston_schema()):

@@ -3,26 +3,23 @@
 Sample sets, error statistics against the ``reference`` method, the timed comparison of every
 method (:func:`compare_methods`), and what a uniform sweep of N samples reports for the peak and
 mean force.  Results are plain dicts keyed by identifiers; the words are in
-:data:`pumplink.methods.POINT_LABELS` and the output layer.
+output layer (:data:`pumplink.output.methods.POINT_LABELS`).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
+from pumplink.constants import DANGER, DEAD_CENTRE, NEAR_DEAD_CENTRE, UNIFORM
+from pumplink.errors import InfeasibleDesign
+from pumplink.evaluate import PumpDesigns, evaluate, motion, pump_designs
+from pumplink.inputs.pump import PumpSpec, spec_values
 from pumplink.mechanisms.angles import crank_grid
-from pumplink.mechanisms.fourbar import FourBar, grip_stroke, kinematic_state
-from pumplink.methods import (
-    DANGER,
-    DANGER_KINDS,
-    DEAD_CENTRE,
-    METHODS,
-    NEAR_DEAD_CENTRE,
-    UNIFORM,
-    MethodResult,
-    danger_points,
-)
-from pumplink.models import quasi_static as _force
+from pumplink.mechanisms.fourbar import FourBar, kinematic_state
+from pumplink.models import QUASI_STATIC
+from pumplink.studies.methods import DANGER_KINDS, METHODS, MethodResult, danger_points
 
 #: Offsets from each dead centre [deg] at which the methods are compared.
 DEAD_CENTRE_OFFSETS_DEG = (1.0, 1e-2, 1e-4, 1e-6)
@@ -36,7 +33,7 @@ def sample_sets(lk: FourBar, dead_centre_extended, dead_centre_folded, n: int = 
     ``UNIFORM``: n uniform angles (offset by half a step, so no sample is a dead centre by
     construction); ``NEAR_DEAD_CENTRE``: both sides of both dead centres at
     :data:`DEAD_CENTRE_OFFSETS_DEG`; ``DEAD_CENTRE``: the two dead centres; ``DANGER``: every
-    point of :func:`pumplink.methods.danger_points` and 1e-9 rad either side.
+    point of :func:`pumplink.studies.methods.danger_points` and 1e-9 rad either side.
     """
     dc = np.array([dead_centre_extended, dead_centre_folded], float)
     off = np.radians(np.array(DEAD_CENTRE_OFFSETS_DEG))
@@ -171,39 +168,33 @@ def sampled_mean_force(lk: FourBar, n: int, wheel_torque) -> float:
     return float(2.0 * np.pi * wheel_torque / travel)
 
 
-def sampling_study(
-    lk: FourBar,
-    dead_centre_extended,
-    dead_centre_folded,
-    dead_band,
-    wheel_torque,
-    swing,
-    counts=SAMPLE_COUNTS,
-) -> list[dict]:
+def sampling_study(designs: PumpDesigns, counts=SAMPLE_COUNTS) -> list[dict]:
     """What a uniform sweep of N samples (from crank angle 0) reports, against the exact values.
 
     Returns one dict per N: ``n``; ``sampled_max`` (largest finite |F| of the sweep with no
     dead band: what "maximum below 100 N" means for a plain sweep); ``sampled_peak`` (largest
-    |F| outside the dead bands) and ``exact_peak`` (:func:`pumplink.models.quasi_static.peak_force`) with the
-    relative error ``peak_error``; ``sampled_mean`` (:func:`sampled_mean_force`), ``exact_mean``
-    (:func:`pumplink.models.quasi_static.mean_force`) and ``mean_error``.  Forces [N].
+    |F| outside the dead bands) and ``exact_peak`` (the quasi-static peak outside the dead bands,
+    :func:`pumplink.evaluate.evaluate`) with the relative error ``peak_error``; ``sampled_mean``
+    (:func:`sampled_mean_force`), ``exact_mean`` (the evaluation's mean force) and ``mean_error``.
+    Forces [N].  ``designs``: one rope-pump design.
     """
-    exact_peak, _ = _force.dead_band_peak_force(
-        lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque
-    )
-    exact_mean = float(_force.mean_force(wheel_torque, grip_stroke(lk.handle, swing)))
     rows = []
     for n in counts:
+        ev = evaluate(designs, QUASI_STATIC, judge=False, passing_speed=False, samples=n)
+        _, lk = motion.at_design(ev)
+        exact_peak, exact_mean, peak = (
+            float(v[0]) for v in (ev.dead_band_peak_force, ev.mean_force, ev.sampled_peak)
+        )
+        wheel_torque = float(designs.wheel_torque)
         st = kinematic_state(lk, crank_grid(n), wheel_torque)
         f = np.abs(st.force[np.isfinite(st.force)])
-        peak = _force.sampled_peak(lk, n, wheel_torque, dead_centre_extended, dead_centre_folded, dead_band)
         mean = sampled_mean_force(lk, n, wheel_torque)
         rows.append(
             {
                 "n": int(n),
                 "sampled_max": float(f.max()) if f.size else None,
                 "sampled_peak": peak if np.isfinite(peak) else None,
-                "exact_peak": float(exact_peak),
+                "exact_peak": exact_peak,
                 "peak_error": abs(peak - exact_peak) / exact_peak if np.isfinite(peak) else None,
                 "sampled_mean": mean,
                 "exact_mean": exact_mean,
@@ -211,3 +202,41 @@ def sampling_study(
             }
         )
     return rows
+
+
+@dataclass(frozen=True)
+class MethodStudy:
+    """``pumplink methods`` on one design: every method against the reference (:func:`compare_methods`)
+    and what uniform sweeps report (:func:`sampling_study`)."""
+
+    name: str
+    methods: list[dict]
+    sampling: list[dict]
+    dead_band_deg: float
+
+
+def method_study(spec: PumpSpec, names, samples: int, repeats: int, advance=None) -> MethodStudy:
+    """The methods of ``names`` compared on the spec's design, and the sampling study.
+
+    Raises
+    ------
+    InfeasibleDesign : no crank-rocker for this spec.
+    """
+    designs = pump_designs(spec_values(spec))
+    ev = evaluate(designs, QUASI_STATIC, judge=False, passing_speed=False, peak=False)
+    if not ev.feasible[0]:
+        from pumplink.studies.force import design
+
+        raise InfeasibleDesign(f"{spec.name}: {design(spec).error}")
+    syn, lk = motion.at_design(ev)
+    mw = float(designs.wheel_torque)
+    rows = compare_methods(
+        lk, syn.dead_centre_extended, syn.dead_centre_folded, mw, names, samples, repeats, advance
+    )
+    return MethodStudy(spec.name, rows, sampling_study(designs), spec.operator.dead_band)
+
+
+def method_steps(names) -> int:
+    """The steps :func:`method_study` reports to ``advance``: the reference and each method on
+    each of the four sample sets of :func:`sample_sets`."""
+    return (len(names) + 1) * len((UNIFORM, NEAR_DEAD_CENTRE, DEAD_CENTRE, DANGER))

@@ -1,6 +1,8 @@
 """Batch files: a base spec plus axes to vary; parsing, validation and variant naming.
 
-A batch file (TOML) names a base spec and the spec keys to vary::
+One format for both pumps: the base is a rope-pump spec (:mod:`pumplink.inputs.pump`) or a
+piston-pump spec (``mechanism = "crank-slider"``, :mod:`pumplink.inputs.piston`), and the axes
+vary that spec's numeric keys.  A batch file (TOML) names a base spec and the keys to vary::
 
     name = "rocker-study"           # optional; default: the file stem (prefix of variant names)
     base = "prototype.toml"         # a spec file (relative to this file), or the spec inline as [base]
@@ -14,20 +16,14 @@ and the short key (the part after the last dot, the full key where that is ambig
 example ``rocker-study#07[rocker=0.25 swing=45]``.  Names depend only on the batch file, so a
 ``--chunk K/N`` slice names its variants as the full run does.
 
-The verdict is that of ``pumplink force``.  A variant whose spec gives inertia
-(``wheel.inertia``, ``wheel.mass`` or ``load.moving_mass``, in the base or on an axis) is decided by
-the flywheel model: it passes iff it is feasible, the mean force is within the limit and the least
-peak force with the flywheel (:func:`pumplink.models.flywheel.least_peak_force` at the variant's speed and
-speed fluctuation) is within the limit; the windowed peak outside the dead bands (``peak_force_N``) is
-then reported for information only.  Any other variant is decided by the quasi-static model with the
-dead band, as before.  The ``peak`` check of ``--fail-on`` is the verdict's peak: the flywheel one
-where the variant gives inertia.  Every variant of one batch file has the same spec keys, so one
-model decides a whole batch file; a run over several files can mix the models.
+The verdict is that of ``pumplink force`` (:func:`pumplink.evaluate.evaluate`).  A variant
+whose spec gives inertia (``wheel.inertia``, ``wheel.mass`` or ``load.moving_mass``, in the base or
+on an axis) is decided by the least energy model that is enough (the flywheel or full dynamics);
+any other by the quasi-static model with the dead band.  Every variant of one batch file has the
+same spec keys; a run over several files can mix the models (and the pumps).
 
 Everything here is a pure function of the parsed files except :func:`load_batch` /
-:func:`load_inputs` (read files) and :func:`run` (schedules chunks on worker processes).  The
-numbers per variant are bit-for-bit those of :func:`pumplink.analysis.force_analysis` (``pumplink
-force --summary``) on the same variant: the same kernels, vectorised over designs.
+:func:`load_inputs`, which read files.
 """
 
 from __future__ import annotations
@@ -42,7 +38,9 @@ from typing import Any
 import numpy as np
 
 from pumplink.errors import SpecError, has_control, shown
-from pumplink.spec import PumpSpec, load_spec, parse_spec, read_toml, spec_from_file_data, spec_to_dict
+from pumplink.inputs.piston import PistonSpec, parse_piston
+from pumplink.inputs.pump import PumpSpec, parse_spec, spec_from_file_data, spec_to_dict
+from pumplink.inputs.toml import is_piston_data, read_toml, spec_name
 
 #: Checks ``--fail-on`` can select (the default selects all three, as ``pumplink force`` does).
 #: ``peak`` is the verdict's peak: the flywheel's least peak force where the variant gives
@@ -54,8 +52,12 @@ FAIL_CHECKS = ("mean", "peak", "infeasible", "checks", "warnings")
 VERDICT_CHECKS = FAIL_CHECKS[:4]
 
 
-#: Spec keys that give the inertia and so turn on the flywheel model (``PumpSpec.inertia``).
+#: Spec keys that give the inertia and so turn on the energy models (``PumpSpec.gives_inertia``),
+#: by mechanism.
 INERTIA_KEYS = ("wheel.inertia", "wheel.mass", "load.moving_mass")
+PISTON_INERTIA_KEYS = ("wheel.inertia", "wheel.mass")
+#: The mechanism of a rope pump (the pump paper's four-bar) and of a piston pump.
+FOUR_BAR, CRANK_SLIDER = "four-bar", "crank-slider"
 
 
 #: Largest number of values on one axis (each axis is held in memory and sent to every worker).
@@ -78,17 +80,22 @@ _TOP_KEYS = ("name", "base", "vary")
 MAX_NAME_CHARS = 200
 
 
-def _leaf_keys() -> tuple[str, ...]:
+def _leaf_keys(model) -> tuple[str, ...]:
+    import typing
+
     keys = []
-    for section, field in PumpSpec.model_fields.items():
-        sub = getattr(field.annotation, "model_fields", None)
+    for section, field in model.model_fields.items():
+        annotation = field.annotation
+        args = [a for a in typing.get_args(annotation) if a is not type(None)] or [annotation]
+        sub = getattr(args[0], "model_fields", None)
         if sub:
             keys.extend(f"{section}.{k}" for k in sub)
     return tuple(keys)
 
 
-#: Dotted spec paths that an axis may vary (every numeric key of the spec).
-VARIABLE_KEYS = _leaf_keys()
+#: Dotted spec paths that an axis may vary (every key of a spec's tables), by mechanism.
+VARIABLE_KEYS = _leaf_keys(PumpSpec)
+PISTON_VARIABLE_KEYS = _leaf_keys(PistonSpec)
 
 
 @dataclass(frozen=True)
@@ -117,8 +124,21 @@ class Batch:
     source: str
     label: str
     base: dict[str, Any]
-    spec: PumpSpec
+    spec: PumpSpec | PistonSpec
     axes: tuple[Axis, ...]
+
+    def name(self, index: int) -> str:
+        """The name of variant ``index`` (:func:`variant_name`)."""
+        return variant_name(self, index)
+
+    def names(self, start: int, stop: int) -> list[str]:
+        """The names of variants ``start..stop-1`` (:func:`variant_names`)."""
+        return variant_names(self, start, stop)
+
+    @property
+    def mechanism(self) -> str:
+        """:data:`FOUR_BAR` (a rope pump) or :data:`CRANK_SLIDER` (a piston pump)."""
+        return CRANK_SLIDER if isinstance(self.spec, PistonSpec) else FOUR_BAR
 
     @property
     def size(self) -> int:
@@ -131,7 +151,7 @@ class Batch:
     def given(self, key: str) -> bool:
         """True when the variants set the spec key ``section.name`` (in the base or on an axis)."""
         section, name = key.split(".")
-        return key in self.keys or getattr(getattr(self.spec, section), name) is not None
+        return key in self.keys or getattr(getattr(self.spec, section), name, None) is not None
 
     @property
     def flywheel(self) -> bool:
@@ -139,7 +159,8 @@ class Batch:
 
         Every variant of a batch sets the same keys, so this holds for all of them or none.
         """
-        return any(self.given(k) for k in INERTIA_KEYS)
+        keys = PISTON_INERTIA_KEYS if self.mechanism == CRANK_SLIDER else INERTIA_KEYS
+        return any(self.given(k) for k in keys)
 
 
 # ----------------------------------------------------------------------------- parsing
@@ -272,49 +293,52 @@ def parse_batch(data: Any, source: str, folder: Path | None = None, stem: str | 
         if not path.is_absolute():
             path = (folder or Path(".")) / path
         try:
-            spec = load_spec(path)
+            spec = load_any_spec(path)
         except SpecError as exc:
             raise SpecError(f"{source}: base = {shown(raw_base)}: {exc}") from None
     elif isinstance(raw_base, dict):
         base = dict(raw_base)
         base.setdefault("name", label)
-        spec = parse_spec(base, source=f"{source} [base]")
+        spec = (parse_piston if is_piston_data(base) else parse_spec)(base, source=f"{source} [base]")
     else:
         raise SpecError(
             f"{source}: 'base' = {shown(raw_base)} must be a spec file name (text) or a [base] table"
         )
     base = spec_to_dict(spec)
+    piston = isinstance(spec, PistonSpec)
+    parse = parse_piston if piston else parse_spec
+    keys = PISTON_VARIABLE_KEYS if piston else VARIABLE_KEYS
+    example = "piston.bore" if piston else "linkage.rocker"
 
     vary = data.get("vary")
     if vary is None:
-        raise SpecError(f'{source}: missing [vary] table; add e.g. [vary] "linkage.rocker" = [0.2, 0.25]')
+        raise SpecError(f'{source}: missing [vary] table; add e.g. [vary] "{example}" = [0.2, 0.25]')
     if not isinstance(vary, dict):
         raise SpecError(
             f"{source}: 'vary' = {shown(vary)} must be a table ([vary]) of \"section.key\" = values"
         )
     if not vary:
-        raise SpecError(f'{source}: [vary] is empty; add an axis such as "linkage.rocker" = [0.2, 0.25]')
+        raise SpecError(f'{source}: [vary] is empty; add an axis such as "{example}" = [0.2, 0.25]')
     for key in vary:
-        if key not in VARIABLE_KEYS:
-            close = difflib.get_close_matches(key, VARIABLE_KEYS, n=1)
+        if key not in keys:
+            close = difflib.get_close_matches(key, keys, n=1)
             hint = f" (did you mean '{close[0]}'?)" if close else ""
             raise SpecError(
-                f"{source}: [vary] '{key}' is not a numeric spec key{hint}; allowed: "
-                f"{', '.join(VARIABLE_KEYS)}"
+                f"{source}: [vary] '{key}' is not a numeric spec key{hint}; allowed: {', '.join(keys)}"
             )
     axes = []
     for (key, raw), short in zip(vary.items(), _short_keys(list(vary))):
         values = _axis_values(key, raw, source)
         for v in sorted({float(values.min()), float(values.max())}):
             # the spec's limits are intervals: the extremes decide for every value on the axis
-            parse_spec(_set(base, key, v), source=f"{source}: [vary] '{key}' value {_value_label(v)}")
+            parse(_set(base, key, v), source=f"{source}: [vary] '{key}' value {_value_label(v)}")
         labels = tuple(_value_label(v) for v in values.tolist())
         axes.append(Axis(key, values, labels, short))
     first = base
     for a in axes:
         first = _set(first, a.key, float(a.values[0]))
     try:
-        parse_spec(first, source=f"{source}: [vary] {', '.join(vary)}")
+        parse(first, source=f"{source}: [vary] {', '.join(vary)}")
     except SpecError as exc:
         raise SpecError(f"{exc}".rstrip(".") + " (check the varied keys against the base spec).") from None
     b = Batch(source, label, base, spec, tuple(axes))
@@ -326,7 +350,15 @@ def parse_batch(data: Any, source: str, folder: Path | None = None, stem: str | 
     return b
 
 
-def spec_batch(spec: PumpSpec, source: str) -> Batch:
+def load_any_spec(path: str | Path) -> PumpSpec | PistonSpec:
+    """A rope-pump or piston-pump spec file (decided by its ``mechanism`` key)."""
+    data = read_toml(path)
+    if is_piston_data(data):
+        return parse_piston(spec_name(data, path), source=str(path))
+    return spec_from_file_data(data, path)
+
+
+def spec_batch(spec: PumpSpec | PistonSpec, source: str) -> Batch:
     """A plain spec as a batch of one variant (named as the spec)."""
     return Batch(source, spec.name, spec_to_dict(spec), spec, ())
 
@@ -348,6 +380,8 @@ def load_batch(path: str | Path) -> Batch:
     data = read_toml(path, "a TOML spec or batch")
     if is_batch_mapping(data):
         return parse_batch(data, str(path), path.parent, path.stem)
+    if is_piston_data(data):
+        return spec_batch(parse_piston(spec_name(data, path), source=str(path)), str(path))
     return spec_batch(spec_from_file_data(data, path), str(path))
 
 

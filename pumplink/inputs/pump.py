@@ -1,0 +1,369 @@
+"""The rope-pump spec: a TOML file validated by pydantic (SI units; angles in degrees).
+
+The keys and units are the contract other tools write against.  Every bad value is
+reported as one sentence naming the key, the value and what is allowed.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+from pydantic import Field, field_validator, model_validator
+
+from pumplink.constants import (
+    DEFAULT_ARM_MASS,
+    DEFAULT_SPEED_FLUCTUATION,
+    FORCE_LIMIT_N,
+)
+from pumplink.errors import SpecError, has_control, shown
+from pumplink.inputs.toml import Section, read_toml, spec_name, validate
+from pumplink.models import load as _load
+
+
+class Wheel(Section):
+    radius: float = Field(ge=0.001, le=5, description="upper wheel radius rw [m]")
+    axle_height: float | None = Field(
+        default=None,
+        gt=0,
+        le=5,
+        description="height of the wheel axle above the ground [m] (optional; the paper uses 0.40-0.70 m)",
+    )
+    inertia: float | None = Field(
+        default=None,
+        gt=0,
+        le=1000,
+        description="moment of inertia of the wheel about its axle [kg m^2] "
+        "(optional; turns on the flywheel model)",
+    )
+    mass: float | None = Field(
+        default=None,
+        gt=0,
+        le=1000,
+        description="wheel mass [kg], taken as a rim: J = mass * radius^2 (optional, instead of inertia)",
+    )
+
+    @model_validator(mode="after")
+    def _one_inertia(self) -> Wheel:
+        if self.inertia is not None and self.mass is not None:
+            raise ValueError(
+                f"give either wheel.inertia [kg m^2] or wheel.mass [kg], not both "
+                f"(inertia = {self.inertia!r}, mass = {self.mass!r})"
+            )
+        return self
+
+
+class Linkage(Section):
+    L1: float = Field(
+        ge=0, le=10, description="horizontal placement of the rocker pivot beyond the stand [m]"
+    )
+    D1: float = Field(
+        ge=-10, le=10, description="depth of the rocker pivot below the axle [m] (negative = above)"
+    )
+    b: float = Field(ge=0, le=10, description="width of the pump stand [m]")
+    rocker: float = Field(ge=0.001, le=10, description="rocker length l4 [m]")
+    handle: float = Field(ge=0.001, le=20, description="handle length H, rocker pivot to hand grip [m]")
+    swing: float = Field(
+        ge=2 * math.pi,  # below: radians, said by _swing_in_degrees
+        lt=180,
+        description="total handle swing [deg], symmetric about vertical",
+    )
+    mass_per_length: float | None = Field(
+        default=None,
+        gt=0,
+        le=100,
+        description="mass per metre of the handle and coupler [kg/m] for the link-energy estimate "
+        "(default 1.56: 3/4-inch steel tube)",
+    )
+    coupler_mass: float | None = Field(
+        default=None,
+        ge=0,
+        le=1000,
+        description="coupler mass [kg] (full dynamics; default mass_per_length * coupler length)",
+    )
+    handle_mass: float | None = Field(
+        default=None,
+        ge=0,
+        le=1000,
+        description="handle mass [kg], a uniform bar from the rocker pivot to the grip (full dynamics; "
+        "default mass_per_length * max(handle, rocker))",
+    )
+    hole_diameter: float | None = Field(
+        default=None,
+        ge=0.001,
+        le=0.1,
+        description="diameter of the pin holes on the workshop template [m] (default 0.010)",
+    )
+
+    @model_validator(mode="before")
+    @classmethod
+    def _swing_in_degrees(cls, data: Any) -> Any:
+        # A swing below 2 pi is almost surely radians (1.047 for 60 deg): a 1.8 mm crank that
+        # fails with no hint otherwise.  Said before the range check, with the fix.
+        swing = data.get("swing") if isinstance(data, dict) else None
+        if (
+            isinstance(swing, (int, float))
+            and not isinstance(swing, bool)
+            and 0 < swing < 2 * math.pi
+            and math.degrees(swing) >= 1  # not a slip of 1e-100, which the range error names
+        ):
+            deg = f"{round(math.degrees(swing), 1):g}"
+            raise ValueError(
+                f"linkage.swing = {swing!r} looks like radians: did you mean {deg}°? The swing is in "
+                f"degrees, {2 * math.pi:g} <= swing < 180 (write swing = {deg})"
+            )
+        return data
+
+
+class Load(Section):
+    rope_force: float | None = Field(
+        default=None,
+        ge=0.001,  # 1 mN: below, the flywheel's energy balance loses every digit (denormal torques)
+        le=10_000,
+        description="rope force Fw at the wheel rim [N] (or give head and pipe_diameter)",
+    )
+    head: float | None = Field(default=None, ge=0.001, le=200, description="pumping head [m]")
+    pipe_diameter: float | None = Field(default=None, ge=0.001, le=0.5, description="rising-main bore [m]")
+    efficiency: float | None = Field(
+        default=None,
+        ge=0.05,
+        le=1,
+        description="rope-pump efficiency with head/pipe_diameter [-] (default 0.75)",
+    )
+    moving_mass: float | None = Field(
+        default=None,
+        ge=0,
+        le=10_000,
+        description="rope, pistons and water moving with the wheel rim [kg] (default with head and "
+        "pipe_diameter: the water in the rising main)",
+    )
+
+    @property
+    def rope_force_N(self) -> float:
+        """Rope force at the rim [N] (:func:`pumplink.models.load.rope_force`)."""
+        return _load.rope_force(self.rope_force, self.head, self.pipe_diameter, self.efficiency)
+
+    @property
+    def moving_mass_kg(self) -> float:
+        """Mass moving at rim speed [kg] (:func:`pumplink.models.load.moving_mass`)."""
+        return _load.moving_mass(self.moving_mass, self.head, self.pipe_diameter)
+
+    @model_validator(mode="after")
+    def _one_load(self) -> Load:
+        by_head = self.head is not None or self.pipe_diameter is not None
+        if self.rope_force is not None and by_head:
+            raise ValueError("give either load.rope_force or load.head with load.pipe_diameter, not both")
+        if self.rope_force is None and not (self.head is not None and self.pipe_diameter is not None):
+            raise ValueError(
+                "give load.rope_force [N], or load.head [m] together with load.pipe_diameter [m]"
+            )
+        if self.efficiency is not None and not by_head:
+            raise ValueError("load.efficiency only applies with load.head and load.pipe_diameter")
+        return self
+
+
+class Operator(Section):
+    force_limit: float = Field(
+        default=FORCE_LIMIT_N, ge=1, le=10_000, description="largest acceptable operator force [N]"
+    )
+    speed: float = Field(default=360.0, gt=0, le=7200, description="wheel speed [deg/s]")
+    dead_band: float = Field(
+        default=20.0,
+        ge=0,
+        lt=90,
+        description="crank angle each side of a dead centre left to the wheel's inertia [deg] "
+        "(quasi-static model only)",
+    )
+    speed_fluctuation: float = Field(
+        default=DEFAULT_SPEED_FLUCTUATION,
+        gt=0,
+        le=1,
+        description="largest coefficient of speed fluctuation (w_max - w_min) / w_mean [-] (flywheel model)",
+    )
+    arm_mass: float | None = Field(
+        default=None,
+        ge=0,
+        le=100,
+        description="operator's hands and forearms moving with the grip [kg] (full dynamics: the "
+        "muscular effort and the best cadence; default 4.32)",
+    )
+    arms_in_verdict: bool | None = Field(
+        default=None,
+        description="true to judge the muscular effort (arm_mass at the grip) against force_limit "
+        "instead of the hand force",
+    )
+
+    @property
+    def arm_mass_kg(self) -> float:
+        """operator.arm_mass, or the anthropometric default (pumplink.constants.DEFAULT_ARM_MASS) [kg]."""
+        return DEFAULT_ARM_MASS if self.arm_mass is None else self.arm_mass
+
+
+class PumpSpec(Section):
+    name: str = Field(default="pump", min_length=1, max_length=200, description="design name")
+
+    @field_validator("name")
+    @classmethod
+    def _printable_name(cls, name: str) -> str:
+        # names go into tables, JUnit XML and file names: a newline or an escape sequence breaks
+        # the XML and recolours (or clears) the terminal
+        if has_control(name):
+            raise ValueError(
+                f"name = {shown(name)} contains a control character (newline, tab, escape, ...); "
+                "give a name of printable characters"
+            )
+        return name
+
+    wheel: Wheel = Field(description="the [wheel] table: radius [m]")
+    linkage: Linkage = Field(description="the [linkage] table: L1, D1, b, rocker, handle, swing")
+    load: Load = Field(description="the [load] table: rope_force [N], or head [m] with pipe_diameter [m]")
+    operator: Operator = Field(
+        default=Operator(),
+        description="the [operator] table: force_limit, speed, dead_band, speed_fluctuation",
+    )
+
+    @property
+    def wheel_torque(self) -> float:
+        """Load torque Mw = Fw * rw on the wheel axle [N m] (Eq. 3 of the pump paper)."""
+        return self.load.rope_force_N * self.wheel.radius
+
+    @property
+    def inertia(self) -> float | None:
+        """Moment of inertia about the wheel axle [kg m^2] (:func:`pumplink.models.load.inertia`),
+        or None when the spec gives none (:attr:`gives_inertia`)."""
+        if not self.gives_inertia:
+            return None
+        w = self.wheel
+        return _load.inertia(w.radius, w.inertia, w.mass, self.load.moving_mass_kg)
+
+    @property
+    def gives_inertia(self) -> bool:
+        """True when the spec states wheel.inertia, wheel.mass or load.moving_mass: the wheel's
+        inertia is known and the flywheel or full dynamics decides (docs/models.md §3); without
+        them the design is analysed quasi-statically with the dead band."""
+        w = self.wheel
+        return not (w.inertia is None and w.mass is None and self.load.moving_mass is None)
+
+
+#: The built-in default design (``pumplink force`` with no spec; ``pumplink init``).  It is the
+#: prototype example: a 0.5 m wheel (20" rim class, docs/physics.md §5), a 1 m handle swung +-30 deg
+#: about vertical, 45 N at the rim (about 8 m head through a 23 mm bore at 75 % efficiency).
+DEFAULT_SPEC: dict[str, Any] = {
+    "name": "Prototype",
+    "wheel": {"radius": 0.25},
+    "linkage": {"L1": 0.40, "D1": 0.20, "b": 0.10, "rocker": 0.20, "handle": 1.00, "swing": 60.0},
+    "load": {"rope_force": 45.0},
+    "operator": {"force_limit": 100.0, "speed": 360.0, "dead_band": 20.0},
+}
+
+
+def default_spec() -> PumpSpec:
+    """The built-in default design as a validated spec."""
+    return PumpSpec.model_validate(DEFAULT_SPEC)
+
+
+def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
+    """Validate a spec mapping (as read from TOML).
+
+    Raises
+    ------
+    SpecError
+        One sentence per problem (the first in the message, the count of the others after it).
+    """
+    if not isinstance(data, dict) or not data:
+        raise SpecError(
+            f"{source}: empty spec; expected [wheel], [linkage], [load] "
+            "(write an example with `pumplink init`)"
+        )
+    if "mechanism" in data:
+        raise SpecError(
+            f"{source}: a piston-pump spec (mechanism = {data['mechanism']!r}) runs through "
+            "`pumplink force` and `pumplink batch` only (docs/piston-pump.md)"
+        )
+    return validate(PumpSpec, data, source)
+
+
+def spec_values(spec):
+    """``value(key)`` for :func:`pumplink.evaluate.pump_designs`: the spec's value of a dotted key
+    ("linkage.swing"), None where the spec does not give it."""
+
+    def value(key: str):
+        section, name = key.split(".")
+        return getattr(getattr(spec, section), name, None)
+
+    return value
+
+
+def spec_from_file_data(data: Any, path: str | Path) -> PumpSpec:
+    """Validate the mapping read from ``path``; the name defaults to the file stem."""
+    path = Path(path)
+    if isinstance(data, dict) and ("vary" in data or "base" in data):
+        raise SpecError(
+            f"{path}: this is a batch file (it has "
+            f"{'vary' if 'vary' in data else 'base'}); run it with `pumplink batch {path}`"
+        )
+    return parse_spec(spec_name(data, path), source=str(path))
+
+
+def load_spec(path: str | Path) -> PumpSpec:
+    """Read and validate a TOML spec file; the name defaults to the file stem.
+
+    Raises
+    ------
+    SpecError
+        Unreadable file, invalid TOML, or an invalid spec.
+    """
+    return spec_from_file_data(read_toml(path), path)
+
+
+def spec_to_dict(spec: PumpSpec) -> dict[str, Any]:
+    """The spec as a plain mapping for tomli-w (optional keys left out when unset)."""
+    return spec.model_dump(exclude_none=True)
+
+
+#: The commented spec ``pumplink init`` writes: the default design with every key's unit and
+#: allowed range, and the optional keys commented out.  ``{name}`` is filled in.
+SPEC_TEMPLATE = """\
+# A pumplink spec: the rope pump's wheel, the four-bar linkage, the load and the operator.
+# Units: metres, degrees, newtons, kilograms, seconds.  Check it with:  pumplink force {path}
+# The keys are explained in docs/physics.md §1 (with a sketch of L1, D1 and b).
+name = "{name}"
+
+[wheel]
+radius = 0.25          # wheel radius rw [m], 0.001-5 (a 20" tyre rim: about 0.25)
+# axle_height = 0.55   # axle height above the ground [m], 0-5: adds grip-height checks
+# mass = 4.0           # wheel mass [kg] as a rim, J = mass rw^2: turns on the flywheel model,
+#                      # where the wheel speed decides the verdict (docs/models.md §2)
+# inertia = 0.25       # or the wheel's moment of inertia [kg m^2] instead of mass
+
+[linkage]
+L1 = 0.40              # rocker pivot beyond the stand, horizontally [m], 0-10
+D1 = 0.20              # rocker pivot below the axle [m], -10..10 (negative: above)
+b = 0.10               # width of the pump stand [m], 0-10
+rocker = 0.20          # rocker length l4 [m], 0.001-10
+handle = 1.00          # handle length H, rocker pivot to grip [m], 0.001-20
+swing = 60.0           # total handle swing [deg], 1-179, symmetric about vertical (not radians)
+# mass_per_length = 1.56  # handle and coupler tube [kg/m] (default: 3/4" steel tube)
+
+[load]
+rope_force = 45.0      # rope force at the wheel rim Fw [N], 0-10000; or instead:
+# head = 10.0          # pumping head [m], 0-200
+# pipe_diameter = 0.023  # rising-main bore [m], 0.001-0.5
+# efficiency = 0.75    # rope-pump efficiency [-], 0.05-1 (with head and pipe_diameter)
+# moving_mass = 4.0    # rope and water moving with the rim [kg] (flywheel model)
+
+[operator]
+force_limit = 100.0    # largest acceptable push/pull [N], 1-10000 (women: 70; UK HSE guidance)
+speed = 360.0          # wheel speed [deg/s], 0-7200 (360 deg/s = 60 rpm)
+dead_band = 20.0       # crank angle each side of a dead centre left to the wheel [deg], 0-89
+# speed_fluctuation = 0.2  # largest (w_max - w_min) / w_mean [-], 0-1 (flywheel model)
+"""
+
+
+def spec_template(name: str, path: str = "pump.toml") -> str:
+    """The commented spec of :data:`SPEC_TEMPLATE` with this design ``name`` (TOML-quoted)."""
+    import json
+
+    quoted = json.dumps(name, ensure_ascii=False)[1:-1]  # a TOML basic string is JSON-compatible
+    return SPEC_TEMPLATE.replace("{name}", quoted).replace("{path}", path)

@@ -1,0 +1,451 @@
+"""`pumplink force`: the sweep, the checks and the verdict; the model-choice report (``--explain``)
+and the independent check (``--verify``); the JSON contract of a force result.
+
+Renderers only render: every number comes from the library's results.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Iterator
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from pumplink.output.formats import console, deg, num, write_csv
+from pumplink.output.formats import fmt as _f
+from pumplink.output.formats import write_json as _json
+
+if TYPE_CHECKING:
+    from pumplink.studies.force import ForceResult
+from pumplink.output.speed import cadence_lines
+from pumplink.output.synth import design_row
+from pumplink.output.words import (
+    CHECK_ADVICE,
+    RESULT_MARKUP,
+    advice_row,
+    advice_sentence,
+    check_label,
+    check_row,
+    check_sentence,
+    check_value,
+    limit_text,
+    model_line,
+    verdict_line,
+)
+
+
+def force_summary(r: ForceResult) -> dict[str, Any]:
+    """The JSON contract of a force analysis without samples."""
+    out = design_row(r.design)
+    out.update(
+        {
+            "speed_deg_s": r.speed_deg_s,
+            "wheel_torque_Nm": num(r.wheel_torque),
+            "power_W": num(r.power),
+            "force_limit_N": num(r.force_limit),
+            "dead_band_deg": r.design.spec.operator.dead_band,
+            "model": r.model,
+            "inertia_kg_m2": None if r.inertia is None else num(r.inertia),
+            "speed_fluctuation": r.speed_fluctuation,
+            "energy_band_J": None if r.energy_band is None else num(r.energy_band),
+            "least_peak_force_N": None if r.least_peak_force is None else num(r.least_peak_force),
+            "min_passing_speed_deg_s": None if r.min_passing_speed is None else deg(r.min_passing_speed),
+            "wheel_speed_range_deg_s": _speed_range(r),
+            "link_kinetic_energy_J": num(r.link_energy),
+            "link_weight_J": None if r.effects is None else num(r.effects.link_weight),
+            "arm_kinetic_energy_J": None if r.effects is None else num(r.effects.arm_energy),
+            "effort_peak_force_N": None if r.effort_peak_force is None else num(r.effort_peak_force),
+            "mean_force_N": num(r.mean_force),
+            # the verdict's peak (of the model that decided), and the dead-band model's under its own name
+            "peak_force_N": num(r.verdict_peak_force),
+            "peak_force_infinite": bool(r.verdict_peak_force == math.inf),
+            "dead_band_peak_force_N": num(r.dead_band_peak_force),
+            "dead_band_peak_crank_deg": deg(r.dead_band_peak_angle),
+            "sampled_peak_force_N": num(r.sampled_peak),
+            "samples_n": r.samples_n,
+            "verdict": r.outcome,
+            "pass": r.passed,
+            "checks": [check_row(c, r) for c in r.checks],
+        }
+    )
+    return out
+
+
+def force_html(r: ForceResult) -> str:
+    """A force result as an HTML table for notebooks (``ForceResult._repr_html_``)."""
+    import html
+
+    h = html.escape
+    head = f"<b>{h(r.design.spec.name)}</b>: {h(r.outcome)} at {r.speed_deg_s:g} deg/s ({h(r.model)})"
+    if not r.design.feasible:
+        return f"<p>{head}: infeasible, {h(str(r.design.error))}</p>"
+    rows = "".join(
+        f"<tr><td>{h(check_label(c, r))}</td><td>{h(check_value(c))}</td><td>{h(c.result)}</td></tr>"
+        for c in r.checks
+    )
+    return (
+        f"<p>{head}</p><table><thead><tr><th>check</th><th>value</th><th>result</th></tr></thead>"
+        f"<tbody>{rows}</tbody></table>"
+    )
+
+
+def _speed_range(r: ForceResult):
+    sc = r.scene
+    if sc is None or not math.isfinite(sc.least_peak_force):
+        return None
+    return {"min": deg(sc.min_speed), "max": deg(sc.max_speed)}
+
+
+def sample_rows(r: ForceResult) -> list[dict[str, Any]]:
+    """One dict per sampled crank angle (JSON/CSV)."""
+    return list(iter_sample_rows(r))
+
+
+#: Samples converted to rows at a time by :func:`iter_sample_rows` (memory: one block).
+ROW_BLOCK = 4096
+
+
+def iter_sample_rows(r: ForceResult) -> Iterator[dict[str, Any]]:
+    """:func:`sample_rows` one row at a time, converted in blocks, so that a million samples
+    stream to JSON or CSV without a million dicts in memory."""
+    if r.samples is None:
+        return
+    s = r.samples
+    cols = {
+        "crank_deg": np.degrees(s.crank_angle),
+        "force_N": s.force,
+        "handle_speed_m_s": r.handle_speed,
+        "phi_deg": np.degrees(s.rocker_angle) - 90.0,
+        "rocker_deg": np.degrees(s.rocker_angle),
+        "transmission_deg": np.degrees(s.transmission_angle),
+        # the operator's force and the wheel speed: the flywheel scene's profile, or (quasi-static)
+        # the quasi-static force at a constant speed
+        "operator_force_N": s.force if r.operator_force is None else r.operator_force,
+        "wheel_speed_deg_s": np.degrees(
+            np.broadcast_to(r.speed if r.wheel_speed is None else r.wheel_speed, s.force.shape)
+        ),
+    }
+    n = len(s.singular)
+    for b0 in range(0, n, ROW_BLOCK):
+        b = slice(b0, b0 + ROW_BLOCK)
+        lists = {k: np.asarray(v)[b].tolist() for k, v in cols.items()}
+        sing, band = s.singular[b].tolist(), r.in_dead_band[b].tolist()
+        for i in range(len(sing)):
+            row = {k: (v[i] if math.isfinite(v[i]) else None) for k, v in lists.items()}
+            row["singular"] = sing[i]
+            row["in_dead_band"] = band[i]
+            yield row
+
+
+def _bar(value, limit, width=12) -> str:
+    if value is None or not math.isfinite(value):
+        return "[red]" + "▶" * width + "[/]"
+    full = abs(value) / limit * width / 1.5 >= width  # full bar at 1.5x the limit, then an arrow
+    mark = "█" * (width - 1) + "▶" if full else "█" * int(round(abs(value) / limit * width / 1.5))
+    return f"[red]{mark}[/]" if abs(value) > limit else f"[green]{mark}[/]"
+
+
+def _condensed_indices(r: ForceResult, max_rows: int = 24) -> list[int]:
+    n = r.samples.crank_angle.size
+    if n <= max_rows + 4:
+        return list(range(n))
+    return sorted(set(np.linspace(0, n - 1, max_rows).round().astype(int).tolist()))
+
+
+def render_force(
+    r: ForceResult,
+    fmt: str,
+    summary: bool = False,
+    out=None,
+    extra: dict | None = None,
+    strict: bool = False,
+    advice=(),
+) -> None:
+    """`pumplink force`: sweep table (condensed), checks and the verdict.
+
+    ``extra`` (JSON only): more top-level keys, e.g. ``explain`` and ``verify``.  ``strict``:
+    warnings fail (``--strict``).  ``advice``: :class:`pumplink.search.suggest.Suggestion` records,
+    printed after a FAIL (and in JSON as ``advice``).
+    """
+    out = out or sys.stdout
+    if fmt == "json":
+        obj = force_summary(r)
+        obj["strict"] = strict
+        obj["advice"] = [advice_row(a) for a in advice]
+        obj.update(extra or {})
+        if not summary:  # streamed: a million samples must not be a million dicts at once
+            return _json(obj, out, stream=("samples", iter_sample_rows(r)))
+        return _json(obj, out)
+    if fmt == "csv":
+        return write_csv([force_summary(r)] if summary or r.samples is None else iter_sample_rows(r), out)
+
+    from rich import box
+    from rich.markup import escape
+    from rich.table import Table
+
+    c = console(out)
+    d = design_row(r.design)
+    name = escape(d["name"])
+    if not r.design.feasible:
+        c.print(f"[bold]{name}[/]: [red]infeasible[/] — {escape(r.design.error)}.")
+        c.print("[bold red]VERDICT: FAIL[/] (no linkage to drive)")
+        return
+    dc = d["dead_centres_deg"]
+    c.print(
+        f"[bold]{name}[/]: crank {d['crank_length']:.4f} m, coupler {d['coupler_length']:.4f} m, "
+        f"rocker {d['rocker_length']:.4f} m, frame {d['frame_length']:.4f} m, "
+        f"handle {d['handle_length']:.3f} m"
+    )
+    c.print(
+        f"dead centres (DC) at crank {dc['extended']:.2f}° (extended) and {dc['folded']:.2f}° (folded); "
+        f"time ratio K = {d['time_ratio']:.4f}; wheel torque {r.wheel_torque:.3f} N·m at "
+        f"{r.speed_deg_s:g} deg/s ({r.power:.1f} W)"
+    )
+    fly = r.flywheel and r.operator_force is not None
+
+    if not summary and r.samples is not None and r.samples.crank_angle.size:
+        s = r.samples
+        kind = "flywheel scene" if fly else "quasi-static"
+        t = Table(
+            title=f"Operator force over the crank cycle ({kind}, {r.samples_n} samples"
+            f"{', condensed' if s.crank_angle.size > 28 else ''})",
+            title_justify="left",
+            min_width=min(c.width, 78),  # the title on one line
+            caption="θ2 crank angle; Fh quasi-static force"
+            + (
+                "; F the operator's force, ω the wheel speed (ω max: at its top speed); DC ext/fold: "
+                "the extended/folded dead centre"
+                if fly
+                else ""
+            )
+            + "; bar full at 1.5× the limit; v grip speed; φ handle from vertical; "
+            "γ transmission angle",
+            caption_justify="left",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
+        )
+        heads = ["θ2 [°]", "Fh [N]"]
+        heads += (
+            ["F [N]", f"|F| vs {r.force_limit:g} N", "ω [°/s]"] if fly else [f"|Fh| vs {r.force_limit:g} N"]
+        )
+        heads += ["v [m/s]", "φ [°]", "γ [°]", "note"]
+        for h in heads:
+            t.add_column(
+                escape(h), justify="left" if h.startswith(("|", "note")) else "right", no_wrap=h == "note"
+            )
+        rows = []
+        hs = r.handle_speed
+
+        def add(st, i, speed, note, op=None, w=None):
+            f = st.force[i]
+            qs = "∞" if st.singular[i] else _f(f, "{:+.1f}")
+            if fly:
+                mid = [_f(op, "{:+.1f}"), _bar(op, r.force_limit, 8), _f(np.degrees(w), "{:.1f}")]
+            else:
+                mid = [_bar(None if st.singular[i] else float(f), r.force_limit, 12)]
+            rows.append(
+                (
+                    float(st.crank_angle[i]) % (2 * math.pi),
+                    _f(np.degrees(st.crank_angle[i]) % 360, "{:.2f}"),
+                    qs,
+                    *mid,
+                    _f(speed, "{:.2f}"),
+                    _f(np.degrees(st.rocker_angle[i]) - 90, "{:+.1f}"),
+                    _f(np.degrees(st.transmission_angle[i]), "{:.1f}"),
+                    note,
+                )
+            )
+
+        for i in _condensed_indices(r):
+            if s.singular[i]:
+                note = "[bold]DC[/]"
+            elif fly:
+                note = "[dim]ω max[/]" if r.on_ceiling[i] else ""
+            else:
+                note = "[dim]dead band[/]" if r.in_dead_band[i] else ""
+            add(s, i, hs[i], note, *((r.operator_force[i], r.wheel_speed[i]) if fly else ()))
+        if s.crank_angle.size > 28 and r.marks is not None:  # mark the dead centres and the exact peak
+            m = r.marks
+            speeds = r.mark_grip_speed
+            if fly:
+                ws, ops = r.mark_wheel_speed, r.mark_operator_force
+                for i, label in enumerate(("DC ext", "DC fold")):
+                    add(m, i, speeds[i], f"[bold]{label}[/]", ops[i], ws[i])
+            else:
+                for i, label in enumerate(("DC extended", "DC folded", "peak (exact)")):
+                    add(m, i, speeds[i], f"[bold]{label}[/]")
+        for row in sorted(rows, key=lambda x: x[0] % (2 * math.pi)):
+            t.add_row(*row[1:])
+        c.print(t)
+
+    ct = Table(
+        title="Checks",
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+        caption="DC: dead centre; a warning is reported, a failure fails the design (docs/models.md §4)",
+        caption_justify="left",
+    )
+    for h in ("check", "value", "warn if", "fail if", "result"):
+        ct.add_column(h, justify="right" if h in ("value", "warn if", "fail if") else "left")
+    if r.flywheel:
+        ct.add_row(
+            f"dead-band peak (±{r.design.spec.operator.dead_band:g}° of DCs)",
+            f"{_f(r.dead_band_peak_force, '{:.2f}', '∞')} N",
+            "",
+            "",
+            "[dim]info[/]",
+        )
+        if r.dynamics:  # faster is not always easier: the speeds that pass come from pumplink speed
+            if not r.design.spec.operator.arms_in_verdict:
+                ct.add_row(
+                    f"effort: + {r.design.spec.operator.arm_mass_kg:g} kg of arms",
+                    f"{_f(r.effort_peak_force, '{:.1f}', '∞')} N",
+                    "",
+                    "",
+                    "[dim]info[/]",
+                )
+        else:
+            mps = r.min_passing_speed
+            ct.add_row(
+                "slowest passing mean speed",
+                "never" if mps == math.inf else f"{_f(np.degrees(mps), '{:.1f}')} °/s",
+                "",
+                "",
+                "[dim]info[/]",
+            )
+    else:
+        ct.add_row(
+            f"sampled peak ({r.samples_n} samples)",
+            f"{_f(r.sampled_peak, '{:.2f}')} N",
+            "",
+            "",
+            "[dim]info[/]",
+        )
+    for ch in r.checks:
+        ct.add_row(
+            escape(check_label(ch, r)),
+            check_value(ch),
+            limit_text(ch, ch.warn_limit),
+            limit_text(ch, ch.fail_limit),
+            RESULT_MARKUP[ch.result],
+        )
+    c.print(ct)
+    c.print(model_line(r))
+    c.print(verdict_line(r, strict))
+    for ch in r.checks:
+        if ch.result == "warn":
+            c.print(f"[yellow]warning:[/] {escape(check_sentence(ch, r))}")
+        elif ch.result == "fail" and ch.key in CHECK_ADVICE:
+            c.print(f"[red]fails:[/] {escape(check_sentence(ch, r))}")
+    if advice:
+        c.print("[bold]what would help most[/] (one change at a time, everything else as in the spec):")
+        for a in advice:
+            c.print(f"  {escape(advice_sentence(a))}")
+
+
+def explain_rows(effects) -> list[dict[str, Any]]:
+    """The model-choice report as rows (JSON/CSV)."""
+    return [
+        {
+            "effect": e.name,
+            "included": e.included,
+            "value": num(e.value),
+            "unit": e.unit,
+            "compared_with": e.compared_with,
+            "ratio": num(e.ratio),
+            "note": e.note,
+        }
+        for e in effects
+    ]
+
+
+def render_explain(effects, why: str, out=None, cadence=None, force_limit: float = 0.0) -> None:
+    """`pumplink force --explain` (table output): the effects table, the reason, and the best
+    cadence (:class:`pumplink.studies.speed.Cadence`, when the spec gives inertia)."""
+    from rich import box
+    from rich.markup import escape
+    from rich.table import Table
+
+    c = console(out or sys.stdout)
+    t = Table(
+        title="Model choice: what is in the model, and how big it is at this speed",
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+    )
+    for h in ("effect", "in model", "size", "compared with"):
+        t.add_column(h, justify="right" if h == "size" else "left")
+    notes = []
+    for i, e in enumerate(effects, 1):
+        inc = "[green]yes[/]" if e.included else "[dim]neglected[/]"
+        ratio = (
+            "" if not math.isfinite(e.ratio) else (f"{e.ratio:.0%}" if e.ratio < 10 else f"{e.ratio:.1f}×")
+        )
+        t.add_row(
+            f"{i}. {escape(e.name)}",
+            inc,
+            f"{_f(e.value, '{:.3g}', '∞')} {e.unit}",
+            escape(f"{ratio} {e.compared_with}" if ratio else ""),
+        )
+        notes.append(f"{i}. {e.note}")
+    c.print(t)
+    for n in notes:
+        c.print(n, markup=False)
+    c.print(why, markup=False)
+    if cadence is not None:
+        for line in cadence_lines(cadence, force_limit):
+            c.print(line, markup=False)
+
+
+def verify_row(v) -> dict[str, Any]:
+    """The solve_ivp cross-check (:class:`pumplink.studies.verify.Verification`) as a row."""
+    sim = v.integration
+    return {
+        "method": "scipy solve_ivp (DOP853, rtol 1e-11), open-loop force profile F(θ2)",
+        "cycles": sim.cycles,
+        "periodicity": num(sim.periodicity),
+        "mean_speed_deg_s": deg(sim.mean_speed),
+        "time_mean_speed_deg_s": deg(sim.time_mean_speed),
+        "speed_range_deg_s": {"min": deg(sim.min_speed), "max": deg(sim.max_speed)},
+        "fluctuation": num(sim.fluctuation),
+        "tolerance": v.tolerance,
+        "agrees": v.agrees,
+    }
+
+
+def static_verify_row(v) -> dict[str, Any]:
+    """The quasi-static cross-check (:class:`pumplink.studies.verify.StaticCheck`) as a row."""
+    return {
+        "method": "virtual work from positions (central differences) and a dense sweep",
+        "angles": v.angles,
+        "virtual_work": num(v.virtual_work),
+        "samples": v.samples,
+        "sweep_peak_force_N": num(v.sweep_peak),
+        "peak_force_N": num(v.peak),
+        "tolerance": v.tolerance,
+        "agrees": v.agrees,
+    }
+
+
+def render_verify(row: dict[str, Any], out=None) -> None:
+    c = console(out or sys.stdout)
+    if "virtual_work" in row:  # the quasi-static model
+        ok = "[bold green]agrees[/]" if row["agrees"] else "[bold red]DISAGREES[/]"
+        c.print(
+            f"verify (quasi-static: {row['method']}): {ok} — F·dPx/dθ2 = Mw to {row['virtual_work']:.1e} "
+            f"at {row['angles']} crank angles; {row['samples']:,} samples outside the dead bands peak at "
+            f"{row['sweep_peak_force_N']:.3f} N, the exact peak {row['peak_force_N']:.3f} N"
+        )
+        return
+    ok = "[bold green]agrees[/]" if row["agrees"] else "[bold red]DISAGREES[/]"
+    c.print(
+        f"verify ({row['method']}, {row['cycles']} revolutions): {ok} — "
+        f"periodic to {row['periodicity']:.1e}, "
+        f"mean speed (max+min)/2 = {row['mean_speed_deg_s']:.4f} deg/s, "
+        f"fluctuation δ = {row['fluctuation']:.6f}, "
+        f"wheel {row['speed_range_deg_s']['min']:.1f}–{row['speed_range_deg_s']['max']:.1f} deg/s "
+        f"(time-averaged {row['time_mean_speed_deg_s']:.1f} deg/s)"
+    )

@@ -1,0 +1,193 @@
+"""The words of the verdict: check labels, values against their limits, the verdict line, the
+advice after a FAIL and the line naming the model that decided.  Shared by every view.
+
+Renderers only render: every number comes from the library's results.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from pumplink.output.formats import fmt as _f
+from pumplink.output.formats import num
+
+if TYPE_CHECKING:
+    from pumplink.studies.force import ForceResult
+
+
+def check_row(c, r: ForceResult | None = None) -> dict[str, Any]:
+    """One verdict check as a JSON row (``result``: pass, warn or fail)."""
+    return {
+        "key": c.key,
+        "name": check_label(c, r),
+        "value": num(c.value),
+        "unit": c.unit,
+        "relation": c.relation,
+        "warn_limit": None if c.warn_limit is None else num(c.warn_limit),
+        "fail_limit": None if c.fail_limit is None else num(c.fail_limit),
+        "result": c.result,
+    }
+
+
+def check_label(c, r: ForceResult | None = None) -> str:
+    """The words for a verdict check (``pumplink.verdict.Check.key``), in this result's context."""
+    if c.key == "peak_force" and r is not None:
+        op = r.design.spec.operator
+        if r.dynamics:
+            return f"peak force, dynamics (δ ≤ {op.speed_fluctuation:g})"
+        if r.flywheel:
+            return f"peak force, flywheel (δ ≤ {op.speed_fluctuation:g})"
+        return f"peak force outside ±{op.dead_band:g}° of DCs"
+    return CHECK_LABELS[c.key]
+
+
+#: Words for the checks (short enough for an 80-column table).
+CHECK_LABELS = {
+    "mean_force": "mean force",
+    "peak_force": "peak force",
+    "link_energy_share": "link kinetic energy / band",
+    "transmission_angle": "transmission angle (smallest)",
+    "power": "operator power",
+    "grip_speed": "peak grip speed",
+    "stroke": "grip stroke",
+    "grip_height": "grip height over the swing",
+    "axle_height": "axle height",
+}
+
+
+def model_line(r: ForceResult) -> str:
+    """Which model decided the verdict, in words."""
+    if r.dynamics:
+        op = r.design.spec.operator
+        arms = (
+            f"the effort: the hand force + {op.arm_mass_kg:g} kg of arms at the grip"
+            if op.arms_in_verdict
+            else "the hand force (the operator's arms not in it)"
+        )
+        return (
+            f"model: full dynamics, J = {r.inertia:.3f} kg·m² plus the coupler's and handle's inertia and "
+            f"weight, δ ≤ {r.speed_fluctuation:g} at a mean {r.speed_deg_s:g} deg/s; {arms}"
+        )
+    if r.flywheel:
+        return (
+            f"model: flywheel, J = {r.inertia:.3f} kg·m², δ ≤ {r.speed_fluctuation:g} at a mean "
+            f"{r.speed_deg_s:g} deg/s (energy band W = J·ω̄²·δ = {r.energy_band:.2f} J); "
+            "links' inertia neglected"
+        )
+    return (
+        "model: quasi-static + dead band (the wheel's inertia is assumed to carry the linkage "
+        f"through ±{r.design.spec.operator.dead_band:g}° of each dead centre; give wheel.mass or "
+        "wheel.inertia to let the speed decide)"
+    )
+
+
+#: Rich markup of a check's result.
+RESULT_MARKUP = {"pass": "[green]pass[/]", "warn": "[yellow]warning[/]", "fail": "[red]FAIL[/]"}
+
+#: Format of each check's value (and its limits) in tables and sentences.
+_CHECK_FORMAT = {"mean_force": "{:.1f}", "peak_force": "{:.1f}", "link_energy_share": "{:.0f}"}
+
+
+def check_value(ch) -> str:
+    """A check's value with its unit, e.g. '85.8 N', '∞ N'."""
+    f = _CHECK_FORMAT.get(ch.key, "{:.2f}")
+    return f"{_f(ch.value, f, '∞') if ch.value != -math.inf else '−∞'} {ch.unit}"
+
+
+def limit_text(ch, limit) -> str:
+    """'> 75 W' style: the side of ``limit`` on which the check warns or fails ('' for none)."""
+    if limit is None:
+        return ""
+    bad = ">" if ch.relation == "<=" else "<"
+    return f"{bad} {limit:g} {ch.unit}"
+
+
+#: What to change when a check warns or fails (the check's own advice).
+CHECK_ADVICE = {
+    "link_energy_share": "the flywheel model neglects it, so treat the verdict as an estimate "
+    "(a lighter handle or a heavier wheel; see --explain)",
+    "transmission_angle": "the coupler meets the rocker at a poor angle: large joint forces, "
+    "wear, and with friction a jam (move the rocker pivot or lengthen the rocker)",
+    "power": "a person sustains ~75 W for hours and at most ~150 W for an hour; "
+    "slow the wheel or lower the load",
+    "grip_speed": "faster than a rower's handle: the operator tires soon; slow the wheel or "
+    "shorten the swing",
+    "grip_speed fail": "the operator cannot follow the handle; slow the wheel or shorten the swing",
+    "transmission_angle fail": "the coupler meets the rocker so obliquely that joint friction can jam "
+    "the linkage (move the rocker pivot or lengthen the rocker)",
+    "power fail": "more than a person gives even for an hour (~150 W); slow the wheel or lower the load",
+    "stroke": "a standing operator must step or lean; shorten the handle or the swing",
+    "grip_height": "the efficient push height is 0.5-0.9 m; change D1, the handle or the axle height",
+    "axle_height": "outside the pump paper's 0.40-0.70 m",
+}
+
+
+def check_sentence(ch, r: ForceResult | None = None) -> str:
+    """One sentence for a check that warns or fails: value, limit, and what to do."""
+    lim = ch.fail_limit if ch.result == "fail" else ch.limit
+    if lim is None:
+        lim = ch.limit
+    side = ">" if ch.relation == "<=" else "<"
+    val = check_value(ch)
+    advice = CHECK_ADVICE.get(f"{ch.key} {ch.result}", CHECK_ADVICE.get(ch.key, ""))
+    return f"{check_label(ch, r)} is {val} ({side} {lim:g} {ch.unit}): {advice}".rstrip(": ")
+
+
+def verdict_line(r: ForceResult, strict: bool = False) -> str:
+    """The verdict in words, with Rich markup: PASS, PASS with warnings or FAIL."""
+    peak = r.verdict_peak_force
+    how = " with full dynamics" if r.dynamics else " with the flywheel" if r.flywheel else ""
+    forces = f"mean {r.mean_force:.1f} N, peak {_f(peak, '{:.1f}', '∞')} N{how}"
+    v = r.verdict
+    if r.outcome == "PASS":
+        return f"[bold green]VERDICT: PASS[/] — {forces}, within the {r.force_limit:g} N limit; no warnings"
+    if r.outcome == "PASS with warnings":
+        n = len(v.warnings)
+        tail = " — fails under --strict" if strict else ""
+        return (
+            f"[bold yellow]VERDICT: PASS with warnings[/] — {forces}, within the {r.force_limit:g} N limit; "
+            f"{n} warning{'s' if n > 1 else ''} below{tail}"
+        )
+    bad = "; ".join(
+        f"{check_label(ch, r)} {check_value(ch)} {limit_text(ch, ch.fail_limit)}" for ch in v.failures
+    )
+    hint = ""
+    force_failed = any(ch.key in ("mean_force", "peak_force") for ch in v.failures)
+    if force_failed and r.flywheel and r.min_passing_speed is not None and math.isfinite(r.min_passing_speed):
+        hint = f"; the force passes from a mean {np.degrees(r.min_passing_speed):.0f} deg/s (pumplink speed)"
+    elif force_failed and r.dynamics:
+        hint = "; pumplink speed gives the speeds at which it passes"
+    return f"[bold red]VERDICT: FAIL[/] — {bad}{hint}"
+
+
+def advice_row(a) -> dict[str, Any]:
+    """One suggested change (:class:`pumplink.search.suggest.Suggestion`) as a JSON row."""
+    return {
+        "key": a.key,
+        "from": a.old,
+        "to": a.new,
+        "unit": a.unit,
+        "peak_force_N": num(a.peak_force),
+        "verdict": a.outcome,
+        "still_failing": list(a.failing),
+    }
+
+
+def advice_sentence(a) -> str:
+    """'linkage.handle 1.2 → 1.32 m: peak 97.2 N, PASS with warnings'."""
+    still = f" (still fails: {', '.join(CHECK_LABELS[k] for k in a.failing)})" if a.failing else ""
+    return (
+        f"{a.key} {a.old:g} → {a.new:g} {a.unit}: peak {_f(a.peak_force, '{:.1f}', '∞')} N, "
+        f"{a.outcome}{still}"
+    )
+
+
+#: The verdict's words with Rich markup.
+OUTCOME_MARKUP = {
+    "PASS": "[bold green]PASS[/]",
+    "PASS with warnings": "[bold yellow]PASS with warnings[/]",
+    "FAIL": "[bold red]FAIL[/]",
+}
