@@ -123,6 +123,7 @@ class Chunk(_Judged):
     stroke: np.ndarray | None = None  # horizontal grip stroke [m]
     verdict: Verdict | None = None  # every check, per variant (:func:`pumplink.verdict.assess`)
     model_index: np.ndarray | None = None  # 0 quasi-static, 1 flywheel, 2 full dynamics (models.ORDER)
+    peak_force: np.ndarray | None = None  # the peak force that decides the verdict [N]
 
     mechanism = FOUR_BAR
 
@@ -134,8 +135,8 @@ class Chunk(_Judged):
 
     @property
     def verdict_peak_force(self) -> np.ndarray:
-        """The peak force that decides the verdict [N]: flywheel or windowed dead-band peak."""
-        return np.where(self.flywheel, self.least_peak_force, self.dead_band_peak_force)
+        """The peak force that decides the verdict [N] (:attr:`pumplink.evaluate.Evaluation.peak_force`)."""
+        return self.peak_force
 
 
 @dataclass(frozen=True)
@@ -296,6 +297,7 @@ def evaluate_chunk(
         stroke=ev.stroke,
         verdict=verdict,
         model_index=ev.model_index,
+        peak_force=ev.peak_force,
     )
 
 

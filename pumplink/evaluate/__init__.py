@@ -213,7 +213,8 @@ class Evaluation:
     min_passing_speed : the flywheel's slowest passing speed [rad/s] (NaN where it does not decide).
     effort_peak_force : least peak effort, the hand force plus the arms (full dynamics) [N].
     masses : the links' masses and, where the verdict takes them, the arms' [kg].
-    power : Mw ω̄ [W];  grip_speed : the grip's peak speed at the wheel's top speed [m/s].
+    power : Mw ω̄ [W];  rocker_rate : max|dθ4/dθ2| [-] (NaN without the verdict);
+    grip_speed : the grip's peak speed at the wheel's top speed [m/s].
     stroke : horizontal grip stroke [m];  grip_height : (lowest, highest) or None.
     link_energy_share : the flywheel's neglected link energy / its band [%] (0 where the flywheel
         does not decide; None where it decides nowhere).
@@ -234,6 +235,7 @@ class Evaluation:
     effort_peak_force: np.ndarray
     masses: Masses
     power: np.ndarray
+    rocker_rate: np.ndarray
     grip_speed: np.ndarray
     stroke: np.ndarray
     grip_height: tuple[np.ndarray, np.ndarray] | None
@@ -426,8 +428,7 @@ def evaluate(
         with np.errstate(divide="ignore", invalid="ignore"):
             share = np.where(em.band > 0, 100.0 * em.link_energy / em.band, np.inf)
         share = np.where(index == ORDER.index(FLYWHEEL), share, 0.0)
-    top = np.where(energy, _load.top_speed(speed, np.where(energy, delta, 0.0)), speed)
-    grip_speed = rate * top * c["handle"]
+    grip_speed = _load.grip_speed(rate, speed, c["handle"], np.where(energy, delta, 0.0))
     axle = designs.axle_height
     heights = None if axle is None else grip_heights(axle, c["D1"], c["handle"], c["swing"])
     power = mw * speed
@@ -462,6 +463,7 @@ def evaluate(
         effort_force,
         masses,
         power,
+        rate,
         grip_speed,
         stroke,
         heights,

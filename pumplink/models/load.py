@@ -109,3 +109,10 @@ def top_speed(mean_speed, speed_fluctuation=None):
     if speed_fluctuation is None:
         return mean_speed
     return mean_speed * (1.0 + 0.5 * np.asarray(speed_fluctuation, float))
+
+
+def grip_speed(rocker_rate, mean_speed, handle, speed_fluctuation=None):
+    """The grip's peak speed [m/s]: the rocker's largest rate max|dθ4/dθ2|
+    (:func:`pumplink.mechanisms.fourbar.peak_rocker_rate`) times the wheel's top speed
+    (:func:`top_speed`) times H (docs/models.md §4)."""
+    return rocker_rate * top_speed(mean_speed, speed_fluctuation) * handle

@@ -13,8 +13,8 @@ from pumplink.constants import GRIP_SPEED_FAIL_M_S, HOUR_POWER_W, SUSTAINED_POWE
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.evaluate import evaluate, motion, pump_designs
 from pumplink.inputs.pump import PumpSpec, spec_values
-from pumplink.mechanisms.fourbar import peak_rocker_rate
 from pumplink.models import DYNAMICS, FLYWHEEL, ORDER
+from pumplink.models.load import grip_speed
 from pumplink.studies.force import Design, ForceResult, design, force_analysis
 from pumplink.verdict import Verdict
 
@@ -84,8 +84,12 @@ def cadence(r: ForceResult, searched_deg_s=CADENCE_RANGE_DEG_S) -> Cadence:
     else:
         force = (0.0, math.inf) if r.passed else (nan, nan)
     # the checks that depend on speed fail above a speed: the power and the peak grip speed
-    top = 1.0 + 0.5 * delta if model in (FLYWHEEL, DYNAMICS) else 1.0  # the wheel's top speed per mean
-    fastest = min(HOUR_POWER_W / mw, GRIP_SPEED_FAIL_M_S / (peak_rocker_rate(lk) * top * spec.linkage.handle))
+
+    # the grip speed at a mean speed of 1 rad/s (it grows in proportion)
+    per_speed = grip_speed(
+        float(ev.rocker_rate[0]), 1.0, spec.linkage.handle, delta if model in (FLYWHEEL, DYNAMICS) else None
+    )
+    fastest = min(HOUR_POWER_W / mw, GRIP_SPEED_FAIL_M_S / per_speed)
     fixed = [c.key for c in r.verdict.failures if c.key not in ("peak_force", "power", "grip_speed")]
     low, high = force[0], min(force[1], fastest)
     passing = (float(low), float(high)) if not fixed and low <= high else (nan, nan)
