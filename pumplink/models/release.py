@@ -79,7 +79,8 @@ class Release:
     peak_time [s], peak_angle [rad, in [0, 2 pi)], peak_rope_travel : the rope run back by then [m].
     peak_wheel_speed : largest |w| [rad/s] and its time [s] (a tuple).
     end_time [s], end_reason : "column empty", "held" (the losses hold the wheel at rest) or
-        "horizon";  end_rope_travel : the rope run back at the end [m].
+        "horizon";  end_rope_travel : the rope run back at the end [m];
+    end_speed : the wheel's speed w at the end [rad/s] (negative: turning backwards).
     """
 
     start_angle: float
@@ -97,6 +98,7 @@ class Release:
     end_time: float
     end_reason: str
     end_rope_travel: float
+    end_speed: float
 
 
 def _grip_speed(lk, th, w):
@@ -139,7 +141,6 @@ def release(
     Release
     """
     from scipy.integrate import solve_ivp
-    from scipy.optimize import minimize_scalar
 
     from pumplink.models import dynamics as dy
 
@@ -223,34 +224,10 @@ def release(
         break  # the horizon
     end_time = t0
 
-    # the grip's speed along the motion: sampled on the dense output, the best sample refined
-    best = (-1.0, np.nan, np.nan)
-    best_w = (0.0, np.nan)
-    for sol_fn, a, b in pieces:
-        if b <= a:
-            continue
-        turn = abs(float(sol_fn(b)[0] - sol_fn(a)[0]))
-        n = max(int(PEAK_SAMPLES_PER_RAD * turn), 200)
-        ts = np.linspace(a, b, n)
-        th, w = sol_fn(ts)
-        v = _grip_speed(lk, th, w)
-        j = int(np.argmax(v))
-        k = int(np.argmax(np.abs(w)))
-        if abs(w[k]) > best_w[0]:
-            best_w = (float(abs(w[k])), float(ts[k]))
-        cand = (float(v[j]), float(ts[j]), float(th[j]))
-        lo, hi = ts[max(j - 1, 0)], ts[min(j + 1, n - 1)]
-        if hi > lo:
-            res = minimize_scalar(
-                lambda tt, f=sol_fn: -float(_grip_speed(lk, *f(tt))),
-                bounds=(lo, hi),
-                method="bounded",
-                options=dict(xatol=1e-12 * max(b, 1.0)),
-            )
-            if -res.fun > cand[0]:
-                cand = (float(-res.fun), float(res.x), float(sol_fn(res.x)[0]))
-        if cand[0] > best[0]:
-            best = cand
+    # the grip's and the wheel's speed along the motion: sampled on the dense output, refined
+    best = _peak(pieces, lambda th, w: _grip_speed(lk, th, w))
+    wheel = _peak(pieces, lambda th, w: np.abs(w))
+    best_w = (wheel[0], wheel[1])
 
     def state_at(tt):
         for sol_fn, a, b in pieces:
@@ -278,7 +255,43 @@ def release(
         float(end_time),
         end_reason,
         float(min(end_travel, head)),
+        float(y[1]),
     )
+
+
+def _peak(pieces, speed):
+    """Largest ``speed(theta, w)`` along the pieces of dense output: (value, time [s], angle [rad]).
+
+    Sampled at :data:`PEAK_SAMPLES_PER_RAD` per crank radian turned (at least 200 per piece), the
+    best sample refined by a bounded Brent search between its neighbours (scipy ``minimize_scalar``,
+    to 1e-12 s): exact to the dense output's accuracy for a smooth maximum.
+    """
+    from scipy.optimize import minimize_scalar
+
+    best = (-1.0, np.nan, np.nan)
+    for sol_fn, a, b in pieces:
+        if b <= a:
+            continue
+        turn = abs(float(sol_fn(b)[0] - sol_fn(a)[0]))
+        n = max(int(PEAK_SAMPLES_PER_RAD * turn), 200)
+        ts = np.linspace(a, b, n)
+        th, w = sol_fn(ts)
+        v = speed(th, w)
+        j = int(np.argmax(v))
+        cand = (float(v[j]), float(ts[j]), float(th[j]))
+        lo, hi = ts[max(j - 1, 0)], ts[min(j + 1, n - 1)]
+        if hi > lo:
+            res = minimize_scalar(
+                lambda tt, f=sol_fn: -float(speed(*f(tt))),
+                bounds=(lo, hi),
+                method="bounded",
+                options=dict(xatol=1e-12 * max(b, 1.0)),
+            )
+            if -res.fun > cand[0]:
+                cand = (float(-res.fun), float(res.x), float(sol_fn(res.x)[0]))
+        if cand[0] > best[0]:
+            best = cand
+    return best
 
 
 def _top_before(pieces, time, start_angle):

@@ -21,7 +21,7 @@ import mpmath
 import numpy as np
 import pytest
 import reference as R
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from pumplink.analysis import force_analysis
@@ -202,8 +202,8 @@ def test_newton_euler_balances_of_every_link_to_1e9(village, t_deg, w, a, force)
 def test_newton_euler_balances_hold_on_random_feasible_designs(design, t, w, a, force, masses):
     reach, depth, rocker, swing, handle = design
     syn = synthesize(reach, depth, 0.0, rocker, math.radians(swing), handle)
-    if not syn.feasible or syn.crank_length < 1e-3 or syn.transmission_min < math.radians(5):
-        return  # only buildable crank-rockers; the designs synthesize refuses are not linkages
+    # buildable crank-rockers only
+    assume(syn.feasible and syn.crank_length >= 1e-3 and syn.transmission_min >= math.radians(5))
     _check_balance(R.from_synthesis(syn), syn.linkage, t, w, a, force, Masses(*masses))
 
 
@@ -248,8 +248,8 @@ def test_quasi_static_crank_torque_is_the_wheel_torque(design, mw):
     """Virtual work: with F = Mw / g and massless links the crank pin turns the wheel with Mw."""
     reach, depth, rocker, swing = design
     syn = synthesize(reach, depth, 0.0, rocker, math.radians(swing), 1.2)
-    if not syn.feasible or syn.crank_length < 1e-3 or syn.transmission_min < math.radians(5):
-        return
+    # buildable crank-rockers only
+    assume(syn.feasible and syn.crank_length >= 1e-3 and syn.transmission_min >= math.radians(5))
     th = np.linspace(0.0, 2 * math.pi, 64, endpoint=False)
     motion = J.quasi_static_motion(syn.linkage, th, mw)
     out = J.motion_forces(syn.linkage, motion)
@@ -270,8 +270,8 @@ def test_operator_force_by_virtual_work_matches_newton_euler(design, w, a, masse
     (virtual work: the energy route is the links' Lagrange equation, the reactions Newton-Euler)."""
     reach, depth, rocker, swing = design
     syn = synthesize(reach, depth, 0.0, rocker, math.radians(swing), 1.2)
-    if not syn.feasible or syn.crank_length < 1e-3 or syn.transmission_min < math.radians(5):
-        return
+    # buildable crank-rockers only
+    assume(syn.feasible and syn.crank_length >= 1e-3 and syn.transmission_min >= math.radians(5))
     lk, ms, jw, mw = syn.linkage, Masses(*masses), 0.9, 13.6
     th = np.linspace(0.0, 2 * math.pi, 64, endpoint=False)
     tm = dy.terms(lk, th, ms)
