@@ -1,0 +1,431 @@
+"""Forces on the four joints of the pump linkage over the cycle (Newton-Euler, docs/workshop.md §1).
+
+The joints
+----------
+Product coordinates (docs/physics.md §1): origin at the wheel axle O2, x horizontal, y up, crank
+angle t CCW from +x; crank pin A = crank (cos t, sin t); coupler-rocker pin B; rocker pivot O4;
+grip P = O4 + H e on the rocker's line (e the rocker's unit vector).  Each joint force is reported as
+the force **on** one named body, in N:
+
+* ``crank_pin`` (A): on the coupler, from the crank;
+* ``coupler_pin`` (B): on the coupler, from the handle (the rocker extended to the grip);
+* ``rocker_pivot`` (O4): on the handle, from the stand;
+* ``axle`` (O2): on the wheel and crank, from the stand's bearings.  It is the crank-pin force
+  carried through the crank plus the vertical loads given as ``rope_pull`` (the sum of the two
+  rope strands' tensions; both strands of a rope pump leave the wheel downwards) and
+  ``wheel_weight``.  With both 0 (the default) it is the **linkage's share** of the axle load only.
+
+The bodies (the scene of docs/models.md §3a)
+-------------------------------------------
+The crank is part of the wheel (its inertia is in J, its weight is not modelled, as in the energy
+models).  The coupler is a uniform bar A-B of mass ``masses.coupler`` (centre at (A + B)/2, moment
+of inertia m k^2/12 about it); the handle a uniform bar from O4 along the rocker of length
+L = max(H, rocker) and mass ``masses.handle``, with the point mass ``masses.grip`` at P.  The
+operator pushes horizontally at P with the force F (+x positive).  Given the crank's angle t, speed
+w and acceleration a, the links' motion follows from the loop closure: with u = B - A,
+r = B - O4 and S = u x r,
+
+    h3 = (V . r) / S,  h4 = (V . u) / S,  V = -dA/dt                        (velocity coefficients)
+    d3 = (R . r) / S,  d4 = (R . u) / S,  R = -d2A/dt2 + h3^2 u - h4^2 r     (their derivatives)
+    w3 = h3 w,  a3 = h3 a + d3 w^2  (coupler);  w4 = h4 w,  a4 = h4 a + d4 w^2  (handle)
+
+(the formulas of :func:`pumplink.models.dynamics.terms`).  Newton-Euler, with g = (0, -g_n):
+
+    coupler:  R_A + R_B + m_c g = m_c a_Gc,     u x R_B - (u/2) x m_c (a_Gc - g) = I_c a3      (J1)
+    handle:   R_O4 - R_B + F ex + (m_h + m_p) g = m_h a_Gh + m_p a_P                            (J2)
+              -(r x R_B) + (P - O4) x F ex + sum of the weights' moments about O4 = I_O4 a4     (J3)
+    wheel:    R_O2 - R_A - (rope_pull + wheel_weight) ey = 0  (its centre of mass on the axle) (J4)
+
+(the coupler's moment equation (J1) is taken about its centre and R_A eliminated with its force
+equation).  The two moment equations give R_B from a 2 x 2 system of determinant -S (never zero in a
+crank-rocker); then R_A, R_O4 and R_O2 follow.  The torque the crank pin puts on the wheel,
+T = A x (-R_A), closes the wheel's moment balance J a = T - Mw: for the model's motion this is the
+model's equation of motion, which the tests check against virtual work.
+
+The models' motions
+-------------------
+:func:`quasi_static_motion` (no speed, massless links, F = Mw / g: docs/models.md §1),
+:func:`flywheel_motion` (massless links, F and w of the flywheel scene, a = (F g - Mw)/J: §2) and
+:func:`dynamics_motion` (the masses, F and w of the full-dynamics scene, a from its equation of
+motion I a + I' w^2 / 2 + V' = F g - Mw: §3a) give the motion the joint forces are taken along.
+
+Pure functions on floats / numpy arrays (broadcasting over crank angles and designs); SI units,
+radians.  The peak over the cycle, :func:`peak_joint_forces`, is per design.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from pumplink.constants import GRAVITY
+from pumplink.mechanisms.angles import TWO_PI
+from pumplink.mechanisms.fourbar import FourBar, kinematic_state, loop_closure
+from pumplink.models import Masses
+
+#: The joints in the order of :attr:`JointForces.magnitudes` and :class:`PeakLoads`.
+JOINTS = ("axle", "crank_pin", "coupler_pin", "rocker_pivot")
+
+
+@dataclass(frozen=True)
+class Motion:
+    """The motion the joint forces are taken along (arrays broadcast over crank angles).
+
+    Attributes
+    ----------
+    crank_angle : t [rad];  crank_speed : w = dt/dtime [rad/s];  crank_acceleration : a [rad/s^2].
+    operator_force : F, horizontal at the grip, +x positive [N].
+    masses : the moving link masses and the point mass at the grip [kg] (zero: massless links).
+    """
+
+    crank_angle: np.ndarray
+    crank_speed: np.ndarray
+    crank_acceleration: np.ndarray
+    operator_force: np.ndarray
+    masses: Masses = Masses()
+
+
+@dataclass(frozen=True)
+class JointForces:
+    """Joint forces and the internal loads of the crank and the handle at crank angles (SI units).
+
+    The force vectors have shape (2, ...) (x, y), each the force **on** the body named in the module
+    docstring: ``crank_pin`` on the coupler at A, ``coupler_pin`` on the coupler at B,
+    ``rocker_pivot`` on the handle at O4, ``axle`` on the wheel at O2 [N].
+
+    Attributes
+    ----------
+    crank_torque : T = A x (-R_A), the torque the crank pin puts on the wheel [N m] (J a = T - Mw).
+    crank_moment, crank_axial : bending moment [N m] and axial force [N] (tension positive) in the
+        crank at the axle, where it is fixed to the wheel (the crank is massless there:
+        crank_moment = -crank_torque).
+    handle_moment, handle_axial : bending moment [N m] and axial force [N] (tension positive) in the
+        handle at the coupler pin B, on the pivot side (the section that carries the coupler's
+        push; the moment is continuous across B).  The sign of a moment is CCW positive for the
+        part of the link nearer the frame; it only matters for telling the two fibres apart.
+    """
+
+    crank_pin: np.ndarray
+    coupler_pin: np.ndarray
+    rocker_pivot: np.ndarray
+    axle: np.ndarray
+    crank_torque: np.ndarray
+    crank_moment: np.ndarray
+    crank_axial: np.ndarray
+    handle_moment: np.ndarray
+    handle_axial: np.ndarray
+
+    @property
+    def magnitudes(self) -> np.ndarray:
+        """|force| of the joints in the order of :data:`JOINTS`, shape (4, ...) [N]."""
+        return np.stack([np.hypot(*getattr(self, name)) for name in JOINTS])
+
+
+def joint_forces(
+    lk: FourBar,
+    crank_angle,
+    crank_speed,
+    crank_acceleration,
+    operator_force,
+    masses: Masses = Masses(),
+    gravity=GRAVITY,
+    rope_pull=0.0,
+    wheel_weight=0.0,
+) -> JointForces:
+    """Joint forces from Newton-Euler on the coupler and the handle, Eq. (J1)-(J4) of the module.
+
+    Parameters
+    ----------
+    lk : the linkage (floats or arrays broadcastable with the angles).
+    crank_angle : t [rad];  crank_speed : w [rad/s];  crank_acceleration : a [rad/s^2].
+    operator_force : F at the grip, horizontal, +x positive [N].
+    masses : coupler, handle and grip masses [kg] (:class:`pumplink.models.Masses`; zero: massless).
+    gravity : g_n [m/s^2].
+    rope_pull : sum of the rope strands' tensions pulling the wheel down [N] (0: the linkage's
+        share of the axle load only; docs/workshop.md §1).
+    wheel_weight : weight of the wheel, crank and axle [N], carried by the axle.
+
+    Returns
+    -------
+    JointForces
+        NaN where the linkage cannot be assembled.
+    """
+    th = np.asarray(crank_angle, float)
+    w = np.asarray(crank_speed, float)
+    acc = np.asarray(crank_acceleration, float)
+    force = np.asarray(operator_force, float)
+    with np.errstate(all="ignore"):  # a non-assemblable linkage gives NaN, by design
+        return _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight)
+
+
+def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight):
+    px, py, c, k, r = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker
+    hh = lk.handle
+    mc, mh, mp = masses.coupler, masses.handle, masses.grip
+    cs, sn = np.cos(th), np.sin(th)
+    _p1, _p2, _e2, t, q = loop_closure(lk, cs, sn)
+    ax, ay = c * cs, c * sn  # the crank pin A
+    dx, dy = px - ax, py - ay  # O4 - A
+    ux, uy = t * dx - q * dy, t * dy + q * dx  # u = B - A (Eq. (6) of pumplink.mechanisms.fourbar)
+    rx, ry = ux - dx, uy - dy  # r = B - O4
+    s = ux * ry - uy * rx  # u x r
+    # velocity coefficients and their derivatives (unit crank speed, no crank acceleration)
+    vx, vy = ay, -ax  # V = -dA/dt
+    h3 = (vx * rx + vy * ry) / s
+    h4 = (vx * ux + vy * uy) / s
+    qx = ax + h3 * h3 * ux - h4 * h4 * rx  # R = -d2A/dt2 + h3^2 u - h4^2 r
+    qy = ay + h3 * h3 * uy - h4 * h4 * ry
+    d3 = (qx * rx + qy * ry) / s
+    d4 = (qx * ux + qy * uy) / s
+    w2 = w * w
+    w3, w4 = h3 * w, h4 * w
+    a3 = h3 * acc + d3 * w2  # coupler's angular acceleration
+    a4 = h4 * acc + d4 * w2  # handle's
+    # accelerations: A on the crank; the coupler's centre A + u/2; points s e on the handle
+    aax, aay = -ay * acc - ax * w2, ax * acc - ay * w2
+    gcx = aax - 0.5 * (a3 * uy + w3 * w3 * ux)
+    gcy = aay + 0.5 * (a3 * ux - w3 * w3 * uy)
+    ex, ey = rx / r, ry / r  # the handle's direction
+    ptx, pty = -a4 * ey - w4 * w4 * ex, a4 * ex - w4 * w4 * ey  # acceleration per metre along it
+    arm = np.maximum(hh, r)  # the handle bar's length (docs/models.md §3a)
+    i_c = mc * k * k / 12.0
+    i_o4 = mh * arm * arm / 3.0 + mp * hh * hh
+    # (J3): r x R_B = (P - O4) x F ex + weights' moments - I_O4 a4
+    m_h = -hh * ey * force - gravity * ex * (0.5 * mh * arm + mp * hh) - i_o4 * a4
+    # (J1): u x R_B = I_c a3 + (u/2) x m_c (a_Gc - g)
+    fcx, fcy = mc * gcx, mc * (gcy + gravity)  # m_c (a_Gc - g)
+    m_c = i_c * a3 + 0.5 * (ux * fcy - uy * fcx)
+    # [[-ry, rx], [-uy, ux]] R_B = [m_h, m_c], determinant -s
+    bx_ = (m_h * ux - rx * m_c) / -s
+    by_ = (uy * m_h - ry * m_c) / -s
+    ax_, ay_ = fcx - bx_, fcy - by_  # (J1): R_A = m_c (a_Gc - g) - R_B
+    # (J2): R_O4 = R_B - F ex + m_h (a_Gh - g) + m_p (a_P - g)
+    lever = 0.5 * mh * arm + mp * hh  # first moment of the handle's masses about O4
+    ox_ = bx_ - force + lever * ptx
+    oy_ = by_ + lever * pty + (mh + mp) * gravity
+    # (J4)
+    wx_, wy_ = ax_, ay_ + (rope_pull + wheel_weight)
+    torque = -(ax * ay_ - ay * ax_)  # A x (-R_A)
+    # the handle on the pivot side of B: the bar's part [0, rocker] of mass m1, loaded by R_O4 and its
+    # weight; the outer part's force on it F_in = m1 (a_G1 - g) - R_O4 and, about O4,
+    # M + r x F_in + (r/2) e x m1 g = I1 a4 (a handle shorter than the rocker has no such section)
+    m1 = mh * r / arm
+    fix = m1 * 0.5 * r * ptx - ox_
+    fiy = m1 * (0.5 * r * pty + gravity) - oy_
+    moment = m1 * r * r / 3.0 * a4 - (rx * fiy - ry * fix) + 0.5 * r * ex * m1 * gravity
+    moment = np.where(hh >= r, moment, np.nan)  # a grip inside the rocker: no section beyond B
+    return JointForces(
+        np.stack([ax_, ay_]),
+        np.stack([bx_, by_]),
+        np.stack([ox_, oy_]),
+        np.stack([wx_, wy_]),
+        torque,
+        -torque,  # the crank's root carries the pin force's moment about the axle
+        -(ax_ * cs + ay_ * sn),  # -R_A . e_crank: the pin pulls the crank outward = tension
+        moment,
+        fix * ex + fiy * ey,  # the outer part pulling along +e: tension
+    )
+
+
+# ----------------------------------------------------------------------------- the models' motions
+def quasi_static_motion(lk: FourBar, crank_angle, wheel_torque) -> Motion:
+    """The quasi-static model's motion (docs/models.md §1): no speed, massless links,
+    F = Mw / (dPx/dt) (Eq. (3) of the pump paper); NaN at a dead centre."""
+    th = np.asarray(crank_angle, float)
+    st = kinematic_state(lk, th, wheel_torque)
+    zero = np.zeros(np.shape(st.force))
+    return Motion(th, zero, zero, st.force)
+
+
+def flywheel_motion(scene, crank_angle) -> Motion:
+    """The flywheel scene's motion (docs/models.md §2): massless links, the reported force profile
+    F(t) and wheel speed w(t), and a = (F g - Mw) / J (its Eq. (1) in time).
+
+    Parameters
+    ----------
+    scene : :class:`pumplink.models.flywheel.Scene` with a finite least peak force.
+    crank_angle : t [rad].
+    """
+    from pumplink.models import flywheel as fw
+
+    th = np.asarray(crank_angle, float)
+    force = np.asarray(fw.operator_force(scene, th), float)
+    speed = np.asarray(fw.wheel_speed(scene, th), float)
+    g = kinematic_state(scene.linkage, th, 1.0).handle_rate
+    acc = (force * g - scene.wheel_torque) / scene.inertia  # Eq. (1) of docs/models.md §2 in time
+    return Motion(th, speed, acc, force)
+
+
+def dynamics_motion(scene, crank_angle) -> Motion:
+    """The full-dynamics scene's motion (docs/models.md §3a): its masses, force profile F(t) and
+    wheel speed w(t), and a from its equation of motion I a + I' w^2 / 2 + V' = F g - Mw.
+
+    Parameters
+    ----------
+    scene : :class:`pumplink.models.dynamics.Scene` with a finite least peak force.
+    crank_angle : t [rad].
+    """
+    from pumplink.models import dynamics as dy
+
+    th = np.asarray(crank_angle, float)
+    force = np.asarray(dy.operator_force(scene, th), float)
+    speed = np.asarray(dy.wheel_speed(scene, th), float)
+    tm = dy.terms(scene.linkage, th, scene.masses, scene.gravity)
+    rhs = force * tm.grip_rate - scene.wheel_torque - tm.potential_rate - 0.5 * tm.inertia_rate * speed**2
+    acc = rhs / (scene.inertia + tm.inertia)  # Eq. (7) of pumplink.models.dynamics in time
+    return Motion(th, speed, acc, force, scene.masses)
+
+
+def motion_forces(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0):
+    """:func:`joint_forces` along a :class:`Motion`."""
+    return joint_forces(
+        lk,
+        motion.crank_angle,
+        motion.crank_speed,
+        motion.crank_acceleration,
+        motion.operator_force,
+        motion.masses,
+        gravity,
+        rope_pull,
+        wheel_weight,
+    )
+
+
+# ----------------------------------------------------------------------------- peaks over the cycle
+#: Grid points per radian of crank angle on which the peak search starts (about 2 per degree).
+PEAK_GRID_PER_RAD = 120
+#: Offset [rad] of the extra nodes either side of a point where the motion may jump (a dead centre,
+#: where the energy models' push reverses): the one-sided limits are sampled there.
+JUMP_OFFSET = 1e-9
+#: Absolute tolerance [rad] of the bracketed refinement of each peak.
+REFINE_XTOL = 1e-10
+
+
+@dataclass(frozen=True)
+class PeakLoads:
+    """Peak of each load over the searched crank angles of one design.
+
+    Attributes
+    ----------
+    force : largest |joint force| per joint of :data:`JOINTS` [N], shape (4,).
+    angle : crank angle of each [rad], in [0, 2 pi).
+    crank_moment, handle_moment : largest |bending moment| [N m] and its crank angle [rad]
+        (tuples (value, angle)).
+    """
+
+    force: np.ndarray
+    angle: np.ndarray
+    crank_moment: tuple
+    handle_moment: tuple
+
+
+def _loads(forces: JointForces) -> np.ndarray:
+    """The six magnitudes searched: the four joints, then |crank moment| and |handle moment|."""
+    return np.concatenate(
+        [forces.magnitudes, np.abs(forces.crank_moment)[None], np.abs(forces.handle_moment)[None]]
+    )
+
+
+def peak_joint_forces(
+    loads_at: Callable,
+    arcs=((0.0, TWO_PI),),
+    jumps=(),
+) -> PeakLoads:
+    """Peaks of the joint forces and bending moments of one design over crank arcs.
+
+    Each arc is scanned on a grid of :data:`PEAK_GRID_PER_RAD` points per radian including its ends,
+    plus nodes :data:`JUMP_OFFSET` either side of each of ``jumps`` (where the loads may jump: the
+    energy models reverse the push at the dead centres); the best node of each load is refined by a
+    bounded Brent search (scipy ``minimize_scalar``, to :data:`REFINE_XTOL`) between its neighbours,
+    and the larger of the node and the refined point kept.  A smooth interior maximum is then exact
+    to the tolerance; a supremum at a jump is the node's one-sided value, within the load's slope
+    times JUMP_OFFSET of it.  Features narrower than a grid cell (0.5 deg) may be merged, as in the
+    models' own peak searches.
+
+    Parameters
+    ----------
+    loads_at : callable of crank angles (1-D array) returning :class:`JointForces` over them.
+    arcs : (start, length) pairs [rad] to search (the whole turn by default).
+    jumps : crank angles [rad] where the loads may jump.
+
+    Returns
+    -------
+    PeakLoads
+    """
+    from scipy.optimize import minimize_scalar
+
+    nodes = []
+    for start, length in arcs:
+        n = max(int(np.ceil(PEAK_GRID_PER_RAD * length)), 2) + 1
+        nodes.append(start + np.linspace(0.0, length, n))
+    grid = np.concatenate(nodes)
+    for j in jumps:
+        for start, length in arcs:
+            off = np.mod(j - start, TWO_PI)
+            if off <= length:
+                extra = start + off + np.array([-JUMP_OFFSET, JUMP_OFFSET])
+                grid = np.concatenate([grid, extra[(extra >= start) & (extra <= start + length)]])
+    grid = np.sort(grid)
+    vals = _loads(loads_at(grid))  # (6, N)
+    vals = np.where(np.isnan(vals), -np.inf, vals)
+    best = np.full(6, np.nan)
+    where = np.full(6, np.nan)
+    lo_arc = np.array([s for s, _ in arcs])
+    hi_arc = np.array([s + n for s, n in arcs])
+    for i in range(6):
+        j = int(np.argmax(vals[i]))
+        best[i], where[i] = vals[i, j], grid[j]
+        if not np.isfinite(best[i]):
+            best[i] = np.nan if best[i] == -np.inf else best[i]
+            continue
+        a, b = grid[max(j - 1, 0)], grid[min(j + 1, grid.size - 1)]
+        inside = np.any((lo_arc <= a) & (b <= hi_arc))  # neighbours on the same arc
+        if not inside or b <= a:
+            continue
+        res = minimize_scalar(
+            lambda x, i=i: -_loads(loads_at(np.array([x])))[i, 0],
+            bounds=(a, b),
+            method="bounded",
+            options=dict(xatol=REFINE_XTOL),
+        )
+        if np.isfinite(res.fun) and -res.fun > best[i]:
+            best[i], where[i] = -res.fun, res.x
+    where = np.mod(where, TWO_PI)
+    return PeakLoads(best[:4], where[:4], (best[4], where[4]), (best[5], where[5]))
+
+
+def quasi_static_peaks(lk: FourBar, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque):
+    """Peak joint forces of the quasi-static model (one design) outside ±dead_band of the dead
+    centres, where it is judged (docs/models.md §1; the force is infinite at the dead centres).
+
+    Parameters
+    ----------
+    lk : linkage (one design);  dead_centre_extended, dead_centre_folded : [rad];
+    dead_band : [rad];  wheel_torque : Mw [N m].
+    """
+    plus = np.mod(dead_centre_folded - dead_centre_extended, TWO_PI)
+    arcs = (
+        (dead_centre_extended + dead_band, plus - 2 * dead_band),
+        (dead_centre_folded + dead_band, TWO_PI - plus - 2 * dead_band),
+    )
+    arcs = tuple((float(s), float(n)) for s, n in arcs if n >= 0)
+    return peak_joint_forces(
+        lambda th: motion_forces(lk, quasi_static_motion(lk, th, wheel_torque)),
+        arcs,
+    )
+
+
+def scene_peaks(scene, motion_of: Callable, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0):
+    """Peak joint forces over the whole turn of an energy model's scene (one design).
+
+    Parameters
+    ----------
+    scene : a flywheel or full-dynamics scene;  motion_of : :func:`flywheel_motion` or
+        :func:`dynamics_motion`;  gravity, rope_pull, wheel_weight : as :func:`joint_forces`.
+    """
+    return peak_joint_forces(
+        lambda th: motion_forces(scene.linkage, motion_of(scene, th), gravity, rope_pull, wheel_weight),
+        jumps=(scene.dead_centre_extended, scene.dead_centre_folded),
+    )
