@@ -12,9 +12,22 @@ import math
 GRAVITY = 9.81
 #: Density of water [kg/m^3] (docs/physics.md §5).
 WATER_DENSITY = 1000.0
-#: Rope-pump efficiency used with load.head and load.pipe_diameter when the spec gives none [-]
-#: (about 65-75 % in the field: docs/physics.md §5).
+#: Force (mechanical) efficiency of the pump used with load.head and load.pipe_diameter when the
+#: spec gives none [-]: the rope force is rho g head (pi d^2/4) / efficiency (docs/physics.md §5).
+#: It covers friction only; leakage past the pistons costs flow, not force, and is the volumetric
+#: efficiency below.  Overall efficiency = force x volumetric = 0.75 x 0.87 = 0.65, the field's
+#: "typically 65 %" (Akvopedia, "Rope pump"; docs/water.md §2).
 DEFAULT_EFFICIENCY = 0.75
+#: Volumetric efficiency of a rope or piston pump when the spec gives none [-]: delivered flow over
+#: the swept flow (pipe area x rope speed).  No published measurement was found; 0.87 is the
+#: field's overall 65 % divided by the force efficiency 0.75 (docs/water.md §2).
+DEFAULT_VOLUMETRIC_EFFICIENCY = 0.87
+#: Water per person per day for basic access [l]: WHO, "Domestic water quantity, service level
+#: and health" (Howard & Bartram 2003), about 20 l within 1 km / 30 min (docs/water.md §5).
+DEFAULT_LITRES_PER_PERSON_DAY = 20.0
+#: Hours a day a community hand pump is in use [h]: the Sphere Handbook's maximum numbers of people
+#: per water source assume the water point is accessible about eight hours a day (docs/water.md §5).
+DEFAULT_DAILY_PUMPING_HOURS = 8.0
 
 #: Largest acceptable operator force [N]: UK HSE push/pull guidance, about 100 N for men to keep
 #: a load moving (docs/models.md §4).
@@ -40,8 +53,11 @@ GRIP_SPEED_WARN_M_S = 2.5
 #: accelerates at ~2 v^2 / stroke >= 23 m/s^2, and ~5 kg of hands and forearms need more than the
 #: 100 N force limit just to follow it (docs/models.md §4).
 GRIP_SPEED_FAIL_M_S = 4.0
-#: Ergonomic grip height above the ground over the swing [m]: efficient push height ~0.84 m, range
-#: 0.5-0.9 m (ergonomics studies, docs/physics.md §5); checked (warn) when the axle height is known.
+#: Grip height above the ground over the swing [m], checked (warn) when the axle height is known.
+#: No checkable source was found for this range (or for the "efficient push height ~0.84 m" quoted
+#: with it); it is kept so that a spec without an operator profile keeps its verdict.  The profiles
+#: of pumplink.profiles use the UK HSE push/pull zone, hands between knuckle and shoulder height
+#: (docs/operators.md §3).
 GRIP_HEIGHT_RANGE_M = (0.5, 0.9)
 #: Longest comfortable horizontal grip stroke [m]: the pump paper's prototype (Delta theta = 60 deg,
 #: H = 1 m) has 1.0 m; a longer stroke makes a standing operator step or lean (warn).

@@ -1,0 +1,274 @@
+"""Operator profiles: the limits a design is held to for one kind of operator, each with its source.
+
+Data only (docs/operators.md gives the reasoning and the sources in full).  Each profile sets the
+largest push/pull force, the power sustained for hours and for about an hour, the grip-height
+range over the swing and the grip speeds at which the verdict warns and fails.  Every value
+carries a :class:`Source`: the text a reader can check and its basis, one of
+
+* ``"source"``: read at the source named;
+* ``"secondary"``: read only in a secondary citation of the source named;
+* ``"derived"``: computed from other values by the reasoning given (docs/operators.md).
+
+:data:`DEFAULT_PROFILE` holds today's limits of :mod:`pumplink.constants`, so a spec without a
+profile keeps its verdict.  It equals ``PROFILES["men"]`` except for the grip-height range
+(docs/operators.md §6).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Literal
+
+from pumplink.constants import (
+    FORCE_LIMIT_N,
+    GRIP_HEIGHT_RANGE_M,
+    GRIP_SPEED_FAIL_M_S,
+    GRIP_SPEED_WARN_M_S,
+    HOUR_POWER_W,
+    SUSTAINED_POWER_W,
+)
+
+Basis = Literal["source", "secondary", "derived"]
+
+#: The numeric fields of a profile, each of which needs a :class:`Source`.
+FIELDS = (
+    "force_limit",
+    "sustained_power",
+    "hour_power",
+    "grip_height_range",
+    "grip_speed_warn",
+    "grip_speed_fail",
+)
+
+
+@dataclass(frozen=True)
+class Source:
+    """Where a value comes from: ``text`` names the source (title, publisher, section) or the
+    derivation; ``basis`` says how it was checked (module docstring)."""
+
+    text: str
+    basis: Basis
+
+
+@dataclass(frozen=True)
+class OperatorProfile:
+    """The limits for one kind of operator (SI units).
+
+    force_limit [N]: largest push/pull force at the grip;  sustained_power [W]: power kept up for
+    hours (above it the verdict warns);  hour_power [W]: power for about an hour (above it the
+    design fails);  grip_height_range [m]: lowest and highest grip height above the ground over the
+    swing;  grip_speed_warn, grip_speed_fail [m/s]: peak grip speeds;  sources: a :class:`Source`
+    per field of :data:`FIELDS`.
+    """
+
+    name: str
+    force_limit: float
+    sustained_power: float
+    hour_power: float
+    grip_height_range: tuple[float, float]
+    grip_speed_warn: float
+    grip_speed_fail: float
+    sources: MappingProxyType = field(repr=False, compare=False)
+
+
+def _profile(name, values, sources):
+    return OperatorProfile(name=name, **values, sources=MappingProxyType(dict(sources)))
+
+
+# ------------------------------------------------------------------------------------- sources
+_HSE = (
+    "UK HSE, 'Doing a push/pull risk assessment' (hse.gov.uk/msd/pushpull), table of guideline "
+    "figures from L23 'Manual handling', Appendix: keeping a load in motion, men 10 kg (about "
+    "100 N), women 7 kg (about 70 N); starting or stopping it 20 kg / 15 kg"
+)
+_ADA = (
+    "2010 ADA Standards for Accessible Design §309.4 and ABA Standards §1011.6 (US Access Board, "
+    "'Chapter 10: Outdoor Developed Areas' guide, water hydrants, which include hand pumps): "
+    "operable parts need 5 lbf (22.2 N) at most"
+)
+_POWER = (
+    "Practical Action, 'Human and animal powered water-lifting devices for irrigation' "
+    "(technical brief), Introduction: human physical power output 0.06-0.075 kW"
+)
+_HOUR = (
+    "Human-power figures as summarised in Wikipedia, 'Human power' (not its primary source): adults "
+    "of good fitness average 50-150 W for an hour; a labourer sustains about 75 W over 8 hours"
+)
+_SEX_RATIO = (
+    "Abbott & Wilson, 'Human-Powered Vehicles' (Human Kinetics 1995), as quoted by Princeton "
+    "MAE 'Human power' pages: steady-state power capability about 20 % larger for adult men than "
+    "adult women"
+)
+_ZONE = (
+    "HSE push/pull guideline figures apply with the hands between knuckle and shoulder height "
+    "(same page as the force figures); grip band = [wrist height 0.485 H of the tallest user, "
+    "shoulder height 0.818 H of the shortest] with the Drillis-Contini body proportions (Winter, "
+    "'Biomechanics and Motor Control of Human Movement', Fig. 4.1; not re-read here); wrist height "
+    "stands in for knuckle height, which makes the band narrower, on the safe side"
+)
+_PHEASANT = (
+    "stature of British adults 19-65, Pheasant, 'Bodyspace' Table 10.1, via City University of Hong "
+    "Kong 'Online Anthropometry' Ch. 2-1: men 5th/95th percentile 1625/1855 mm, women 1505/1710 mm"
+)
+_SPEED = (
+    "scaled from the men's limits (pumplink.constants: 2.5 and 4.0 m/s) as v ~ sqrt(F_limit / "
+    "m_arm): the arms' inertia force 2 m_arm v^2 / stroke grows as v^2, and the fail limit is where "
+    "it reaches the force limit; m_arm = 0.072 x body mass (Winter's segment fractions, as "
+    "pumplink.constants.ARM_MASS_FRACTION); rounded down to 0.1 m/s"
+)
+
+# ------------------------------------------------------------------------------------- profiles
+MEN = _profile(
+    "men",
+    dict(
+        force_limit=100.0,
+        sustained_power=75.0,
+        hour_power=150.0,
+        grip_height_range=(0.90, 1.33),
+        grip_speed_warn=2.5,
+        grip_speed_fail=4.0,
+    ),
+    dict(
+        force_limit=Source(_HSE + "; men, keeping a load in motion: 100 N", "source"),
+        sustained_power=Source(_POWER + ", upper end 75 W", "source"),
+        hour_power=Source(_HOUR + ", upper end 150 W", "secondary"),
+        grip_height_range=Source(
+            _ZONE + "; " + _PHEASANT + ": 0.485 x 1.855 = 0.90 m to 0.818 x 1.625 = 1.33 m", "derived"
+        ),
+        grip_speed_warn=Source(
+            "V. Kleshnev, 'Rowing Biomechanics' (2006): trained rowers' handle speed peaks at about "
+            "2-3 m/s in the drive (docs/references.md [rowing biomechanics]; not re-read here)",
+            "secondary",
+        ),
+        grip_speed_fail=Source(
+            "docs/models.md §4: on a 1.4 m stroke the grip accelerates at 2 v^2 / stroke = 23 m/s^2 "
+            "at 4 m/s, and 4.32 kg of arms (0.072 x 60 kg) then need about 100 N, the force limit",
+            "derived",
+        ),
+    ),
+)
+
+WOMEN = _profile(
+    "women",
+    dict(
+        force_limit=70.0,
+        sustained_power=60.0,
+        hour_power=125.0,
+        grip_height_range=(0.83, 1.23),
+        grip_speed_warn=2.1,
+        grip_speed_fail=3.3,
+    ),
+    dict(
+        force_limit=Source(_HSE + "; women, keeping a load in motion: 70 N", "source"),
+        sustained_power=Source(
+            _POWER
+            + ": its lower end, 60 W, taken for women; agrees with 75 W / 1.2 = 62.5 W from "
+            + _SEX_RATIO,
+            "derived",
+        ),
+        hour_power=Source("150 W / 1.2 = 125 W: the men's hour power over " + _SEX_RATIO, "derived"),
+        grip_height_range=Source(
+            _ZONE + "; " + _PHEASANT + ": 0.485 x 1.710 = 0.83 m to 0.818 x 1.505 = 1.23 m", "derived"
+        ),
+        grip_speed_warn=Source(
+            _SPEED + "; 70 N, 58.2 kg (CDC 2000 growth charts, weight-for-age median at 20 years, "
+            "girls): 2.5 x sqrt((70/58.2)/(100/60)) = 2.12",
+            "derived",
+        ),
+        grip_speed_fail=Source(_SPEED + "; as the warn limit: 4.0 x 0.850 = 3.40", "derived"),
+    ),
+)
+
+CHILDREN = _profile(
+    "children",
+    dict(
+        force_limit=38.0,
+        sustained_power=33.0,
+        hour_power=69.0,
+        grip_height_range=(0.86, 1.04),
+        grip_speed_warn=2.1,
+        grip_speed_fail=3.3,
+    ),
+    dict(
+        force_limit=Source(
+            "no published push/pull guideline for children was found; the HSE women's 70 N scaled by "
+            "body mass, 70 x 32.1 / 58.2 = 38.6 N, rounded down (CDC 2000 weight-for-age medians: "
+            "boys 10 years 32.1 kg, girls 20 years 58.2 kg); de Winter et al., 'Pushing and pulling "
+            "forces exerted by children' (1994, abstract) support body mass as the force indicator "
+            "and find the force per body mass lower in younger children, so this is an upper "
+            "estimate for children under 10",
+            "derived",
+        ),
+        sustained_power=Source(
+            "the women's 60 W scaled by the same body-mass ratio 32.1/58.2 = 33 W; Shephard et al., "
+            "'Sex differences of physical working capacity' (Ergonomics 31, 1988, abstract): "
+            "working capacity follows fat-free body mass",
+            "derived",
+        ),
+        hour_power=Source("the women's 125 W x 32.1/58.2 = 69 W", "derived"),
+        grip_height_range=Source(
+            _ZONE + "; stature 10-14 years, CDC 2000 stature-for-age: girls 10 years 5th percentile "
+            "127.5 cm, boys 14 years 95th percentile 177.0 cm: 0.485 x 1.770 = 0.86 m to 0.818 x "
+            "1.275 = 1.04 m (adult proportions applied to children: approximate)",
+            "derived",
+        ),
+        grip_speed_warn=Source(_SPEED + "; 38 N, 32.1 kg: 2.5 x sqrt((38/32.1)/(100/60)) = 2.11", "derived"),
+        grip_speed_fail=Source(_SPEED + "; as the warn limit: 4.0 x 0.843 = 3.37", "derived"),
+    ),
+)
+
+ACCESSIBLE = _profile(
+    "accessible",
+    dict(
+        force_limit=22.2,
+        sustained_power=25.0,
+        hour_power=50.0,
+        grip_height_range=(0.71, 1.02),
+        grip_speed_warn=1.1,
+        grip_speed_fail=1.8,
+    ),
+    dict(
+        force_limit=Source(_ADA, "source"),
+        sustained_power=Source(
+            "no source found for seated arm work; 25 W is about the mean power a design can demand "
+            "at this profile's force and warn-speed limits (22.2 N x 1.1 m/s = 24 W), so the force "
+            "limit, not the power, decides",
+            "derived",
+        ),
+        hour_power=Source("twice the sustained power, the men's ratio 150 W / 75 W", "derived"),
+        grip_height_range=Source(
+            "USDA Forest Service MTDC Tech Tip 0571-2311 'New Accessible Handpump for Campgrounds' "
+            "(Kuhn & Beckley 2005): control heights between 28 and 40 inches (0.71-1.02 m), citing "
+            "ADA Accessibility Guidelines 14.15.4; inside the current ABA §1011.6 range for operable "
+            "parts of water hydrants, 15-48 inches (0.38-1.22 m)",
+            "source",
+        ),
+        grip_speed_warn=Source(_SPEED + "; 22.2 N, 60 kg adult: 2.5 x sqrt(22.2/100) = 1.18", "derived"),
+        grip_speed_fail=Source(_SPEED + "; as the warn limit: 4.0 x 0.471 = 1.88", "derived"),
+    ),
+)
+
+#: The profiles by name (docs/operators.md).
+PROFILES = MappingProxyType({p.name: p for p in (MEN, WOMEN, CHILDREN, ACCESSIBLE)})
+
+#: Today's limits (pumplink.constants): the profile of a spec that names none.
+DEFAULT_PROFILE = _profile(
+    "default",
+    dict(
+        force_limit=FORCE_LIMIT_N,
+        sustained_power=SUSTAINED_POWER_W,
+        hour_power=HOUR_POWER_W,
+        grip_height_range=tuple(GRIP_HEIGHT_RANGE_M),
+        grip_speed_warn=GRIP_SPEED_WARN_M_S,
+        grip_speed_fail=GRIP_SPEED_FAIL_M_S,
+    ),
+    dict(
+        {k: MEN.sources[k] for k in FIELDS if k != "grip_height_range"},
+        grip_height_range=Source(
+            "no checkable source found (docs/references.md [ergonomics]); kept so that a spec "
+            "without a profile keeps its verdict",
+            "derived",
+        ),
+    ),
+)

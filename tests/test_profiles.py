@@ -1,0 +1,192 @@
+"""Operator profiles (``pumplink.profiles``, docs/operators.md): every value has a source, lies in
+the range its source gives, and the derived ones follow from their stated arithmetic.
+
+The expected numbers are the published figures themselves (HSE, ADA/ABA, Practical Action, CDC
+growth charts, Pheasant's stature table, the MTDC accessible-handpump tech tip) written out here,
+and the derivations of docs/operators.md redone from them.
+"""
+
+import ast
+import dataclasses
+import math
+from pathlib import Path
+
+import pytest
+
+import pumplink.profiles as profiles_module
+from pumplink import constants
+from pumplink.profiles import DEFAULT_PROFILE, FIELDS, PROFILES, Source
+
+G = 9.81
+LBF = 4.4482216152605  # N per pound-force (exact definition)
+INCH = 0.0254  # m
+
+# Published figures (docs/operators.md, each read as stated there)
+HSE_KEEP_MOVING_KG = {"men": 10.0, "women": 7.0}  # HSE push/pull guideline figures
+HSE_KEEP_MOVING_N = {"men": 100.0, "women": 70.0}  # "about 100 / 70 Newtons"
+PA_HUMAN_POWER_W = (60.0, 75.0)  # Practical Action: 0.06-0.075 kW
+HOUR_POWER_RANGE_W = (50.0, 150.0)  # 50-150 W for an hour
+STATURE_M = {"men": (1.625, 1.855), "women": (1.505, 1.710)}  # Pheasant, British 19-65, 5th/95th
+CHILD_STATURE_M = (1.275, 1.770)  # CDC 2000: girls 10 y 5th percentile, boys 14 y 95th
+CDC_MASS_KG = {"boys_10": 32.1, "girls_20": 58.2}  # CDC 2000 weight-for-age medians
+ADULT_MASS_KG = 60.0  # pumplink.constants.ARM_BODY_MASS_KG, basis of the men's 4 m/s
+SHOULDER, WRIST = 0.818, 0.485  # Drillis-Contini proportions of stature
+
+
+def floor_to(x, step):
+    return math.floor(x / step + 1e-9) * step
+
+
+def test_every_field_of_every_profile_has_a_source_with_a_basis():
+    for p in (*PROFILES.values(), DEFAULT_PROFILE):
+        assert set(p.sources) == set(FIELDS), p.name
+        for name in FIELDS:
+            s = p.sources[name]
+            assert isinstance(s, Source)
+            assert s.basis in ("source", "secondary", "derived"), (p.name, name)
+            assert len(s.text) > 20, (p.name, name)
+        assert {f.name for f in dataclasses.fields(p)} == {"name", "sources", *FIELDS}
+
+
+def test_profiles_are_the_four_the_docs_name():
+    assert list(PROFILES) == ["men", "women", "children", "accessible"]
+    for name, p in PROFILES.items():
+        assert p.name == name
+
+
+@pytest.mark.parametrize("name", ["men", "women"])
+def test_force_limits_are_the_hse_guideline_figures(name):
+    p = PROFILES[name]
+    assert p.force_limit == HSE_KEEP_MOVING_N[name]
+    assert p.force_limit == pytest.approx(HSE_KEEP_MOVING_KG[name] * G, rel=0.03)  # "about"
+    assert p.sources["force_limit"].basis == "source"
+
+
+def test_accessible_force_is_the_ada_five_pounds():
+    p = PROFILES["accessible"]
+    assert p.force_limit <= 5 * LBF
+    assert p.force_limit == pytest.approx(5 * LBF, abs=0.05)
+
+
+def test_children_force_is_the_womens_scaled_by_body_mass_rounded_down():
+    scaled = HSE_KEEP_MOVING_N["women"] * CDC_MASS_KG["boys_10"] / CDC_MASS_KG["girls_20"]  # 38.6 N
+    assert PROFILES["children"].force_limit == math.floor(scaled)
+    assert PROFILES["children"].sources["force_limit"].basis == "derived"
+
+
+def test_sustained_powers_lie_in_the_published_human_range_or_follow_from_it():
+    lo, hi = PA_HUMAN_POWER_W
+    assert PROFILES["men"].sustained_power == hi
+    assert PROFILES["women"].sustained_power == lo
+    assert PROFILES["women"].sustained_power == pytest.approx(hi / 1.2, rel=0.05)  # men ~20 % more
+    ratio = CDC_MASS_KG["boys_10"] / CDC_MASS_KG["girls_20"]
+    assert PROFILES["children"].sustained_power == round(lo * ratio)
+    acc = PROFILES["accessible"]
+    assert acc.sustained_power >= acc.force_limit * acc.grip_speed_warn  # the force decides
+
+
+def test_hour_powers_follow_from_the_published_range():
+    assert PROFILES["men"].hour_power == HOUR_POWER_RANGE_W[1]
+    assert PROFILES["women"].hour_power == pytest.approx(HOUR_POWER_RANGE_W[1] / 1.2)
+    ratio = CDC_MASS_KG["boys_10"] / CDC_MASS_KG["girls_20"]
+    assert PROFILES["children"].hour_power == round(PROFILES["women"].hour_power * ratio)
+    for p in PROFILES.values():
+        assert p.sustained_power < p.hour_power <= HOUR_POWER_RANGE_W[1], p.name
+
+
+@pytest.mark.parametrize("name", ["men", "women"])
+def test_adult_grip_band_runs_from_the_tall_users_wrist_to_the_short_users_shoulder(name):
+    short, tall = STATURE_M[name]
+    lo, hi = PROFILES[name].grip_height_range
+    assert lo == pytest.approx(WRIST * tall, abs=0.005)
+    assert hi == pytest.approx(SHOULDER * short, abs=0.005)
+
+
+def test_children_grip_band_uses_the_10_to_14_year_statures():
+    short, tall = CHILD_STATURE_M
+    lo, hi = PROFILES["children"].grip_height_range
+    assert lo == pytest.approx(WRIST * tall, abs=0.005)
+    assert hi == pytest.approx(SHOULDER * short, abs=0.005)
+
+
+def test_accessible_grip_band_is_28_to_40_inches_inside_the_aba_reach_range():
+    lo, hi = PROFILES["accessible"].grip_height_range
+    assert lo == pytest.approx(28 * INCH, abs=0.005)
+    assert hi == pytest.approx(40 * INCH, abs=0.005)
+    assert 15 * INCH <= lo < hi <= 48 * INCH
+
+
+def test_grip_bands_are_ordered_and_on_the_ground():
+    for p in (*PROFILES.values(), DEFAULT_PROFILE):
+        lo, hi = p.grip_height_range
+        assert 0.0 < lo < hi < 2.0, p.name
+
+
+@pytest.mark.parametrize(
+    "name, mass",
+    [("women", CDC_MASS_KG["girls_20"]), ("children", CDC_MASS_KG["boys_10"]), ("accessible", ADULT_MASS_KG)],
+)
+def test_grip_speeds_scale_as_the_root_of_force_over_arm_mass(name, mass):
+    """The arms' inertia force 2 m_arm v^2 / stroke reaches the force limit at v_fail, so v scales
+    as sqrt(F / m_arm), m_arm proportional to body mass; the men's 2.5 / 4.0 m/s at 100 N and
+    60 kg are the reference; rounded down to 0.1 m/s (docs/operators.md §5)."""
+    p = PROFILES[name]
+    factor = math.sqrt((p.force_limit / mass) / (100.0 / ADULT_MASS_KG))
+    assert p.grip_speed_warn == pytest.approx(floor_to(2.5 * factor, 0.1))
+    assert p.grip_speed_fail == pytest.approx(floor_to(4.0 * factor, 0.1))
+
+
+def test_warn_speed_is_below_fail_speed():
+    for p in (*PROFILES.values(), DEFAULT_PROFILE):
+        assert 0.0 < p.grip_speed_warn < p.grip_speed_fail, p.name
+
+
+def test_limits_fall_from_men_to_accessible():
+    order = [PROFILES[n] for n in ("men", "women", "children", "accessible")]
+    for a, b in zip(order, order[1:]):
+        assert a.force_limit > b.force_limit
+        assert a.sustained_power > b.sustained_power
+        assert a.grip_speed_fail >= b.grip_speed_fail
+
+
+def test_default_profile_is_todays_constants():
+    d = DEFAULT_PROFILE
+    assert d.force_limit == constants.FORCE_LIMIT_N
+    assert d.sustained_power == constants.SUSTAINED_POWER_W
+    assert d.hour_power == constants.HOUR_POWER_W
+    assert d.grip_height_range == tuple(constants.GRIP_HEIGHT_RANGE_M)
+    assert d.grip_speed_warn == constants.GRIP_SPEED_WARN_M_S
+    assert d.grip_speed_fail == constants.GRIP_SPEED_FAIL_M_S
+
+
+def test_default_profile_is_the_men_profile_but_for_the_grip_band():
+    """Today's limits are the men's, except the unsourced 0.5-0.9 m grip band (docs/operators.md §6)."""
+    men, d = PROFILES["men"], DEFAULT_PROFILE
+    for name in FIELDS:
+        if name != "grip_height_range":
+            assert getattr(d, name) == getattr(men, name), name
+    assert d.grip_height_range != men.grip_height_range
+    assert d.grip_height_range[1] <= men.grip_height_range[0]  # all of it below the men's band
+
+
+def test_profiles_are_frozen():
+    p = PROFILES["women"]
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        p.force_limit = 1.0  # type: ignore[misc]
+    with pytest.raises(TypeError):
+        p.sources["force_limit"] = Source("x", "derived")  # type: ignore[index]
+    with pytest.raises(TypeError):
+        PROFILES["men"] = p  # type: ignore[index]
+
+
+def test_profiles_module_imports_only_pumplink_constants():
+    """Data only: besides the standard library it may import pumplink.constants and nothing else."""
+    tree = ast.parse(Path(profiles_module.__file__).read_text())
+    names = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            names.update(a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            names.add(node.module)
+    assert {n for n in names if n.startswith("pumplink")} == {"pumplink.constants"}
+    assert names <= {"__future__", "dataclasses", "types", "typing", "pumplink.constants"}
