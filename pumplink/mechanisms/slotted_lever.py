@@ -110,7 +110,7 @@ def block_distance(crank_length, frame_length, crank_angle):
     rho = sqrt(r^2 + d^2 + 2 d r sin t) in [d - r, d + r] (Eq. 2.2); NaN unless 0 < r < d.
     """
     r, d, t = _valid(*_arrays(crank_length, frame_length, crank_angle))
-    return _out(np.sqrt(r * r + d * d + 2.0 * d * r * np.sin(t)))  # Eq. (2.2)
+    return _out(np.sqrt((d - r) ** 2 + 2.0 * d * r * (1.0 + np.sin(t))))  # Eq. (2.2), as in lever_rate
 
 
 def lever_rate(crank_length, frame_length, crank_angle):
@@ -124,7 +124,9 @@ def lever_rate(crank_length, frame_length, crank_angle):
     """
     r, d, t = _valid(*_arrays(crank_length, frame_length, crank_angle))
     s = np.sin(t)
-    return _out(r * (r + d * s) / (r * r + d * d + 2.0 * d * r * s))  # Eq. (2.3)
+    # rho^2 = r^2 + d^2 + 2 d r sin t written as (d - r)^2 + 2 d r (1 + sin t): no cancellation
+    # where the crank points away from the lever pivot (sin t = -1), so rho^2 > 0 whenever r < d
+    return _out(r * (r + d * s) / ((d - r) ** 2 + 2.0 * d * r * (1.0 + s)))  # Eq. (2.3)
 
 
 def swing_angle(crank_length, frame_length):
