@@ -66,6 +66,20 @@ def test_help_examples_run(command, tmp_path):
         assert p.returncode in allowed, (ex, p.stderr)
 
 
+def docs_examples():
+    """The indented `pumplink ...` example lines of docs/mechanisms.md (comments stripped)."""
+    text = (ROOT / "docs" / "mechanisms.md").read_text(encoding="utf-8")
+    return [m.split("#")[0].split() for m in re.findall(r"^    (pumplink .+)$", text, re.M)]
+
+
+def test_docs_examples_run():
+    found = docs_examples()
+    assert {e[1] for e in found} >= {"slider", "slotted"}
+    for ex in found:
+        p = run(*ex[1:])
+        assert p.returncode == 0 and "Traceback" not in p.stderr, (ex, p.stderr)
+
+
 @pytest.mark.parametrize(
     "args",
     [
