@@ -152,7 +152,10 @@ def _beyond(value, limit, relation):
     return ~ok
 
 
-def _check(key, value, relation, unit, feasible, warn=None, fail=None) -> Check:
+def check(key, value, relation, unit, feasible, warn=None, fail=None) -> Check:
+    """One check: its level per design from ``value`` against the warn and fail limits by
+    ``relation`` ('<=' or '>='); an infeasible design (``feasible`` False) and a NaN value fail.
+    The pump verdict's checks (:func:`assess`) and the textbook mechanisms' are built by it."""
     v = np.asarray(value, float)
     level = np.zeros(np.broadcast_shapes(v.shape, np.shape(feasible)), int)
     if warn is not None:
@@ -172,7 +175,7 @@ def _range(key, value, bounds, unit, feasible) -> Check:
     lo, hi = bounds
     v = np.asarray(value, float)
     low = v < lo
-    return _check(key, v, np.where(low, ">=", "<="), unit, feasible, warn=np.where(low, lo, hi))
+    return check(key, v, np.where(low, ">=", "<="), unit, feasible, warn=np.where(low, lo, hi))
 
 
 def assess(
@@ -209,18 +212,18 @@ def assess(
     Optional checks are left out when their input is None.
     """
     checks = [
-        _check("mean_force", mean_force, "<=", "N", feasible, fail=force_limit),
-        _check("peak_force", peak_force, "<=", "N", feasible, fail=force_limit),
+        check("mean_force", mean_force, "<=", "N", feasible, fail=force_limit),
+        check("peak_force", peak_force, "<=", "N", feasible, fail=force_limit),
     ]
     if link_energy_share is not None:
         checks.append(
-            _check(
+            check(
                 "link_energy_share", link_energy_share, "<=", "%", feasible, warn=100.0 * LINK_ENERGY_LIMIT
             )
         )
     if transmission_angle is not None:
         checks.append(
-            _check(
+            check(
                 "transmission_angle",
                 transmission_angle,
                 ">=",
@@ -231,10 +234,10 @@ def assess(
             )
         )
     if power is not None:
-        checks.append(_check("power", power, "<=", "W", feasible, warn=SUSTAINED_POWER_W, fail=HOUR_POWER_W))
+        checks.append(check("power", power, "<=", "W", feasible, warn=SUSTAINED_POWER_W, fail=HOUR_POWER_W))
     if grip_speed is not None:
         checks.append(
-            _check(
+            check(
                 "grip_speed",
                 grip_speed,
                 "<=",
@@ -245,7 +248,7 @@ def assess(
             )
         )
     if stroke is not None:
-        checks.append(_check("stroke", stroke, "<=", "m", feasible, warn=STROKE_LIMIT_M))
+        checks.append(check("stroke", stroke, "<=", "m", feasible, warn=STROKE_LIMIT_M))
     if grip_height is not None:
         low, high = (np.asarray(h, float) for h in grip_height)
         lo, hi = GRIP_HEIGHT_RANGE_M

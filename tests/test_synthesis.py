@@ -210,3 +210,301 @@ def test_rocker_at_frame_property(K, swing_deg, frac):
     lo, hi = cr.frame_range(K, swing, 1.0)
     rep = S.rocker(swing, 1.0, K, frame=lo + frac * (hi - lo))
     assert rep.agrees
+
+
+# ----------------------------------------------------------------------------- analysis forms
+def brute_slider_full(r, rod, e, n=2_000_001):
+    """Stroke, K, far/near dead-centre crank angles and largest pressure angle of a crank-slider
+    from a dense sweep of its position (circle about the crank pin meets the guide y = e)."""
+    t = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+    rise = e - r * np.sin(t)
+    s = r * np.cos(t) + np.sqrt(rod * rod - rise * rise)
+    far, near = t[np.argmax(s)], t[np.argmin(s)]
+    arc = (near - far) % (2 * math.pi)
+    k = max(arc, 2 * math.pi - arc) / min(arc, 2 * math.pi - arc)
+    lam = np.arcsin(np.abs(rise) / rod).max()  # the rod's angle to the guide
+    return s.max() - s.min(), k, far, near, float(lam)
+
+
+def _turn_gap(a, b):
+    """Distance of two crank angles on the circle [rad]."""
+    return abs(math.remainder(a - b, 2 * math.pi))
+
+
+@pytest.mark.parametrize(
+    "r, rod, e",
+    [(0.1, 0.4, 0.02), (0.1, 0.4, -0.05), (1.0, 2.5, 1.2), (0.3, 5.0, 0.0), (2.0, 3.0, -0.9)],
+)
+def test_slider_analysis_matches_a_brute_force_sweep(r, rod, e):
+    rep = S.slider_analysis(r, rod, e)
+    stroke, k, far, near, lam = brute_slider_full(r, rod, e)
+    assert rep.agrees and rep.verdict.passed == (math.degrees(lam) <= 60)
+    assert _ind(rep, "stroke").simulated == pytest.approx(stroke, rel=1e-9)
+    assert _ind(rep, "stroke").closed_form == pytest.approx(stroke, rel=1e-9)
+    assert _ind(rep, "relative_stroke").closed_form == pytest.approx(stroke / r, rel=1e-9)
+    assert _ind(rep, "time_ratio").closed_form == pytest.approx(k, abs=1e-5)  # grid step 3e-6 rad
+    assert _ind(rep, "largest_pressure_angle").closed_form == pytest.approx(lam, abs=1e-9)
+    # dead centres: the sweep's argmax / argmin of the slider position, to a few grid steps
+    assert _turn_gap(_ind(rep, "dead_centre_extended").closed_form, far) < 1e-5
+    assert _turn_gap(_ind(rep, "dead_centre_folded").closed_form, near) < 1e-5
+    theta = (math.pi * (k - 1) / (k + 1)) if k > 1 else 0.0
+    assert _ind(rep, "extreme_rod_angle").closed_form == pytest.approx(theta, abs=1e-5)
+    ratios = dict((key, v) for key, _, v in rep.ratios)
+    assert ratios == {"rod_ratio": rod / r, "offset_ratio": e / r}
+
+
+def test_slider_analysis_central_by_hand():
+    """e = 0 by hand: H = 2r, K = 1, theta = 0, lambda_max = asin(r/l) (crank square to the
+    guide), dead centres at 0 and 180 deg."""
+    rep = S.slider_analysis(0.1, 0.4)
+    assert _ind(rep, "stroke").simulated == pytest.approx(0.2, rel=1e-12)
+    assert _ind(rep, "relative_stroke").simulated == pytest.approx(2.0, rel=1e-12)
+    assert _ind(rep, "time_ratio").simulated == pytest.approx(1.0, abs=1e-12)
+    assert _ind(rep, "largest_pressure_angle").simulated == pytest.approx(math.asin(0.25), abs=1e-12)
+    assert _turn_gap(_ind(rep, "dead_centre_extended").simulated, 0.0) < 1e-9
+    assert _turn_gap(_ind(rep, "dead_centre_folded").simulated, math.pi) < 1e-9
+    assert "both strokes take 180° of crank" in rep.notes
+
+
+def test_slider_analysis_published_gate_2025():
+    """GATE 2025 Mechanical Engineering paper, question 60: an offset slider-crank with crank
+    30 mm, rod 50 mm and offset 10 mm; the stroke, rounded to the nearest mm, is 62 mm.  By hand
+    (Eq. 1.5 with the dead centres' right triangles): sqrt(80^2 - 10^2) - sqrt(20^2 - 10^2)
+    = 79.3725 - 17.3205 = 62.0520 mm."""
+    rep = S.slider_analysis(30.0, 50.0, 10.0)
+    hand = math.sqrt(6300.0) - math.sqrt(300.0)
+    assert _ind(rep, "stroke").simulated == pytest.approx(hand, rel=1e-12)
+    assert round(_ind(rep, "stroke").simulated) == 62
+
+
+def test_slider_analysis_realisability_from_both_sides():
+    """The crank turns fully iff l > r + |e| (Eq. 1.7)."""
+    assert S.slider_analysis(1.0, 1.5 + 1e-9, -0.5).agrees
+    for rod in (1.5, 1.4):
+        with pytest.raises(InfeasibleDesign, match="cannot turn fully"):
+            S.slider_analysis(1.0, rod, -0.5)
+    for kwargs in (
+        dict(crank=0.0, rod=1.0),
+        dict(crank=1.0, rod=-3.0),
+        dict(crank=1.0, rod=3.0, offset=math.inf),
+    ):
+        with pytest.raises(SpecError):
+            S.slider_analysis(**kwargs)
+
+
+# Khurmi & Gupta, "Theory of Machines", ch. 5 (Simple Mechanisms), the crank and slotted lever
+# quick return motion mechanism.  Their symbols: AC = distance between the fixed centres (our
+# frame d), CB = driving crank (our r), AP = slotted lever (our l), R1R2 = stroke (the chord).
+def test_slotted_khurmi_example_5_1_crank_and_centre_distance():
+    """Example 5.1: AC = 300 mm, CB = 120 mm; the printed ratio of the cutting to the return
+    time is 1.7.  By hand: sin(angle CAB1) = 120/300, the return crank angle is
+    alpha = 2 (90 deg - asin 0.4) and K = (360 deg - alpha)/alpha."""
+    rep = S.slotted(crank=120.0, frame_length=300.0)
+    alpha = 2 * (math.pi / 2 - math.asin(0.4))
+    hand = (2 * math.pi - alpha) / alpha
+    k = _ind(rep, "time_ratio").simulated
+    assert k == pytest.approx(hand, rel=1e-12) and round(k, 1) == 1.7
+    assert _ind(rep, "fast_arc").simulated == pytest.approx(alpha, abs=1e-12)
+    assert all(key != "stroke" for key in (i.key for i in rep.indicators))  # no lever, no stroke
+    _, kb, _ = brute_lever(120.0, 300.0, 450.0)
+    assert kb == pytest.approx(hand, abs=1e-5)
+
+
+def test_slotted_khurmi_example_5_2_with_the_lever():
+    """Example 5.2: AC = 240 mm, CB = 120 mm, AP = 450 mm; printed: the slotted bar is inclined
+    30 deg to the vertical at its extremes, the time ratio is 2 and the stroke 450 mm
+    (sin 30 deg = 120/240, alpha = 120 deg, K = 240/120, stroke = 2 * 450 * sin 30 deg)."""
+    rep = S.slotted(crank=120.0, frame_length=240.0, lever=450.0)
+    assert _ind(rep, "lever_inclination").simulated == pytest.approx(math.radians(30), abs=1e-12)
+    assert _ind(rep, "time_ratio").simulated == pytest.approx(2.0, rel=1e-12)
+    assert _ind(rep, "stroke").simulated == pytest.approx(450.0, rel=1e-12)
+    swing, k, chord = brute_lever(120.0, 240.0, 450.0)
+    assert chord == pytest.approx(450.0, rel=1e-9) and k == pytest.approx(2.0, abs=1e-5)
+    assert rep.passed
+
+
+def test_slotted_khurmi_example_5_3_from_the_crank():
+    """Example 5.3: driving crank BC = 30 mm, time ratio 1.7, working stroke 120 mm; find AC
+    and AP.  By hand: half the swing is 90 deg (K - 1)/(K + 1) = 23.333 deg, so
+    AC = 30 / sin(23.333 deg) = 75.742 mm and AP = 120 / (2 sin(23.333 deg)) = 151.485 mm."""
+    rep = S.slotted(1.7, 120.0, crank=30.0)
+    half = math.radians(90 * 0.7 / 2.7)
+    assert _len(rep, "crank") == 30.0
+    assert _len(rep, "frame") == pytest.approx(30 / math.sin(half), rel=1e-14)
+    assert _len(rep, "lever") == pytest.approx(120 / (2 * math.sin(half)), rel=1e-14)
+    assert round(_len(rep, "frame"), 1) == 75.7 and round(_len(rep, "lever"), 1) == 151.5
+    swing, k, chord = brute_lever(_len(rep, "crank"), _len(rep, "frame"), _len(rep, "lever"))
+    assert chord == pytest.approx(120.0, rel=1e-9) and k == pytest.approx(1.7, abs=1e-5)
+    assert rep.agrees and rep.passed
+
+
+def test_slotted_crank_and_time_ratio_alone():
+    """'Crank 300 mm, time ratio 2': sin(psi/2) = 1/2 by hand, so d = 600, and without a
+    stroke or lever the shortest lever that holds the block, l = d + r = 900, strokes
+    2 * 900 * 1/2 = 900."""
+    rep = S.slotted(2.0, crank=300.0)
+    assert (_len(rep, "frame"), _len(rep, "lever")) == (pytest.approx(600.0), pytest.approx(900.0))
+    assert _ind(rep, "stroke").simulated == pytest.approx(900.0, rel=1e-12)
+    assert any("l = d + r = 900" in n for n in rep.notes)
+
+
+@settings(max_examples=15, deadline=None)  # each example sweeps 200 001 crank angles twice
+@given(
+    K=st.floats(1.05, 4.0),
+    crank=st.floats(1e-3, 10.0),
+    lever_factor=st.one_of(st.none(), st.floats(1.0, 3.0)),
+    by_stroke=st.booleans(),
+)
+def test_slotted_from_the_crank_property(K, crank, lever_factor, by_stroke):
+    """Any K and crank, with a lever (or its stroke) at least d + r long, or none: the
+    mechanism brute-force swept here swings with K and, where asked, strokes as asked."""
+    half = math.sin(math.pi * (K - 1) / (K + 1) / 2)
+    d = crank / half
+    lever = None if lever_factor is None else lever_factor * (d + crank) * (1 + 1e-12)
+    stroke = None if lever is None else 2 * lever * half
+    rep = S.slotted(K, stroke if by_stroke else None, crank=crank, lever=None if by_stroke else lever)
+    assert rep.agrees and rep.passed
+    swing, k, chord = brute_lever(_len(rep, "crank"), _len(rep, "frame"), _len(rep, "lever"), n=200_001)
+    assert k == pytest.approx(K, abs=1e-4)
+    if lever is not None:
+        assert chord == pytest.approx(stroke, rel=1e-9)
+
+
+def test_slotted_analysis_realisability_and_bad_sets():
+    with pytest.raises(InfeasibleDesign, match="Whitworth"):
+        S.slotted(crank=2.0, frame_length=2.0)
+    assert S.slotted(crank=1.99, frame_length=2.0).agrees  # swings 168.5 deg, K = 30.4
+    with pytest.raises(InfeasibleDesign, match="cannot hold"):
+        S.slotted(crank=1.0, frame_length=2.0, lever=3.0 * (1 - 1e-9))
+    assert S.slotted(crank=1.0, frame_length=2.0, lever=3.0).agrees
+    with pytest.raises(InfeasibleDesign, match="take r <="):
+        S.slotted(1.5, crank=1.0, lever=1.0)
+    for kwargs in (
+        dict(time_ratio=2.0, crank=1.0, frame_length=2.0),  # over-determined
+        dict(time_ratio=2.0),  # no length
+        dict(crank=1.0),  # analysis without the frame
+        dict(time_ratio=2.0, stroke=1.0, lever=2.0),
+        dict(crank=-1.0, frame_length=2.0),
+    ):
+        with pytest.raises(SpecError):
+            S.slotted(**kwargs)
+
+
+# ----------------------------------------------------------------------------- crank-rocker extremes
+def brute_rocker(rep, n=2_000_001):
+    """gamma_min, gamma_max and the dead-centre crank angles of a reported crank-rocker from a
+    dense sweep written here: the coupler point is the intersection of the circle about the
+    crank pin (coupler) with the circle about the rocker pivot D = 0 (rocker), on the branch
+    whose rocker stays inside the swing (90 deg +- swing/2, the bisector on +y); the
+    transmission angle is the angle at B between B->A and B->D from the positions."""
+    ax, ay = _len(rep, "pivot_x"), _len(rep, "pivot_y")
+    c, k, r = _len(rep, "crank"), _len(rep, "coupler"), _len(rep, "rocker")
+    swing = next(v for key, _, _, v in rep.given if key == "swing")
+    t = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+    px, py = ax + c * np.cos(t), ay + c * np.sin(t)  # crank pin
+    dist = np.hypot(px, py)
+    # circle-circle: foot along D->pin at distance (r^2 - k^2 + dist^2)/(2 dist), height h
+    a = (r * r - k * k + dist * dist) / (2 * dist)
+    h = np.sqrt(r * r - a * a)
+    ux, uy = px / dist, py / dist
+    for sign in (1.0, -1.0):
+        bx, by = a * ux - sign * h * uy, a * uy + sign * h * ux
+        ang = np.arctan2(by, bx)
+        if np.all(np.abs(ang - math.pi / 2) <= swing / 2 + 1e-6):
+            break
+    else:
+        raise AssertionError("no branch keeps the rocker inside its swing")
+    v1x, v1y, v2x, v2y = px - bx, py - by, -bx, -by
+    gamma = np.arctan2(np.abs(v1x * v2y - v1y * v2x), v1x * v2x + v1y * v2y)
+    far = np.hypot(bx - ax, by - ay)  # crank pivot to B: coupler + crank when stretched out
+    extended = t[np.argmax(far)]
+    folded = t[np.argmin(far)]
+    return float(gamma.min()), float(gamma.max()), float(extended), float(folded)
+
+
+@pytest.mark.parametrize(
+    "args, kwargs",
+    [
+        ((math.radians(40), 50.0, 1.1818), {}),  # the optimal-transmission paper's example
+        ((math.radians(40), 0.3, 1.1), dict(frame=0.4)),
+        ((math.radians(50), 0.3), dict(pivot=(-0.26, 0.19))),
+        ((math.radians(170), 1.0, 3.0), {}),  # jams: gamma_min 0.76 deg
+        ((math.radians(40), 1.0, 1.0), dict(frame=1.6)),
+    ],
+)
+def test_rocker_gamma_extremes_and_dead_centres_by_brute_force(args, kwargs):
+    rep = S.rocker(*args, **kwargs)
+    gmin, gmax, extended, folded = brute_rocker(rep)
+    assert _ind(rep, "gamma_min").closed_form == pytest.approx(gmin, abs=1e-9)
+    assert _ind(rep, "gamma_max").closed_form == pytest.approx(gmax, abs=1e-9)
+    assert _ind(rep, "gamma_min").simulated == pytest.approx(gmin, abs=1e-9)
+    assert _ind(rep, "gamma_max").simulated == pytest.approx(gmax, abs=1e-9)
+    # the farthest and nearest coupler point: crank and coupler stretched out / folded
+    assert _turn_gap(_ind(rep, "dead_centre_extended").closed_form, extended) < 1e-5
+    assert _turn_gap(_ind(rep, "dead_centre_folded").closed_form, folded) < 1e-5
+    assert rep.agrees
+    effective = min(gmin, math.pi - gmax)
+    assert rep.passed == (math.degrees(effective) >= 30)
+
+
+def test_rocker_k1_dead_centres_are_half_a_turn_apart_by_hand():
+    """K = 1: the crank turns 180 deg from one dead centre to the other (theta = 0)."""
+    rep = S.rocker(math.radians(40), 1.0, 1.0, frame=1.6)
+    gap = _ind(rep, "dead_centre_folded").simulated - _ind(rep, "dead_centre_extended").simulated
+    assert _turn_gap(gap, math.pi) < 1e-9
+
+
+def test_rocker_k1_without_frame_states_the_limit_as_a_number():
+    """The bound 90 deg - swing/2 at a 40 deg swing is 70 deg (by hand), printed as a number."""
+    with pytest.raises(InfeasibleDesign) as err:
+        S.rocker(math.radians(40), 1.0, 1.0)
+    assert "approaches 70°" in str(err.value) and "swing/2" not in str(err.value)
+
+
+# ----------------------------------------------------------------------------- the verdict
+def _indicator(deviation=0.0):
+    return S.Indicator("x", "x", S.RATIO, 1.0, 1.0, 1.0 + deviation)
+
+
+@pytest.mark.parametrize(
+    "pressure_deg, pairs, outcome",
+    [
+        (29.9, "sliding", "PASS"),
+        (30.1, "sliding", "PASS with warnings"),  # the textbook's permissible 30 deg (sliding pair)
+        (59.9, "sliding", "PASS with warnings"),
+        (60.1, "sliding", "FAIL"),  # transmission angle below 30 deg
+        (44.9, "revolute", "PASS"),
+        (45.1, "revolute", "PASS with warnings"),  # permissible 45 deg (revolute pairs only)
+        (89.8, "sliding", "FAIL"),
+    ],
+)
+def test_pressure_angle_verdict_levels(pressure_deg, pairs, outcome):
+    v = S.judge([_indicator()], pressure=math.radians(pressure_deg), pairs=pairs)
+    assert v.outcome == outcome and v["pressure_angle"].fail_limit == 60.0
+
+
+@pytest.mark.parametrize("gamma_deg, outcome", [(45.1, "PASS"), (44.9, "PASS with warnings"), (29.9, "FAIL")])
+def test_transmission_angle_verdict_levels(gamma_deg, outcome):
+    assert S.judge([_indicator()], transmission=math.radians(gamma_deg)).outcome == outcome
+
+
+@pytest.mark.parametrize(
+    "deviation, outcome", [(0.0, "PASS"), (5e-10, "PASS"), (2e-9, "FAIL"), (math.nan, "FAIL")]
+)
+def test_a_simulation_that_disagrees_fails(deviation, outcome):
+    assert S.judge([_indicator(deviation)], transmission=math.radians(50)).outcome == outcome
+
+
+def test_optimum_check_catches_a_simulation_that_disagrees():
+    """The published example agrees; the same optimum against a simulation whose swing is off by
+    1e-6 rad (what an optimum off the design circle would give) disagrees and fails."""
+    import dataclasses
+
+    swing = math.radians(40)
+    opt = cr.optimal_crank_rocker(1.1818, swing, 50.0)
+    sim = cr.measure_motion(cr.optimum_linkage(opt))
+    good = S.optimum_check(opt, sim, 1.1818, swing)
+    assert good.agrees and good.verdict.outcome == "PASS"
+    bad = S.optimum_check(opt, dataclasses.replace(sim, swing=sim.swing + 1e-6), 1.1818, swing)
+    assert not bad.agrees and bad.verdict.outcome == "FAIL"
+    assert bad.verdict["simulation"].result == "fail"

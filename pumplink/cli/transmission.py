@@ -46,8 +46,12 @@ def transmission(
 
     Solves the problem of the optimal-transmission paper to solver tolerance on the one-branch
     arc of the design circle and verifies the result by simulating the linkage (the swing and K
-    it really produces).  With the defaults it is the paper's worked example (K = 1.1818,
-    φ = 40°, rocker 50 mm) compared with the paper's published designs.
+    it really produces), and says whether the simulation agrees.  With the defaults it is the
+    paper's worked example (K = 1.1818, φ = 40°, rocker 50 mm) compared with the paper's
+    published designs.  Verdict: the optimum's smallest transmission angle warns below 45° and
+    fails below 30° (the linkage would jam); the simulation must reproduce the asked swing and K
+    and the optimum's transmission angle.  Exit 0 on PASS or PASS with warnings, 1 on FAIL or if
+    no crank-rocker exists, 2 for bad input.
 
     Example: [bold]pumplink transmission --time-ratio 1.25 --swing 50 --rocker 0.3[/]
     """
@@ -64,7 +68,8 @@ def transmission(
         typer.echo(f"wrote {chart}", err=True)
         return
 
-    from pumplink.output.tables import render_transmission, transmission_rows
+    from pumplink.output.transmission import render_transmission, transmission_rows
+    from pumplink.studies.textbook import optimum_check
 
     for name, v in (("--time-ratio", time_ratio), ("--swing", swing), ("--rocker", rocker)):
         if not math.isfinite(v):
@@ -86,7 +91,9 @@ def transmission(
             f"included angle θ = {math.degrees(opt.theta):.4g}°); give a time ratio closer to 1"
         )
     sim = cr.measure_motion(cr.optimum_linkage(opt))
+    check = optimum_check(opt, sim, time_ratio, math.radians(swing))
     comps = (
         cr.published_comparisons() if compare and cr.is_published_example(time_ratio, swing, rocker) else []
     )
-    render_transmission(transmission_rows(opt, sim, comps, cr.PUBLISHED_GAMMA_MIN_DEG), fmt.value)
+    render_transmission(transmission_rows(opt, sim, comps, cr.PUBLISHED_GAMMA_MIN_DEG, check), fmt.value)
+    raise typer.Exit(0 if check.verdict.passed else 1)

@@ -41,6 +41,8 @@ STROKE_NOT_POSITIVE = 2
 FRAME_NOT_POSITIVE = 3
 TIME_RATIO_NOT_ABOVE_ONE = 4
 SLOT_TOO_SHORT = 5
+CRANK_NOT_POSITIVE = 6
+LEVER_NOT_POSITIVE = 7
 
 #: One sentence per reason code.
 REASONS = {
@@ -52,6 +54,8 @@ REASONS = {
     "and an infinite lever); ask for K > 1",
     SLOT_TOO_SHORT: "the lever is shorter than the block's farthest reach d + r, so the slot "
     "cannot hold the block; choose a shorter frame length",
+    CRANK_NOT_POSITIVE: "the crank length must be positive",
+    LEVER_NOT_POSITIVE: "the lever length must be positive",
 }
 
 
@@ -106,7 +110,7 @@ def block_distance(crank_length, frame_length, crank_angle):
     rho = sqrt(r^2 + d^2 + 2 d r sin t) in [d - r, d + r] (Eq. 2.2); NaN unless 0 < r < d.
     """
     r, d, t = _valid(*_arrays(crank_length, frame_length, crank_angle))
-    return _out(np.sqrt(r * r + d * d + 2.0 * d * r * np.sin(t)))  # Eq. (2.2)
+    return _out(np.sqrt((d - r) ** 2 + 2.0 * d * r * (1.0 + np.sin(t))))  # Eq. (2.2), as in lever_rate
 
 
 def lever_rate(crank_length, frame_length, crank_angle):
@@ -120,7 +124,9 @@ def lever_rate(crank_length, frame_length, crank_angle):
     """
     r, d, t = _valid(*_arrays(crank_length, frame_length, crank_angle))
     s = np.sin(t)
-    return _out(r * (r + d * s) / (r * r + d * d + 2.0 * d * r * s))  # Eq. (2.3)
+    # rho^2 = r^2 + d^2 + 2 d r sin t written as (d - r)^2 + 2 d r (1 + sin t): no cancellation
+    # where the crank points away from the lever pivot (sin t = -1), so rho^2 > 0 whenever r < d
+    return _out(r * (r + d * s) / ((d - r) ** 2 + 2.0 * d * r * (1.0 + s)))  # Eq. (2.3)
 
 
 def swing_angle(crank_length, frame_length):
@@ -209,42 +215,80 @@ class SlottedLeverDesign:
         return _out(np.asarray(self.reason) == OK)
 
 
-def synthesize_from_time_ratio(time_ratio, stroke, frame_length=None):
-    """Slotted lever from its time ratio K and the chord stroke H of the lever tip.
+def synthesize_from_time_ratio(
+    time_ratio, stroke=None, frame_length=None, *, crank_length=None, lever_length=None
+):
+    """Slotted lever from its time ratio K, one length that sets the scale and one that sets the lever.
+
+    K fixes the swing psi and so the ratio r/d = sin(psi/2) (Eq. 2.4, 2.7); one of the crank r
+    and the frame d then fixes both, and one of the stroke H and the lever l fixes the lever.
+    Whichever of the two pairs is not given is chosen so that the slot just holds the block,
+    l = d + r (Eq. 2.9 with equality).  The textbook's construction (§3) picks the crank pivot
+    on the bisector, i.e. d; Khurmi-style problems give the crank r instead.
 
     Parameters
     ----------
     time_ratio : K > 1 [-].
-    stroke : H > 0 [length], chord between the tip's extreme positions.
-    frame_length : d [length], the chosen distance of the crank pivot from the lever pivot;
-        None picks the largest d whose slot still holds the block (lever length = d + r).
+    stroke : H > 0 [length], chord between the tip's extreme positions (or None).
+    frame_length : d [length], distance of the crank pivot from the lever pivot (or None).
+    crank_length : r [length] (keyword; or None).  At most one of ``frame_length`` and
+        ``crank_length``.
+    lever_length : l [length] (keyword; or None).  At most one of ``stroke`` and
+        ``lever_length``; at least one of the four lengths.
 
     Returns
     -------
-    SlottedLeverDesign with psi = pi (K - 1)/(K + 1) (Eq. 2.7), l = H / (2 sin(psi/2)) (Eq. 2.8),
-    r = d sin(psi/2) (Eq. 2.4); realisable iff K > 1 (then r < d holds) and l >= d + r
-    (Eq. 2.9: the block's farthest reach lies on the lever).  With ``frame_length=None``,
-    d = l / (1 + sin(psi/2)).  Source: the lever-mechanism textbook, §3; docs/mechanisms.md §2.
+    SlottedLeverDesign with psi = pi (K - 1)/(K + 1) (Eq. 2.7), r = d sin(psi/2) (Eq. 2.4),
+    l = H / (2 sin(psi/2)) (Eq. 2.8); realisable iff K > 1 (then r < d holds) and l >= d + r
+    (Eq. 2.9: the block's farthest reach lies on the lever).  Source: the lever-mechanism
+    textbook, §3; docs/mechanisms.md §2.
+
+    Raises
+    ------
+    ValueError : both of a pair, or no length at all (a programming error, not a reason code).
     """
-    if frame_length is None:
-        K, H = _arrays(time_ratio, stroke)
-        d = None
-    else:
-        K, H, d = _arrays(time_ratio, stroke, frame_length)
-    finite = np.isfinite(K) & np.isfinite(H) & (True if d is None else np.isfinite(d))
-    reason = np.where(finite, OK, INPUT_NOT_FINITE)
+    if frame_length is not None and crank_length is not None:
+        raise ValueError("give at most one of frame_length and crank_length")
+    if stroke is not None and lever_length is not None:
+        raise ValueError("give at most one of stroke and lever_length")
+    scale = frame_length if crank_length is None else crank_length
+    size = stroke if lever_length is None else lever_length
+    if scale is None and size is None:
+        raise ValueError("give one of frame_length, crank_length, stroke, lever_length")
+    given = [x for x in (scale, size) if x is not None]
+    K, *given = _arrays(time_ratio, *given)
+    a = given.pop(0) if scale is not None else None  # d or r
+    b = given.pop(0) if size is not None else None  # H or l
+    reason = np.where(np.isfinite(K), OK, INPUT_NOT_FINITE)
+    for x in (a, b):
+        if x is not None:
+            reason = np.where(np.isfinite(x), reason, INPUT_NOT_FINITE)
     with np.errstate(invalid="ignore", divide="ignore"):
-        reason = np.where((reason == OK) & ~(H > 0), STROKE_NOT_POSITIVE, reason)
-        if d is not None:
-            reason = np.where((reason == OK) & ~(d > 0), FRAME_NOT_POSITIVE, reason)
+        checks = (
+            (stroke, STROKE_NOT_POSITIVE, b),
+            (lever_length, LEVER_NOT_POSITIVE, b),
+            (frame_length, FRAME_NOT_POSITIVE, a),
+            (crank_length, CRANK_NOT_POSITIVE, a),
+        )
+        for arg, code, x in checks:
+            if arg is not None:
+                reason = np.where((reason == OK) & ~(x > 0), code, reason)
         reason = np.where((reason == OK) & ~(K > 1), TIME_RATIO_NOT_ABOVE_ONE, reason)
         good = reason == OK
-        psi = np.pi * (np.where(good, K, 2.0) - 1.0) / (np.where(good, K, 2.0) + 1.0)  # Eq. (2.7)
+        Kg = np.where(good, K, 2.0)
+        psi = np.pi * (Kg - 1.0) / (Kg + 1.0)  # Eq. (2.7)
         half = np.sin(0.5 * psi)
-        lever = np.where(good, H, 1.0) / (2.0 * half)  # Eq. (2.8)
-        if d is None:
+        if b is not None:
+            bg = np.where(good, b, 1.0)
+            lever = bg / (2.0 * half) if lever_length is None else bg  # Eq. (2.8)
+        if a is not None:
+            ag = np.where(good, a, 1.0)
+            d = ag if crank_length is None else ag / half  # Eq. (2.4)
+        if a is None:
             d = lever / (1.0 + half)  # Eq. (2.9) with equality
-        r = d * half  # Eq. (2.4)
+        if b is None:
+            lever = d * (1.0 + half)  # Eq. (2.9) with equality
+        r = ag if crank_length is not None else d * half  # Eq. (2.4)
         reason = np.where(good & ~(lever >= (d + r) * (1.0 - 1e-15)), SLOT_TOO_SHORT, reason)
         good = reason == OK
     r, d, lever = (np.where(good, x, np.nan) for x in (r, d, lever))

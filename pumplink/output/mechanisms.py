@@ -1,6 +1,8 @@
 """Rows and tables of the textbook-mechanism commands (``slider``, ``slotted``, ``rocker``,
-``structure``).  Renderers only: every number comes from :mod:`pumplink.studies.textbook` or
-:mod:`pumplink.inputs.structure`.  Degrees appear here only.  Tables fit 80 columns.
+``structure``) and the verdict lines ``transmission`` shares with them.  Renderers only: every
+number comes from :mod:`pumplink.studies.textbook` or
+:mod:`pumplink.inputs.structure`.  Degrees appear
+here only.  Tables fit 80 columns.
 """
 
 from __future__ import annotations
@@ -12,7 +14,12 @@ from typing import Any
 
 from pumplink.output.formats import console, num, write_csv, write_json
 
-_RESULT_TEXT = {"pass": "pass", "marginal": "marginal", "exceeds": "EXCEEDS"}
+#: Words for the mechanism verdict's checks (``pumplink.studies.textbook.judge``).
+CHECK_NAMES = {
+    "pressure_angle": "largest pressure angle",
+    "transmission_angle": "min transmission angle",
+    "simulation": "simulation deviation",
+}
 
 
 def _value(kind: str, x):
@@ -25,14 +32,40 @@ def _unit(kind: str) -> str:
     return {"angle": "deg", "ratio": "-", "length": "length"}[kind]
 
 
+def check_row(c) -> dict[str, Any]:
+    """One check of a mechanism verdict (:class:`pumplink.verdict.Check`) in the pump verdict's
+    JSON shape ({key, name, value, unit, relation, warn_limit, fail_limit, result})."""
+    return {
+        "key": c.key,
+        "name": CHECK_NAMES[c.key],
+        "value": num(c.value),
+        "unit": c.unit,
+        "relation": c.relation,
+        "warn_limit": None if c.warn_limit is None else num(c.warn_limit),
+        "fail_limit": None if c.fail_limit is None else num(c.fail_limit),
+        "result": c.result,
+    }
+
+
+def verdict_fields(verdict, agrees: bool) -> dict[str, Any]:
+    """The verdict's JSON fields, shared by the mechanism commands and ``transmission``."""
+    return {
+        "simulation": "agrees" if agrees else "disagrees",
+        "simulation_agrees": bool(agrees),
+        "verdict": str(verdict.outcome),
+        "pass": bool(verdict.passed),
+        "checks": [check_row(c) for c in verdict.checks],
+    }
+
+
 def synthesis_row(rep) -> dict[str, Any]:
-    """JSON contract of the synthesis commands (angles in degrees, lengths in the input's unit)."""
-    p = rep.pressure
+    """JSON contract of the mechanism commands (angles in degrees, lengths in the input's unit)."""
     return {
         "mechanism": rep.mechanism,
         "task": rep.task,
         "given": {k: _value(kind, v) for k, _, kind, v in rep.given},
         "lengths": {k: num(v) for k, _, v in rep.lengths},
+        "ratios": {k: num(v) for k, _, v in rep.ratios},
         "indicators": {
             i.key: {
                 "unit": _unit(i.kind),
@@ -43,13 +76,9 @@ def synthesis_row(rep) -> dict[str, Any]:
             }
             for i in rep.indicators
         },
-        "pressure_angle": {
-            "largest_deg": num(math.degrees(p.value)),
-            "permissible_deg": list(p.permissible_deg),
-            "driven_link": p.driven,
-            "result": p.result,
-        },
-        "simulation_agrees": rep.agrees,
+        **verdict_fields(rep.verdict, rep.agrees),
+        "pairs": rep.pairs,
+        "permissible_pressure_angle_deg": list(rep.permissible_pressure_deg),
         "notes": list(rep.notes),
     }
 
@@ -64,17 +93,95 @@ def _g(x, kind="length") -> str:
     return f"{x:.9g}" if kind == "ratio" else f"{x:.6g}"
 
 
-def synthesis_labels(rep) -> dict[str, str]:
-    """The words of the report's keys for the table: {"given": .., "lengths": .., "indicators": ..}."""
+def synthesis_labels(rep) -> dict[str, dict[str, str]]:
+    """The words of the report's keys for the table: {"given": .., "lengths": .., "ratios": ..,
+    "indicators": ..}."""
     return {
         "given": {k: label + (" [deg]" if kind == "angle" else "") for k, label, kind, _ in rep.given},
         "lengths": {k: label for k, label, _ in rep.lengths},
+        "ratios": {k: label for k, label, _ in rep.ratios},
         "indicators": {i.key: i.label for i in rep.indicators},
     }
 
 
-def render_synthesis(row: dict[str, Any], labels: dict[str, str], fmt: str, out=None) -> None:
-    """One synthesis report as a table, JSON or one CSV row.
+def print_wrapped(c, text: str) -> None:
+    """``text`` on console ``c``, wrapped at 78 columns with a two-space hanging indent."""
+    c.print("\n".join(textwrap.wrap(text, 78, subsequent_indent="  ")), markup=False)
+
+
+def _limit_text(c, limit) -> str:
+    if limit is None:
+        return "—"
+    return f"{limit:g}°" if c["unit"] == "deg" else f"{limit:.0e}"
+
+
+def _limit(c, limit) -> str:
+    if limit is None:
+        return "—"
+    return f"{'>' if c['relation'] == '<=' else '<'} {_limit_text(c, limit)}"
+
+
+def _check_value(c, x) -> str:
+    if x is None:
+        return "—"
+    return f"{x:.2f}°" if c["unit"] == "deg" else f"{x:.1e}"
+
+
+def _reason(c) -> str:
+    if c["value"] is None:
+        return f"{c['name']}: no finite value (the simulation failed)"
+    limit = c["fail_limit"] if c["result"] == "fail" else c["warn_limit"]
+    side = "above" if c["relation"] == "<=" else "below"
+    return f"{c['name']} {_check_value(c, c['value'])} {side} {_limit_text(c, limit)}"
+
+
+def render_verdict(c, row: dict[str, Any]) -> None:
+    """The checks table, the verdict line and where the limits come from (``c``: a console).
+
+    ``row`` holds :func:`verdict_fields`, and for a pressure-angle check ``pairs`` and
+    ``permissible_pressure_angle_deg`` (:func:`synthesis_row`).
+    """
+    from rich.table import Table
+
+    t = Table(title="Verdict checks", title_justify="left")
+    for h in ("check", "value", "warns if", "fails if", "result"):
+        t.add_column(h, justify="left" if h == "check" else "right")
+    for ch in row["checks"]:
+        t.add_row(
+            ch["name"],
+            _check_value(ch, ch["value"]),
+            _limit(ch, ch["warn_limit"]),
+            _limit(ch, ch["fail_limit"]),
+            ch["result"] if ch["result"] == "pass" else ch["result"].upper(),
+        )
+    c.print(t)
+    bad = [ch for ch in row["checks"] if ch["result"] == "fail"] or [
+        ch for ch in row["checks"] if ch["result"] == "warn"
+    ]
+    why = f" — {'; '.join(_reason(ch) for ch in bad)}" if bad else ""
+    print_wrapped(c, f"VERDICT: {row['verdict']}{why}")
+    for ch in row["checks"]:
+        warn, fail = _limit_text(ch, ch["warn_limit"]), _limit_text(ch, ch["fail_limit"])
+        if ch["key"] == "pressure_angle":
+            lo, hi = row["permissible_pressure_angle_deg"]
+            pair = "with a sliding pair" if row["pairs"] == "sliding" else "with revolute pairs only"
+            print_wrapped(
+                c,
+                f"limits: the textbook's permissible largest pressure angle for a mechanism {pair} is "
+                f"{lo:g}° ({hi:g}° in preliminary design): above {warn} warns, above {fail} (a transmission "
+                "angle of 30°) fails; the lever-mechanism textbook, §2.4 (docs/mechanisms.md §4)",
+            )
+        elif ch["key"] == "transmission_angle":
+            print_wrapped(
+                c,
+                f"limits: a transmission angle below {warn} (a pressure angle above the textbook's "
+                f"permissible 45° for revolute pairs) warns, below {fail} fails: joint friction can "
+                "jam the linkage; the lever-mechanism textbook, §2.4 (docs/mechanisms.md §4)",
+            )
+
+
+def render_synthesis(row: dict[str, Any], labels: dict[str, dict[str, str]], fmt: str, out=None) -> None:
+    """One mechanism report as a table, JSON or one CSV row.
 
     ``labels`` maps the row's keys to their words (:func:`synthesis_labels`).
     """
@@ -82,7 +189,8 @@ def render_synthesis(row: dict[str, Any], labels: dict[str, str], fmt: str, out=
     if fmt == "json":
         return write_json(row, out)
     if fmt == "csv":
-        flat = {k: v for k, v in row.items() if k != "notes"}
+        flat = {k: v for k, v in row.items() if k not in ("notes", "checks")}
+        flat.update({f"check_{ch['key']}": ch["result"] for ch in row["checks"]})
         return write_csv([flat], out)
     from rich.markup import escape
     from rich.table import Table
@@ -91,46 +199,63 @@ def render_synthesis(row: dict[str, Any], labels: dict[str, str], fmt: str, out=
     title = textwrap.wrap(f"{row['mechanism'].capitalize()}, {row['task']}", 78, subsequent_indent="  ")
     c.print("[bold]" + escape(title[0]) + "[/]" + "".join("\n" + escape(x) for x in title[1:]))
     given = ", ".join(f"{labels['given'].get(k, k)} = {_g(v, 'ratio')}" for k, v in row["given"].items())
-    c.print("\n".join(textwrap.wrap(f"given: {given}", 78, subsequent_indent="  ")), markup=False)
+    print_wrapped(c, f"given: {given}")
+    if row["ratios"]:
+        ratios = ", ".join(
+            f"{labels['ratios'].get(k, k)} = {_g(v, 'ratio')}" for k, v in row["ratios"].items()
+        )
+        print_wrapped(c, f"ratios: {ratios}")
     t = Table(title="Lengths", title_justify="left")
     t.add_column("link")
     t.add_column("length [input unit]", justify="right")
     for k, v in row["lengths"].items():
         t.add_row(escape(labels["lengths"].get(k, k)), _g(v, "ratio"))
     c.print(t)
-    t = Table(title="Indicators: asked, closed form, measured by simulation", title_justify="left")
-    for h in ("quantity", "asked", "closed form", "simulated", "check"):
+    asked = any(i["asked"] is not None for i in row["indicators"].values())
+    heads = (
+        ("quantity", "asked", "closed form", "simulated", "check")
+        if asked
+        else (
+            "quantity",
+            "closed form",
+            "simulated",
+            "check",
+        )
+    )
+    what = "asked, closed form, measured by simulation" if asked else "closed form, measured by simulation"
+    t = Table(title=f"Indicators: {what}", title_justify="left")
+    for h in heads:
         t.add_column(h, justify="left" if h == "quantity" else "right")
     for k, i in row["indicators"].items():
         kind = "angle" if i["unit"] == "deg" else "ratio"
-        t.add_row(
-            escape(labels["indicators"].get(k, k)),
-            _g(i["asked"], kind),
+        cells = [escape(labels["indicators"].get(k, k))]
+        if asked:
+            cells.append(_g(i["asked"], kind))
+        cells += [
             _g(i["closed_form"], kind),
             _g(i["simulated"], kind),
             "ok" if i["agrees"] else "[bold]DIFFERS[/]",
-        )
+        ]
+        t.add_row(*cells)
     c.print(t)
-    p = row["pressure_angle"]
-    lo, hi = p["permissible_deg"]
-    c.print(
-        f"largest pressure angle {p['largest_deg']:.2f}°: {_RESULT_TEXT[p['result']]}\n"
-        f"  (permissible for a {p['driven_link']} driven link: ≤ {lo:g}°, up to {hi:g}° in\n"
-        "  preliminary design; the lever-mechanism textbook, §2.4)",
-        markup=False,
-    )
     for note in row["notes"]:
-        c.print("\n".join(textwrap.wrap(f"note: {note}", 78, subsequent_indent="  ")), markup=False)
-    c.print(
-        "SIMULATION: the mechanism does what was asked"
+        print_wrapped(c, f"note: {note}")
+    print_wrapped(
+        c,
+        "SIMULATION: agrees — the mechanism does what was asked"
         if row["simulation_agrees"]
-        else "SIMULATION: the mechanism does NOT do what was asked (see DIFFERS)",
-        markup=False,
+        else "SIMULATION: disagrees — the mechanism does NOT do what was asked (see DIFFERS)",
     )
+    render_verdict(c, row)
 
 
 # ----------------------------------------------------------------------------- structure
 _ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VIII"}
+
+
+def _plural(n: int, word: str) -> str:
+    """``word`` in the number that agrees with ``n`` (1 link, 2 links, 0 links)."""
+    return word if n == 1 else word + "s"
 
 
 def _roman(n: int) -> str:
@@ -202,16 +327,23 @@ def render_structure(row: dict[str, Any], fmt: str, out=None) -> None:
     c = console(out)
     n, p1, p2 = row["moving_links"], row["lower_pairs"], row["higher_pairs"]
     c.print(f"[bold]{escape(row['name'])}[/]: structure analysis")
-    c.print(f"n = {n} moving links, p1 = {p1} lower pairs (class V), p2 = {p2} higher pairs (class IV)")
+    c.print(
+        f"n = {n} moving {_plural(n, 'link')}, p1 = {p1} lower {_plural(p1, 'pair')} (class V), "
+        f"p2 = {p2} higher {_plural(p2, 'pair')} (class IV)"
+    )
     c.print(f"W = 3n − 2p1 − p2 = 3·{n} − 2·{p1} − {p2} = {row['formula_mobility']} (Chebyshev)")
     if row["passive_links"]:
-        c.print(f"passive link(s), left out of the decomposition: {escape(', '.join(row['passive_links']))}")
+        passive = row["passive_links"]
+        words = f"passive {_plural(len(passive), 'link')}, left out of the decomposition"
+        c.print(f"{words}: {escape(', '.join(passive))}")
     c.print(
         f"redundant constraints q = {row['redundant_constraints']}, local mobilities = "
         f"{row['local_mobilities']}: working mobility W0 = {row['mobility']}"
     )
     if row["drivers"]:
-        c.print(f"driving link(s): {escape(', '.join(row['drivers']))} (primary mechanisms, class I)")
+        drivers = row["drivers"]
+        kind = "primary mechanisms" if len(drivers) > 1 else "a primary mechanism"
+        c.print(f"driving {_plural(len(drivers), 'link')}: {escape(', '.join(drivers))} ({kind}, class I)")
     if row["groups"]:
         t = Table(title="Assur groups in the order they are attached", title_justify="left")
         for h in ("#", "links", "internal pairs", "leads", "class", "order", "type"):

@@ -1,10 +1,28 @@
-"""The textbook's synthesis tasks as reports: lengths, quality indicators, a check by simulation.
+"""The textbook's mechanism problems as reports: lengths, quality indicators, a check by simulation
+and a verdict.
 
-One function per command (``pumplink slider``, ``slotted``, ``rocker``).  Each runs the kernel's
-synthesis, then runs the synthesised mechanism through a full crank turn
-(:mod:`pumplink.mechanisms.simulation`, :func:`pumplink.mechanisms.crank_rocker.measure_motion`)
-and reports the requested, the closed-form and the measured value of every indicator, and the
-largest pressure angle against the textbook's permissible values (docs/mechanisms.md §4).
+One function per problem form of the commands ``pumplink slider``, ``slotted`` and ``rocker``
+(synthesis from the textbook's data, or analysis of a given mechanism), and
+:func:`optimum_check` for ``pumplink transmission``.  Each runs the kernel's closed forms, then
+runs the mechanism through a full crank turn (:mod:`pumplink.mechanisms.simulation`,
+:func:`pumplink.mechanisms.crank_rocker.measure_motion`, :func:`fourbar_extremes`) and reports
+the requested, the closed-form and the measured value of every indicator.
+
+The verdict uses the pump verdict's check machinery (:mod:`pumplink.verdict`: the same
+:class:`~pumplink.verdict.Check`, levels and PASS / PASS with warnings / FAIL):
+
+* ``pressure_angle`` (slider, slotted lever): the largest pressure angle warns above the
+  textbook's permissible value for a mechanism with a sliding pair
+  (``PERMISSIBLE_PRESSURE_SLIDING_DEG[0]``) and fails
+  above ``90 deg - FAIL_TRANSMISSION_DEG`` = 60 deg;
+* ``transmission_angle`` (crank-rocker): min(gamma_min, 180 deg - gamma_max) warns below
+  ``MIN_TRANSMISSION_DEG`` and fails below ``FAIL_TRANSMISSION_DEG``, as in the pump verdict;
+* ``simulation``: the largest deviation of a measured value from the asked one (the closed form
+  where nothing was asked) fails above ``SIMULATION_TOL``.
+
+:func:`pumplink.verdict.assess` itself does not fit: its force checks (mean and peak force
+against the operator's limit) are required and mean nothing for a bare mechanism.  The limits
+and their sources are in docs/mechanisms.md §4.
 
 Pure functions: no I/O.  Angles in radians (the output layer converts).  Bad input raises
 :class:`~pumplink.errors.SpecError` (exit 2); valid input outside a realisability condition raises
@@ -19,24 +37,46 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from pumplink.constants import PERMISSIBLE_PRESSURE_REVOLUTE_DEG, PERMISSIBLE_PRESSURE_SLIDING_DEG
+from pumplink.constants import (
+    FAIL_TRANSMISSION_DEG,
+    MIN_TRANSMISSION_DEG,
+    PERMISSIBLE_PRESSURE_REVOLUTE_DEG,
+    PERMISSIBLE_PRESSURE_SLIDING_DEG,
+)
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.mechanisms import crank_rocker as cr
 from pumplink.mechanisms import crank_slider as cs
 from pumplink.mechanisms import simulation
 from pumplink.mechanisms import slotted_lever as sl
+from pumplink.mechanisms.fourbar import FourBar
+from pumplink.verdict import Verdict, check
 
 #: Relative (absolute for angles, in rad) agreement demanded between asked and simulated values.
 SIMULATION_TOL = 1e-9
+#: Largest pressure angle [deg] above which a mechanism fails: 90 deg - FAIL_TRANSMISSION_DEG, the
+#: upper end of the textbook's permissible 45-60 deg for revolute pairs (docs/mechanisms.md §4).
+FAIL_PRESSURE_DEG = 90.0 - FAIL_TRANSMISSION_DEG
+#: Permissible largest pressure angle [deg] (warn above the first value): with a sliding pair in the
+#: mechanism, or revolute pairs only (the lever-mechanism textbook, §2.4).
+PERMISSIBLE_PRESSURE_DEG = {
+    "sliding": PERMISSIBLE_PRESSURE_SLIDING_DEG,
+    "revolute": PERMISSIBLE_PRESSURE_REVOLUTE_DEG,
+}
 
 LENGTH, RATIO, ANGLE = "length", "ratio", "angle"
-PASS, MARGINAL, EXCEEDS = "pass", "marginal", "exceeds"
+TAU = 2.0 * math.pi
+
+
+def _turn(x: float) -> float:
+    """A crank angle in [0, 2 pi) (NaN stays NaN)."""
+    return float(np.mod(x, TAU))
 
 
 @dataclass(frozen=True)
 class Indicator:
     """One quality indicator: the value asked for (None if not asked), the closed form's value
-    and the value measured by simulation.  ``kind`` is length, ratio or angle [rad]."""
+    and the value measured by simulation.  ``kind`` is length, ratio or angle [rad]; angles
+    compare modulo a full turn (crank angles at the dead centres)."""
 
     key: str
     label: str
@@ -46,44 +86,37 @@ class Indicator:
     simulated: float
 
     @property
-    def agrees(self) -> bool:
-        """True when the simulation reproduces the asked value (or the closed form, if none asked)."""
+    def deviation(self) -> float:
+        """|simulated - asked| (the closed form if nothing was asked): relative for lengths and
+        ratios, absolute in radians for angles; inf where either is not finite."""
         ref = self.closed_form if self.asked is None else self.asked
         if not (math.isfinite(ref) and math.isfinite(self.simulated)):
-            return False
-        scale = 1.0 if self.kind == ANGLE else max(abs(ref), 1e-300)
-        return abs(self.simulated - ref) <= SIMULATION_TOL * scale
-
-
-@dataclass(frozen=True)
-class PressureCheck:
-    """Largest pressure angle [rad] against the textbook's permissible range [deg] (§2.4):
-    ``pass`` up to the lower end, ``marginal`` inside the range, ``exceeds`` above it."""
-
-    label: str
-    value: float
-    permissible_deg: tuple[float, float]
-    driven: str  # "sliding" or "revolute"
+            return math.inf
+        if self.kind == ANGLE:
+            return abs(math.remainder(self.simulated - ref, TAU))
+        return abs(self.simulated - ref) / max(abs(ref), 1e-300)
 
     @property
-    def result(self) -> str:
-        v = math.degrees(self.value)
-        lo, hi = self.permissible_deg
-        return PASS if v <= lo else MARGINAL if v <= hi else EXCEEDS
+    def agrees(self) -> bool:
+        """True when the simulation reproduces the asked value (or the closed form, if none asked)."""
+        return self.deviation <= SIMULATION_TOL
 
 
 @dataclass(frozen=True)
 class SynthesisReport:
-    """What a synthesis command prints.
+    """What a mechanism command prints.
 
     Attributes
     ----------
     mechanism, task : names for the title.
     given : the inputs as (key, label, kind, value).
-    lengths : the synthesised lengths as (key, label, value), in the unit of the given lengths.
+    lengths : the lengths as (key, label, value), in the unit of the given lengths.
     indicators : asked / closed form / simulated.
-    pressure : the pressure-angle check.
-    notes : sentences (choices made, alternatives).
+    verdict : the checks (:class:`pumplink.verdict.Verdict`) and PASS / PASS with warnings / FAIL.
+    pairs : "sliding" (the mechanism has a sliding pair) or "revolute" (revolute pairs only): the
+        textbook's permissible pressure angle (§2.4) depends on it.
+    ratios : exact ratios of the given lengths as (key, label, value) (analysis forms).
+    notes : sentences (choices made, alternatives, the conventions), numbers already in them.
     """
 
     mechanism: str
@@ -91,13 +124,62 @@ class SynthesisReport:
     given: tuple[tuple[str, str, str, float], ...]
     lengths: tuple[tuple[str, str, float], ...]
     indicators: tuple[Indicator, ...]
-    pressure: PressureCheck
+    verdict: Verdict
+    pairs: str
+    ratios: tuple[tuple[str, str, float], ...] = field(default=())
     notes: tuple[str, ...] = field(default=())
 
     @property
     def agrees(self) -> bool:
         """True when the simulated mechanism does what was asked (every indicator agrees)."""
         return all(i.agrees for i in self.indicators)
+
+    @property
+    def passed(self) -> bool:
+        """True when the verdict is PASS or PASS with warnings (exit 0)."""
+        return bool(self.verdict.passed)
+
+    @property
+    def permissible_pressure_deg(self) -> tuple[float, float]:
+        """The textbook's permissible largest pressure angle for the mechanism's pairs [deg]
+        (preferred, acceptable in preliminary design; §2.4)."""
+        return PERMISSIBLE_PRESSURE_DEG[self.pairs]
+
+
+def judge(
+    indicators, *, pressure: float | None = None, pairs: str = "sliding", transmission: float | None = None
+) -> Verdict:
+    """The verdict of a mechanism: its force-transmission check and the simulation check.
+
+    Parameters
+    ----------
+    indicators : the report's indicators; the largest deviation is the ``simulation`` check.
+    pressure : measured largest pressure angle [rad] (slider, slotted lever), or None.
+    pairs : "sliding" (a sliding pair in the mechanism) or "revolute" (revolute pairs only): the
+        textbook's permissible pressure angle (§2.4).
+    transmission : measured min(gamma_min, pi - gamma_max) [rad] (crank-rocker), or None.
+    """
+    checks = []
+    if pressure is not None:
+        warn = PERMISSIBLE_PRESSURE_DEG[pairs][0]
+        checks.append(
+            check("pressure_angle", math.degrees(pressure), "<=", "deg", True, warn, FAIL_PRESSURE_DEG)
+        )
+    if transmission is not None:
+        checks.append(
+            check(
+                "transmission_angle",
+                math.degrees(transmission),
+                ">=",
+                "deg",
+                True,
+                MIN_TRANSMISSION_DEG,
+                FAIL_TRANSMISSION_DEG,
+            )
+        )
+    deviation = max(i.deviation for i in indicators)
+    checks.append(check("simulation", deviation, "<=", "-", True, fail=SIMULATION_TOL))
+    return Verdict(tuple(checks), max(int(c.level) for c in checks))
 
 
 def _finite(**values):
@@ -123,6 +205,72 @@ def _time_ratio_at_least_one(k):
 
 
 # ----------------------------------------------------------------------------- crank-slider
+def _slider_report(r, rod, e, *, mechanism_task, given, asked_stroke, asked_k, ratios=(), notes=()):
+    """Indicators, simulation and verdict of the crank-slider (r, l, e)."""
+    m = simulation.crank_slider(r, rod, e)
+    if not m.turns:  # cannot happen for a crank that turns fully; guard the promise anyway
+        raise InfeasibleDesign("the crank-slider does not turn fully in simulation")
+    L, nu = rod / r, e / r
+    h = math.sqrt((L + 1.0) ** 2 - nu * nu) - math.sqrt((L - 1.0) ** 2 - nu * nu)  # Eq. (1.10)
+    extended, folded = (float(x) for x in cs.dead_centres(r, rod, e))
+    t_far, t_near = m.extremes
+    arc = float(np.mod(t_near - t_far, TAU))
+    indicators = (
+        Indicator("stroke", "stroke H", LENGTH, asked_stroke, float(cs.stroke(r, rod, e)), m.stroke),
+        Indicator("relative_stroke", "relative stroke h = H/r", RATIO, None, h, m.stroke / r),
+        Indicator(
+            "time_ratio", "time ratio K", RATIO, asked_k, float(cs.time_ratio(r, rod, e)), m.time_ratio
+        ),
+        Indicator(
+            "extreme_rod_angle",
+            "angle θ between rods",
+            ANGLE,
+            None,
+            float(cs.extreme_rod_angle(r, rod, e)),
+            abs(arc - math.pi),
+        ),
+        Indicator(
+            "largest_pressure_angle",
+            "largest pressure angle",
+            ANGLE,
+            None,
+            float(cs.largest_pressure_angle(r, rod, e)),
+            m.largest_pressure_angle,
+        ),
+        Indicator(
+            "dead_centre_extended", "dead centre, extended", ANGLE, None, _turn(extended), _turn(t_far)
+        ),
+        Indicator("dead_centre_folded", "dead centre, folded", ANGLE, None, _turn(folded), _turn(t_near)),
+    )
+    out = math.degrees(float(np.mod(folded - extended, TAU)))  # CCW, extended -> folded
+    if abs(out - 180.0) <= 1e-9:
+        stroke_words = "both strokes take 180° of crank"
+    else:
+        stroke_words = (
+            f"the crank turning counter-clockwise takes {out:.6g}° from the extended dead centre "
+            f"(slider farthest) to the folded one: the {'slow' if out > 180.0 else 'fast'} stroke, "
+            "towards the crank pivot"
+        )
+    notes = (
+        *notes,
+        stroke_words,
+        "crank pivot at the origin, guide y = e; crank angles counter-clockwise from +x "
+        "(docs/mechanisms.md §1)",
+    )
+    mechanism, task = mechanism_task
+    return SynthesisReport(
+        mechanism=mechanism,
+        task=task,
+        given=tuple(given),
+        lengths=(("crank", "crank r", r), ("rod", "rod l", rod), ("offset", "offset e", e)),
+        indicators=indicators,
+        verdict=judge(indicators, pressure=m.largest_pressure_angle, pairs="sliding"),
+        pairs="sliding",
+        ratios=tuple(ratios),
+        notes=notes,
+    )
+
+
 def slider(stroke: float, rod_ratio: float, time_ratio: float | None = None, offset_ratio: float = 0.0):
     """Crank-slider, Task 1 (``time_ratio`` None: from H, L and nu = e/r) or Task 2 (from H, K, L).
 
@@ -165,43 +313,63 @@ def slider(stroke: float, rod_ratio: float, time_ratio: float | None = None, off
                 f"lower K or take L > {lmin:.6g}"
             )
     r, rod, e = float(d.crank_length), float(d.rod_length), float(d.offset)
-    m = simulation.crank_slider(r, rod, e)
-    if not m.turns:  # cannot happen for a realisable design; guard the promise anyway
-        raise InfeasibleDesign("the synthesised crank-slider does not turn fully in simulation")
     given = [("stroke", "stroke H", LENGTH, stroke), ("rod_ratio", "rod ratio L = l/r", RATIO, rod_ratio)]
     if time_ratio is None:
-        given.append(("offset_ratio", "offset ratio e/r", RATIO, offset_ratio))
+        given.append(("offset_ratio", "offset ratio ν = e/r", RATIO, offset_ratio))
     else:
         given.append(("time_ratio", "time ratio K", RATIO, time_ratio))
     k_asked = 1.0 if time_ratio is None and offset_ratio == 0.0 else time_ratio
-    return SynthesisReport(
-        mechanism="crank-slider",
-        task=task,
-        given=tuple(given),
-        lengths=(("crank", "crank r", r), ("rod", "rod l", rod), ("offset", "offset e", e)),
-        indicators=(
-            Indicator("stroke", "stroke H", LENGTH, stroke, float(d.stroke), m.stroke),
-            Indicator("time_ratio", "time ratio K", RATIO, k_asked, float(d.time_ratio), m.time_ratio),
-            Indicator(
-                "largest_pressure_angle",
-                "largest pressure angle",
-                ANGLE,
-                None,
-                float(d.largest_pressure_angle),
-                m.largest_pressure_angle,
-            ),
-        ),
-        pressure=PressureCheck(
-            "largest pressure angle (rod on slider)",
-            m.largest_pressure_angle,
-            PERMISSIBLE_PRESSURE_SLIDING_DEG,
-            "sliding",
-        ),
-        notes=(
-            "crank pivot at the origin, guide y = e; with the crank turning counter-clockwise the slow "
-            "stroke runs towards the crank pivot (docs/mechanisms.md §1)",
-        ),
+    return _slider_report(
+        r,
+        rod,
+        e,
+        mechanism_task=("crank-slider", task),
+        given=given,
+        asked_stroke=stroke,
+        asked_k=k_asked,
     )
+
+
+def slider_analysis(crank: float, rod: float, offset: float = 0.0):
+    """Analysis of a given crank-slider (r, l, e): stroke, K, theta, lambda_max, h = H/r, the
+    dead-centre crank angles (docs/mechanisms.md §1, Eq. 1.4-1.10), each measured by simulation.
+
+    Realisability: the crank turns fully iff l > r + |e| (Eq. 1.7).
+
+    Raises
+    ------
+    SpecError : non-finite input, r <= 0 or l <= 0.
+    InfeasibleDesign : the crank cannot turn fully.
+    """
+    _positive(crank=crank, rod=rod)
+    _finite(offset=offset)
+    if not bool(cs.turns_fully(crank, rod, offset)):
+        raise InfeasibleDesign(
+            f"a crank-slider with crank {crank:g}, rod {rod:g} and offset {offset:g} cannot turn fully: "
+            f"the rod must be longer than crank + |offset| = {crank + abs(offset):g}; lengthen the rod "
+            "or shorten the crank or the offset"
+        )
+    given = [
+        ("crank", "crank r", LENGTH, crank),
+        ("rod", "rod l", LENGTH, rod),
+        ("offset", "offset e", LENGTH, offset),
+    ]
+    ratios = (("rod_ratio", "L = l/r", rod / crank), ("offset_ratio", "ν = e/r", offset / crank))
+    return _slider_report(
+        crank,
+        rod,
+        offset,
+        mechanism_task=("crank-slider", "analysis of the given crank r, rod l and offset e"),
+        given=given,
+        asked_stroke=None,
+        asked_k=None,
+        ratios=ratios,
+    )
+
+
+def _and(words: list[str]) -> str:
+    """'a', 'a and b', 'a, b and c'."""
+    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " and " + words[-1]
 
 
 def _least_rod_ratio(time_ratio: float) -> float:
@@ -211,65 +379,267 @@ def _least_rod_ratio(time_ratio: float) -> float:
 
 
 # ----------------------------------------------------------------------------- slotted lever
-def slotted(time_ratio: float, stroke: float, frame_length: float | None = None):
-    """Crank and slotted lever from K and the chord stroke H of the lever tip (docs/mechanisms.md §2).
+def slotted(
+    time_ratio: float | None = None,
+    stroke: float | None = None,
+    frame_length: float | None = None,
+    *,
+    crank: float | None = None,
+    lever: float | None = None,
+):
+    """Crank and slotted lever (docs/mechanisms.md §2), in the problem forms of the textbooks.
 
-    Realisability: K > 1 and a lever that holds the block, l >= d + r (Eq. 2.9).
+    * Synthesis from K: one of ``crank`` r and ``frame_length`` d (or neither) sets the scale,
+      one of ``stroke`` H and ``lever`` l (or neither) the lever; a length not given is chosen so
+      that the slot just holds the block, l = d + r.  At least one length.
+    * Analysis (no K): ``crank`` and ``frame_length`` given, with ``lever`` or ``stroke``
+      (then the lever that gives it) or neither (then no stroke).
+
+    Realisability: K > 1 and a lever that holds the block, l >= d + r (Eq. 2.9); for the
+    analysis r < d (else the lever turns fully: a Whitworth mechanism).
+
+    Raises
+    ------
+    SpecError : non-finite or non-positive input, K < 1, or a set of lengths that over- or
+        under-determines the mechanism.
+    InfeasibleDesign : outside the realisability conditions.
     """
-    _positive(stroke=stroke, frame_length=frame_length)
+    _positive(stroke=stroke, frame=frame_length, crank=crank, lever=lever)
     _finite(time_ratio=time_ratio)
+    if stroke is not None and lever is not None:
+        raise SpecError("--stroke and --lever each fix the lever; give one of them")
+    if time_ratio is None:
+        return _slotted_analysis(crank, frame_length, lever, stroke)
     _time_ratio_at_least_one(time_ratio)
-    d = sl.synthesize_from_time_ratio(time_ratio, stroke, frame_length)
+    if crank is not None and frame_length is not None:
+        raise SpecError(
+            "--time-ratio, --crank and --frame over-determine the slotted lever (K follows from "
+            "crank/frame); give two of them"
+        )
+    if all(x is None for x in (crank, frame_length, stroke, lever)):
+        raise SpecError("give a length with --time-ratio: --stroke, --lever, --crank or --frame")
+    d = sl.synthesize_from_time_ratio(
+        time_ratio, stroke, frame_length, crank_length=crank, lever_length=lever
+    )
     reason = int(d.reason)
+    psi = math.pi * (time_ratio - 1.0) / (time_ratio + 1.0)
+    half = math.sin(0.5 * psi)
     if reason == sl.TIME_RATIO_NOT_ABOVE_ONE:
         raise InfeasibleDesign(
             "no slotted lever has K = 1: the swing would be 0, a zero crank and an infinite lever; "
             "ask for K > 1"
         )
     if reason == sl.SLOT_TOO_SHORT:
-        psi = math.pi * (time_ratio - 1.0) / (time_ratio + 1.0)
-        half = math.sin(0.5 * psi)
-        dmax = stroke / (2.0 * half) / (1.0 + half)
+        length = stroke / (2.0 * half) if lever is None else lever
+        if frame_length is not None:
+            dd, what = frame_length, f"frame length d = {frame_length:g}"
+            fix = f"take d <= {length / (1.0 + half):.6g}"
+        else:
+            dd, what = crank / half, f"crank r = {crank:g} (frame d = {crank / half:.6g})"
+            fix = f"take r <= {length * half / (1.0 + half):.6g}"
         raise InfeasibleDesign(
-            f"with frame length d = {frame_length:g} the lever (length {stroke / (2 * half):.6g}) is shorter "
-            f"than the block's farthest reach d + r = {frame_length * (1 + half):.6g}, so the slot cannot "
-            f"hold the block; take d <= {dmax:.6g}"
+            f"with {what} the lever (length {length:.6g}) is shorter than the block's farthest reach "
+            f"d + r = {dd * (1 + half):.6g}, so the slot cannot hold the block; {fix}"
         )
     if reason != sl.OK:
         raise SpecError(sl.REASONS[reason])
-    r, dd, lever = float(d.crank_length), float(d.frame_length), float(d.lever_length)
-    m = simulation.slotted_lever(r, dd, lever)
-    psi_asked = math.pi * (time_ratio - 1.0) / (time_ratio + 1.0)
-    given = [
-        ("time_ratio", "time ratio K", RATIO, time_ratio),
-        ("stroke", "stroke H (chord)", LENGTH, stroke),
-    ]
-    notes = ["lever pivot at the origin, crank pivot at (0, d) (docs/mechanisms.md §2)"]
-    if frame_length is None:
-        notes.append("frame length not given: the largest d whose slot holds the block, l = d + r")
+    r, dd, ll = float(d.crank_length), float(d.frame_length), float(d.lever_length)
+    given = [("time_ratio", "time ratio K", RATIO, time_ratio)]
+    for key, label, value in (
+        ("crank", "crank r", crank),
+        ("frame_length", "frame d", frame_length),
+        ("stroke", "stroke H (chord)", stroke),
+        ("lever", "lever l", lever),
+    ):
+        if value is not None:
+            given.append((key, label, LENGTH, value))
+    notes = []
+    if crank is None and frame_length is None:
+        notes.append(f"crank and frame not given: the slot just holds the block, l = d + r = {ll:.6g}")
+    if stroke is None and lever is None:
+        notes.append(f"lever not given: the shortest that holds the block, l = d + r = {ll:.6g}")
+    task = "from the time ratio K, " + _and([f"the {label}" for _, label, _, _ in given[1:]])
+    return _slotted_report(
+        r, dd, ll, task, given, asked_k=time_ratio, asked_stroke=stroke, asked_psi=psi, notes=notes
+    )
+
+
+def _slotted_analysis(crank, frame_length, lever, stroke):
+    if crank is None or frame_length is None:
+        raise SpecError(
+            "give --time-ratio K (synthesis), or both --crank and --frame to analyse a given slotted lever"
+        )
+    if not crank < frame_length:
+        raise InfeasibleDesign(
+            f"with crank r = {crank:g} not shorter than the frame d = {frame_length:g} the lever turns "
+            "fully (a rotating-lever, Whitworth mechanism), it does not oscillate; take r < d"
+        )
+    given = [("crank", "crank r", LENGTH, crank), ("frame_length", "frame d", LENGTH, frame_length)]
+    notes = []
+    if stroke is not None:
+        lever = stroke * frame_length / (2.0 * crank)  # Eq. (2.8): H = 2 l r/d
+        given.append(("stroke", "stroke H (chord)", LENGTH, stroke))
+    elif lever is not None:
+        given.append(("lever", "lever l", LENGTH, lever))
     else:
-        given.append(("frame_length", "frame length d", LENGTH, frame_length))
+        notes.append("no stroke without the lever's length: give --lever (or --stroke for the lever)")
+    if lever is not None and not lever >= (frame_length + crank) * (1.0 - 1e-15):
+        raise InfeasibleDesign(
+            f"the lever (length {lever:.6g}) is shorter than the block's farthest reach "
+            f"d + r = {frame_length + crank:.6g}, so the slot cannot hold the block; take a lever of "
+            f"at least {frame_length + crank:.6g}"
+        )
+    ratios = (("crank_to_frame", "r/d", crank / frame_length),)
+    task = "analysis of the given " + _and([label for _, label, _, _ in given])
+    return _slotted_report(
+        crank,
+        frame_length,
+        lever,
+        task,
+        given,
+        asked_k=None,
+        asked_stroke=stroke,
+        asked_psi=None,
+        notes=notes,
+        ratios=ratios,
+    )
+
+
+def _slotted_report(r, d, lever, task, given, *, asked_k, asked_stroke, asked_psi, notes, ratios=()):
+    m = simulation.slotted_lever(r, d, math.nan if lever is None else lever)
+    t_left, t_right = m.extremes  # (largest, smallest) lever angle: the lever's left, right extreme
+    arc = float(np.mod(t_right - t_left, TAU))
+    psi = float(sl.swing_angle(r, d))
+    right, left = (float(x) for x in sl.extremes(r, d))
+    indicators = []
+    if lever is not None:
+        indicators.append(
+            Indicator(
+                "stroke", "stroke H (chord)", LENGTH, asked_stroke, float(sl.stroke(r, d, lever)), m.stroke
+            )
+        )
+    indicators += [
+        Indicator("time_ratio", "time ratio K", RATIO, asked_k, float(sl.time_ratio(r, d)), m.time_ratio),
+        Indicator("swing", "lever swing ψ", ANGLE, asked_psi, psi, m.swing),
+        Indicator(
+            "lever_inclination",
+            "lever to line of centres",
+            ANGLE,
+            None,
+            0.5 * psi,
+            float(sl.lever_angle(r, d, t_left)) - 0.5 * math.pi,
+        ),
+        Indicator("slow_arc", "crank arc, slow stroke", ANGLE, None, math.pi + psi, max(arc, TAU - arc)),
+        Indicator("fast_arc", "crank arc, fast stroke", ANGLE, None, math.pi - psi, min(arc, TAU - arc)),
+        Indicator("dead_centre_right", "dead centre, right", ANGLE, None, _turn(right), _turn(t_right)),
+        Indicator("dead_centre_left", "dead centre, left", ANGLE, None, _turn(left), _turn(t_left)),
+    ]
+    lengths = [("crank", "crank r", r), ("frame", "frame d", d)]
+    if lever is not None:
+        lengths.append(("lever", "lever l", lever))
+    notes = [
+        *notes,
+        f"the block slides along the slot from {d - r:.6g} to {d + r:.6g} from the lever pivot",
+        "lever pivot at the origin, crank pivot at (0, d); crank angles counter-clockwise from +x; "
+        "with the crank turning counter-clockwise the slow stroke runs from the right extreme to "
+        "the left (docs/mechanisms.md §2)",
+    ]
     return SynthesisReport(
         mechanism="slotted lever",
-        task="from the time ratio K and the stroke H of the lever tip",
+        task=task,
         given=tuple(given),
-        lengths=(("crank", "crank r", r), ("frame", "frame d", dd), ("lever", "lever l", lever)),
-        indicators=(
-            Indicator("stroke", "stroke H (chord)", LENGTH, stroke, float(d.stroke), m.stroke),
-            Indicator("time_ratio", "time ratio K", RATIO, time_ratio, float(d.time_ratio), m.time_ratio),
-            Indicator("swing", "lever swing", ANGLE, psi_asked, float(d.swing_angle), m.swing),
-        ),
-        pressure=PressureCheck(
-            "largest pressure angle (block on lever)",
-            m.largest_pressure_angle,
-            PERMISSIBLE_PRESSURE_REVOLUTE_DEG,
-            "revolute",
-        ),
+        lengths=tuple(lengths),
+        indicators=tuple(indicators),
+        # the block pushes the lever square to the slot: pressure angle 0 (docs/mechanisms.md §2);
+        # the block slides in the slot, so the limits are those of a mechanism with a sliding pair
+        verdict=judge(indicators, pressure=m.largest_pressure_angle, pairs="sliding"),
+        pairs="sliding",
+        ratios=tuple(ratios),
         notes=tuple(notes),
     )
 
 
 # ----------------------------------------------------------------------------- crank-rocker
+@dataclass(frozen=True)
+class FourBarExtremes:
+    """Extremes of a crank-rocker measured over one crank turn (angles in radians).
+
+    Attributes
+    ----------
+    gamma_min, gamma_max : smallest and largest transmission angle.
+    extended, folded : crank angles where the rocker stops with crank and coupler stretched out
+        resp. folded (the dead centres), CCW from +x in [0, 2 pi).
+    """
+
+    gamma_min: float
+    gamma_max: float
+    extended: float
+    folded: float
+
+
+def fourbar_extremes(lk: FourBar, samples: int = 4096) -> FourBarExtremes:
+    """Run a crank-rocker through a full crank turn: its transmission-angle extremes and dead centres.
+
+    Only the position kinematics (:func:`pumplink.mechanisms.fourbar.kinematic_state`) are used:
+    the transmission angle's extremes are refined from a sweep with a bracketing minimiser, the
+    dead centres are the roots of the rocker rate (bracketing root finder, ~1e-15 rad), told
+    apart by the distance of the coupler point from the crank pivot (coupler + crank when
+    stretched out).
+    """
+    from scipy.optimize.elementwise import find_minimum, find_root
+
+    from pumplink.mechanisms.fourbar import kinematic_state
+
+    nan = float("nan")
+    step = TAU / samples
+    th = (np.arange(samples) + 0.5) * step  # half a step off round angles (symmetric designs)
+    st = kinematic_state(lk, th)
+    if not np.all(np.isfinite(st.coupler_x)):
+        return FourBarExtremes(nan, nan, nan, nan)
+
+    def smallest(f, values):
+        j = int(np.argmin(values))
+        res = find_minimum(f, (th[j] - step, th[j], th[j] + step), tolerances=dict(xatol=1e-14, xrtol=1e-15))
+        return min(float(res.f_x), float(values[j])) if bool(res.success) else float(values[j])
+
+    g = st.transmission_angle
+    gmin = smallest(lambda x: kinematic_state(lk, x).transmission_angle, g)
+    gmax = -smallest(lambda x: -kinematic_state(lk, x).transmission_angle, -g)
+    rate = np.append(st.rocker_rate, st.rocker_rate[0])
+    grid = np.append(th, th[0] + TAU)
+    flips = np.nonzero(np.sign(rate[:-1]) != np.sign(rate[1:]))[0]
+    if flips.size != 2:
+        return FourBarExtremes(gmin, gmax, nan, nan)
+    roots = find_root(
+        lambda x: kinematic_state(lk, x).rocker_rate,
+        (grid[flips], grid[flips + 1]),
+        tolerances=dict(xatol=1e-15, xrtol=1e-16),
+    ).x
+    ends = kinematic_state(lk, roots)
+    far = np.hypot(ends.coupler_x, ends.coupler_y) > float(lk.coupler)
+    if bool(far[0]) == bool(far[1]):
+        return FourBarExtremes(gmin, gmax, nan, nan)
+    extended, folded = (roots[0], roots[1]) if far[0] else (roots[1], roots[0])
+    return FourBarExtremes(gmin, gmax, _turn(extended), _turn(folded))
+
+
+def rocker_dead_centres(c: cr.CrankRocker) -> tuple[float, float]:
+    """Crank angles (CCW from +x, [0, 2 pi)) of a crank-rocker's dead centres, by construction.
+
+    At the extended dead centre the crank points from A to the farther extreme position (|A C| =
+    coupler + crank), at the folded one away from the nearer (|A C| = coupler - crank)
+    (docs/crank-rocker.md §7).
+    """
+    (x1, y1), (x2, y2) = cr.extreme_positions(c.swing, c.rocker)
+    ax, ay = c.crank_pivot_x, c.crank_pivot_y
+    near, far = ((x1, y1), (x2, y2))
+    if math.hypot(x1 - ax, y1 - ay) > math.hypot(x2 - ax, y2 - ay):
+        near, far = far, near
+    extended = math.atan2(far[1] - ay, far[0] - ax)
+    folded = math.atan2(ay - near[1], ax - near[0])
+    return _turn(extended), _turn(folded)
+
+
 def rocker(
     swing: float,
     rocker_length: float,
@@ -292,8 +662,8 @@ def rocker(
     if not 0.0 < swing < math.pi:
         raise SpecError(f"--swing {math.degrees(swing):g} deg must be between 0 and 180 deg")
     notes = [
-        "rocker pivot D at the origin, swing bisector +y, extreme positions C1 (-x side) and C2 "
-        "(docs/crank-rocker.md §7)"
+        "rocker pivot D at the origin, swing bisector +y, extreme positions C1 (-x side) and C2; "
+        "crank angles counter-clockwise from +x (docs/crank-rocker.md §7)"
     ]
     given = [("swing", "rocker swing", ANGLE, swing), ("rocker", "rocker length", LENGTH, rocker_length)]
     if pivot is not None:
@@ -342,13 +712,25 @@ def rocker(
         else:
             if time_ratio <= 1.0:
                 raise InfeasibleDesign(
-                    "at K = 1 the best transmission angle has no optimum (it approaches 90 deg - swing/2 as "
-                    "the frame grows without bound); give --frame, or K > 1"
+                    "at K = 1 the best transmission angle has no optimum (it approaches "
+                    f"{90.0 - math.degrees(swing) / 2:.6g}° as the frame grows without bound); give "
+                    "--frame, or K > 1"
                 )
             c = cr.from_optimum(cr.optimal_crank_rocker(time_ratio, swing, rocker_length))
             task = "from K and the two extreme rocker positions, best minimum transmission angle"
-    m = cr.measure_motion(cr.linkage(c))
-    pressure = 0.5 * math.pi - c.transmission
+    lk = cr.linkage(c)
+    m = cr.measure_motion(lk)
+    x = fourbar_extremes(lk)
+    extended, folded = rocker_dead_centres(c)
+    indicators = (
+        Indicator("swing", "rocker swing", ANGLE, swing, swing, m.swing),
+        Indicator("time_ratio", "time ratio K", RATIO, k_asked, c.time_ratio, m.time_ratio),
+        Indicator("min_transmission", "min transmission angle", ANGLE, None, c.transmission, m.transmission),
+        Indicator("gamma_min", "transmission γmin", ANGLE, None, c.gamma_min, x.gamma_min),
+        Indicator("gamma_max", "transmission γmax", ANGLE, None, c.gamma_max, x.gamma_max),
+        Indicator("dead_centre_extended", "dead centre, extended", ANGLE, None, extended, x.extended),
+        Indicator("dead_centre_folded", "dead centre, folded", ANGLE, None, folded, x.folded),
+    )
     return SynthesisReport(
         mechanism="crank-rocker",
         task=task,
@@ -361,23 +743,54 @@ def rocker(
             ("pivot_x", "crank pivot x", c.crank_pivot_x),
             ("pivot_y", "crank pivot y", c.crank_pivot_y),
         ),
-        indicators=(
-            Indicator("swing", "rocker swing", ANGLE, swing, swing, m.swing),
-            Indicator("time_ratio", "time ratio K", RATIO, k_asked, c.time_ratio, m.time_ratio),
-            Indicator(
-                "min_transmission",
-                "min transmission angle",
-                ANGLE,
-                None,
-                c.transmission,
-                m.transmission,
-            ),
-        ),
-        pressure=PressureCheck(
-            "largest pressure angle (coupler on rocker)",
-            0.5 * math.pi - m.transmission if np.isfinite(m.transmission) else pressure,
-            PERMISSIBLE_PRESSURE_REVOLUTE_DEG,
-            "revolute",
-        ),
+        indicators=indicators,
+        verdict=judge(indicators, transmission=m.transmission),
+        pairs="revolute",
         notes=tuple(notes),
     )
+
+
+# ----------------------------------------------------------------------------- transmission
+@dataclass(frozen=True)
+class OptimumCheck:
+    """``pumplink transmission``'s check: the optimum against its own simulation, and the verdict.
+
+    Attributes
+    ----------
+    indicators : swing and K (asked, closed form, simulated) and the effective minimum
+        transmission angle (closed form, simulated).
+    verdict : ``transmission_angle`` and ``simulation`` checks (:func:`judge`).
+    """
+
+    indicators: tuple[Indicator, ...]
+    verdict: Verdict
+
+    @property
+    def agrees(self) -> bool:
+        """True when the simulated linkage swings as asked, with the asked K and the optimum's
+        transmission angle."""
+        return all(i.agrees for i in self.indicators)
+
+
+def optimum_check(opt: cr.OptimalCrankRocker, sim: cr.MeasuredMotion, time_ratio: float, swing: float):
+    """Judge an optimal-transmission crank-rocker (scalar) by its simulation ``sim``.
+
+    Parameters
+    ----------
+    opt : :func:`pumplink.mechanisms.crank_rocker.optimal_crank_rocker` for K and swing.
+    sim : :func:`pumplink.mechanisms.crank_rocker.measure_motion` of its linkage.
+    time_ratio : the asked K;  swing : the asked swing [rad].
+    """
+    indicators = (
+        Indicator("swing", "rocker swing", ANGLE, swing, float(opt.swing), sim.swing),
+        Indicator("time_ratio", "time ratio K", RATIO, time_ratio, float(opt.time_ratio), sim.time_ratio),
+        Indicator(
+            "min_transmission",
+            "min transmission angle",
+            ANGLE,
+            None,
+            float(opt.transmission),
+            sim.transmission,
+        ),
+    )
+    return OptimumCheck(indicators, judge(indicators, transmission=sim.transmission))

@@ -263,7 +263,7 @@ def test_speed_units_errors_are_one_line(value, words):
         (["--time-ratio", "100", "--format", "json"], 1, "no crank-rocker"),
         (["--swing", "0.001"], 0, None),
         (["--swing", "1e-300"], 2, "--swing 1e-300: the rocker swing is out of range"),
-        (["--swing", "179.9999"], 0, None),
+        (["--swing", "179.9999"], 1, None),  # answers, but its transmission angle is 0: FAIL
         (["--swing", "180"], 2, "--swing 180: the rocker swing is out of range"),
         (["--rocker", "1e300"], 2, "--rocker"),
         (["--time-ratio", "1e300", "--swing", "0.5"], 1, "no crank-rocker"),

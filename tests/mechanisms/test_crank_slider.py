@@ -10,7 +10,9 @@ Independent routes used here, none of which calls the code under test:
 * hand derivations (K = 1 gives the central crank-slider with h = 2; cos theta* = (L-1)/(L+1)
   at the largest time ratio, solved here with acos instead of the module's atan form).
 
-The textbook has no numerical worked example for Tasks 1 and 2, so none is reproduced.
+The textbook has no numerical worked example for Tasks 1 and 2, so none is reproduced; the
+stroke of a given offset crank-slider is checked against a published examination problem
+(GATE 2025, Mechanical Engineering, question 60).
 """
 
 import math
@@ -368,3 +370,13 @@ def test_task2_reason_codes():
         cs.TIME_RATIO_BELOW_ONE,
         cs.TIME_RATIO_TOO_LARGE,
     }
+
+
+def test_stroke_of_the_published_gate_2025_problem():
+    """GATE 2025 Mechanical Engineering paper, question 60: crank 30 mm, rod 50 mm, offset
+    10 mm; the answer is the stroke rounded to the nearest mm, 62 mm.  By hand from the dead
+    centres' right triangles: sqrt(80^2 - 10^2) - sqrt(20^2 - 10^2) = 62.052 mm."""
+    H = cs.stroke(30.0, 50.0, 10.0)
+    assert round(H) == 62
+    assert _close(H, math.sqrt(6300.0) - math.sqrt(300.0), rel=1e-14)
+    assert _close(H, simulate(30.0, 50.0, 10.0)["stroke"])

@@ -185,3 +185,66 @@ def test_broadcasting():
     assert sl.lever_angle(0.5, d, t).shape == (2, 5)
     assert sl.synthesize_from_time_ratio(np.array([1.2, 1.5, 3.0]), 0.3).crank_length.shape == (3,)
     assert isinstance(sl.time_ratio(0.5, 1.0), float)
+
+
+# --------------------------------------------------------------------------- the crank as the scale
+@settings(max_examples=40)
+@given(st.floats(1.001, 20.0), st.floats(1e-3, 10.0), st.floats(1.0, 4.0))
+def test_synthesis_from_the_crank_simulated(K, r, f):
+    """K and the crank r (Khurmi's problem form) with a lever f (d + r) long: d = r / sin(psi/2)
+    by hand, and the mpmath simulation swings with K and strokes 2 l sin(psi/2)."""
+    half = math.sin(math.pi * (K - 1) / (K + 1) / 2)
+    d = r / half
+    lever = f * (d + r) * (1 + 1e-12)
+    design = sl.synthesize_from_time_ratio(K, crank_length=r, lever_length=lever)
+    assert design.reason == sl.OK and design.crank_length == r
+    assert _close(design.frame_length, d) and design.lever_length == lever
+    sim = simulate(design.crank_length, design.frame_length, design.lever_length)
+    assert _close(sim["time_ratio"], K) and _close(sim["stroke"], 2 * lever * half)
+    assert sim["reach"] <= lever * (1 + 1e-12)
+
+
+def test_the_pair_not_given_makes_the_slot_just_hold_the_block():
+    """K = 2 (sin(psi/2) = 1/2 by hand): crank 300 alone gives d = 600 and l = d + r = 900;
+    stroke 0.4 alone gives l = 0.4, d = l / 1.5; the lever 0.9 alone the same as stroke 0.9."""
+    a = sl.synthesize_from_time_ratio(2.0, crank_length=300.0)
+    assert (a.frame_length, a.lever_length) == (
+        pytest.approx(600.0, rel=1e-15),
+        pytest.approx(900.0, rel=1e-15),
+    )
+    assert a.stroke == pytest.approx(900.0, rel=1e-14)
+    b = sl.synthesize_from_time_ratio(2.0, 0.4)
+    assert b.frame_length == pytest.approx(0.4 / 1.5, rel=1e-15)
+    c, e = sl.synthesize_from_time_ratio(2.0, lever_length=0.9), sl.synthesize_from_time_ratio(2.0, 0.9)
+    assert c.frame_length == pytest.approx(e.frame_length, rel=1e-15) and c.stroke == pytest.approx(0.9)
+
+
+def test_the_crank_form_reasons_and_misuse():
+    K, r = 2.0, 1.0  # d = 2, the block reaches d + r = 3
+    assert sl.synthesize_from_time_ratio(K, crank_length=r, lever_length=3.0).reason == sl.OK
+    short = sl.synthesize_from_time_ratio(K, crank_length=r, lever_length=3.0 * (1 - 1e-9))
+    assert short.reason == sl.SLOT_TOO_SHORT and np.isnan(short.frame_length)
+    codes = sl.synthesize_from_time_ratio(
+        [1.5, 1.5, 1.0, 1.5], crank_length=[0.0, 1.0, 1.0, math.inf], lever_length=[5.0, -1.0, 5.0, 5.0]
+    ).reason
+    assert list(codes) == [
+        sl.CRANK_NOT_POSITIVE,
+        sl.LEVER_NOT_POSITIVE,
+        sl.TIME_RATIO_NOT_ABOVE_ONE,
+        sl.INPUT_NOT_FINITE,
+    ]
+    for kwargs in (
+        dict(frame_length=1.0, crank_length=0.5),
+        dict(stroke=1.0, lever_length=2.0),
+        dict(),
+    ):
+        with pytest.raises(ValueError):
+            sl.synthesize_from_time_ratio(1.5, **kwargs)
+
+
+def test_lever_rate_stays_finite_next_to_a_turning_lever():
+    """r/d = 1 - 1e-9: rho^2 = (d - r)^2 = 1e-18 at t = -90 deg, where r^2 + d^2 - 2 d r would
+    round to 0; by hand the rate there is r (r - d)/(d - r)^2 = -r/(d - r)."""
+    r, d = 1.0 - 1e-9, 1.0
+    assert sl.lever_rate(r, d, -math.pi / 2) == pytest.approx(-r / (d - r), rel=1e-6)
+    assert sl.block_distance(r, d, -math.pi / 2) == pytest.approx(1e-9, rel=1e-6)

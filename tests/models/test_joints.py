@@ -24,13 +24,13 @@ import reference as R
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from pumplink.analysis import force_analysis
 from pumplink.constants import GRAVITY
+from pumplink.inputs.pump import load_spec
 from pumplink.mechanisms.fourbar import FourBar, kinematic_state, synthesize
 from pumplink.models import Masses
 from pumplink.models import dynamics as dy
 from pumplink.models import joints as J
-from pumplink.spec import load_spec
+from pumplink.studies.force import force_analysis
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 VILLAGE = ROOT / "configs/village-10m.toml"

@@ -24,13 +24,14 @@ from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 from scipy.interpolate import CubicSpline
 
-from pumplink.analysis import force_analysis, link_masses
-from pumplink.constants import GRAVITY
+from pumplink.constants import GRAVITY, LINK_MASS_PER_METRE
+from pumplink.inputs.pump import load_spec
 from pumplink.mechanisms.fourbar import synthesize
 from pumplink.models import Masses
 from pumplink.models import dynamics as dy
 from pumplink.models import release as RL
-from pumplink.spec import load_spec
+from pumplink.models.load import link_masses
+from pumplink.studies.force import force_analysis
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 VILLAGE = ROOT / "configs/village-10m.toml"
@@ -161,7 +162,15 @@ def village():
     spec = load_spec(VILLAGE)
     r = force_analysis(spec, keep_samples=False)
     syn = r.design.synthesis
-    masses = link_masses(spec, syn.coupler_length, arms=False)
+    lk = spec.linkage
+    masses = link_masses(
+        syn.coupler_length,
+        lk.handle,
+        lk.rocker,
+        lk.mass_per_length or LINK_MASS_PER_METRE,
+        lk.coupler_mass,
+        lk.handle_mass,
+    )
     ref = R.from_synthesis(syn)
     return spec, r, syn, masses, ref, _scene_tables(ref, masses)
 

@@ -3,7 +3,7 @@
 Expected values come from hand arithmetic written out in each test (checked to 30 digits with
 mpmath when the test was written), from a second route that shares no formula with the code (the
 volume swept per wheel turn times turns per minute), from the rope and piston load forces of
-``pumplink.spec.rope_force`` and ``pumplink.models.piston.load_force`` (which the water module does
+``pumplink.inputs.pump.rope_force`` and ``pumplink.models.piston.load_force`` (which the water module does
 not use), and from the field's published discharges (docs/water.md §6).
 """
 
@@ -21,9 +21,8 @@ from pumplink.constants import (
     HOUR_POWER_W,
     SUSTAINED_POWER_W,
 )
-from pumplink.models import piston as piston_model
 from pumplink.models import water
-from pumplink.spec import rope_force
+from pumplink.models.load import piston_load_force, rope_force
 
 RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
 L_PER_MIN = 60_000.0  # (l/min) per (m^3/s)
@@ -184,8 +183,8 @@ def test_rope_share_is_operator_power_over_sustained_power(d, head, radius, omeg
 )
 def test_piston_share_is_operator_power_over_sustained_power(bore, stroke, head, omega, eta_f, eta_v, p_s):
     """The same for the piston pump, its mean operator power F_load x stroke x w / (2 pi) from the
-    load force of models.piston.load_force (Eq. P.1, P.3 of docs/piston-pump.md)."""
-    p_op = float(piston_model.load_force(bore, head, eta_f)) * stroke * omega / (2 * math.pi)
+    load force of models.load.piston_load_force (Eq. P.1, P.3 of docs/piston-pump.md)."""
+    p_op = float(piston_load_force(bore, head, eta_f)) * stroke * omega / (2 * math.pi)
     q = water.piston_pump_flow(bore, stroke, omega, eta_v)
     share = float(water.flow_share(q, water.power_limited_flow(p_s, head, eta_f, eta_v)))
     assert share == pytest.approx(p_op / p_s, rel=1e-12)

@@ -1,4 +1,4 @@
-"""Unit tests of pumplink.output.tables: JSON-safe numbers, CSV flattening, strict JSON (NaN -> null) and
+"""Unit tests of the output layer: JSON-safe numbers, CSV flattening, strict JSON (NaN -> null) and
 the number formatting of the Rich tables (rendered into a string, as when piped).
 
 The formatter is checked against the values of the result it was given (rounding, placeholders for
@@ -19,7 +19,7 @@ import pytest
 from pumplink.inputs.pump import parse_spec
 from pumplink.output.force import force_summary, render_force, sample_rows
 from pumplink.output.synth import design_row, render_designs
-from pumplink.output.tables import console, deg, num, write_csv
+from pumplink.output.transmission import console, deg, num, write_csv
 from pumplink.studies.force import design, force_analysis
 
 BASE = {

@@ -25,7 +25,7 @@ BINDING_TEXT = {
 }
 
 
-def transmission_rows(opt, sim, comparisons=(), printed_gamma_min=None) -> dict[str, Any]:
+def transmission_rows(opt, sim, comparisons=(), printed_gamma_min=None, check=None) -> dict[str, Any]:
     """JSON contract of ``pumplink transmission``.
 
     Parameters
@@ -34,7 +34,10 @@ def transmission_rows(opt, sim, comparisons=(), printed_gamma_min=None) -> dict[
     sim : :class:`pumplink.mechanisms.crank_rocker.MeasuredMotion` of the optimum.
     comparisons : :class:`pumplink.mechanisms.crank_rocker.Comparison` of published designs.
     printed_gamma_min : the transmission angle the paper prints for its diagram design [deg].
+    check : :class:`pumplink.studies.textbook.OptimumCheck` (simulation agreement and verdict), or None.
     """
+    from pumplink.output.mechanisms import verdict_fields
+
     out = {
         "time_ratio": num(opt.time_ratio),
         "theta_deg": deg(opt.theta),
@@ -76,6 +79,8 @@ def transmission_rows(opt, sim, comparisons=(), printed_gamma_min=None) -> dict[
         )
     if comparisons:
         out["printed_gamma_min_deg"] = printed_gamma_min
+    if check is not None:
+        out.update(verdict_fields(check.verdict, check.agrees))
     return out
 
 
@@ -85,10 +90,13 @@ def render_transmission(row: dict[str, Any], fmt: str, out=None) -> None:
     if fmt == "json":
         return _json(row, out)
     if fmt == "csv":
-        flat = {k: v for k, v in row.items() if k != "compare"}
+        flat = {k: v for k, v in row.items() if k not in ("compare", "checks")}
+        flat.update({f"check_{ch['key']}": ch["result"] for ch in row.get("checks", ())})
         return write_csv([flat], out)
     from rich.markup import escape
     from rich.table import Table
+
+    from pumplink.output.mechanisms import print_wrapped, render_verdict
 
     c = console(out)
     c.print(
@@ -160,3 +168,13 @@ def render_transmission(row: dict[str, Any], fmt: str, out=None) -> None:
             "its own Eq. (4) gives the value above)",
             markup=False,
         )
+    if "verdict" in row:
+        print_wrapped(
+            c,
+            "SIMULATION: agrees — the linkage swings through the asked swing with the asked K and "
+            "the optimum's transmission angle"
+            if row["simulation_agrees"]
+            else "SIMULATION: disagrees — the simulated linkage does NOT do what was asked (its "
+            "swing, K or transmission angle differ, or it does not run)",
+        )
+        render_verdict(c, row)
