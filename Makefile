@@ -37,7 +37,19 @@ test: $(VENV)/.stamp-test
 # each also appends its figures to $(BENCH_OUT) (benchmarks/_record.py), and the last step prints
 # them all in one table with their targets (benchmarks/summary.py).
 BENCH_OUT := $(CURDIR)/build/bench.jsonl
-bench: $(VENV)/.stamp-bench
+# The code before the one-evaluation restructure, installed beside this one for the side-by-side
+# grid benchmark (benchmarks/bench_grid_baseline.py); built from this repository's own history.
+BASE_COMMIT := 2cf593a
+BASE_DIR := build/base-$(BASE_COMMIT)
+$(BASE_DIR)/.venv/.stamp:
+	rm -rf $(BASE_DIR) && mkdir -p build
+	git worktree prune
+	git worktree add --detach $(BASE_DIR) $(BASE_COMMIT)
+	$(PYTHON) -m venv $(BASE_DIR)/.venv
+	$(BASE_DIR)/.venv/bin/python -m pip install --quiet $(BASE_DIR)
+	touch $@
+
+bench: $(VENV)/.stamp-bench $(BASE_DIR)/.venv/.stamp
 	@mkdir -p $(dir $(BENCH_OUT)) && rm -f $(BENCH_OUT)
 	@for b in benchmarks/bench_*.py; do echo "== $$b"; \
 		PUMPLINK_BENCH_OUT=$(BENCH_OUT) $(BIN)/python $$b || exit 1; done

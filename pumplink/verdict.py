@@ -217,9 +217,7 @@ def assess(
     ]
     if link_energy_share is not None:
         checks.append(
-            check(
-                "link_energy_share", link_energy_share, "<=", "%", feasible, warn=100.0 * LINK_ENERGY_LIMIT
-            )
+            check("link_energy_share", link_energy_share, "<=", "%", feasible, warn=100.0 * LINK_ENERGY_LIMIT)
         )
     if transmission_angle is not None:
         checks.append(

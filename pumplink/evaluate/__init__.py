@@ -34,6 +34,7 @@ import numpy as np
 from pumplink.constants import DEFAULT_ARM_MASS, LINK_MASS_PER_METRE
 from pumplink.mechanisms import crank_slider as cs
 from pumplink.mechanisms.fourbar import (
+    FourBar,
     Synthesis,
     grip_heights,
     grip_stroke,
@@ -354,7 +355,7 @@ def evaluate(
     if ok.size:
         mean[ok] = _qs.mean_force(mw[ok], stroke[ok])
         if judge:  # the grip's peak speed, a check of the verdict
-            rate[ok] = peak_rocker_rate(sub)
+            rate[ok] = _peak_rocker_rate(sub)
         if samples:
             for s0 in range(0, ok.size, SUB_DESIGNS):  # cache-sized blocks of designs
                 s = ok[s0 : s0 + SUB_DESIGNS]
@@ -470,6 +471,28 @@ def evaluate(
         share,
         verdict,
     )
+
+
+#: Odd 64-bit multipliers that hash a design's seven four-bar parameters (their bits) to one word.
+_HASH = np.array([0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9, 0xD6E8FEB86659FD93,
+                  0xFF51AFD7ED558CCD, 0xC4CEB9FE1A85EC53, 0x94D049BB133111EB], dtype=np.uint64)  # fmt: skip
+
+
+def _peak_rocker_rate(lk: FourBar) -> np.ndarray:
+    """:func:`pumplink.mechanisms.fourbar.peak_rocker_rate` of designs (1-D arrays), solved once
+    per distinct linkage: it depends on the geometry alone, and a grid that varies the load or
+    the speed repeats each geometry many times (the same values, computed once).  Distinct
+    linkages are found by a hash of their parameters' bits, checked row by row."""
+    geom = np.ascontiguousarray(np.stack([np.asarray(v, float) for v in lk.parameters], axis=1))
+    if geom.shape[0] < 2:
+        return np.atleast_1d(peak_rocker_rate(lk))
+    with np.errstate(over="ignore"):
+        key = (geom.view(np.uint64) * _HASH).sum(axis=1, dtype=np.uint64)
+    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+    inverse = inverse.ravel()
+    if first.size == geom.shape[0] or not np.array_equal(geom[first][inverse], geom):
+        return peak_rocker_rate(lk)  # all distinct, or a hash collision: every design on its own
+    return peak_rocker_rate(FourBar(*geom[first].T))[inverse]
 
 
 def _evaluate_piston(designs: PistonDesigns, judge: bool) -> PistonEvaluation:

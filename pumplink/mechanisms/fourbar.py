@@ -228,8 +228,22 @@ def grip_heights(axle_height, D1, handle, swing):
 RATE_GRID = 180
 
 
+#: Designs whose grid of rocker rates is evaluated at once in :func:`peak_rocker_rate`: their
+#: (designs x RATE_GRID) temporaries stay in the processor's cache.
+RATE_DESIGNS = 128
+
+
 def _abs_rate(theta, px, py, c, k, r, h, br):
-    return np.abs(_kinematic_state(FourBar(px, py, c, k, r, h, br), theta, 1.0).rocker_rate)
+    """|dθ4/dθ2| at crank angles: the rocker rate of :func:`kinematic_state` (the same operations,
+    so the same bits), computing nothing else."""
+    cs, sn = np.cos(theta), np.sin(theta)
+    p1 = cs * px + sn * py
+    p2 = cs * py - sn * px
+    e2 = (px * px + py * py + c * c) - 2.0 * c * p1
+    t = 0.5 + 0.5 * (k * k - r * r) / e2
+    q = br * _height(e2, k, r)
+    w = t * p2 + q * (p1 - c)
+    return np.abs(-c * w / (q * e2))  # omega4/omega2 = (A x u)/(R x u)
 
 
 def peak_rocker_rate(lk: FourBar):
@@ -247,7 +261,10 @@ def peak_rocker_rate(lk: FourBar):
     theta = np.arange(RATE_GRID) * step
     g2 = [p[:, None] for p in geom]
     with np.errstate(all="ignore"):
-        val = _abs_rate(theta[None, :], *g2)
+        val = np.empty((geom[0].size, RATE_GRID))
+        for d0 in range(0, geom[0].size, RATE_DESIGNS):  # cache-sized blocks: the same values
+            d = slice(d0, d0 + RATE_DESIGNS)
+            val[d] = _abs_rate(theta[None, :], *(p[d] for p in g2))
         val = np.where(np.isnan(val), -np.inf, val)
         j = np.argmax(val, axis=1)
         mid = theta[j]

@@ -130,20 +130,26 @@ def _check_results(c: Chunk) -> dict[str, list[str]]:
 
 def _listed(c: Chunk, level: int) -> list[str]:
     """Per variant, the keys of the checks at ``level`` joined by ';' ('infeasible' for failures
-    of an infeasible design)."""
+    of an infeasible design).  Built from one bit per check: a grid repeats few combinations, so
+    each distinct one is joined once."""
     n = len(c)
-    keys = [[] for _ in range(n)]
-    for ch in c.verdict.checks:
+    checks = c.verdict.checks
+    code = np.zeros(n, np.int64)
+    for j, ch in enumerate(checks):
         hit = np.broadcast_to(np.asarray(ch.level) == level, (n,)) & c.feasible
-        for i in np.nonzero(hit)[0].tolist():
-            keys[i].append(ch.key)
-    if level == 2:  # the force checks by their --fail-on names, as before the other checks existed
-        short = {"mean_force": "mean", "peak_force": "peak"}
-        return [
-            "infeasible" if not f else ";".join(short.get(x, x) for x in k)
-            for f, k in zip(c.feasible.tolist(), keys)
-        ]
-    return [";".join(k) for k in keys]
+        code |= hit.astype(np.int64) << j
+    # the force checks by their --fail-on names, as before the other checks existed
+    short = {"mean_force": "mean", "peak_force": "peak"} if level == 2 else {}
+    names = [short.get(ch.key, ch.key) for ch in checks]
+    unique, inverse = np.unique(code, return_inverse=True)
+    words = np.array(
+        [";".join(nm for j, nm in enumerate(names) if (int(u) >> j) & 1) for u in unique.tolist()],
+        dtype=object,
+    )
+    text = words[inverse.ravel()]
+    if level == 2:
+        text = np.where(c.feasible, text, "infeasible")
+    return text.tolist()
 
 
 def _failed_text(c: Chunk) -> list[str]:

@@ -13,9 +13,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from pumplink.output.formats import console, deg, num, write_csv
+from pumplink.output.formats import console, deg, num, render
 from pumplink.output.formats import fmt as _f
-from pumplink.output.formats import write_json as _json
 
 if TYPE_CHECKING:
     from pumplink.studies.force import ForceResult
@@ -170,180 +169,188 @@ def render_force(
     printed after a FAIL (and in JSON as ``advice``).
     """
     out = out or sys.stdout
-    if fmt == "json":
+
+    def as_json():
         obj = force_summary(r)
         obj["strict"] = strict
         obj["advice"] = [advice_row(a) for a in advice]
         obj.update(extra or {})
-        if not summary:  # streamed: a million samples must not be a million dicts at once
-            return _json(obj, out, stream=("samples", iter_sample_rows(r)))
-        return _json(obj, out)
-    if fmt == "csv":
-        return write_csv([force_summary(r)] if summary or r.samples is None else iter_sample_rows(r), out)
+        return obj
 
-    from rich import box
-    from rich.markup import escape
-    from rich.table import Table
+    def as_csv():
+        return [force_summary(r)] if summary or r.samples is None else iter_sample_rows(r)
 
-    c = console(out)
-    d = design_row(r.design)
-    name = escape(d["name"])
-    if not r.design.feasible:
-        c.print(f"[bold]{name}[/]: [red]infeasible[/] — {escape(r.design.error)}.")
-        c.print("[bold red]VERDICT: FAIL[/] (no linkage to drive)")
-        return
-    dc = d["dead_centres_deg"]
-    c.print(
-        f"[bold]{name}[/]: crank {d['crank_length']:.4f} m, coupler {d['coupler_length']:.4f} m, "
-        f"rocker {d['rocker_length']:.4f} m, frame {d['frame_length']:.4f} m, "
-        f"handle {d['handle_length']:.3f} m"
-    )
-    c.print(
-        f"dead centres (DC) at crank {dc['extended']:.2f}° (extended) and {dc['folded']:.2f}° (folded); "
-        f"time ratio K = {d['time_ratio']:.4f}; wheel torque {r.wheel_torque:.3f} N·m at "
-        f"{r.speed_deg_s:g} deg/s ({r.power:.1f} W)"
-    )
-    fly = r.flywheel and r.operator_force is not None
+    def stream():  # the samples streamed: a million must not be a million dicts at once
+        return None if summary else ("samples", iter_sample_rows(r))
 
-    if not summary and r.samples is not None and r.samples.crank_angle.size:
-        s = r.samples
-        kind = "flywheel scene" if fly else "quasi-static"
-        t = Table(
-            title=f"Operator force over the crank cycle ({kind}, {r.samples_n} samples"
-            f"{', condensed' if s.crank_angle.size > 28 else ''})",
-            title_justify="left",
-            min_width=min(c.width, 78),  # the title on one line
-            caption="θ2 crank angle; Fh quasi-static force"
-            + (
-                "; F the operator's force, ω the wheel speed (ω max: at its top speed); DC ext/fold: "
-                "the extended/folded dead centre"
-                if fly
-                else ""
+    def table() -> None:
+        from rich import box
+        from rich.markup import escape
+        from rich.table import Table
+
+        c = console(out)
+        d = design_row(r.design)
+        name = escape(d["name"])
+        if not r.design.feasible:
+            c.print(f"[bold]{name}[/]: [red]infeasible[/] — {escape(r.design.error)}.")
+            c.print("[bold red]VERDICT: FAIL[/] (no linkage to drive)")
+            return
+        dc = d["dead_centres_deg"]
+        c.print(
+            f"[bold]{name}[/]: crank {d['crank_length']:.4f} m, coupler {d['coupler_length']:.4f} m, "
+            f"rocker {d['rocker_length']:.4f} m, frame {d['frame_length']:.4f} m, "
+            f"handle {d['handle_length']:.3f} m"
+        )
+        c.print(
+            f"dead centres (DC) at crank {dc['extended']:.2f}° (extended) and {dc['folded']:.2f}° (folded); "
+            f"time ratio K = {d['time_ratio']:.4f}; wheel torque {r.wheel_torque:.3f} N·m at "
+            f"{r.speed_deg_s:g} deg/s ({r.power:.1f} W)"
+        )
+        fly = r.flywheel and r.operator_force is not None
+
+        if not summary and r.samples is not None and r.samples.crank_angle.size:
+            s = r.samples
+            kind = "flywheel scene" if fly else "quasi-static"
+            t = Table(
+                title=f"Operator force over the crank cycle ({kind}, {r.samples_n} samples"
+                f"{', condensed' if s.crank_angle.size > 28 else ''})",
+                title_justify="left",
+                min_width=min(c.width, 78),  # the title on one line
+                caption="θ2 crank angle; Fh quasi-static force"
+                + (
+                    "; F the operator's force, ω the wheel speed (ω max: at its top speed); DC ext/fold: "
+                    "the extended/folded dead centre"
+                    if fly
+                    else ""
+                )
+                + "; bar full at 1.5× the limit; v grip speed; φ handle from vertical; "
+                "γ transmission angle",
+                caption_justify="left",
+                box=box.SIMPLE_HEAD,
+                pad_edge=False,
             )
-            + "; bar full at 1.5× the limit; v grip speed; φ handle from vertical; "
-            "γ transmission angle",
-            caption_justify="left",
+            heads = ["θ2 [°]", "Fh [N]"]
+            heads += (
+                ["F [N]", f"|F| vs {r.force_limit:g} N", "ω [°/s]"]
+                if fly
+                else [f"|Fh| vs {r.force_limit:g} N"]
+            )
+            heads += ["v [m/s]", "φ [°]", "γ [°]", "note"]
+            for h in heads:
+                t.add_column(
+                    escape(h), justify="left" if h.startswith(("|", "note")) else "right", no_wrap=h == "note"
+                )
+            rows = []
+            hs = r.handle_speed
+
+            def add(st, i, speed, note, op=None, w=None):
+                f = st.force[i]
+                qs = "∞" if st.singular[i] else _f(f, "{:+.1f}")
+                if fly:
+                    mid = [_f(op, "{:+.1f}"), _bar(op, r.force_limit, 8), _f(np.degrees(w), "{:.1f}")]
+                else:
+                    mid = [_bar(None if st.singular[i] else float(f), r.force_limit, 12)]
+                rows.append(
+                    (
+                        float(st.crank_angle[i]) % (2 * math.pi),
+                        _f(np.degrees(st.crank_angle[i]) % 360, "{:.2f}"),
+                        qs,
+                        *mid,
+                        _f(speed, "{:.2f}"),
+                        _f(np.degrees(st.rocker_angle[i]) - 90, "{:+.1f}"),
+                        _f(np.degrees(st.transmission_angle[i]), "{:.1f}"),
+                        note,
+                    )
+                )
+
+            for i in _condensed_indices(r):
+                if s.singular[i]:
+                    note = "[bold]DC[/]"
+                elif fly:
+                    note = "[dim]ω max[/]" if r.on_ceiling[i] else ""
+                else:
+                    note = "[dim]dead band[/]" if r.in_dead_band[i] else ""
+                add(s, i, hs[i], note, *((r.operator_force[i], r.wheel_speed[i]) if fly else ()))
+            if s.crank_angle.size > 28 and r.marks is not None:  # mark the dead centres and the exact peak
+                m = r.marks
+                speeds = r.mark_grip_speed
+                if fly:
+                    ws, ops = r.mark_wheel_speed, r.mark_operator_force
+                    for i, label in enumerate(("DC ext", "DC fold")):
+                        add(m, i, speeds[i], f"[bold]{label}[/]", ops[i], ws[i])
+                else:
+                    for i, label in enumerate(("DC extended", "DC folded", "peak (exact)")):
+                        add(m, i, speeds[i], f"[bold]{label}[/]")
+            for row in sorted(rows, key=lambda x: x[0] % (2 * math.pi)):
+                t.add_row(*row[1:])
+            c.print(t)
+
+        ct = Table(
+            title="Checks",
+            title_justify="left",
             box=box.SIMPLE_HEAD,
             pad_edge=False,
+            caption="DC: dead centre; a warning is reported, a failure fails the design (docs/models.md §4)",
+            caption_justify="left",
         )
-        heads = ["θ2 [°]", "Fh [N]"]
-        heads += (
-            ["F [N]", f"|F| vs {r.force_limit:g} N", "ω [°/s]"] if fly else [f"|Fh| vs {r.force_limit:g} N"]
-        )
-        heads += ["v [m/s]", "φ [°]", "γ [°]", "note"]
-        for h in heads:
-            t.add_column(
-                escape(h), justify="left" if h.startswith(("|", "note")) else "right", no_wrap=h == "note"
+        for h in ("check", "value", "warn if", "fail if", "result"):
+            ct.add_column(h, justify="right" if h in ("value", "warn if", "fail if") else "left")
+        if r.flywheel:
+            ct.add_row(
+                f"dead-band peak (±{r.design.spec.operator.dead_band:g}° of DCs)",
+                f"{_f(r.dead_band_peak_force, '{:.2f}', '∞')} N",
+                "",
+                "",
+                "[dim]info[/]",
             )
-        rows = []
-        hs = r.handle_speed
-
-        def add(st, i, speed, note, op=None, w=None):
-            f = st.force[i]
-            qs = "∞" if st.singular[i] else _f(f, "{:+.1f}")
-            if fly:
-                mid = [_f(op, "{:+.1f}"), _bar(op, r.force_limit, 8), _f(np.degrees(w), "{:.1f}")]
+            if r.dynamics:  # faster is not always easier: the speeds that pass come from pumplink speed
+                if not r.design.spec.operator.arms_in_verdict:
+                    ct.add_row(
+                        f"effort: + {r.design.spec.operator.arm_mass_kg:g} kg of arms",
+                        f"{_f(r.effort_peak_force, '{:.1f}', '∞')} N",
+                        "",
+                        "",
+                        "[dim]info[/]",
+                    )
             else:
-                mid = [_bar(None if st.singular[i] else float(f), r.force_limit, 12)]
-            rows.append(
-                (
-                    float(st.crank_angle[i]) % (2 * math.pi),
-                    _f(np.degrees(st.crank_angle[i]) % 360, "{:.2f}"),
-                    qs,
-                    *mid,
-                    _f(speed, "{:.2f}"),
-                    _f(np.degrees(st.rocker_angle[i]) - 90, "{:+.1f}"),
-                    _f(np.degrees(st.transmission_angle[i]), "{:.1f}"),
-                    note,
-                )
-            )
-
-        for i in _condensed_indices(r):
-            if s.singular[i]:
-                note = "[bold]DC[/]"
-            elif fly:
-                note = "[dim]ω max[/]" if r.on_ceiling[i] else ""
-            else:
-                note = "[dim]dead band[/]" if r.in_dead_band[i] else ""
-            add(s, i, hs[i], note, *((r.operator_force[i], r.wheel_speed[i]) if fly else ()))
-        if s.crank_angle.size > 28 and r.marks is not None:  # mark the dead centres and the exact peak
-            m = r.marks
-            speeds = r.mark_grip_speed
-            if fly:
-                ws, ops = r.mark_wheel_speed, r.mark_operator_force
-                for i, label in enumerate(("DC ext", "DC fold")):
-                    add(m, i, speeds[i], f"[bold]{label}[/]", ops[i], ws[i])
-            else:
-                for i, label in enumerate(("DC extended", "DC folded", "peak (exact)")):
-                    add(m, i, speeds[i], f"[bold]{label}[/]")
-        for row in sorted(rows, key=lambda x: x[0] % (2 * math.pi)):
-            t.add_row(*row[1:])
-        c.print(t)
-
-    ct = Table(
-        title="Checks",
-        title_justify="left",
-        box=box.SIMPLE_HEAD,
-        pad_edge=False,
-        caption="DC: dead centre; a warning is reported, a failure fails the design (docs/models.md §4)",
-        caption_justify="left",
-    )
-    for h in ("check", "value", "warn if", "fail if", "result"):
-        ct.add_column(h, justify="right" if h in ("value", "warn if", "fail if") else "left")
-    if r.flywheel:
-        ct.add_row(
-            f"dead-band peak (±{r.design.spec.operator.dead_band:g}° of DCs)",
-            f"{_f(r.dead_band_peak_force, '{:.2f}', '∞')} N",
-            "",
-            "",
-            "[dim]info[/]",
-        )
-        if r.dynamics:  # faster is not always easier: the speeds that pass come from pumplink speed
-            if not r.design.spec.operator.arms_in_verdict:
+                mps = r.min_passing_speed
                 ct.add_row(
-                    f"effort: + {r.design.spec.operator.arm_mass_kg:g} kg of arms",
-                    f"{_f(r.effort_peak_force, '{:.1f}', '∞')} N",
+                    "slowest passing mean speed",
+                    "never" if mps == math.inf else f"{_f(np.degrees(mps), '{:.1f}')} °/s",
                     "",
                     "",
                     "[dim]info[/]",
                 )
         else:
-            mps = r.min_passing_speed
             ct.add_row(
-                "slowest passing mean speed",
-                "never" if mps == math.inf else f"{_f(np.degrees(mps), '{:.1f}')} °/s",
+                f"sampled peak ({r.samples_n} samples)",
+                f"{_f(r.sampled_peak, '{:.2f}')} N",
                 "",
                 "",
                 "[dim]info[/]",
             )
-    else:
-        ct.add_row(
-            f"sampled peak ({r.samples_n} samples)",
-            f"{_f(r.sampled_peak, '{:.2f}')} N",
-            "",
-            "",
-            "[dim]info[/]",
-        )
-    for ch in r.checks:
-        ct.add_row(
-            escape(check_label(ch, r)),
-            check_value(ch),
-            limit_text(ch, ch.warn_limit),
-            limit_text(ch, ch.fail_limit),
-            RESULT_MARKUP[ch.result],
-        )
-    c.print(ct)
-    c.print(model_line(r))
-    c.print(verdict_line(r, strict))
-    for ch in r.checks:
-        if ch.result == "warn":
-            c.print(f"[yellow]warning:[/] {escape(check_sentence(ch, r))}")
-        elif ch.result == "fail" and ch.key in CHECK_ADVICE:
-            c.print(f"[red]fails:[/] {escape(check_sentence(ch, r))}")
-    if advice:
-        c.print("[bold]what would help most[/] (one change at a time, everything else as in the spec):")
-        for a in advice:
-            c.print(f"  {escape(advice_sentence(a))}")
+        for ch in r.checks:
+            ct.add_row(
+                escape(check_label(ch, r)),
+                check_value(ch),
+                limit_text(ch, ch.warn_limit),
+                limit_text(ch, ch.fail_limit),
+                RESULT_MARKUP[ch.result],
+            )
+        c.print(ct)
+        c.print(model_line(r))
+        c.print(verdict_line(r, strict))
+        for ch in r.checks:
+            if ch.result == "warn":
+                c.print(f"[yellow]warning:[/] {escape(check_sentence(ch, r))}")
+            elif ch.result == "fail" and ch.key in CHECK_ADVICE:
+                c.print(f"[red]fails:[/] {escape(check_sentence(ch, r))}")
+        if advice:
+            c.print("[bold]what would help most[/] (one change at a time, everything else as in the spec):")
+            for a in advice:
+                c.print(f"  {escape(advice_sentence(a))}")
+
+    render(fmt, out, as_json=as_json, as_csv=as_csv, table=table, stream=stream)
 
 
 def explain_rows(effects) -> list[dict[str, Any]]:

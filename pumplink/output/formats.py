@@ -196,6 +196,27 @@ def write_json(obj, out, stream: tuple[str, Iterable[Any]] | None = None) -> Non
     out.write("]\n}\n" if first else "\n  ]\n}\n")
 
 
+def render(
+    fmt: str,
+    out,
+    *,
+    as_json: Callable[[], Any],
+    as_csv: Callable[[], Iterable[dict[str, Any]]],
+    table: Callable[[], None],
+    stream: Callable[[], tuple[str, Iterable[Any]] | None] = lambda: None,
+) -> None:
+    """The one dispatch of every command's view: ``--format json`` writes ``as_json()`` (with the
+    list ``stream()`` gives streamed after it, when any), ``csv`` the rows ``as_csv()`` gives, and
+    ``table`` draws ``table()``.  Views hand in what each format shows; they choose nothing."""
+    if fmt == "json":
+        return write_json(as_json(), out, stream=stream())
+    if fmt == "csv":
+        return write_csv(as_csv(), out)
+    if fmt != "table":
+        raise ValueError(f"unknown format {fmt!r}; one of {', '.join(FORMATS)}")
+    return table()
+
+
 def _flatten(row: dict[str, Any], prefix: str = "") -> dict[str, Any]:
     flat: dict[str, Any] = {}
     for k, v in row.items():

@@ -12,7 +12,7 @@ import sys
 import textwrap
 from typing import Any
 
-from pumplink.output.formats import console, num, write_csv, write_json
+from pumplink.output.formats import console, num, render
 
 #: Words for the mechanism verdict's checks (``pumplink.studies.textbook.judge``).
 CHECK_NAMES = {
@@ -186,70 +186,79 @@ def render_synthesis(row: dict[str, Any], labels: dict[str, dict[str, str]], fmt
     ``labels`` maps the row's keys to their words (:func:`synthesis_labels`).
     """
     out = out or sys.stdout
-    if fmt == "json":
-        return write_json(row, out)
-    if fmt == "csv":
+
+    def as_json():
+        return row
+
+    def as_csv():
         flat = {k: v for k, v in row.items() if k not in ("notes", "checks")}
         flat.update({f"check_{ch['key']}": ch["result"] for ch in row["checks"]})
-        return write_csv([flat], out)
-    from rich.markup import escape
-    from rich.table import Table
+        return [flat]
 
-    c = console(out)
-    title = textwrap.wrap(f"{row['mechanism'].capitalize()}, {row['task']}", 78, subsequent_indent="  ")
-    c.print("[bold]" + escape(title[0]) + "[/]" + "".join("\n" + escape(x) for x in title[1:]))
-    given = ", ".join(f"{labels['given'].get(k, k)} = {_g(v, 'ratio')}" for k, v in row["given"].items())
-    print_wrapped(c, f"given: {given}")
-    if row["ratios"]:
-        ratios = ", ".join(
-            f"{labels['ratios'].get(k, k)} = {_g(v, 'ratio')}" for k, v in row["ratios"].items()
+    def table() -> None:
+        from rich.markup import escape
+        from rich.table import Table
+
+        c = console(out)
+        title = textwrap.wrap(f"{row['mechanism'].capitalize()}, {row['task']}", 78, subsequent_indent="  ")
+        c.print("[bold]" + escape(title[0]) + "[/]" + "".join("\n" + escape(x) for x in title[1:]))
+        given = ", ".join(f"{labels['given'].get(k, k)} = {_g(v, 'ratio')}" for k, v in row["given"].items())
+        print_wrapped(c, f"given: {given}")
+        if row["ratios"]:
+            ratios = ", ".join(
+                f"{labels['ratios'].get(k, k)} = {_g(v, 'ratio')}" for k, v in row["ratios"].items()
+            )
+            print_wrapped(c, f"ratios: {ratios}")
+        t = Table(title="Lengths", title_justify="left")
+        t.add_column("link")
+        t.add_column("length [input unit]", justify="right")
+        for k, v in row["lengths"].items():
+            t.add_row(escape(labels["lengths"].get(k, k)), _g(v, "ratio"))
+        c.print(t)
+        asked = any(i["asked"] is not None for i in row["indicators"].values())
+        heads = (
+            ("quantity", "asked", "closed form", "simulated", "check")
+            if asked
+            else (
+                "quantity",
+                "closed form",
+                "simulated",
+                "check",
+            )
         )
-        print_wrapped(c, f"ratios: {ratios}")
-    t = Table(title="Lengths", title_justify="left")
-    t.add_column("link")
-    t.add_column("length [input unit]", justify="right")
-    for k, v in row["lengths"].items():
-        t.add_row(escape(labels["lengths"].get(k, k)), _g(v, "ratio"))
-    c.print(t)
-    asked = any(i["asked"] is not None for i in row["indicators"].values())
-    heads = (
-        ("quantity", "asked", "closed form", "simulated", "check")
-        if asked
-        else (
-            "quantity",
-            "closed form",
-            "simulated",
-            "check",
+        what = (
+            "asked, closed form, measured by simulation" if asked else "closed form, measured by simulation"
         )
-    )
-    what = "asked, closed form, measured by simulation" if asked else "closed form, measured by simulation"
-    t = Table(title=f"Indicators: {what}", title_justify="left")
-    for h in heads:
-        t.add_column(h, justify="left" if h == "quantity" else "right")
-    for k, i in row["indicators"].items():
-        kind = "angle" if i["unit"] == "deg" else "ratio"
-        cells = [escape(labels["indicators"].get(k, k))]
-        if asked:
-            cells.append(_g(i["asked"], kind))
-        cells += [
-            _g(i["closed_form"], kind),
-            _g(i["simulated"], kind),
-            "ok" if i["agrees"] else "[bold]DIFFERS[/]",
-        ]
-        t.add_row(*cells)
-    c.print(t)
-    for note in row["notes"]:
-        print_wrapped(c, f"note: {note}")
-    print_wrapped(
-        c,
-        "SIMULATION: agrees — the mechanism does what was asked"
-        if row["simulation_agrees"]
-        else "SIMULATION: disagrees — the mechanism does NOT do what was asked (see DIFFERS)",
-    )
-    render_verdict(c, row)
+        t = Table(title=f"Indicators: {what}", title_justify="left")
+        for h in heads:
+            t.add_column(h, justify="left" if h == "quantity" else "right")
+        for k, i in row["indicators"].items():
+            kind = "angle" if i["unit"] == "deg" else "ratio"
+            cells = [escape(labels["indicators"].get(k, k))]
+            if asked:
+                cells.append(_g(i["asked"], kind))
+            cells += [
+                _g(i["closed_form"], kind),
+                _g(i["simulated"], kind),
+                "ok" if i["agrees"] else "[bold]DIFFERS[/]",
+            ]
+            t.add_row(*cells)
+        c.print(t)
+        for note in row["notes"]:
+            print_wrapped(c, f"note: {note}")
+        print_wrapped(
+            c,
+            "SIMULATION: agrees — the mechanism does what was asked"
+            if row["simulation_agrees"]
+            else "SIMULATION: disagrees — the mechanism does NOT do what was asked (see DIFFERS)",
+        )
+        render_verdict(c, row)
+
+    # ----------------------------------------------------------------------------- structure
+
+    render(fmt, out, as_json=as_json, as_csv=as_csv, table=table)
 
 
-# ----------------------------------------------------------------------------- structure
 _ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VIII"}
 
 
@@ -301,12 +310,11 @@ def structure_row(name: str, a, passive_links=()) -> dict[str, Any]:
 def render_structure(row: dict[str, Any], fmt: str, out=None) -> None:
     """`pumplink structure`: the counts, the drivers and the Assur groups in attachment order."""
     out = out or sys.stdout
-    if fmt == "json":
-        return write_json(row, out)
-    counts = {k: row[k] for k in row if k not in ("groups", "drivers", "reason", "passive_links")}
-    counts["drivers"] = " ".join(row["drivers"])
-    counts["passive_links"] = " ".join(row["passive_links"])
-    if fmt == "csv":
+
+    def as_csv():
+        counts = {k: row[k] for k in row if k not in ("groups", "drivers", "reason", "passive_links")}
+        counts["drivers"] = " ".join(row["drivers"])
+        counts["passive_links"] = " ".join(row["passive_links"])
         rows = [
             {
                 **counts,
@@ -320,49 +328,55 @@ def render_structure(row: dict[str, Any], fmt: str, out=None) -> None:
             }
             for i, g in enumerate(row["groups"], 1)
         ] or [counts]
-        return write_csv(rows, out)
-    from rich.markup import escape
-    from rich.table import Table
+        return rows
 
-    c = console(out)
-    n, p1, p2 = row["moving_links"], row["lower_pairs"], row["higher_pairs"]
-    c.print(f"[bold]{escape(row['name'])}[/]: structure analysis")
-    c.print(
-        f"n = {n} moving {_plural(n, 'link')}, p1 = {p1} lower {_plural(p1, 'pair')} (class V), "
-        f"p2 = {p2} higher {_plural(p2, 'pair')} (class IV)"
-    )
-    c.print(f"W = 3n − 2p1 − p2 = 3·{n} − 2·{p1} − {p2} = {row['formula_mobility']} (Chebyshev)")
-    if row["passive_links"]:
-        passive = row["passive_links"]
-        words = f"passive {_plural(len(passive), 'link')}, left out of the decomposition"
-        c.print(f"{words}: {escape(', '.join(passive))}")
-    c.print(
-        f"redundant constraints q = {row['redundant_constraints']}, local mobilities = "
-        f"{row['local_mobilities']}: working mobility W0 = {row['mobility']}"
-    )
-    if row["drivers"]:
-        drivers = row["drivers"]
-        kind = "primary mechanisms" if len(drivers) > 1 else "a primary mechanism"
-        c.print(f"driving {_plural(len(drivers), 'link')}: {escape(', '.join(drivers))} ({kind}, class I)")
-    if row["groups"]:
-        t = Table(title="Assur groups in the order they are attached", title_justify="left")
-        for h in ("#", "links", "internal pairs", "leads", "class", "order", "type"):
-            t.add_column(h, justify="right" if h in ("#", "class", "order") else "left")
-        for i, g in enumerate(row["groups"], 1):
-            t.add_row(
-                str(i),
-                escape(", ".join(g["links"])),
-                escape(", ".join(g["internal_joints"]) or "—"),
-                escape(", ".join(g["lead_joints"])),
-                _roman(g["class"]),
-                str(g["order"]),
-                g["dyad_type"] or "—",
-            )
-        c.print(t)
-    if row["decomposed"]:
-        c.print(f"mechanism class: {_roman(row['mechanism_class'])} (its highest group class)")
-    else:
+    def table() -> None:
+        from rich.markup import escape
+        from rich.table import Table
+
+        c = console(out)
+        n, p1, p2 = row["moving_links"], row["lower_pairs"], row["higher_pairs"]
+        c.print(f"[bold]{escape(row['name'])}[/]: structure analysis")
         c.print(
-            "\n".join(textwrap.wrap(f"NOT DECOMPOSED: {row['reason']}", 78, subsequent_indent="  ")),
-            markup=False,
+            f"n = {n} moving {_plural(n, 'link')}, p1 = {p1} lower {_plural(p1, 'pair')} (class V), "
+            f"p2 = {p2} higher {_plural(p2, 'pair')} (class IV)"
         )
+        c.print(f"W = 3n − 2p1 − p2 = 3·{n} − 2·{p1} − {p2} = {row['formula_mobility']} (Chebyshev)")
+        if row["passive_links"]:
+            passive = row["passive_links"]
+            words = f"passive {_plural(len(passive), 'link')}, left out of the decomposition"
+            c.print(f"{words}: {escape(', '.join(passive))}")
+        c.print(
+            f"redundant constraints q = {row['redundant_constraints']}, local mobilities = "
+            f"{row['local_mobilities']}: working mobility W0 = {row['mobility']}"
+        )
+        if row["drivers"]:
+            drivers = row["drivers"]
+            kind = "primary mechanisms" if len(drivers) > 1 else "a primary mechanism"
+            c.print(
+                f"driving {_plural(len(drivers), 'link')}: {escape(', '.join(drivers))} ({kind}, class I)"
+            )
+        if row["groups"]:
+            t = Table(title="Assur groups in the order they are attached", title_justify="left")
+            for h in ("#", "links", "internal pairs", "leads", "class", "order", "type"):
+                t.add_column(h, justify="right" if h in ("#", "class", "order") else "left")
+            for i, g in enumerate(row["groups"], 1):
+                t.add_row(
+                    str(i),
+                    escape(", ".join(g["links"])),
+                    escape(", ".join(g["internal_joints"]) or "—"),
+                    escape(", ".join(g["lead_joints"])),
+                    _roman(g["class"]),
+                    str(g["order"]),
+                    g["dyad_type"] or "—",
+                )
+            c.print(t)
+        if row["decomposed"]:
+            c.print(f"mechanism class: {_roman(row['mechanism_class'])} (its highest group class)")
+        else:
+            c.print(
+                "\n".join(textwrap.wrap(f"NOT DECOMPOSED: {row['reason']}", 78, subsequent_indent="  ")),
+                markup=False,
+            )
+
+    render(fmt, out, as_json=lambda: row, as_csv=as_csv, table=table)

@@ -18,8 +18,7 @@ from pumplink.constants import (
     ROCKER_PERPENDICULAR,
     UNIFORM,
 )
-from pumplink.output.formats import console, write_csv
-from pumplink.output.formats import write_json as _json
+from pumplink.output.formats import console, render
 
 if TYPE_CHECKING:
     pass
@@ -80,96 +79,100 @@ def render_methods(
 ) -> None:
     """`pumplink methods`: one row per method and the sampling study."""
     out = out or sys.stdout
-    if fmt == "json":
-        return _json({"design": name, "methods": json_rows(rows), "sampling": study}, out)
-    if fmt == "csv":
-        return write_csv(
-            [
-                {k: v for k, v in r.items() if k not in ("samplings", "failures")}
-                | {"failures": "; ".join(failure_sentences(r["failures"]))}
-                for r in rows
-            ],
-            out,
-        )
-    from rich import box
-    from rich.markup import escape
-    from rich.table import Table
 
-    c = console(out)
-    kinds = list(rows[0]["samplings"]) if rows else []
-    short = {
-        "uniform": "uniform",
-        "near_dead_centre": "near DC",
-        "dead_centre": "at DC",
-        "danger_points": "danger",
-    }
-    t = Table(
-        title=f"{name}: force methods vs the 50-digit reference",
-        title_justify="left",
-        caption="largest relative error of Fh on each sample set: uniform sweep; near DC (1° down to "
-        "1e-6° from a dead centre); at DC; danger points; — = every point flagged",
-        caption_justify="left",
-        box=box.SIMPLE_HEAD,
-        pad_edge=False,
-    )
-    for h in ["method", "time/pos. [ns]"] + [short.get(k, k) for k in kinds] + ["verdict"]:
-        t.add_column(escape(h), justify="left" if h in ("method", "verdict") else "right")
-    notes = []
-    for r in rows:
-        cells = [r["name"], f"{r['seconds_per_position'] * 1e9:,.0f}"]
-        for k in kinds:
-            st = r["samplings"][k]
-            cells.append(_e(st["max_rel_error"]) + ("*" if st["flagged"] else ""))
-        sentences = failure_sentences(r["failures"])
-        wrong = any(st["wrong"] or st["missed_singular"] for st in r["samplings"].values())
-        cells.append("[red]WRONG[/]" if wrong else "flags" if sentences else "[green]ok[/]")
-        t.add_row(*cells)
-        notes += [f"  {r['name']}: {x}" for x in sentences]
-    c.print(t)
-    c.print(
-        '* some points flagged: NaN with a flag (dead centre: "∞ (dead centre)"), never a made-up '
-        "number. WRONG = an unflagged value off by more than the method's registered tolerance.",
-        markup=False,
-    )
-    for line in notes:
-        c.print(line, markup=False)
-    for r in rows:
-        c.print(f"  {r['name']}: {r['summary']}; cannot handle: {r['cannot_handle']}", markup=False)
+    def as_json():
+        return {"design": name, "methods": json_rows(rows), "sampling": study}
 
-    st = Table(
-        title=f"How many samples? A uniform sweep from crank 0° vs exact (dead band ±{dead_band_deg:g}°)",
-        title_justify="left",
-        caption="max |Fh|: the sweep's largest force with no band; peak: outside the band; "
-        "err: relative error of the sampled value",
-        caption_justify="left",
-        box=box.SIMPLE_HEAD,
-        pad_edge=False,
-    )
-    for h in (
-        "N",
-        "max |Fh| [N]",
-        "peak [N]",
-        "exact [N]",
-        "err",
-        "mean [N]",
-        "exact [N]",
-        "err",
-    ):
-        st.add_column(escape(h), justify="right")
-    for s in study:
-        st.add_row(
-            str(s["n"]),
-            f"{s['sampled_max']:.1f}" if s["sampled_max"] is not None else "—",
-            f"{s['sampled_peak']:.2f}" if s["sampled_peak"] is not None else "—",
-            f"{s['exact_peak']:.2f}",
-            _e(s["peak_error"]),
-            f"{s['sampled_mean']:.4f}",
-            f"{s['exact_mean']:.4f}",
-            _e(s["mean_error"]),
+    def as_csv():
+        return [
+            {k: v for k, v in r.items() if k not in ("samplings", "failures")}
+            | {"failures": "; ".join(failure_sentences(r["failures"]))}
+            for r in rows
+        ]
+
+    def table() -> None:
+        from rich import box
+        from rich.markup import escape
+        from rich.table import Table
+
+        c = console(out)
+        kinds = list(rows[0]["samplings"]) if rows else []
+        short = {
+            "uniform": "uniform",
+            "near_dead_centre": "near DC",
+            "dead_centre": "at DC",
+            "danger_points": "danger",
+        }
+        t = Table(
+            title=f"{name}: force methods vs the 50-digit reference",
+            title_justify="left",
+            caption="largest relative error of Fh on each sample set: uniform sweep; near DC (1° down to "
+            "1e-6° from a dead centre); at DC; danger points; — = every point flagged",
+            caption_justify="left",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
         )
-    c.print(st)
-    c.print(
-        "A sweep without a dead band reports whatever spike it lands next to (the true force is infinite at "
-        "the dead centres); with the band, the exact peak is found by root-bracketing, whatever N.",
-        markup=False,
-    )
+        for h in ["method", "time/pos. [ns]"] + [short.get(k, k) for k in kinds] + ["verdict"]:
+            t.add_column(escape(h), justify="left" if h in ("method", "verdict") else "right")
+        notes = []
+        for r in rows:
+            cells = [r["name"], f"{r['seconds_per_position'] * 1e9:,.0f}"]
+            for k in kinds:
+                st = r["samplings"][k]
+                cells.append(_e(st["max_rel_error"]) + ("*" if st["flagged"] else ""))
+            sentences = failure_sentences(r["failures"])
+            wrong = any(st["wrong"] or st["missed_singular"] for st in r["samplings"].values())
+            cells.append("[red]WRONG[/]" if wrong else "flags" if sentences else "[green]ok[/]")
+            t.add_row(*cells)
+            notes += [f"  {r['name']}: {x}" for x in sentences]
+        c.print(t)
+        c.print(
+            '* some points flagged: NaN with a flag (dead centre: "∞ (dead centre)"), never a made-up '
+            "number. WRONG = an unflagged value off by more than the method's registered tolerance.",
+            markup=False,
+        )
+        for line in notes:
+            c.print(line, markup=False)
+        for r in rows:
+            c.print(f"  {r['name']}: {r['summary']}; cannot handle: {r['cannot_handle']}", markup=False)
+
+        st = Table(
+            title=f"How many samples? A uniform sweep from crank 0° vs exact (dead band ±{dead_band_deg:g}°)",
+            title_justify="left",
+            caption="max |Fh|: the sweep's largest force with no band; peak: outside the band; "
+            "err: relative error of the sampled value",
+            caption_justify="left",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
+        )
+        for h in (
+            "N",
+            "max |Fh| [N]",
+            "peak [N]",
+            "exact [N]",
+            "err",
+            "mean [N]",
+            "exact [N]",
+            "err",
+        ):
+            st.add_column(escape(h), justify="right")
+        for s in study:
+            st.add_row(
+                str(s["n"]),
+                f"{s['sampled_max']:.1f}" if s["sampled_max"] is not None else "—",
+                f"{s['sampled_peak']:.2f}" if s["sampled_peak"] is not None else "—",
+                f"{s['exact_peak']:.2f}",
+                _e(s["peak_error"]),
+                f"{s['sampled_mean']:.4f}",
+                f"{s['exact_mean']:.4f}",
+                _e(s["mean_error"]),
+            )
+        c.print(st)
+        c.print(
+            "A sweep without a dead band reports whatever spike it lands next to (the true force is "
+            "infinite at "
+            "the dead centres); with the band, the exact peak is found by root-bracketing, whatever N.",
+            markup=False,
+        )
+
+    render(fmt, out, as_json=as_json, as_csv=as_csv, table=table)

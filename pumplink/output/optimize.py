@@ -8,9 +8,8 @@ from __future__ import annotations
 import sys
 from typing import TYPE_CHECKING, Any
 
-from pumplink.output.formats import console, num, write_csv
+from pumplink.output.formats import console, num, render
 from pumplink.output.formats import fmt as _f
-from pumplink.output.formats import write_json as _json
 
 if TYPE_CHECKING:
     pass
@@ -97,9 +96,11 @@ def optimize_row(res) -> dict[str, Any]:
 def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = False) -> None:
     """`pumplink optimize`: variables, forces and verdicts, constraints and what binds."""
     out = out or sys.stdout
-    if fmt == "json":
-        return _json(row, out)
-    if fmt == "csv":
+
+    def as_json():
+        return row
+
+    def as_csv():
         flat = {
             k: v
             for k, v in row.items()
@@ -117,114 +118,119 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
         for v in row["variables"]:
             flat[f"{v['key']}_optimum"] = v["optimum"]
         flat["binding"] = "; ".join(row["binding"])
-        return write_csv([flat], out)
-    from rich import box
-    from rich.markup import escape
-    from rich.table import Table
+        return [flat]
 
-    c = console(out)
-    fly = row["speed_fluctuation"] is not None  # an energy model decides (flywheel or full dynamics)
-    model = (
-        f"{row['model']}, J = {row['inertia_kg_m2']:.4g} kg·m², δ ≤ {row['speed_fluctuation']:g}, at "
-        f"{row['speed_deg_s']:g} deg/s"
-        if fly
-        else row["model"]
-    )
-    c.print(
-        f"[bold]{escape(row['name'])}[/]: minimise the {row['objective']} operator force "
-        f"(model: {model}; seed {row['seed']}); axle height "
-        f"{row['axle_height_m']:g} m, grip height "
-        f"{row['grip_height_range_m'][0]:g}–{row['grip_height_range_m'][1]:g} m, "
-        f"stroke {row['stroke_range_m'][0]:g}–{row['stroke_range_m'][1]:g} m"
-    )
-    t = Table(title="Variables", title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
-    for h in ("key", "bounds", "spec", "optimum"):
-        t.add_column(h, justify="left" if h == "key" else "right")
-    for v in row["variables"]:
-        t.add_row(
-            f"{v['key']} \\[{v['unit']}]",
-            f"{v['lower']:g} … {v['upper']:g}",
-            f"{v['spec']:.4f}",
-            f"{v['optimum']:.6f}",
+    def table() -> None:
+        from rich import box
+        from rich.markup import escape
+        from rich.table import Table
+
+        c = console(out)
+        fly = row["speed_fluctuation"] is not None  # an energy model decides (flywheel or full dynamics)
+        model = (
+            f"{row['model']}, J = {row['inertia_kg_m2']:.4g} kg·m², δ ≤ {row['speed_fluctuation']:g}, at "
+            f"{row['speed_deg_s']:g} deg/s"
+            if fly
+            else row["model"]
         )
-    c.print(t)
-    o, s = row["optimum"], row["spec_design"]
-    t = Table(
-        title="Forces and verdicts (as pumplink force)",
-        title_justify="left",
-        box=box.SIMPLE_HEAD,
-        pad_edge=False,
-        caption="peak: the verdict's peak"
-        + (f" ({s['model']} / {o['model']})" if fly else " outside the dead bands"),
-        caption_justify="left",
-    )
-    for h in ("design", "peak [N]", "mean [N]", "γ [°]", "verdict"):
-        t.add_column(escape(h), justify="left" if h in ("design", "verdict") else "right")
-    for label, d in (("spec's own design", s), ("[bold]optimum[/]", o)):
-        t.add_row(
-            label,
-            _f(d["peak_force_N"], "{:.2f}", none="∞"),
-            _f(d["mean_force_N"], "{:.2f}"),
-            _f(d["transmission_deg"], "{:.2f}"),
-            OUTCOME_MARKUP[d["verdict"]],
+        c.print(
+            f"[bold]{escape(row['name'])}[/]: minimise the {row['objective']} operator force "
+            f"(model: {model}; seed {row['seed']}); axle height "
+            f"{row['axle_height_m']:g} m, grip height "
+            f"{row['grip_height_range_m'][0]:g}–{row['grip_height_range_m'][1]:g} m, "
+            f"stroke {row['stroke_range_m'][0]:g}–{row['stroke_range_m'][1]:g} m"
         )
-    c.print(t)
-    for label, d in (("spec's own design", s), ("optimum", o)):
-        bad = [ch for ch in d["checks"] if ch["result"] != "pass"]
-        if bad:
+        t = Table(title="Variables", title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
+        for h in ("key", "bounds", "spec", "optimum"):
+            t.add_column(h, justify="left" if h == "key" else "right")
+        for v in row["variables"]:
+            t.add_row(
+                f"{v['key']} \\[{v['unit']}]",
+                f"{v['lower']:g} … {v['upper']:g}",
+                f"{v['spec']:.4f}",
+                f"{v['optimum']:.6f}",
+            )
+        c.print(t)
+        o, s = row["optimum"], row["spec_design"]
+        t = Table(
+            title="Forces and verdicts (as pumplink force)",
+            title_justify="left",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
+            caption="peak: the verdict's peak"
+            + (f" ({s['model']} / {o['model']})" if fly else " outside the dead bands"),
+            caption_justify="left",
+        )
+        for h in ("design", "peak [N]", "mean [N]", "γ [°]", "verdict"):
+            t.add_column(escape(h), justify="left" if h in ("design", "verdict") else "right")
+        for label, d in (("spec's own design", s), ("[bold]optimum[/]", o)):
+            t.add_row(
+                label,
+                _f(d["peak_force_N"], "{:.2f}", none="∞"),
+                _f(d["mean_force_N"], "{:.2f}"),
+                _f(d["transmission_deg"], "{:.2f}"),
+                OUTCOME_MARKUP[d["verdict"]],
+            )
+        c.print(t)
+        for label, d in (("spec's own design", s), ("optimum", o)):
+            bad = [ch for ch in d["checks"] if ch["result"] != "pass"]
+            if bad:
+                c.print(
+                    f"{label}: "
+                    + "; ".join(
+                        f"{ch['result']}s on {ch['name']} {_f(ch['value'], '{:.3g}', none='∞')} {ch['unit']}"
+                        for ch in bad
+                    ),
+                    markup=False,
+                )
+        if not s["meets_constraints"]:
             c.print(
-                f"{label}: "
-                + "; ".join(
-                    f"{ch['result']}s on {ch['name']} {_f(ch['value'], '{:.3g}', none='∞')} {ch['unit']}"
-                    for ch in bad
-                ),
+                f"the spec's own design is outside the search's limits: {'; '.join(s['violated'])}",
                 markup=False,
             )
-    if not s["meets_constraints"]:
-        c.print(
-            f"the spec's own design is outside the search's limits: {'; '.join(s['violated'])}", markup=False
+        t = Table(
+            title="Constraints at the optimum (slack >= 0 is met)",
+            title_justify="left",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
         )
-    t = Table(
-        title="Constraints at the optimum (slack >= 0 is met)",
-        title_justify="left",
-        box=box.SIMPLE_HEAD,
-        pad_edge=False,
-    )
-    for h in ("constraint", "slack", "binding"):
-        t.add_column(h, justify="right" if h == "slack" else "left")
-    for k in row["constraints"]:
-        t.add_row(k["name"], f"{k['slack']:.4g} {k['unit']}", "[bold]binds[/]" if k["binding"] else "")
-    c.print(t)
-    key = "peak_force_N" if row["objective"] == "peak" else "mean_force_N"
-    if row["improvement_N"] is not None:
+        for h in ("constraint", "slack", "binding"):
+            t.add_column(h, justify="right" if h == "slack" else "left")
+        for k in row["constraints"]:
+            t.add_row(k["name"], f"{k['slack']:.4g} {k['unit']}", "[bold]binds[/]" if k["binding"] else "")
+        c.print(t)
+        key = "peak_force_N" if row["objective"] == "peak" else "mean_force_N"
+        if row["improvement_N"] is not None:
+            c.print(
+                f"{row['objective']} force {_f(s[key], '{:.2f}')} N → {_f(o[key], '{:.2f}')} N "
+                f"({row['improvement_pct']:+.1f} % lower than the spec's own design)"
+                if row["improvement_pct"] >= 0
+                else f"the optimum needs {-row['improvement_N']:.2f} N more than the spec's own design, "
+                f"which breaks: {'; '.join(s['violated'])}",
+                markup=False,
+            )
+        c.print(f"binding: {', '.join(row['binding']) or 'none (interior optimum)'}", markup=False)
         c.print(
-            f"{row['objective']} force {_f(s[key], '{:.2f}')} N → {_f(o[key], '{:.2f}')} N "
-            f"({row['improvement_pct']:+.1f} % lower than the spec's own design)"
-            if row["improvement_pct"] >= 0
-            else f"the optimum needs {-row['improvement_N']:.2f} N more than the spec's own design, "
-            f"which breaks: {'; '.join(s['violated'])}",
+            f"grip {o['grip_height_m'][0]:.3f}–{o['grip_height_m'][1]:.3f} m, stroke {o['stroke_m']:.3f} m, "
+            f"rocker pivot {o['rocker_pivot_height_m']:+.3f} m above the ground"
+            f"{' (below ground: needs a pit)' if o['rocker_pivot_height_m'] < 0 else ''}",
             markup=False,
         )
-    c.print(f"binding: {', '.join(row['binding']) or 'none (interior optimum)'}", markup=False)
-    c.print(
-        f"grip {o['grip_height_m'][0]:.3f}–{o['grip_height_m'][1]:.3f} m, stroke {o['stroke_m']:.3f} m, "
-        f"rocker pivot {o['rocker_pivot_height_m']:+.3f} m above the ground"
-        f"{' (below ground: needs a pit)' if o['rocker_pivot_height_m'] < 0 else ''}",
-        markup=False,
-    )
-    if not o["pass"]:
+        if not o["pass"]:
+            c.print(
+                "no design inside these bounds and limits passes: the best one found still fails "
+                f"({', '.join(ch['name'] for ch in o['checks'] if ch['result'] == 'fail')}); "
+                f"it is held back by: {', '.join(row['binding']) or 'nothing at a bound'}. "
+                "Widen the bounds that bind (--vary), or relax --grip-height / --stroke.",
+                markup=False,
+            )
+        tail = " — fails under --strict" if strict and o["verdict"] == "PASS with warnings" else ""
+        how = f" ({o['model']})" if fly else ""
         c.print(
-            "no design inside these bounds and limits passes: the best one found still fails "
-            f"({', '.join(ch['name'] for ch in o['checks'] if ch['result'] == 'fail')}); "
-            f"it is held back by: {', '.join(row['binding']) or 'nothing at a bound'}. "
-            "Widen the bounds that bind (--vary), or relax --grip-height / --stroke.",
-            markup=False,
+            f"VERDICT: {OUTCOME_MARKUP[o['verdict']]} for the optimum: peak{how} "
+            f"{_f(o['peak_force_N'], '{:.2f}', none='∞')} N vs limit {row['force_limit_N']:g} N "
+            f"({row['evaluations']} designs evaluated, {row['generations']} generations"
+            f"{', polished' if row['polished'] else ''}){tail}"
         )
-    tail = " — fails under --strict" if strict and o["verdict"] == "PASS with warnings" else ""
-    how = f" ({o['model']})" if fly else ""
-    c.print(
-        f"VERDICT: {OUTCOME_MARKUP[o['verdict']]} for the optimum: peak{how} "
-        f"{_f(o['peak_force_N'], '{:.2f}', none='∞')} N vs limit {row['force_limit_N']:g} N "
-        f"({row['evaluations']} designs evaluated, {row['generations']} generations"
-        f"{', polished' if row['polished'] else ''}){tail}"
-    )
+
+    render(fmt, out, as_json=as_json, as_csv=as_csv, table=table)

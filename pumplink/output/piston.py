@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.output.formats import console, deg, num, write_csv, write_json
+from pumplink.output.formats import console, deg, num, render
 from pumplink.output.formats import fmt as _f
 from pumplink.output.words import check_row as verdict_check_row
 
@@ -146,88 +146,96 @@ def render_force(r, fmt: str, summary: bool = False, out=None, why=None, check=N
     out = out or sys.stdout
     row = summary_row(r)
     samples = [] if summary else sample_rows(r)
-    if fmt == "json":
+
+    def as_json():
         extra = {}
         if why is not None:
             extra["explain"] = {"model": row.get("model"), "why": why}
         if check is not None:
             extra["verify"] = check_row(check)
-        return write_json({**row, **extra, **({} if summary else {"samples": samples})}, out)
-    if fmt == "csv":
-        return write_csv(samples if samples else [row], out)
-    from rich.markup import escape
-    from rich.table import Table
+        return {**row, **extra, **({} if summary else {"samples": samples})}
 
-    c = console(out)
-    c.print(f"[bold]{escape(row['name'])}[/]\nsingle-acting piston pump, crank-slider turned by a hand crank")
-    if not row["feasible"]:
-        c.print(_verdict_line(row), markup=False)
-        return
-    c.print(
-        f"crank r = {row['crank_m']:.4g} m, rod l = {row['rod_m']:.4g} m, "
-        f"offset e = {row['offset_m']:.4g} m, "
-        f"handle R = {row['handle_m']:.4g} m\n"
-        f"bore {row['bore_m'] * 1000:.4g} mm, head {row['head_m']:.4g} m: piston force "
-        f"{row['load_force_N']:.1f} N on the working stroke\n"
-        f"stroke H = {row['stroke_m']:.4g} m, time ratio K = {row['time_ratio']:.4f}, crank speed "
-        f"{row['speed_deg_s']:g} deg/s ({row['power_W']:.1f} W)",
-        markup=False,
-    )
-    if samples:
-        step = max(1, math.ceil(len(samples) / TABLE_ROWS))
-        t = Table(
-            title=f"Sweep (every {step} of {len(samples)} samples; --format csv for all)"
-            if step > 1
-            else "Sweep",
-            title_justify="left",
+    def as_csv():
+        return samples if samples else [row]
+
+    def table() -> None:
+        from rich.markup import escape
+        from rich.table import Table
+
+        c = console(out)
+        c.print(
+            f"[bold]{escape(row['name'])}[/]\nsingle-acting piston pump, crank-slider turned by a hand crank"
         )
-        for h in ("crank [deg]", "slider [m]", "ds/dθ [m]", "torque [N·m]", "force [N]", "λ [deg]"):
-            t.add_column(escape(h), justify="right")
-        for s in samples[::step]:
-            t.add_row(
-                _f(s["crank_angle_deg"], "{:.2f}"),
-                _f(s["slider_position_m"], "{:.4f}"),
-                _f(s["velocity_ratio_m_per_rad"], "{:+.4f}"),
-                _f(s["crank_torque_Nm"], "{:.2f}"),
-                _f(s["operator_force_N"], "{:.2f}"),
-                _f(s["pressure_angle_deg"], "{:.2f}"),
+        if not row["feasible"]:
+            c.print(_verdict_line(row), markup=False)
+            return
+        c.print(
+            f"crank r = {row['crank_m']:.4g} m, rod l = {row['rod_m']:.4g} m, "
+            f"offset e = {row['offset_m']:.4g} m, "
+            f"handle R = {row['handle_m']:.4g} m\n"
+            f"bore {row['bore_m'] * 1000:.4g} mm, head {row['head_m']:.4g} m: piston force "
+            f"{row['load_force_N']:.1f} N on the working stroke\n"
+            f"stroke H = {row['stroke_m']:.4g} m, time ratio K = {row['time_ratio']:.4f}, crank speed "
+            f"{row['speed_deg_s']:g} deg/s ({row['power_W']:.1f} W)",
+            markup=False,
+        )
+        if samples:
+            step = max(1, math.ceil(len(samples) / TABLE_ROWS))
+            t = Table(
+                title=f"Sweep (every {step} of {len(samples)} samples; --format csv for all)"
+                if step > 1
+                else "Sweep",
+                title_justify="left",
             )
-        c.print(t)
-    t = Table(title="Checks", title_justify="left")
-    for h in ("check", "value", "limit", "result"):
-        t.add_column(h, justify="left" if h == "check" else "right")
-    for ch in row["checks"]:
-        label = ch["name"]
-        if ch["key"] == "peak_force":
-            label += " (flywheel)" if row["least_peak_force_N"] is not None else " (quasi-st.)"
+            for h in ("crank [deg]", "slider [m]", "ds/dθ [m]", "torque [N·m]", "force [N]", "λ [deg]"):
+                t.add_column(escape(h), justify="right")
+            for s in samples[::step]:
+                t.add_row(
+                    _f(s["crank_angle_deg"], "{:.2f}"),
+                    _f(s["slider_position_m"], "{:.4f}"),
+                    _f(s["velocity_ratio_m_per_rad"], "{:+.4f}"),
+                    _f(s["crank_torque_Nm"], "{:.2f}"),
+                    _f(s["operator_force_N"], "{:.2f}"),
+                    _f(s["pressure_angle_deg"], "{:.2f}"),
+                )
+            c.print(t)
+        t = Table(title="Checks", title_justify="left")
+        for h in ("check", "value", "limit", "result"):
+            t.add_column(h, justify="left" if h == "check" else "right")
+        for ch in row["checks"]:
+            label = ch["name"]
+            if ch["key"] == "peak_force":
+                label += " (flywheel)" if row["least_peak_force_N"] is not None else " (quasi-st.)"
+            t.add_row(
+                label,
+                f"{_f(ch['value'], '{:.2f}')} {ch['unit']}",
+                f"{ch['relation']} {ch['fail_limit']:g} {ch['unit']}",
+                {"pass": "pass", "warn": "warning", "fail": "FAIL"}[ch["result"]],
+            )
+        lo, hi = row["permissible_pressure_angle_deg"]
+        lam = row["largest_pressure_angle_deg"]
         t.add_row(
-            label,
-            f"{_f(ch['value'], '{:.2f}')} {ch['unit']}",
-            f"{ch['relation']} {ch['fail_limit']:g} {ch['unit']}",
-            {"pass": "pass", "warn": "warning", "fail": "FAIL"}[ch["result"]],
+            "largest pressure angle (rod/piston)",
+            f"{lam:.2f} deg",
+            f"<= {lo:g} ({hi:g}) deg",
+            "ok" if lam <= lo else ("marginal" if lam <= hi else "warn"),
         )
-    lo, hi = row["permissible_pressure_angle_deg"]
-    lam = row["largest_pressure_angle_deg"]
-    t.add_row(
-        "largest pressure angle (rod/piston)",
-        f"{lam:.2f} deg",
-        f"<= {lo:g} ({hi:g}) deg",
-        "ok" if lam <= lo else ("marginal" if lam <= hi else "warn"),
-    )
-    c.print(t)
-    if row["least_peak_force_N"] is not None:
-        c.print(
-            f"model: flywheel (J = {row['inertia_kg_m2']:.4g} kg·m², energy band "
-            f"{row['energy_band_J']:.4g} J; quasi-static peak {row['quasi_static_peak_N']:.1f} N)",
-            markup=False,
-        )
-    else:
-        c.print(
-            f"model: quasi-static (peak at crank {row['quasi_static_peak_angle_deg']:.1f}°;\n"
-            "  the operator turns the crank, so there is no dead centre)",
-            markup=False,
-        )
-    c.print(_verdict_line(row), markup=False)
+        c.print(t)
+        if row["least_peak_force_N"] is not None:
+            c.print(
+                f"model: flywheel (J = {row['inertia_kg_m2']:.4g} kg·m², energy band "
+                f"{row['energy_band_J']:.4g} J; quasi-static peak {row['quasi_static_peak_N']:.1f} N)",
+                markup=False,
+            )
+        else:
+            c.print(
+                f"model: quasi-static (peak at crank {row['quasi_static_peak_angle_deg']:.1f}°;\n"
+                "  the operator turns the crank, so there is no dead centre)",
+                markup=False,
+            )
+        c.print(_verdict_line(row), markup=False)
+
+    render(fmt, out, as_json=as_json, as_csv=as_csv, table=table)
 
 
 #: Columns of a piston-pump batch row in CSV and Parquet, in order (the JSON rows add

@@ -10,9 +10,8 @@ import math
 import sys
 from typing import TYPE_CHECKING, Any
 
-from pumplink.output.formats import console, deg, num, write_csv
+from pumplink.output.formats import console, deg, num, render
 from pumplink.output.formats import fmt as _f
-from pumplink.output.formats import write_json as _json
 
 if TYPE_CHECKING:
     from pumplink.studies.speed import SpeedSweep
@@ -126,62 +125,68 @@ def render_speed(sw: SpeedSweep, fmt: str, out=None) -> None:
     speed, the verdict at each speed, the best cadence and the passing speeds."""
     out = out or sys.stdout
     rows = speed_rows(sw)
-    if fmt == "json":
-        return _json({**speed_summary(sw), "speeds": rows}, out)
-    if fmt == "csv":
-        return write_csv(rows, out)
-    from rich import box
-    from rich.markup import escape
-    from rich.table import Table
 
-    c = console(out)
-    t = Table(
-        title=f"{escape(sw.design.spec.name)}: least peak operator force against mean wheel speed "
-        f"(J = {sw.inertia:.3f} kg·m², δ ≤ {sw.speed_fluctuation:g})",
-        title_justify="left",
-        box=box.SIMPLE_HEAD,
-        pad_edge=False,
-        caption="flywheel: links neglected; dynamics: links' inertia and weight (the hand force); "
-        "effort: + the operator's arms; bold: the model that decides (least that is enough); "
-        "v: peak grip speed; warn: PASS with warnings (docs/models.md §3-4)",
-        caption_justify="left",
-    )
-    for h in (
-        "speed [°/s]",
-        "rpm",
-        "flywheel [N]",
-        "dynamics [N]",
-        "effort [N]",
-        "power [W]",
-        "v [m/s]",
-        "verdict",
-    ):
-        t.add_column(escape(h), justify="left" if h == "verdict" else "right")
-    for r in rows:
-        fly, dyn = (
-            _f(r["flywheel_peak_force_N"], "{:.1f}", "∞"),
-            _f(r["dynamics_peak_force_N"], "{:.1f}", "∞"),
+    def as_json():
+        return {**speed_summary(sw), "speeds": rows}
+
+    def as_csv():
+        return rows
+
+    def table() -> None:
+        from rich import box
+        from rich.markup import escape
+        from rich.table import Table
+
+        c = console(out)
+        t = Table(
+            title=f"{escape(sw.design.spec.name)}: least peak operator force against mean wheel speed "
+            f"(J = {sw.inertia:.3f} kg·m², δ ≤ {sw.speed_fluctuation:g})",
+            title_justify="left",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
+            caption="flywheel: links neglected; dynamics: links' inertia and weight (the hand force); "
+            "effort: + the operator's arms; bold: the model that decides (least that is enough); "
+            "v: peak grip speed; warn: PASS with warnings (docs/models.md §3-4)",
+            caption_justify="left",
         )
-        if r["model"] == "flywheel":
-            fly = f"[bold]{fly}[/]"
-        elif r["model"] == "full dynamics":
-            dyn = f"[bold]{dyn}[/]"
-        t.add_row(
-            f"{r['speed_deg_s']:g}",
-            f"{r['speed_deg_s'] / 6:.0f}",
-            fly,
-            dyn,
-            _f(r["effort_peak_force_N"], "{:.1f}", "∞"),
-            _f(r["power_W"], "{:.0f}"),
-            _f(r["grip_speed_m_s"], "{:.2f}"),
-            {"PASS": "[green]PASS[/]", "FAIL": "[red]FAIL[/]"}.get(r["verdict"], "[yellow]warn[/]"),
+        for h in (
+            "speed [°/s]",
+            "rpm",
+            "flywheel [N]",
+            "dynamics [N]",
+            "effort [N]",
+            "power [W]",
+            "v [m/s]",
+            "verdict",
+        ):
+            t.add_column(escape(h), justify="left" if h == "verdict" else "right")
+        for r in rows:
+            fly, dyn = (
+                _f(r["flywheel_peak_force_N"], "{:.1f}", "∞"),
+                _f(r["dynamics_peak_force_N"], "{:.1f}", "∞"),
+            )
+            if r["model"] == "flywheel":
+                fly = f"[bold]{fly}[/]"
+            elif r["model"] == "full dynamics":
+                dyn = f"[bold]{dyn}[/]"
+            t.add_row(
+                f"{r['speed_deg_s']:g}",
+                f"{r['speed_deg_s'] / 6:.0f}",
+                fly,
+                dyn,
+                _f(r["effort_peak_force_N"], "{:.1f}", "∞"),
+                _f(r["power_W"], "{:.0f}"),
+                _f(r["grip_speed_m_s"], "{:.2f}"),
+                {"PASS": "[green]PASS[/]", "FAIL": "[red]FAIL[/]"}.get(r["verdict"], "[yellow]warn[/]"),
+            )
+        c.print(t)
+        c.print(
+            f"mean force {sw.mean_force:.1f} N (the floor: an infinite flywheel); quasi-static peak "
+            f"outside the dead band {sw.dead_band_peak_force:.1f} N (the dead-band model, blind to speed)",
+            markup=False,
         )
-    c.print(t)
-    c.print(
-        f"mean force {sw.mean_force:.1f} N (the floor: an infinite flywheel); quasi-static peak "
-        f"outside the dead band {sw.dead_band_peak_force:.1f} N (the dead-band model, blind to speed)",
-        markup=False,
-    )
-    if sw.cadence is not None:
-        for line in cadence_lines(sw.cadence, sw.force_limit):
-            c.print(line, markup=False)
+        if sw.cadence is not None:
+            for line in cadence_lines(sw.cadence, sw.force_limit):
+                c.print(line, markup=False)
+
+    render(fmt, out, as_json=as_json, as_csv=as_csv, table=table)

@@ -10,9 +10,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from pumplink.output.formats import console, deg, num, write_csv
+from pumplink.output.formats import console, deg, num, render
 from pumplink.output.formats import fmt as _f
-from pumplink.output.formats import write_json as _json
 
 if TYPE_CHECKING:
     pass
@@ -87,94 +86,102 @@ def transmission_rows(opt, sim, comparisons=(), printed_gamma_min=None, check=No
 def render_transmission(row: dict[str, Any], fmt: str, out=None) -> None:
     """`pumplink transmission`: the optimum, its simulation and the comparison rows."""
     out = out or sys.stdout
-    if fmt == "json":
-        return _json(row, out)
-    if fmt == "csv":
+
+    def as_json():
+        return row
+
+    def as_csv():
         flat = {k: v for k, v in row.items() if k not in ("compare", "checks")}
         flat.update({f"check_{ch['key']}": ch["result"] for ch in row.get("checks", ())})
-        return write_csv([flat], out)
-    from rich.markup import escape
-    from rich.table import Table
+        return [flat]
 
-    from pumplink.output.mechanisms import print_wrapped, render_verdict
+    def table() -> None:
+        from rich.markup import escape
+        from rich.table import Table
 
-    c = console(out)
-    c.print(
-        f"[bold]Optimal-transmission crank-rocker[/] for K = {row['time_ratio']:g} "
-        f"(θ = {row['theta_deg']:.6f}°), swing φ = {row['swing_deg']:g}°, rocker = {row['rocker']:g}"
-    )
-    from rich import box
+        from pumplink.output.mechanisms import print_wrapped, render_verdict
 
-    t = Table(
-        title="Link lengths (in the rocker's unit) and transmission angle",
-        title_justify="left",
-        box=box.SIMPLE_HEAD,
-        pad_edge=False,
-        caption="(1) optimum (this tool)"
-        + "".join(f"; ({n}) {escape(cmp['design'])}" for n, cmp in enumerate(row["compare"], 2)),
-        caption_justify="left",
-    )
-    sim = row["simulated"]
-    cols = [
-        {
-            "crank": row["crank"],
-            "coupler": row["coupler"],
-            "rocker": row["rocker"],
-            "frame": row["frame"],
-            "ratio": row["rocker_to_frame"],
-            "gamma": row["min_transmission_deg"],
-            "swing": sim["swing_deg"],
-            "k": sim["time_ratio"],
-        }
-    ] + [
-        {
-            "crank": cmp["crank"],
-            "coupler": cmp["coupler"],
-            "rocker": cmp["rocker"],
-            "frame": cmp["frame"],
-            "ratio": cmp["rocker"] / cmp["frame"],
-            "gamma": cmp["min_transmission_deg"],
-            "swing": cmp["simulated_swing_deg"],
-            "k": cmp["simulated_time_ratio"],
-        }
-        for cmp in row["compare"]
-    ]
-    t.add_column("quantity", no_wrap=True)
-    for n in range(1, len(cols) + 1):
-        t.add_column(f"({n})", justify="right")
-    for label, key, f in (
-        ("crank", "crank", "{:.6f}"),
-        ("coupler", "coupler", "{:.6f}"),
-        ("rocker", "rocker", "{:.6f}"),
-        ("frame", "frame", "{:.6f}"),
-        ("rocker / frame", "ratio", "{:.6f}"),
-        ("min transmission [°]", "gamma", "{:.9f}"),
-        ("simulated swing [°]", "swing", "{:.9f}"),
-        ("simulated K", "k", "{:.9f}"),
-    ):
-        t.add_row(escape(label), *(_f(col[key], f) for col in cols))
-    c.print(t)
-    c.print(
-        f"γmin = {row['gamma_min_deg']:.9f}°, γmax = {row['gamma_max_deg']:.9f}°; binding: {row['binding']}; "
-        f"crank pivot on the {row['crank_pivot_side']}"
-    )
-    for cmp in row["compare"]:
+        c = console(out)
         c.print(
-            f"optimum is better than the {cmp['design']} by {cmp['ours_better_by_deg']:.9f}°", markup=False
+            f"[bold]Optimal-transmission crank-rocker[/] for K = {row['time_ratio']:g} "
+            f"(θ = {row['theta_deg']:.6f}°), swing φ = {row['swing_deg']:g}°, rocker = {row['rocker']:g}"
         )
-    if row["compare"]:
+        from rich import box
+
+        t = Table(
+            title="Link lengths (in the rocker's unit) and transmission angle",
+            title_justify="left",
+            box=box.SIMPLE_HEAD,
+            pad_edge=False,
+            caption="(1) optimum (this tool)"
+            + "".join(f"; ({n}) {escape(cmp['design'])}" for n, cmp in enumerate(row["compare"], 2)),
+            caption_justify="left",
+        )
+        sim = row["simulated"]
+        cols = [
+            {
+                "crank": row["crank"],
+                "coupler": row["coupler"],
+                "rocker": row["rocker"],
+                "frame": row["frame"],
+                "ratio": row["rocker_to_frame"],
+                "gamma": row["min_transmission_deg"],
+                "swing": sim["swing_deg"],
+                "k": sim["time_ratio"],
+            }
+        ] + [
+            {
+                "crank": cmp["crank"],
+                "coupler": cmp["coupler"],
+                "rocker": cmp["rocker"],
+                "frame": cmp["frame"],
+                "ratio": cmp["rocker"] / cmp["frame"],
+                "gamma": cmp["min_transmission_deg"],
+                "swing": cmp["simulated_swing_deg"],
+                "k": cmp["simulated_time_ratio"],
+            }
+            for cmp in row["compare"]
+        ]
+        t.add_column("quantity", no_wrap=True)
+        for n in range(1, len(cols) + 1):
+            t.add_column(f"({n})", justify="right")
+        for label, key, f in (
+            ("crank", "crank", "{:.6f}"),
+            ("coupler", "coupler", "{:.6f}"),
+            ("rocker", "rocker", "{:.6f}"),
+            ("frame", "frame", "{:.6f}"),
+            ("rocker / frame", "ratio", "{:.6f}"),
+            ("min transmission [°]", "gamma", "{:.9f}"),
+            ("simulated swing [°]", "swing", "{:.9f}"),
+            ("simulated K", "k", "{:.9f}"),
+        ):
+            t.add_row(escape(label), *(_f(col[key], f) for col in cols))
+        c.print(t)
         c.print(
-            f"(the paper prints γmin = {row['printed_gamma_min_deg']}° for its diagram design; "
-            "its own Eq. (4) gives the value above)",
-            markup=False,
+            f"γmin = {row['gamma_min_deg']:.9f}°, γmax = {row['gamma_max_deg']:.9f}°; "
+            f"binding: {row['binding']}; "
+            f"crank pivot on the {row['crank_pivot_side']}"
         )
-    if "verdict" in row:
-        print_wrapped(
-            c,
-            "SIMULATION: agrees — the linkage swings through the asked swing with the asked K and "
-            "the optimum's transmission angle"
-            if row["simulation_agrees"]
-            else "SIMULATION: disagrees — the simulated linkage does NOT do what was asked (its "
-            "swing, K or transmission angle differ, or it does not run)",
-        )
-        render_verdict(c, row)
+        for cmp in row["compare"]:
+            c.print(
+                f"optimum is better than the {cmp['design']} by {cmp['ours_better_by_deg']:.9f}°",
+                markup=False,
+            )
+        if row["compare"]:
+            c.print(
+                f"(the paper prints γmin = {row['printed_gamma_min_deg']}° for its diagram design; "
+                "its own Eq. (4) gives the value above)",
+                markup=False,
+            )
+        if "verdict" in row:
+            print_wrapped(
+                c,
+                "SIMULATION: agrees — the linkage swings through the asked swing with the asked K and "
+                "the optimum's transmission angle"
+                if row["simulation_agrees"]
+                else "SIMULATION: disagrees — the simulated linkage does NOT do what was asked (its "
+                "swing, K or transmission angle differ, or it does not run)",
+            )
+            render_verdict(c, row)
+
+    render(fmt, out, as_json=as_json, as_csv=as_csv, table=table)
