@@ -53,12 +53,11 @@ GRIP_SPEED_WARN_M_S = 2.5
 #: accelerates at ~2 v^2 / stroke >= 23 m/s^2, and ~5 kg of hands and forearms need more than the
 #: 100 N force limit just to follow it (docs/models.md §4).
 GRIP_SPEED_FAIL_M_S = 4.0
-#: Grip height above the ground over the swing [m], checked (warn) when the axle height is known.
-#: No checkable source was found for this range (or for the "efficient push height ~0.84 m" quoted
-#: with it); it is kept so that a spec without an operator profile keeps its verdict.  The profiles
-#: of pumplink.profiles use the UK HSE push/pull zone, hands between knuckle and shoulder height
-#: (docs/operators.md §3).
-GRIP_HEIGHT_RANGE_M = (0.5, 0.9)
+#: Grip height above the ground over the swing [m], checked (warn) when the axle height is known:
+#: the men's profile (pumplink.profiles.MEN), hands between knuckle and shoulder height as UK HSE's
+#: push/pull guideline figures assume, for British men from the 5th to the 95th percentile of
+#: stature (docs/operators.md §3).  Each profile has its own; this is the default's.
+GRIP_HEIGHT_RANGE_M = (0.90, 1.33)
 #: Longest comfortable horizontal grip stroke [m]: the pump paper's prototype (Delta theta = 60 deg,
 #: H = 1 m) has 1.0 m; a longer stroke makes a standing operator step or lean (warn).
 STROKE_LIMIT_M = 1.0

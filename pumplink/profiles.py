@@ -9,25 +9,15 @@ carries a :class:`Source`: the text a reader can check and its basis, one of
 * ``"secondary"``: read only in a secondary citation of the source named;
 * ``"derived"``: computed from other values by the reasoning given (docs/operators.md).
 
-:data:`DEFAULT_PROFILE` holds today's limits of :mod:`pumplink.constants`, so a spec without a
-profile keeps its verdict.  It equals ``PROFILES["men"]`` except for the grip-height range
-(docs/operators.md §6).
+:data:`DEFAULT_PROFILE` is the men's: every limit of the verdict has a source.  The grip-height
+range 0.5-0.9 m used before profiles existed had none and is gone (docs/operators.md §6).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Literal
-
-from pumplink.constants import (
-    FORCE_LIMIT_N,
-    GRIP_HEIGHT_RANGE_M,
-    GRIP_SPEED_FAIL_M_S,
-    GRIP_SPEED_WARN_M_S,
-    HOUR_POWER_W,
-    SUSTAINED_POWER_W,
-)
 
 Basis = Literal["source", "secondary", "derived"]
 
@@ -252,23 +242,24 @@ ACCESSIBLE = _profile(
 #: The profiles by name (docs/operators.md).
 PROFILES = MappingProxyType({p.name: p for p in (MEN, WOMEN, CHILDREN, ACCESSIBLE)})
 
-#: Today's limits (pumplink.constants): the profile of a spec that names none.
-DEFAULT_PROFILE = _profile(
-    "default",
-    dict(
-        force_limit=FORCE_LIMIT_N,
-        sustained_power=SUSTAINED_POWER_W,
-        hour_power=HOUR_POWER_W,
-        grip_height_range=tuple(GRIP_HEIGHT_RANGE_M),
-        grip_speed_warn=GRIP_SPEED_WARN_M_S,
-        grip_speed_fail=GRIP_SPEED_FAIL_M_S,
-    ),
-    dict(
-        {k: MEN.sources[k] for k in FIELDS if k != "grip_height_range"},
-        grip_height_range=Source(
-            "no checkable source found (docs/references.md [ergonomics]); kept so that a spec "
-            "without a profile keeps its verdict",
-            "derived",
-        ),
-    ),
-)
+#: The profile of a spec that names none: the men's, the operator the 100 N force limit was
+#: always meant for (UK HSE); every one of its limits has a source (docs/operators.md).
+DEFAULT_PROFILE = MEN
+
+
+def operator_limits(value) -> OperatorProfile:
+    """The operator's limits from spec values: ``value("operator.profile")`` names the profile
+    (None: the default, the men's), and each of its limits a ``value("operator.<key>")`` that is
+    not None replaces (a float, or an array over designs)."""
+    name = value("operator.profile")
+    base = DEFAULT_PROFILE if name is None else PROFILES[name]
+    lo, hi = base.grip_height_range
+    lo, hi = (
+        base if v is None else v
+        for base, v in ((lo, value("operator.grip_height_min")), (hi, value("operator.grip_height_max")))
+    )
+    given = {
+        k: value(f"operator.{k}")
+        for k in ("force_limit", "sustained_power", "hour_power", "grip_speed_warn", "grip_speed_fail")
+    }
+    return replace(base, grip_height_range=(lo, hi), **{k: v for k, v in given.items() if v is not None})

@@ -191,6 +191,9 @@ def assess(
     stroke=None,
     grip_height=None,
     axle_height=None,
+    power_limits=(SUSTAINED_POWER_W, HOUR_POWER_W),
+    grip_speed_limits=(GRIP_SPEED_WARN_M_S, GRIP_SPEED_FAIL_M_S),
+    grip_height_range=GRIP_HEIGHT_RANGE_M,
 ) -> Verdict:
     """Decide the checks and the verdict.
 
@@ -208,6 +211,10 @@ def assess(
     grip_height : (lowest, highest) grip height above the ground over the swing [m]; only known
         with the axle height.
     axle_height : wheel-axle height above the ground [m].
+    power_limits : (warn, fail) [W]: the power the operator sustains for hours and for an hour.
+    grip_speed_limits : (warn, fail) [m/s].
+    grip_height_range : (lowest, highest) comfortable grip height [m].
+    The limits are the operator profile's (:mod:`pumplink.profiles`; floats or arrays over designs).
 
     Optional checks are left out when their input is None.
     """
@@ -232,7 +239,7 @@ def assess(
             )
         )
     if power is not None:
-        checks.append(check("power", power, "<=", "W", feasible, warn=SUSTAINED_POWER_W, fail=HOUR_POWER_W))
+        checks.append(check("power", power, "<=", "W", feasible, warn=power_limits[0], fail=power_limits[1]))
     if grip_speed is not None:
         checks.append(
             check(
@@ -241,15 +248,15 @@ def assess(
                 "<=",
                 "m/s",
                 feasible,
-                warn=GRIP_SPEED_WARN_M_S,
-                fail=GRIP_SPEED_FAIL_M_S,
+                warn=grip_speed_limits[0],
+                fail=grip_speed_limits[1],
             )
         )
     if stroke is not None:
         checks.append(check("stroke", stroke, "<=", "m", feasible, warn=STROKE_LIMIT_M))
     if grip_height is not None:
         low, high = (np.asarray(h, float) for h in grip_height)
-        lo, hi = GRIP_HEIGHT_RANGE_M
+        lo, hi = (np.asarray(x, float) for x in grip_height_range)
         # the side that is out of range (the low end first), else the highest point
         value = np.where(low < lo, low, high)
         checks.append(_range("grip_height", value, (lo, hi), "m", feasible))

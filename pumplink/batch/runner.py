@@ -323,6 +323,7 @@ def _piston_chunk(batch: Batch, start: int, stop: int, batch_index: int, values,
         k: np.broadcast_to(np.asarray(value(k) if value(k) is not None else 0.0, float), (n,))
         for k in PISTON_KEYS
     }
+    spec["operator.force_limit"] = np.broadcast_to(np.asarray(ev.designs.force_limit, float), (n,))
     reasons: list = [None] * n
     for i in np.nonzero(~ev.feasible)[0].tolist():
         reasons[i] = cs.infeasibility_reason(

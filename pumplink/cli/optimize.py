@@ -60,8 +60,13 @@ def optimize(
         ),
     ] = None,
     grip_height: Annotated[
-        str, typer.Option(help="Allowed grip height above ground over the swing, LO:HI \\[m].")
-    ] = "0.5:0.9",
+        Optional[str],
+        typer.Option(
+            help="Allowed grip height above ground over the swing, LO:HI \\[m] (default: the operator "
+            "profile's, 0.9:1.33 for men).",
+            show_default=False,
+        ),
+    ] = None,
     stroke: Annotated[str, typer.Option(help="Allowed horizontal grip stroke, LO:HI \\[m].")] = "0:1.0",
     write: Annotated[
         Optional[Path], typer.Option(help="Write the optimum as a new spec (TOML).", show_default=False)
@@ -84,11 +89,11 @@ def optimize(
     Example: [bold]pumplink optimize configs/prototype.toml --write best.toml[/]
     """  # noqa: E501 -- typer prints this docstring as the --help text, keeping its line breaks
     from pumplink.output.optimize import optimize_row, render_optimize
-    from pumplink.search.optimize import GRIP_HEIGHT_M, STROKE_M, make_problem, parse_bounds, parse_range
+    from pumplink.search.optimize import STROKE_M, make_problem, parse_bounds, parse_range
     from pumplink.search.optimize import optimize as run
 
     bounds = parse_bounds(vary)
-    gh = parse_range("grip-height", grip_height, GRIP_HEIGHT_M)
+    gh = None if grip_height is None else parse_range("grip-height", grip_height, (0.9, 1.33))
     st = parse_range("stroke", stroke, STROKE_M)
     if write is not None and write.exists() and not overwrite:
         raise SpecError(f"{write} exists; choose another path or add --force to overwrite it")

@@ -31,7 +31,14 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.constants import DEFAULT_ARM_MASS, LINK_MASS_PER_METRE
+from pumplink.constants import (
+    DEFAULT_ARM_MASS,
+    DEFAULT_DAILY_PUMPING_HOURS,
+    DEFAULT_EFFICIENCY,
+    DEFAULT_LITRES_PER_PERSON_DAY,
+    DEFAULT_VOLUMETRIC_EFFICIENCY,
+    LINK_MASS_PER_METRE,
+)
 from pumplink.mechanisms import crank_slider as cs
 from pumplink.mechanisms.fourbar import (
     FourBar,
@@ -44,7 +51,9 @@ from pumplink.mechanisms.fourbar import (
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, Conditions, Masses
 from pumplink.models import load as _load
 from pumplink.models import quasi_static as _qs
+from pumplink.models import water as _water_kernels
 from pumplink.models.choice import EnergyModel, energy_model
+from pumplink.profiles import DEFAULT_PROFILE, operator_limits
 from pumplink.verdict import Verdict, assess
 
 #: Spec keys that give the wheel's inertia (the flywheel or full dynamics can then decide).
@@ -75,6 +84,12 @@ class PumpDesigns:
     coupler_mass, handle_mass : [kg] (NaN: bars of ``mass_per_length``);  arm_mass : [kg].
     arms_in_verdict : the operator's arms in the verdict's force (one flag for all designs).
     axle_height : [m], or None (no height checks).
+    head, pipe_diameter : pumping head and rising-main bore [m] (NaN: the spec gives a rope force,
+        so there is no flow);  force_efficiency, volumetric_efficiency : [-].
+    sustained_power, hour_power : the operator's power for hours and for an hour [W];
+    grip_height_min, grip_height_max [m], grip_speed_warn, grip_speed_fail [m/s]: the operator
+    profile's limits (:mod:`pumplink.profiles`, with the spec's own keys instead where given).
+    hours_per_day [h], litres_per_person_day [l]: how the water is used (the people it serves).
     """
 
     L1: Any
@@ -96,6 +111,18 @@ class PumpDesigns:
     coupler_mass: Any
     handle_mass: Any
     arm_mass: Any
+    head: Any = np.nan
+    pipe_diameter: Any = np.nan
+    force_efficiency: Any = DEFAULT_EFFICIENCY
+    volumetric_efficiency: Any = DEFAULT_VOLUMETRIC_EFFICIENCY
+    sustained_power: Any = DEFAULT_PROFILE.sustained_power
+    hour_power: Any = DEFAULT_PROFILE.hour_power
+    grip_height_min: Any = DEFAULT_PROFILE.grip_height_range[0]
+    grip_height_max: Any = DEFAULT_PROFILE.grip_height_range[1]
+    grip_speed_warn: Any = DEFAULT_PROFILE.grip_speed_warn
+    grip_speed_fail: Any = DEFAULT_PROFILE.grip_speed_fail
+    hours_per_day: Any = DEFAULT_DAILY_PUMPING_HOURS
+    litres_per_person_day: Any = DEFAULT_LITRES_PER_PERSON_DAY
     arms_in_verdict: bool = False
     axle_height: Any = None
 
@@ -120,6 +147,8 @@ def pump_designs(value: Callable[[str], Any], speed=None) -> PumpDesigns:
     rope = _load.rope_force(
         value("load.rope_force"), value("load.head"), value("load.pipe_diameter"), value("load.efficiency")
     )
+    limits = operator_limits(value)
+    by_head = value("load.head") is not None
     return PumpDesigns(
         L1=value("linkage.L1"),
         D1=value("linkage.D1"),
@@ -135,11 +164,23 @@ def pump_designs(value: Callable[[str], Any], speed=None) -> PumpDesigns:
         speed=np.radians(value("operator.speed") if speed is None else speed),
         dead_band=np.radians(value("operator.dead_band")),
         speed_fluctuation=value("operator.speed_fluctuation"),
-        force_limit=value("operator.force_limit"),
+        force_limit=limits.force_limit,
         mass_per_length=_or(value("linkage.mass_per_length"), LINK_MASS_PER_METRE),
         coupler_mass=_or(value("linkage.coupler_mass"), np.nan),
         handle_mass=_or(value("linkage.handle_mass"), np.nan),
         arm_mass=_or(value("operator.arm_mass"), DEFAULT_ARM_MASS),
+        head=value("load.head") if by_head else np.nan,
+        pipe_diameter=value("load.pipe_diameter") if by_head else np.nan,
+        force_efficiency=_or(value("load.efficiency"), DEFAULT_EFFICIENCY),
+        volumetric_efficiency=_or(value("load.volumetric_efficiency"), DEFAULT_VOLUMETRIC_EFFICIENCY),
+        sustained_power=limits.sustained_power,
+        hour_power=limits.hour_power,
+        grip_height_min=limits.grip_height_range[0],
+        grip_height_max=limits.grip_height_range[1],
+        grip_speed_warn=limits.grip_speed_warn,
+        grip_speed_fail=limits.grip_speed_fail,
+        hours_per_day=_or(value("use.hours_per_day"), DEFAULT_DAILY_PUMPING_HOURS),
+        litres_per_person_day=_or(value("use.litres_per_person_day"), DEFAULT_LITRES_PER_PERSON_DAY),
         arms_in_verdict=bool(value("operator.arms_in_verdict")),
         axle_height=value("wheel.axle_height"),
     )
@@ -152,6 +193,8 @@ class PistonDesigns:
     crank, rod, offset : r, l, e [m];  handle : radius R of the crank the operator turns [m];
     load_force : the piston's force on its working stroke [N] (Eq. P.1);  speed : [rad/s];
     force_limit : [N];  inertia : J on the crank shaft [kg m^2] (NaN: none);  speed_fluctuation : δ.
+    bore, head [m], force_efficiency, volumetric_efficiency [-]: the flow (docs/water.md);
+    sustained_power, hour_power [W]: the operator profile's;  hours_per_day, litres_per_person_day.
     """
 
     crank: Any
@@ -163,10 +206,19 @@ class PistonDesigns:
     force_limit: Any
     inertia: Any
     speed_fluctuation: Any
+    bore: Any = np.nan
+    head: Any = np.nan
+    force_efficiency: Any = DEFAULT_EFFICIENCY
+    volumetric_efficiency: Any = DEFAULT_VOLUMETRIC_EFFICIENCY
+    sustained_power: Any = DEFAULT_PROFILE.sustained_power
+    hour_power: Any = DEFAULT_PROFILE.hour_power
+    hours_per_day: Any = DEFAULT_DAILY_PUMPING_HOURS
+    litres_per_person_day: Any = DEFAULT_LITRES_PER_PERSON_DAY
 
 
 def piston_designs(value: Callable[[str], Any], speed=None) -> PistonDesigns:
     """The columns of piston pumps from their spec values (``value`` as in :func:`pump_designs`)."""
+    limits = operator_limits(value)
     inertia = np.nan
     if value("wheel.inertia") is not None or value("wheel.mass") is not None:
         inertia = _load.rim_inertia(value("wheel.inertia"), value("wheel.mass"), value("wheel.radius"))
@@ -179,9 +231,17 @@ def piston_designs(value: Callable[[str], Any], speed=None) -> PistonDesigns:
             value("piston.bore"), value("piston.head"), value("piston.efficiency")
         ),
         speed=np.radians(value("operator.speed") if speed is None else speed),
-        force_limit=value("operator.force_limit"),
+        force_limit=limits.force_limit,
         inertia=inertia,
         speed_fluctuation=value("operator.speed_fluctuation"),
+        bore=value("piston.bore"),
+        head=value("piston.head"),
+        force_efficiency=value("piston.efficiency"),
+        volumetric_efficiency=_or(value("piston.volumetric_efficiency"), DEFAULT_VOLUMETRIC_EFFICIENCY),
+        sustained_power=limits.sustained_power,
+        hour_power=limits.hour_power,
+        hours_per_day=_or(value("use.hours_per_day"), DEFAULT_DAILY_PUMPING_HOURS),
+        litres_per_person_day=_or(value("use.litres_per_person_day"), DEFAULT_LITRES_PER_PERSON_DAY),
     )
 
 
@@ -194,6 +254,55 @@ def _columns(designs) -> tuple[int, dict[str, np.ndarray]]:
 
 
 # ----------------------------------------------------------------------------- the results
+@dataclass(frozen=True)
+class Water:
+    """The water a design delivers, and the most its operator could lift (arrays over designs,
+    NaN where the spec gives a rope force instead of a head and a pipe; docs/water.md).
+
+    flow : Q = η_v (π d²/4) ω̄ r_w for a rope pump, η_v A stroke f for a piston pump [m³/s].
+    water_power : ρ g H Q [W];  efficiency : water power / the operator's power Mw ω̄ [-].
+    limit : Q* = η_f η_v P_sustained / (ρ g H), the flow the operator's sustained power lifts at
+        this head with this pump's efficiencies [m³/s];  share : Q / Q* [-].
+    people : the people it serves, Q x hours a day / litres per person a day [-].
+    head [m], sustained_power [W]: what ``limit`` was computed for.
+    """
+
+    flow: np.ndarray
+    water_power: np.ndarray
+    efficiency: np.ndarray
+    limit: np.ndarray
+    share: np.ndarray
+    people: np.ndarray
+    head: np.ndarray
+    sustained_power: np.ndarray
+
+    def design(self, i: int) -> Water:
+        """The water of design ``i`` alone (floats)."""
+        n = np.shape(self.flow)
+        return Water(
+            *(float(np.broadcast_to(np.asarray(getattr(self, f.name), float), n)[i]) for f in fields(self))
+        )
+
+
+def _water(
+    flow, head, operator_power, sustained_power, force_efficiency, volumetric_efficiency, hours, litres
+):
+    """:class:`Water` from the flow [m³/s] and what it is judged against
+    (:mod:`pumplink.models.water`)."""
+    water_power = _water_kernels.water_power(flow, head)
+    limit = _water_kernels.power_limited_flow(sustained_power, head, force_efficiency, volumetric_efficiency)
+    return Water(
+        flow,
+        water_power,
+        _water_kernels.overall_efficiency(water_power, operator_power),
+        limit,
+        _water_kernels.flow_share(flow, limit),
+        _water_kernels.people_served(flow, hours, litres),
+        head,
+        sustained_power,
+    )
+
+
 @dataclass(frozen=True)
 class Evaluation:
     """Every quantity the verdict and the renderers need, for rope-pump designs (arrays over
@@ -242,6 +351,7 @@ class Evaluation:
     grip_height: tuple[np.ndarray, np.ndarray] | None
     link_energy_share: np.ndarray | None
     verdict: Verdict | None
+    water: Water | None = None
 
     def __len__(self) -> int:
         return int(np.size(self.feasible))
@@ -290,6 +400,7 @@ class PistonEvaluation:
     least_peak_force: np.ndarray  # the flywheel's Fp* [N] (Eq. P.4; NaN without one)
     power: np.ndarray  # F_load H ω / 2π [W]
     verdict: Verdict | None
+    water: Water | None = None
 
     def __len__(self) -> int:
         return int(np.size(self.feasible))
@@ -448,7 +559,24 @@ def evaluate(
             stroke=stroke,
             grip_height=heights,
             axle_height=axle,
+            power_limits=(c["sustained_power"], c["hour_power"]),
+            grip_speed_limits=(c["grip_speed_warn"], c["grip_speed_fail"]),
+            grip_height_range=(c["grip_height_min"], c["grip_height_max"]),
         )
+    # Q = η_v (π d²/4) ω̄ r_w: the rope moves with the wheel rim (docs/water.md §1)
+    flow = _water_kernels.rope_pump_flow(
+        c["pipe_diameter"], speed, c["wheel_radius"], c["volumetric_efficiency"]
+    )
+    water = _water(
+        flow,
+        c["head"],
+        power,
+        c["sustained_power"],
+        c["force_efficiency"],
+        c["volumetric_efficiency"],
+        c["hours_per_day"],
+        c["litres_per_person_day"],
+    )
     return Evaluation(
         designs,
         syn,
@@ -470,6 +598,7 @@ def evaluate(
         heights,
         share,
         verdict,
+        water,
     )
 
 
@@ -520,7 +649,22 @@ def _evaluate_piston(designs: PistonDesigns, judge: bool) -> PistonEvaluation:
             out["least"][i] = _pm.least_peak_force(*args, load[i], handle[i], band[i])  # Eq. (P.4)
     power = load * out["stroke"] * c["speed"] / (2.0 * math.pi)  # the work F_load H per revolution
     peak = np.where(index > 0, out["least"], out["peak"])
-    verdict = assess(feasible, out["mean"], peak, c["force_limit"], power=power) if judge else None
+    verdict = None
+    if judge:
+        limits = (c["sustained_power"], c["hour_power"])
+        verdict = assess(feasible, out["mean"], peak, c["force_limit"], power=power, power_limits=limits)
+    # Q = η_v A H f for a single-acting piston (docs/water.md §1)
+    flow = _water_kernels.piston_pump_flow(c["bore"], out["stroke"], c["speed"], c["volumetric_efficiency"])
+    water = _water(
+        flow,
+        c["head"],
+        power,
+        c["sustained_power"],
+        c["force_efficiency"],
+        c["volumetric_efficiency"],
+        c["hours_per_day"],
+        c["litres_per_person_day"],
+    )
     return PistonEvaluation(
         designs,
         feasible,
@@ -535,6 +679,7 @@ def _evaluate_piston(designs: PistonDesigns, judge: bool) -> PistonEvaluation:
         out["least"],
         power,
         verdict,
+        water,
     )
 
 

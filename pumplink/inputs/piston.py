@@ -21,7 +21,8 @@ from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
-from pumplink.constants import DEFAULT_SPEED_FLUCTUATION, FORCE_LIMIT_N
+from pumplink.constants import DEFAULT_SPEED_FLUCTUATION
+from pumplink.inputs.pump import Use
 from pumplink.inputs.toml import Section, read_toml, spec_name, validate
 from pumplink.models import load as _load
 
@@ -32,7 +33,18 @@ MECHANISMS = ("crank-slider",)
 class Piston(Section):
     bore: float = Field(ge=0.005, le=0.5, description="piston (cylinder) bore [m]")
     head: float = Field(gt=0, le=200, description="pumping head [m]")
-    efficiency: float = Field(ge=0.05, le=1, description="pump efficiency (mechanical x volumetric) [-]")
+    efficiency: float = Field(
+        ge=0.05,
+        le=1,
+        description="force (mechanical) efficiency [-]: the piston force is the water column's weight "
+        "over it",
+    )
+    volumetric_efficiency: float | None = Field(
+        default=None,
+        ge=0.05,
+        le=1,
+        description="delivered over swept volume [-] (leakage past the piston and valves; default 0.87)",
+    )
 
 
 class CrankSlider(Section):
@@ -43,7 +55,20 @@ class CrankSlider(Section):
 
 class PistonOperator(Section):
     handle: float = Field(ge=0.02, le=2, description="radius of the crank the operator turns [m]")
-    force_limit: float = Field(default=FORCE_LIMIT_N, ge=1, le=10_000, description="force limit [N]")
+    profile: Literal["men", "women", "children", "accessible"] | None = Field(
+        default=None,
+        description="who pumps: sets force_limit, sustained_power and hour_power (docs/operators.md); a key "
+        "given here overrides it (default: men)",
+    )
+    force_limit: float | None = Field(
+        default=None, ge=1, le=10_000, description="force limit [N] (profile's)"
+    )
+    sustained_power: float | None = Field(
+        default=None, ge=1, le=1000, description="power the operator sustains for hours [W] (profile's)"
+    )
+    hour_power: float | None = Field(
+        default=None, ge=1, le=2000, description="power the operator gives for about an hour [W] (profile's)"
+    )
     speed: float = Field(default=360.0, gt=0, le=7200, description="crank speed [deg/s]")
     speed_fluctuation: float = Field(
         default=DEFAULT_SPEED_FLUCTUATION, gt=0, le=1, description="largest (w_max - w_min)/w_mean [-]"
@@ -73,6 +98,7 @@ class PistonSpec(Section):
     crank_slider: CrankSlider
     operator: PistonOperator
     wheel: Flywheel | None = None
+    use: Use = Use()
 
     @property
     def gives_inertia(self) -> bool:

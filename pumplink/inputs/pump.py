@@ -8,18 +8,20 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from pydantic import Field, field_validator, model_validator
 
 from pumplink.constants import (
     DEFAULT_ARM_MASS,
+    DEFAULT_DAILY_PUMPING_HOURS,
+    DEFAULT_LITRES_PER_PERSON_DAY,
     DEFAULT_SPEED_FLUCTUATION,
-    FORCE_LIMIT_N,
 )
 from pumplink.errors import SpecError, has_control, shown
 from pumplink.inputs.toml import Section, read_toml, spec_name, validate
 from pumplink.models import load as _load
+from pumplink.profiles import OperatorProfile, operator_limits
 
 
 class Wheel(Section):
@@ -129,7 +131,15 @@ class Load(Section):
         default=None,
         ge=0.05,
         le=1,
-        description="rope-pump efficiency with head/pipe_diameter [-] (default 0.75)",
+        description="force (mechanical) efficiency with head/pipe_diameter [-]: the rope force is the "
+        "water column's weight over it (default 0.75)",
+    )
+    volumetric_efficiency: float | None = Field(
+        default=None,
+        ge=0.05,
+        le=1,
+        description="delivered over swept flow with head/pipe_diameter [-] (leakage past the pistons; "
+        "default 0.87, docs/water.md)",
     )
     moving_mass: float | None = Field(
         default=None,
@@ -160,12 +170,44 @@ class Load(Section):
             )
         if self.efficiency is not None and not by_head:
             raise ValueError("load.efficiency only applies with load.head and load.pipe_diameter")
+        if self.volumetric_efficiency is not None and not by_head:
+            raise ValueError(
+                "load.volumetric_efficiency only applies with load.head and load.pipe_diameter (the flow "
+                "needs the pipe)"
+            )
         return self
 
 
 class Operator(Section):
-    force_limit: float = Field(
-        default=FORCE_LIMIT_N, ge=1, le=10_000, description="largest acceptable operator force [N]"
+    profile: Literal["men", "women", "children", "accessible"] | None = Field(
+        default=None,
+        description="who pumps: sets force_limit, sustained_power, hour_power, the grip-height range and "
+        "the grip-speed limits (docs/operators.md); any of those keys given here overrides it "
+        "(default: men)",
+    )
+    force_limit: float | None = Field(
+        default=None,
+        ge=1,
+        le=10_000,
+        description="largest acceptable operator force [N] (default: the profile's; men 100, women 70)",
+    )
+    sustained_power: float | None = Field(
+        default=None, ge=1, le=1000, description="power the operator sustains for hours [W] (profile's)"
+    )
+    hour_power: float | None = Field(
+        default=None, ge=1, le=2000, description="power the operator gives for about an hour [W] (profile's)"
+    )
+    grip_height_min: float | None = Field(
+        default=None, ge=0, le=3, description="lowest comfortable grip height [m] (profile's)"
+    )
+    grip_height_max: float | None = Field(
+        default=None, ge=0, le=3, description="highest comfortable grip height [m] (profile's)"
+    )
+    grip_speed_warn: float | None = Field(
+        default=None, gt=0, le=20, description="grip speed above which the verdict warns [m/s] (profile's)"
+    )
+    grip_speed_fail: float | None = Field(
+        default=None, gt=0, le=20, description="grip speed above which the design fails [m/s] (profile's)"
     )
     speed: float = Field(default=360.0, gt=0, le=7200, description="wheel speed [deg/s]")
     dead_band: float = Field(
@@ -199,6 +241,48 @@ class Operator(Section):
         """operator.arm_mass, or the anthropometric default (pumplink.constants.DEFAULT_ARM_MASS) [kg]."""
         return DEFAULT_ARM_MASS if self.arm_mass is None else self.arm_mass
 
+    @property
+    def limits(self) -> OperatorProfile:
+        """The operator's limits: the profile's (:mod:`pumplink.profiles`; the men's without one),
+        with every key the spec gives instead."""
+        return operator_limits(lambda key: getattr(self, key.split(".")[1], None))
+
+    @model_validator(mode="after")
+    def _limits_in_order(self) -> Operator:
+        lim = self.limits
+        lo, hi = lim.grip_height_range
+        for what, a, b in (
+            ("operator.grip_height_min must be below operator.grip_height_max", lo, hi),
+            (
+                "operator.grip_speed_warn must be below operator.grip_speed_fail",
+                lim.grip_speed_warn,
+                lim.grip_speed_fail,
+            ),
+            (
+                "operator.sustained_power must be at most operator.hour_power",
+                lim.sustained_power,
+                lim.hour_power,
+            ),
+        ):
+            if not a <= b:
+                raise ValueError(f"operator.{what} (with the {lim.name} profile: {a:g} and {b:g})")
+        return self
+
+
+class Use(Section):
+    hours_per_day: float = Field(
+        default=DEFAULT_DAILY_PUMPING_HOURS,
+        gt=0,
+        le=24,
+        description="hours a day the pump is worked [h] (for the people it serves; default 8)",
+    )
+    litres_per_person_day: float = Field(
+        default=DEFAULT_LITRES_PER_PERSON_DAY,
+        gt=0,
+        le=1000,
+        description="water each person needs a day [l] (default 20, WHO basic access)",
+    )
+
 
 class PumpSpec(Section):
     name: str = Field(default="pump", min_length=1, max_length=200, description="design name")
@@ -220,7 +304,11 @@ class PumpSpec(Section):
     load: Load = Field(description="the [load] table: rope_force [N], or head [m] with pipe_diameter [m]")
     operator: Operator = Field(
         default=Operator(),
-        description="the [operator] table: force_limit, speed, dead_band, speed_fluctuation",
+        description="the [operator] table: profile, force_limit, speed, dead_band, speed_fluctuation",
+    )
+    use: Use = Field(
+        default=Use(),
+        description="the [use] table: hours_per_day, litres_per_person_day (the people a pump serves)",
     )
 
     @property

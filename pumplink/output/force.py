@@ -32,6 +32,8 @@ from pumplink.output.words import (
     limit_text,
     model_line,
     verdict_line,
+    water_lines,
+    water_row,
 )
 
 
@@ -43,6 +45,8 @@ def force_summary(r: ForceResult) -> dict[str, Any]:
             "speed_deg_s": r.speed_deg_s,
             "wheel_torque_Nm": num(r.wheel_torque),
             "power_W": num(r.power),
+            **water_row(r.water),
+            "operator_profile": r.profile,
             "force_limit_N": num(r.force_limit),
             "dead_band_deg": r.design.spec.operator.dead_band,
             "model": r.model,
@@ -339,6 +343,9 @@ def render_force(
             )
         c.print(ct)
         c.print(model_line(r))
+        use = r.design.spec.use
+        for line in water_lines(r.water, r.power, r.profile, use.hours_per_day, use.litres_per_person_day):
+            c.print(line, markup=False)
         c.print(verdict_line(r, strict))
         for ch in r.checks:
             if ch.result == "warn":

@@ -54,7 +54,7 @@ def optimize_row(res) -> dict[str, Any]:
         "axle_height_m": p.axle_height,
         "grip_height_range_m": list(p.grip_height),
         "stroke_range_m": list(p.stroke),
-        "force_limit_N": p.spec.operator.force_limit,
+        "force_limit_N": p.force_limit,
         "variables": [
             {
                 "key": k,

@@ -63,7 +63,7 @@ def summary_row(r) -> dict[str, Any]:
         "inertia_kg_m2": None if r.inertia is None else num(r.inertia),
         "energy_band_J": None if r.energy_band is None else num(r.energy_band),
         "least_peak_force_N": None if r.least_peak_force is None else num(r.least_peak_force),
-        "force_limit_N": s.operator.force_limit,
+        "force_limit_N": r.force_limit,
         "verdict": r.verdict.outcome if r.verdict is not None else "FAIL",
         "pass": r.passed,
         "checks": _checks(r),

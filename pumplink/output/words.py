@@ -111,16 +111,17 @@ CHECK_ADVICE = {
     "(a lighter handle or a heavier wheel; see --explain)",
     "transmission_angle": "the coupler meets the rocker at a poor angle: large joint forces, "
     "wear, and with friction a jam (move the rocker pivot or lengthen the rocker)",
-    "power": "a person sustains ~75 W for hours and at most ~150 W for an hour; "
+    "power": "more than the operator sustains for hours (the profile's sustained power); "
     "slow the wheel or lower the load",
     "grip_speed": "faster than a rower's handle: the operator tires soon; slow the wheel or "
     "shorten the swing",
     "grip_speed fail": "the operator cannot follow the handle; slow the wheel or shorten the swing",
     "transmission_angle fail": "the coupler meets the rocker so obliquely that joint friction can jam "
     "the linkage (move the rocker pivot or lengthen the rocker)",
-    "power fail": "more than a person gives even for an hour (~150 W); slow the wheel or lower the load",
+    "power fail": "more than the operator gives even for an hour; slow the wheel or lower the load",
     "stroke": "a standing operator must step or lean; shorten the handle or the swing",
-    "grip_height": "the efficient push height is 0.5-0.9 m; change D1, the handle or the axle height",
+    "grip_height": "push and pull with the hands between knuckle and shoulder height (the operator "
+    "profile's range); change D1, the handle or the axle height",
     "axle_height": "outside the pump paper's 0.40-0.70 m",
 }
 
@@ -191,3 +192,62 @@ OUTCOME_MARKUP = {
     "PASS with warnings": "[bold yellow]PASS with warnings[/]",
     "FAIL": "[bold red]FAIL[/]",
 }
+
+
+#: m³/s in litres per minute and in cubic metres per hour (the units a pump's users read).
+L_PER_MIN, M3_PER_H = 60_000.0, 3_600.0
+
+
+def water_row(w) -> dict[str, Any]:
+    """The JSON of the water a design delivers (:class:`pumplink.evaluate.Water`, one design):
+    ``null`` throughout where the spec gives a rope force instead of a head and a pipe."""
+    given = w is not None and math.isfinite(w.flow)
+    if not given:
+        return {
+            k: None
+            for k in (
+                "flow_l_min",
+                "flow_m3_h",
+                "water_power_W",
+                "pump_efficiency",
+                "power_limited_flow_l_min",
+                "flow_share",
+                "people_served",
+            )
+        }
+    return {
+        "flow_l_min": num(w.flow * L_PER_MIN),
+        "flow_m3_h": num(w.flow * M3_PER_H),
+        "water_power_W": num(w.water_power),
+        "pump_efficiency": num(w.efficiency),
+        "power_limited_flow_l_min": num(w.limit * L_PER_MIN),
+        "flow_share": num(w.share),
+        "people_served": num(w.people),
+    }
+
+
+#: Who works the pump under each operator profile, in a sentence (pumplink.profiles).
+OPERATOR_NOUNS = {
+    "men": "a man",
+    "women": "a woman",
+    "children": "a child",
+    "accessible": "an operator of limited strength",
+}
+
+
+def water_lines(w, power: float, profile: str, hours: float, litres: float) -> list[str]:
+    """The water in words: the flow, its power against the operator's, the share of what the
+    operator's sustained power could lift at this head, and the people it serves."""
+    if w is None or not math.isfinite(w.flow):
+        return [
+            "water: no flow figure (the spec gives load.rope_force; give load.head and "
+            "load.pipe_diameter for litres per minute)"
+        ]
+    who = OPERATOR_NOUNS.get(profile, "the operator")
+    return [
+        f"water: {w.flow * L_PER_MIN:.1f} l/min ({w.flow * M3_PER_H:.2f} m³/h) from {w.head:g} m; "
+        f"{w.water_power:.1f} W of water for {power:.1f} W at the handle ({w.efficiency:.0%})",
+        f"that is {w.share:.0%} of the {w.limit * L_PER_MIN:.1f} l/min {who} sustaining "
+        f"{w.sustained_power:g} W could lift here with this pump",
+        f"serves about {w.people:,.0f} people ({litres:g} l each a day, {hours:g} h of pumping a day)",
+    ]

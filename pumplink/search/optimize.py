@@ -16,8 +16,9 @@ limit.  Constraints (all ``g >= 0``):
 * transmission angle: min(gamma_min, 180 deg - gamma_max) >= 45 deg
   (``pumplink.constants.MIN_TRANSMISSION_DEG``, docs/models.md §4, the lever-mechanism textbook:
   [lambda_max] <= 45 deg for a rotating driven link);
-* hand-grip height over the whole swing within 0.5-0.9 m above the ground (docs/physics.md §5,
-  "efficient push height ~0.84 m, range 0.5-0.9 m"); the grip is at axle height - D1 + H sin(theta4);
+* hand-grip height over the whole swing within the operator profile's range above the ground
+  (hands between knuckle and shoulder height; docs/operators.md); the grip is at axle height - D1 +
+  H sin(theta4);
 * horizontal grip stroke 2 H sin(swing/2) at most 1.0 m: the pump paper's own prototype
   (the pump paper: H = 1 m, swing 60 deg, chosen "as function of the motion capability of human
   operators"); no lower limit (a shorter stroke only raises the force);
@@ -39,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.constants import MIN_TRANSMISSION_DEG
+from pumplink.constants import MIN_TRANSMISSION_DEG, STROKE_LIMIT_M
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.evaluate import PumpDesigns, evaluate, pump_designs
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
@@ -51,8 +52,9 @@ VARIABLE_UNITS = {"L1": "m", "D1": "m", "b": "m", "rocker": "m", "handle": "m", 
 #: Default search space (spec units) when no --vary is given.
 DEFAULT_BOUNDS = {"rocker": (0.10, 0.40), "L1": (0.0, 1.0), "D1": (-0.3, 1.2), "swing": (30.0, 100.0)}
 #: Ergonomic defaults (see the module docstring for the sources).
-GRIP_HEIGHT_M = (0.5, 0.9)
-STROKE_M = (0.0, 1.0)
+#: The grip stroke the search allows by default [m]: no lower limit (a shorter stroke only raises
+#: the force), the verdict's warning limit above (pumplink.constants.STROKE_LIMIT_M).
+STROKE_M = (0.0, STROKE_LIMIT_M)
 #: Wheel-axle height assumed when the spec has none: the middle of the pump paper's 0.40-0.70 m.
 DEFAULT_AXLE_HEIGHT_M = 0.55
 #: Objective value given to designs that are not crank-rockers (DE ranks them by violation).
@@ -81,7 +83,7 @@ class Problem:
     upper: np.ndarray
     objective: str = "peak"
     axle_height: float = DEFAULT_AXLE_HEIGHT_M
-    grip_height: tuple[float, float] = GRIP_HEIGHT_M
+    grip_height: tuple[float, float] = (0.0, 5.0)
     stroke: tuple[float, float] = STROKE_M
     forced: str | None = None  # a model key (--model); None: the least model that is enough
 
@@ -270,14 +272,17 @@ def make_problem(
     bounds: dict[str, tuple[float, float]] | None = None,
     objective: str = "peak",
     axle_height: float | None = None,
-    grip_height=GRIP_HEIGHT_M,
+    grip_height=None,
     stroke=STROKE_M,
     model: str | None = None,
 ) -> Problem:
     """Assemble a :class:`Problem`; the axle height is ``axle_height``, else the spec's
     ``wheel.axle_height``, else :data:`DEFAULT_AXLE_HEIGHT_M`.  ``model``: a model key that decides
-    the peak (``--model``), else the least model that is enough for each design."""
+    the peak (``--model``), else the least model that is enough for each design.  ``grip_height``:
+    the range the grip keeps over the swing [m], default the operator profile's."""
     bounds = dict(DEFAULT_BOUNDS) if bounds is None else bounds
+    if grip_height is None:
+        grip_height = spec.operator.limits.grip_height_range
     if model not in (None, QUASI_STATIC) and not spec.gives_inertia:
         raise SpecError(
             f"--model {model} needs the wheel's inertia, but {spec.name} gives none; add wheel.mass [kg] "

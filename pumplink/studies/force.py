@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from pumplink.errors import SpecError
-from pumplink.evaluate import Evaluation, evaluate, motion, pump_designs
+from pumplink.evaluate import Evaluation, Water, evaluate, motion, pump_designs
 from pumplink.inputs.pump import PumpSpec, spec_values
 from pumplink.mechanisms.fourbar import State, Synthesis, infeasibility_reason, kinematic_state, synthesize
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
@@ -106,6 +106,8 @@ class ForceResult:
     effort_peak_force: float | None = None  # least peak effort: hand force + the arms (full dynamics) [N]
     effects: EnergyModel | None = None  # the model choice with the wheel's inertia (None without)
     evaluation: Evaluation | None = None  # the one evaluation this result shows (one design)
+    water: Water | None = None  # the water it delivers and the most its operator could lift
+    profile: str = "men"  # the operator profile whose limits judged it (pumplink.profiles)
 
     @property
     def flywheel(self) -> bool:
@@ -227,6 +229,7 @@ def force_analysis(
     )
     d = _design(spec, ev.synthesis)
     syn = d.synthesis
+    profile = spec.operator.limits.name
     mw, speed, band = float(ev.designs.wheel_torque), float(ev.designs.speed), float(ev.designs.dead_band)
     inertia = float(ev.designs.inertia) if spec.gives_inertia else None
     nan = float("nan")
@@ -244,7 +247,7 @@ def force_analysis(
             speed,
             mw,
             mw * speed,
-            op.force_limit,
+            float(ev.designs.force_limit),
             band,
             nan,
             nan,
@@ -256,6 +259,8 @@ def force_analysis(
             None,
             model=model.label,
             evaluation=ev,
+            water=ev.water.design(0),
+            profile=profile,
             **fly,
         )
     lk = syn.linkage
@@ -311,7 +316,7 @@ def force_analysis(
         speed,
         mw,
         mw * speed,
-        op.force_limit,
+        float(ev.designs.force_limit),
         band,
         mean,
         peak,
@@ -325,6 +330,8 @@ def force_analysis(
         model=model.label,
         link_energy=link,
         evaluation=ev,
+        water=ev.water.design(0),
+        profile=profile,
         **fly,
     )
 

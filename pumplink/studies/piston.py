@@ -37,6 +37,7 @@ class PistonResult:
     speed_deg_s: float
     speed: float
     load_force: float
+    force_limit: float  # [N] (the operator profile's, or the spec's)
     stroke: float
     time_ratio: float
     largest_pressure_angle: float
@@ -112,6 +113,7 @@ def force_analysis(
             speed_deg,
             w,
             load,
+            float(ev.designs.force_limit),
             nan,
             nan,
             nan,
@@ -145,6 +147,7 @@ def force_analysis(
         speed_deg_s=speed_deg,
         speed=w,
         load_force=load,
+        force_limit=float(ev.designs.force_limit),
         stroke=float(ev.stroke[0]),
         time_ratio=float(ev.time_ratio[0]),
         largest_pressure_angle=float(ev.largest_pressure_angle[0]),

@@ -77,9 +77,9 @@ def cadence(r: ForceResult, searched_deg_s=CADENCE_RANGE_DEG_S) -> Cadence:
         judged = motion.link_masses_of(ev)
         # the verdict's force is least at the best cadence (arms in the verdict) or at its own minimiser
         at = best if arms_in else motion.best_speed(lk, dce, dcf, mw, j, judged, delta, lo, hi)[0]
-        force = motion.speed_range(lk, dce, dcf, mw, j, judged, delta, op.force_limit, lo, hi, at)
+        force = motion.speed_range(lk, dce, dcf, mw, j, judged, delta, r.force_limit, lo, hi, at)
     elif model == FLYWHEEL:
-        slowest = float(motion.min_passing_speed(lk, dce, dcf, mw, op.force_limit, j, delta))
+        slowest = float(motion.min_passing_speed(lk, dce, dcf, mw, r.force_limit, j, delta))
         force = (slowest, math.inf) if math.isfinite(slowest) else (nan, nan)
     else:
         force = (0.0, math.inf) if r.passed else (nan, nan)
@@ -184,7 +184,8 @@ def speed_sweep(
     index = ev.model_index
     req = ev.peak_force
     mean, qs = float(ev.mean_force[0]), float(ev.dead_band_peak_force[0])
-    mps = float(motion.min_passing_speed(lk, dce, dcf, mw, op.force_limit, j, delta))
+    limit = float(ev.designs.force_limit)
+    mps = float(motion.min_passing_speed(lk, dce, dcf, mw, limit, j, delta))
     grip = ev.grip_speed
     verdict = ev.verdict
     result = force_analysis(spec, keep_samples=False, samples=0, model=model)
@@ -195,7 +196,7 @@ def speed_sweep(
         mw,
         j,
         delta,
-        op.force_limit,
+        limit,
         mean,
         float(qs),
         mps,
