@@ -25,6 +25,7 @@ from pumplink.cli import (  # noqa: F401, I001 -- in the order of `pumplink --he
     init,
     batch,
     optimize,
+    size,
     draw,
     template,
     report,

@@ -1,0 +1,351 @@
+"""Size the whole rope pump: the pipe, the wheel, the cadence, the handle and the linkage that give
+the most water one operator can pump, with no check failing and, by default, none warning.
+
+The question a pump designer brings: "which pipe, wheel, handle and pace give this village the
+most water one of its people can pump for an hour?".  The water is the rope pump's flow
+Q = η_v (π d²/4) ω̄ r_w (docs/water.md §1); every candidate is judged by the one evaluation
+(:func:`pumplink.evaluate.evaluate`), so the answer is what ``pumplink force`` says of it.
+
+The search.  The pipe bore is a discrete choice (standard sizes, or the user's list); for each
+bore the continuous variables (cadence, wheel radius and mass, handle, rocker, swing, the rocker
+pivot's place L1 and D1, the axle height) are searched by scipy's differential evolution,
+vectorised over the population: the objective is the flow (a formula, no model), the constraint
+the verdict's excess over its limits (the sum of each check's relative distance beyond its warn
+limit, or its fail limit when warnings are accepted), which is 0 exactly when no check warns
+(fails).  The best bore wins; a final polish is not needed for a flow that the limits bound.
+
+Why the answer approaches Q*: the operator's power is Mw ω̄ = ρ g H Q / (η_f η_v), so the
+no-warning limit on power is exactly Q ≤ Q* = η_f η_v P_sustained / (ρ g H); what else binds (the
+force, the grip's speed, stroke or height) is reported, and :func:`relax` shows that easing it
+raises the share.
+
+Pure functions; the CLI renders the result.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from pumplink.errors import SpecError
+from pumplink.evaluate import Evaluation, evaluate, pump_designs
+from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
+from pumplink.models.water import rope_pump_flow
+from pumplink.verdict import FAIL, WARN, Verdict
+
+#: Nominal pipe bores searched by default [m]: ½", ¾", 1", 1¼" and 1½" (12.7-38.1 mm), the sizes
+#: rope-pump rising mains are made of.  They are the nominal inch sizes, not measured bores: give
+#: your pipe's real bore with ``--pipes``.
+STANDARD_PIPES = (0.0127, 0.01905, 0.0254, 0.03175, 0.0381)
+#: What the search varies, with its bounds (spec units: m, kg, deg, deg/s).  The wheel is a tyre
+#: rim of 12" to 28" (radius 0.15-0.35 m) with up to 30 kg at its rim; the cadence 10 to 90 rpm;
+#: the axle height the pump paper's 0.40-0.70 m (outside it the verdict warns).
+BOUNDS = {
+    "operator.speed": (60.0, 540.0),
+    "wheel.radius": (0.15, 0.35),
+    "wheel.mass": (1.0, 30.0),
+    "wheel.axle_height": (0.40, 0.70),
+    "linkage.handle": (0.5, 1.6),
+    "linkage.rocker": (0.10, 0.40),
+    "linkage.swing": (30.0, 100.0),
+    "linkage.L1": (0.0, 1.0),
+    "linkage.D1": (-0.6, 0.6),
+}
+#: The constraint value of a design with no crank-rocker (differential evolution ranks them by it).
+INFEASIBLE = 1e3
+#: A check counts as binding when its value is within this share of its limit.
+BINDING_SHARE = 0.01
+
+
+@dataclass(frozen=True)
+class SizeProblem:
+    """What to size: the base spec (its head, operator and everything not varied), the pipe bores
+    to choose from, the varied keys and their bounds, and whether warnings are allowed."""
+
+    spec: PumpSpec
+    pipes: tuple[float, ...]
+    bounds: dict[str, tuple[float, float]] = field(default_factory=lambda: dict(BOUNDS))
+    allow_warnings: bool = False
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return tuple(self.bounds)
+
+
+@dataclass(frozen=True)
+class Sized:
+    """One pipe bore's best design: its spec, evaluation and flow [m³/s].  Where no design of
+    this bore meets the limits (``found`` False) they are the closest one's, and ``excess`` says by
+    how much it misses (:func:`excess`)."""
+
+    pipe: float
+    spec: PumpSpec
+    evaluation: Evaluation
+    flow: float
+    excess: float
+
+    @property
+    def found(self) -> bool:
+        return self.excess == 0.0
+
+
+@dataclass(frozen=True)
+class SizeResult:
+    """The sized pump (the best bore's design), every bore tried, and what binds it."""
+
+    problem: SizeProblem
+    best: Sized
+    tried: tuple[Sized, ...]
+    binding: tuple[str, ...]  # the checks at their limit, and variables at a bound
+    evaluations: int
+    discharge: tuple = ()  # (head [m], fastest passing cadence [deg/s], flow [m³/s]) at other heads
+
+    @property
+    def found(self) -> bool:
+        return self.best.found
+
+
+def _values(problem: SizeProblem, pipe: float, x: np.ndarray):
+    """``value(key)`` for :func:`pumplink.evaluate.pump_designs`: x (variables, designs) on the
+    varied keys, this pipe, the base spec elsewhere."""
+    base = spec_values(problem.spec)
+    cols = dict(zip(problem.names, x))
+
+    def value(key: str):
+        if key in cols:
+            return cols[key]
+        if key == "load.pipe_diameter":
+            return pipe
+        if key == "wheel.inertia":
+            return None  # the wheel's mass is varied instead
+        return base(key)
+
+    return value
+
+
+def excess(verdict: Verdict, allow_warnings: bool = False) -> np.ndarray:
+    """Per design, the sum over checks of the relative distance beyond the warn limit (the fail
+    limit when warnings are allowed): 0 exactly when no check warns (fails); inf for a value that
+    is not finite beyond its limit, NaN values count as :data:`INFEASIBLE`."""
+    total = 0.0
+    for c in verdict.checks:
+        level = np.asarray(c.level)
+        lim = c.fail_limit if (allow_warnings or c.warn_limit is None) else c.warn_limit
+        if lim is None:
+            continue
+        v = np.asarray(c.value, float)
+        lim = np.asarray(lim, float)
+        rel = np.asarray(c.relation)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            beyond = np.where(rel == "<=", v - lim, lim - v) / np.abs(lim)
+        bad = level >= (FAIL if allow_warnings else WARN)
+        beyond = np.where(np.isfinite(beyond), beyond, INFEASIBLE)
+        total = total + np.where(bad, np.maximum(beyond, 0.0), 0.0)
+    return np.asarray(total, float)
+
+
+def _flow(problem: SizeProblem, pipe: float, x: np.ndarray) -> np.ndarray:
+    """The flow of designs x [m³/s] (a formula: no model) through :func:`evaluate`'s columns."""
+    d = pump_designs(_values(problem, pipe, x))
+    return np.asarray(rope_pump_flow(pipe, d.speed, d.wheel_radius, d.volumetric_efficiency), float)
+
+
+def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 30, popsize: int = 8):
+    """The best design for one pipe bore: (Sized, evaluations)."""
+    from scipy.optimize import NonlinearConstraint, differential_evolution
+
+    names = problem.names
+    lower = np.array([problem.bounds[k][0] for k in names])
+    upper = np.array([problem.bounds[k][1] for k in names])
+    count = [0]
+    cache: dict[bytes, np.ndarray] = {}
+
+    def violation(x):
+        x = np.asarray(x, float).reshape(len(names), -1)
+        key = x.tobytes()
+        if key not in cache:
+            if len(cache) > 8:
+                cache.clear()
+            ev = evaluate(pump_designs(_values(problem, pipe, x)), passing_speed=False)
+            cache[key] = np.where(ev.feasible, excess(ev.verdict, problem.allow_warnings), INFEASIBLE)
+            count[0] += x.shape[1]
+        return cache[key]
+
+    def objective(x):
+        x = np.asarray(x, float).reshape(len(names), -1)
+        return -_flow(problem, pipe, x) * 6e4  # l/min, negated: DE minimises
+
+    res = differential_evolution(
+        objective,
+        list(zip(lower, upper)),
+        constraints=NonlinearConstraint(lambda x: violation(x)[None, :], -np.inf, 0.0),
+        vectorized=True,
+        updating="deferred",
+        rng=seed,
+        popsize=popsize,
+        maxiter=maxiter,
+        tol=1e-6,
+        polish=False,
+        init="sobol",
+    )
+    x = np.asarray(res.x, float)[:, None]
+    spec = spec_of(problem, pipe, x[:, 0])
+    ev = evaluate(pump_designs(spec_values(spec)))
+    if float(violation(x)[0]) > 0:  # the closest design, as it is
+        return Sized(
+            pipe, spec, ev, float(ev.water.flow[0]), float(excess(ev.verdict, problem.allow_warnings)[0])
+        ), count[0]
+    # rounding to workshop figures can step over a limit the optimum touches: slow the cadence a
+    # degree per second at a time until the rounded design meets them again
+    for _ in range(30):
+        if float(excess(ev.verdict, problem.allow_warnings)[0]) == 0.0:
+            break
+        data = spec_to_dict(spec)
+        data["operator"]["speed"] = data["operator"]["speed"] - 1.0
+        spec = parse_spec(data, source="the sized design")
+        ev = evaluate(pump_designs(spec_values(spec)))
+    miss = float(excess(ev.verdict, problem.allow_warnings)[0])
+    return Sized(pipe, spec, ev, float(ev.water.flow[0]), miss), count[0]
+
+
+def spec_of(problem: SizeProblem, pipe: float, x) -> PumpSpec:
+    """The spec of a sized design (values rounded to what a workshop measures: 1 mm, 0.1 kg,
+    0.1 deg, 1 deg/s), named after the base."""
+    data = spec_to_dict(problem.spec)
+    digits = {"operator.speed": 0, "wheel.mass": 1, "linkage.swing": 1}
+    for k, v in zip(problem.names, np.ravel(x)):
+        section, name = k.split(".")
+        data.setdefault(section, {})[name] = round(float(v), digits.get(k, 3))
+    data["load"] = {k: v for k, v in data["load"].items() if k != "rope_force"}
+    data["load"]["pipe_diameter"] = pipe
+    data["wheel"].pop("inertia", None)
+    data["name"] = f"{problem.spec.name} (sized)"
+    return parse_spec(data, source="the sized design")
+
+
+def size(problem: SizeProblem, seed: int = 0, progress=None, maxiter: int = 30) -> SizeResult:
+    """Size the pump: the best design for each pipe bore, and the bore with the most water.
+
+    Bores are tried from the smallest; once one meets the limits, the first larger one that does
+    not ends the search (a larger bore needs more force for the same flow, so the bores that can
+    meet the limits form one run).  ``progress(1)`` is called after each bore.
+
+    Raises
+    ------
+    SpecError : the base spec gives no head (there is no water to size for).
+    """
+    if problem.spec.load.head is None:
+        raise SpecError(
+            f"{problem.spec.name}: sizing needs the pumping head; give load.head [m] (or --head), not "
+            "load.rope_force"
+        )
+    tried, evaluations = [], 0
+    for pipe in sorted(problem.pipes):
+        s, n = size_pipe(problem, pipe, seed, maxiter)
+        tried.append(s)
+        evaluations += n
+        if progress is not None:
+            progress(1)
+        if not s.found and any(t.found for t in tried):
+            break
+    found = [s for s in tried if s.found]
+    best = max(found, key=lambda s: s.flow) if found else min(tried, key=lambda s: s.excess)
+    table = ()
+    if best.found:
+        table = tuple(discharge(best.spec, discharge_heads(best.spec.load.head), problem.allow_warnings))
+    return SizeResult(problem, best, tuple(tried), _binding(problem, best), evaluations, table)
+
+
+def discharge_heads(head: float) -> list[float]:
+    """The heads of the discharge table [m]: the design head and 0.5, 0.75, 1.25 and 1.5 times it
+    (to 0.1 m)."""
+    return sorted({round(head * k, 1) for k in (0.5, 0.75, 1.0, 1.25, 1.5)})
+
+
+def _binding(problem: SizeProblem, best: Sized) -> tuple[str, ...]:
+    """The checks within :data:`BINDING_SHARE` of their limit, and the varied keys at a bound."""
+    out = []
+    v = best.evaluation.verdict.design(0)
+    for c in v.checks:
+        lim = c.warn_limit if (c.warn_limit is not None and not problem.allow_warnings) else c.fail_limit
+        if lim is None or not math.isfinite(float(c.value)):
+            continue
+        if abs(float(c.value) - float(lim)) <= BINDING_SHARE * abs(float(lim)):
+            out.append(c.key)
+    values = spec_values(best.spec)
+    for k, (lo, hi) in problem.bounds.items():
+        x = values(k)
+        if x is not None and min(abs(x - lo), abs(hi - x)) <= 1e-3 * (hi - lo):
+            out.append(f"{k} at its {'lower' if abs(x - lo) <= abs(hi - x) else 'upper'} bound")
+    return tuple(out)
+
+
+def discharge(spec: PumpSpec, heads, allow_warnings: bool = False, speeds=None):
+    """The sized pump at other heads: for each head [m], the fastest cadence [deg/s] at which it
+    still passes without warnings (or failures, with ``allow_warnings``), on a grid of cadences,
+    and the flow there [m³/s] (NaN, NaN where no cadence passes)."""
+    speeds = np.arange(30.0, 721.0, 5.0) if speeds is None else np.asarray(speeds, float)
+    base = spec_values(spec)
+    out = []
+    for h in heads:
+
+        def value(key, h=h):
+            if key == "load.head":
+                return float(h)
+            if key == "operator.speed":
+                return speeds
+            return base(key)
+
+        ev = evaluate(pump_designs(value), passing_speed=False)
+        ok = np.asarray(ev.verdict.level) <= (WARN if allow_warnings else 0)
+        ok = np.broadcast_to(ok, speeds.shape)
+        if ok.any():
+            i = int(np.nonzero(ok)[0].max())
+            out.append((float(h), float(speeds[i]), float(ev.water.flow[i])))
+        else:
+            out.append((float(h), math.nan, math.nan))
+    return out
+
+
+def problem_for(
+    spec: PumpSpec,
+    head: float | None = None,
+    profile: str | None = None,
+    pipes=None,
+    allow_warnings: bool = False,
+) -> SizeProblem:
+    """A sizing problem from a base spec: ``head`` [m] and ``profile`` replace the spec's."""
+    data = spec_to_dict(spec)
+    load = {k: v for k, v in data["load"].items() if k != "rope_force"}
+    if head is not None:
+        load["head"] = float(head)
+    load.setdefault("pipe_diameter", STANDARD_PIPES[0])
+    data["load"] = load
+    if profile is not None:
+        data.setdefault("operator", {})["profile"] = profile
+        data["operator"].pop("force_limit", None)  # the profile's, unless the user overrides it
+    data.setdefault("wheel", {}).setdefault("mass", 10.0)
+    data["wheel"].pop("inertia", None)
+    base = parse_spec(data, source="the sizing base")
+    if base.load.head is None:
+        raise SpecError("sizing needs the pumping head: give --head [m] or load.head in the spec")
+    chosen = tuple(STANDARD_PIPES if pipes is None else pipes)
+    if not chosen or any(not (0.001 <= p <= 0.5) for p in chosen):
+        raise SpecError(f"--pipes {chosen}: each bore must be 0.001-0.5 m (e.g. --pipes 16,20,25mm)")
+    return SizeProblem(base, chosen, dict(BOUNDS), allow_warnings)
+
+
+__all__ = [
+    "BOUNDS",
+    "STANDARD_PIPES",
+    "SizeProblem",
+    "SizeResult",
+    "Sized",
+    "discharge",
+    "excess",
+    "problem_for",
+    "size",
+    "spec_of",
+]
