@@ -232,13 +232,26 @@ def test_wheel_torque_from_rope_force():
 # ----------------------------------------------------------------------------- defaults
 def test_operator_defaults_when_section_is_omitted():
     s = parse_spec(copy.deepcopy(ROPE))
-    assert (s.operator.force_limit, s.operator.speed, s.operator.dead_band) == (100.0, 360.0, 20.0)
+    assert (s.operator.limits.force_limit, s.operator.speed, s.operator.dead_band) == (100.0, 360.0, 20.0)
+    assert s.operator.force_limit is None and s.operator.limits.name == "men"  # the default profile's
     assert s.wheel.axle_height is None
 
 
 def test_partial_operator_section_keeps_other_defaults():
     s = parse_spec({**copy.deepcopy(ROPE), "operator": {"speed": 200.0}})
-    assert (s.operator.force_limit, s.operator.speed, s.operator.dead_band) == (100.0, 200.0, 20.0)
+    assert (s.operator.limits.force_limit, s.operator.speed, s.operator.dead_band) == (100.0, 200.0, 20.0)
+
+
+def test_a_profile_sets_the_limits_and_each_key_given_overrides_it():
+    women = parse_spec({**copy.deepcopy(ROPE), "operator": {"profile": "women"}}).operator.limits
+    assert (women.force_limit, women.sustained_power, women.grip_height_range) == (70.0, 60.0, (0.83, 1.23))
+    mixed = {"profile": "women", "force_limit": 80.0, "grip_height_max": 1.3}
+    lim = parse_spec({**copy.deepcopy(ROPE), "operator": mixed}).operator.limits
+    assert (lim.force_limit, lim.sustained_power, lim.grip_height_range) == (80.0, 60.0, (0.83, 1.3))
+    with pytest.raises(SpecError, match="grip_speed_warn must be below operator.grip_speed_fail"):
+        parse_spec({**copy.deepcopy(ROPE), "operator": {"grip_speed_warn": 5.0}})
+    with pytest.raises(SpecError, match="operator.profile"):
+        parse_spec({**copy.deepcopy(ROPE), "operator": {"profile": "athletes"}})
 
 
 def test_load_spec_name_defaults_to_file_stem(tmp_path):

@@ -44,7 +44,7 @@ def test_warnings_never_fail_a_design():
         power=120.0,  # warn above 75, fail above 150
         grip_speed=3.0,  # warn above 2.5, fail above 4
         stroke=1.2,  # warn above 1.0
-        grip_height=(0.6, 1.1),  # warn above 0.9
+        grip_height=(1.0, 1.4),  # warn above 1.33 (the men's profile, the default)
         axle_height=0.9,  # warn above 0.7
         link_energy_share=230.0,  # warn above 10 %
     )
@@ -61,7 +61,7 @@ def test_warnings_never_fail_a_design():
     ]
     assert v["transmission_angle"].relation == ">=" and v["transmission_angle"].limit == 45.0
     assert v["power"].limit == 75.0 and v["link_energy_share"].limit == 10.0
-    assert v["grip_height"].value == 1.1 and v["grip_height"].limit == 0.9
+    assert v["grip_height"].value == 1.4 and v["grip_height"].limit == 1.33
 
 
 @pytest.mark.parametrize(

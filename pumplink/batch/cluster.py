@@ -207,18 +207,24 @@ def _stop_signals_ignored() -> Iterator[None]:
             signal.signal(s, handler)
 
 
+def installed_version() -> str:
+    """The version of pumplink installed here (its package metadata)."""
+    from importlib.metadata import version
+
+    return version("pumplink")
+
+
 def fingerprint() -> str:
     """pumplink's version and a digest of its source files: the driver and the workers must run
     the same code, or the rows would not be those of ``--workers 1``."""
     import hashlib
-    from importlib.metadata import version
     from pathlib import Path
 
     root = Path(__file__).resolve().parents[1]  # the pumplink package
     digest = hashlib.sha256()
     for path in sorted(root.rglob("*.py")):
         digest.update(path.relative_to(root).as_posix().encode() + b"\0" + path.read_bytes())
-    return f"{version('pumplink')} ({digest.hexdigest()[:12]})"
+    return f"{installed_version()} ({digest.hexdigest()[:12]})"
 
 
 def _check_workers(client: distributed.Client, scheduler: Scheduler) -> None:

@@ -94,6 +94,11 @@ class Problem:
         return self.spec.gives_inertia and self.forced != QUASI_STATIC
 
     @property
+    def force_limit(self) -> float:
+        """The operator's force limit [N] (the profile's, or the spec's)."""
+        return float(pump_designs(spec_values(self.spec)).force_limit)
+
+    @property
     def inertia(self) -> float | None:
         """J about the wheel axle [kg m^2] (None: the spec gives no inertia)."""
         return float(pump_designs(spec_values(self.spec)).inertia) if self.spec.gives_inertia else None

@@ -18,8 +18,8 @@ import pytest
 
 from pumplink.inputs.pump import parse_spec
 from pumplink.output.force import force_summary, render_force, sample_rows
-from pumplink.output.synth import design_row, render_designs
 from pumplink.output.formats import console, deg, num, write_csv
+from pumplink.output.synth import design_row, render_designs
 from pumplink.studies.force import design, force_analysis
 
 BASE = {
