@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.evaluate import PistonEvaluation, evaluate, piston_designs, pump_designs
+from pumplink.evaluate import PistonEvaluation, Water, evaluate, piston_designs, pump_designs
 from pumplink.inputs.batch import CRANK_SLIDER, FOUR_BAR, Batch, axis_indices
 from pumplink.mechanisms import crank_slider as cs
 from pumplink.mechanisms.fourbar import infeasibility_reason
@@ -124,6 +124,7 @@ class Chunk(_Judged):
     verdict: Verdict | None = None  # every check, per variant (:func:`pumplink.verdict.assess`)
     model_index: np.ndarray | None = None  # 0 quasi-static, 1 flywheel, 2 full dynamics (models.ORDER)
     peak_force: np.ndarray | None = None  # the peak force that decides the verdict [N]
+    water: Water | None = None  # the water each variant delivers (pumplink.evaluate.Water)
 
     mechanism = FOUR_BAR
 
@@ -298,6 +299,7 @@ def evaluate_chunk(
         verdict=verdict,
         model_index=ev.model_index,
         peak_force=ev.peak_force,
+        water=ev.water,
     )
 
 

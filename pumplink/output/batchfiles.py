@@ -25,7 +25,7 @@ from pumplink.constants import MODEL_WORDS
 from pumplink.errors import escape_control
 from pumplink.output.formats import atomic_write
 from pumplink.output.piston import BATCH_COLUMNS, batch_csv, batch_json, batch_rows
-from pumplink.output.words import CHECK_LABELS
+from pumplink.output.words import CHECK_LABELS, L_PER_MIN
 
 if TYPE_CHECKING:
     from pumplink.batch.runner import Chunk
@@ -58,6 +58,9 @@ CHECK_KEYS = (
     "axle_height",
 )
 CHECK_COLUMNS = tuple(f"check_{k}" for k in CHECK_KEYS)
+#: The water each variant delivers (empty where the spec gives a rope force, not a head and a
+#: pipe): as in ``pumplink force --format json`` (``pumplink.output.words.water_row``).
+WATER_COLUMNS = ("flow_l_min", "water_power_W", "pump_efficiency", "flow_share", "people_served")
 FIXED_COLUMNS = (
     "frame_length",
     "crank_length",
@@ -72,6 +75,7 @@ FIXED_COLUMNS = (
     "dead_band_peak_force_N",
     "sampled_peak_force_N",
     "power_W",
+    *WATER_COLUMNS,
     "grip_speed_m_s",
     "stroke_m",
     "force_limit_N",
@@ -168,6 +172,17 @@ def _models(c: Chunk) -> list[str]:
 ENERGY_COLUMNS = ("inertia_kg_m2", "speed_fluctuation", "least_peak_force_N", "min_passing_speed_deg_s")
 
 
+def _water_columns(c: Chunk) -> dict[str, np.ndarray]:
+    """:data:`WATER_COLUMNS` of a chunk (NaN throughout when it has no water figures)."""
+    w = c.water
+    if w is None:
+        nan = np.full(len(c), np.nan)
+        return dict.fromkeys(WATER_COLUMNS, nan)
+    return dict(
+        zip(WATER_COLUMNS, (w.flow * L_PER_MIN, w.water_power, w.efficiency, w.share, w.people), strict=True)
+    )
+
+
 def _number_columns(c: Chunk) -> dict[str, np.ndarray]:
     """The chunk's numeric columns by output name [SI units, angles in degrees], in output order
     up to ``force_limit_N``, then :data:`ENERGY_COLUMNS`: the one table the JSON, CSV and Parquet
@@ -184,6 +199,7 @@ def _number_columns(c: Chunk) -> dict[str, np.ndarray]:
         "dead_band_peak_force_N": c.dead_band_peak_force,
         "sampled_peak_force_N": c.sampled_peak,
         "power_W": c.power,
+        **_water_columns(c),
         "grip_speed_m_s": c.grip_speed,
         "stroke_m": c.stroke,
         "force_limit_N": c.force_limit,
@@ -275,6 +291,7 @@ def csv_text(batch: Batch, c: Chunk, vkeys: Sequence[str]) -> str:
         _csv_floats(c.dead_band_peak_force),
         _csv_floats(c.sampled_peak),
         _csv_floats(c.power),
+        *(_csv_floats(v) for v in _water_columns(c).values()),
         _csv_floats(c.grip_speed),
         _csv_floats(c.stroke),
         _csv_floats(c.force_limit),

@@ -16,6 +16,7 @@ import numpy as np
 from pumplink.output.formats import console, deg, num, render
 from pumplink.output.formats import fmt as _f
 from pumplink.output.words import check_row as verdict_check_row
+from pumplink.output.words import water_lines, water_row
 
 #: Rows of the condensed sweep in the table (every k-th sample).
 TABLE_ROWS = 24
@@ -56,6 +57,7 @@ def summary_row(r) -> dict[str, Any]:
         "permissible_pressure_angle_deg": [lo, hi],
         "speed_deg_s": r.speed_deg_s,
         "power_W": num(r.power),
+        **water_row(r.water),
         "mean_force_N": num(r.mean_force),
         "quasi_static_peak_N": num(r.quasi_static_peak),
         "quasi_static_peak_angle_deg": deg(r.quasi_static_peak_angle),
@@ -233,6 +235,11 @@ def render_force(r, fmt: str, summary: bool = False, out=None, why=None, check=N
                 "  the operator turns the crank, so there is no dead centre)",
                 markup=False,
             )
+        use = r.spec.use
+        for line in water_lines(
+            r.water, r.power, r.spec.operator.profile or "men", use.hours_per_day, use.litres_per_person_day
+        ):
+            c.print(line, markup=False)
         c.print(_verdict_line(row), markup=False)
 
     render(fmt, out, as_json=as_json, as_csv=as_csv, table=table)
@@ -257,6 +264,13 @@ BATCH_COLUMNS = (
     "largest_pressure_angle_deg",
     "speed_deg_s",
     "power_W",
+    "flow_l_min",
+    "flow_m3_h",
+    "water_power_W",
+    "pump_efficiency",
+    "power_limited_flow_l_min",
+    "flow_share",
+    "people_served",
     "mean_force_N",
     "quasi_static_peak_N",
     "quasi_static_peak_angle_deg",
@@ -309,6 +323,7 @@ def batch_rows(names: list[str], c) -> list[dict[str, Any]]:
                 "permissible_pressure_angle_deg": list(_PERMISSIBLE),
                 "speed_deg_s": float(sp["operator.speed"][i]),
                 "power_W": num(ev.power[i]),
+                **water_row(ev.water.design(i)),
                 "mean_force_N": num(ev.mean_force[i]),
                 "quasi_static_peak_N": num(ev.quasi_static_peak[i]),
                 "quasi_static_peak_angle_deg": deg(ev.quasi_static_peak_angle[i]),

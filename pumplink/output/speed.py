@@ -17,6 +17,7 @@ if TYPE_CHECKING:
     from pumplink.studies.speed import SpeedSweep
 from pumplink.constants import MODEL_WORDS
 from pumplink.output.synth import design_row
+from pumplink.output.words import L_PER_MIN
 
 
 def speed_rows(sw: SpeedSweep) -> list[dict[str, Any]]:
@@ -34,6 +35,7 @@ def speed_rows(sw: SpeedSweep) -> list[dict[str, Any]]:
         sw.grip_speed,
         outcome,
         sw.passed,
+        [math.nan] * len(outcome) if sw.flow is None else sw.flow,
     )
     return [
         {
@@ -45,11 +47,12 @@ def speed_rows(sw: SpeedSweep) -> list[dict[str, Any]]:
             "dynamics_peak_force_N": num(dy),
             "effort_peak_force_N": num(ef),
             "power_W": num(p),
+            "flow_l_min": num(q * L_PER_MIN),
             "grip_speed_m_s": num(g),
             "verdict": o,
             "pass": bool(ok),
         }
-        for w, b, f, fw, dy, ef, m, p, g, o, ok in zip(*cols)
+        for w, b, f, fw, dy, ef, m, p, g, o, ok, q in zip(*cols)
     ]
 
 

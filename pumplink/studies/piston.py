@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pumplink.constants import PERMISSIBLE_PRESSURE_SLIDING_DEG
-from pumplink.evaluate import evaluate, motion, piston_designs
+from pumplink.evaluate import Water, evaluate, motion, piston_designs
 from pumplink.inputs.piston import PistonSpec
 from pumplink.inputs.pump import spec_values
 from pumplink.mechanisms import crank_slider as cs
@@ -56,6 +56,7 @@ class PistonResult:
     crank_torque: np.ndarray
     operator_force: np.ndarray
     pressure_angle: np.ndarray
+    water: Water | None = None  # the water it delivers (pumplink.evaluate.Water, one design)
 
     @property
     def feasible(self) -> bool:
@@ -166,6 +167,7 @@ def force_analysis(
         crank_torque=torque,
         operator_force=torque / op.handle,
         pressure_angle=np.asarray(cs.pressure_angle(r, rod, e, t), float),
+        water=ev.water.design(0),
     )
 
 

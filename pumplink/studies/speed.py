@@ -132,6 +132,7 @@ class SpeedSweep:
     model: np.ndarray | None = None  # model key at each speed
     cadence: Cadence | None = None
     result: ForceResult | None = None  # pumplink force at the spec's own speed
+    flow: np.ndarray | None = None  # the water delivered at each speed [m³/s] (NaN without a head)
 
     @property
     def outcome(self) -> np.ndarray:
@@ -214,4 +215,5 @@ def speed_sweep(
         keys[:-1],
         cadence(result) if with_cadence else None,
         result,
+        flow=ev.water.flow[:-1],
     )
