@@ -266,3 +266,25 @@ def assess(
     for c in checks:
         level = np.maximum(level, c.level)
     return Verdict(tuple(checks), _scalar(level))
+
+
+def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf):
+    """How far a verdict's checks lie beyond their limits: per design, the sum over the checks that
+    fail (``accept_warnings``) or that warn or fail (otherwise) of the relative distance beyond the
+    limit they break (the fail limit for a failure, else the warn limit); 0 exactly where none
+    does.  A value that is not finite counts ``unbounded``.  The searches rank designs by it."""
+    total = 0.0
+    for c in verdict.checks:
+        level = np.asarray(c.level)
+        if c.warn_limit is None and c.fail_limit is None:
+            continue
+        warn = c.fail_limit if c.warn_limit is None else c.warn_limit
+        fail = c.warn_limit if c.fail_limit is None else c.fail_limit
+        lim = np.where(level == FAIL, np.asarray(fail, float), np.asarray(warn, float))
+        v = np.asarray(c.value, float)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            beyond = np.where(np.asarray(c.relation) == "<=", v - lim, lim - v) / np.abs(lim)
+        beyond = np.where(np.isfinite(beyond), np.maximum(beyond, 0.0), unbounded)
+        counted = level == FAIL if accept_warnings else level >= WARN
+        total = total + np.where(counted, beyond, 0.0)
+    return _scalar(np.asarray(total, float))

@@ -16,6 +16,7 @@ from pumplink.errors import SpecError
 class Objective(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
     peak = "peak"
     mean = "mean"
+    flow = "flow"
 
 
 def res_passes(result, strict: bool) -> bool:
@@ -33,8 +34,9 @@ def optimize(
         typer.Option(
             "--vary",
             help="KEY=LO:HI in spec units (repeatable); keys: L1, D1, "
-            "b, rocker, handle \\[m], swing \\[deg]. Default: rocker=0.1:0.4 "
-            "L1=0:1 D1=-0.3:1.2 swing=30:100.",
+            "b, rocker, handle \\[m], swing \\[deg], and what a builder chooses: wheel.radius, "
+            "wheel.axle_height, load.pipe_diameter \\[m], wheel.mass \\[kg], operator.speed \\[deg/s]. "
+            "Default: rocker=0.1:0.4 L1=0:1 D1=-0.3:1.2 swing=30:100.",
             show_default=False,
         ),
     ] = None,
@@ -43,7 +45,8 @@ def optimize(
         typer.Option(
             help="Minimise the peak force of the verdict (the least peak "
             "force of the flywheel or full dynamics when the spec gives "
-            "inertia, else the exact peak outside the dead bands) or the mean force."
+            "inertia, else the exact peak outside the dead bands) or the mean force, or "
+            "maximise the flow with no check failing (flow; vary the cadence, wheel or pipe too)."
         ),
     ] = Objective.peak,
     seed: Annotated[

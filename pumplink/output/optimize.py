@@ -13,7 +13,7 @@ from pumplink.output.formats import fmt as _f
 
 if TYPE_CHECKING:
     pass
-from pumplink.output.words import OUTCOME_MARKUP, check_row
+from pumplink.output.words import OUTCOME_MARKUP, check_row, water_row
 
 
 def optimize_row(res) -> dict[str, Any]:
@@ -28,7 +28,6 @@ def optimize_row(res) -> dict[str, Any]:
     p = res.problem
     b, s = res.at_best, res.at_spec
     names = p.constraint_names()
-    spec_lk = p.spec.linkage
     op = p.spec.operator
     gain = res.improvement
 
@@ -38,6 +37,7 @@ def optimize_row(res) -> dict[str, Any]:
             "peak_force_N": num(r.verdict_peak_force),
             "dead_band_peak_force_N": num(r.dead_band_peak_force),
             "mean_force_N": num(r.mean_force),
+            "flow_l_min": water_row(r.water)["flow_l_min"],
             "verdict": r.outcome,
             "pass": r.passed,
             "checks": [check_row(c, r) for c in r.checks],
@@ -61,7 +61,7 @@ def optimize_row(res) -> dict[str, Any]:
                 "unit": u,
                 "lower": float(lo),
                 "upper": float(hi),
-                "spec": float(getattr(spec_lk, k)),
+                "spec": num(p.spec_value(k)),
                 "optimum": float(v),
             }
             for k, u, lo, hi, v in zip(p.names, res.variable_units, p.lower, p.upper, res.x)
@@ -134,8 +134,13 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
             else row["model"]
         )
         c.print(
-            f"[bold]{escape(row['name'])}[/]: minimise the {row['objective']} operator force "
-            f"(model: {model}; seed {row['seed']}); axle height "
+            f"[bold]{escape(row['name'])}[/]: "
+            + (
+                "maximise the flow with no check failing "
+                if row["objective"] == "flow"
+                else f"minimise the {row['objective']} operator force "
+            )
+            + f"(model: {model}; seed {row['seed']}); axle height "
             f"{row['axle_height_m']:g} m, grip height "
             f"{row['grip_height_range_m'][0]:g}–{row['grip_height_range_m'][1]:g} m, "
             f"stroke {row['stroke_range_m'][0]:g}–{row['stroke_range_m'][1]:g} m"
@@ -200,7 +205,13 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
             t.add_row(k["name"], f"{k['slack']:.4g} {k['unit']}", "[bold]binds[/]" if k["binding"] else "")
         c.print(t)
         key = "peak_force_N" if row["objective"] == "peak" else "mean_force_N"
-        if row["improvement_N"] is not None:
+        if row["objective"] == "flow":
+            c.print(
+                f"flow {_f(s['flow_l_min'], '{:.1f}')} l/min → {_f(o['flow_l_min'], '{:.1f}')} l/min "
+                "(the spec's own design → the optimum)",
+                markup=False,
+            )
+        elif row["improvement_N"] is not None:
             c.print(
                 f"{row['objective']} force {_f(s[key], '{:.2f}')} N → {_f(o[key], '{:.2f}')} N "
                 f"({row['improvement_pct']:+.1f} % lower than the spec's own design)"

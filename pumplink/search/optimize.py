@@ -46,9 +46,29 @@ from pumplink.evaluate import PumpDesigns, evaluate, pump_designs
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
 from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_heights, grip_stroke, synthesize
 from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC
+from pumplink.verdict import excess
 
 #: Keys that may vary (the [linkage] table of the spec), with their units.
-VARIABLE_UNITS = {"L1": "m", "D1": "m", "b": "m", "rocker": "m", "handle": "m", "swing": "deg"}
+VARIABLE_UNITS = {
+    "L1": "m",
+    "D1": "m",
+    "b": "m",
+    "rocker": "m",
+    "handle": "m",
+    "swing": "deg",
+    # what a builder chooses besides the linkage (as ``pumplink size`` searches them)
+    "wheel.radius": "m",
+    "wheel.mass": "kg",
+    "wheel.axle_height": "m",
+    "operator.speed": "deg/s",
+    "load.pipe_diameter": "m",
+}
+#: The constraint ``--objective flow`` adds: no check of the verdict fails (its slack is minus the
+#: relative excess beyond the fail limits, pumplink.verdict.excess).
+VERDICT_CONSTRAINT = ("no check of the verdict fails", "relative")
+#: The objectives: the verdict's peak force or the mean force (least), or the flow (most, with no
+#: check failing: ``--objective flow``).
+OBJECTIVES = ("peak", "mean", "flow")
 #: Default search space (spec units) when no --vary is given.
 DEFAULT_BOUNDS = {"rocker": (0.10, 0.40), "L1": (0.0, 1.0), "D1": (-0.3, 1.2), "swing": (30.0, 100.0)}
 #: Ergonomic defaults (see the module docstring for the sources).
@@ -93,6 +113,15 @@ class Problem:
         inertia and --model does not ask for the quasi-static model."""
         return self.spec.gives_inertia and self.forced != QUASI_STATIC
 
+    def spec_value(self, key: str) -> float:
+        """The spec's own value of a varied key (NaN where it gives none, e.g. a wheel mass when it
+        gives the wheel's inertia)."""
+        section, _, name = key.rpartition(".")
+        v = getattr(getattr(self.spec, section or "linkage"), name)
+        if key == "wheel.axle_height":
+            v = self.axle_height
+        return math.nan if v is None else float(v)
+
     @property
     def force_limit(self) -> float:
         """The operator's force limit [N] (the profile's, or the spec's)."""
@@ -119,7 +148,14 @@ class Problem:
         sl, sh = self.stroke
         fill = [{}, {}, {"lo": f"{gl:g}"}, {"hi": f"{gh:g}"}, {"lo": f"{sl:g}"}, {"hi": f"{sh:g}"}, {}]
         names = [name.format(**f) for (name, _), f in zip(CONSTRAINTS, fill)]
-        return names[:-1] if self.flywheel else names
+        names = names[:-1] if self.flywheel else names
+        return names + [VERDICT_CONSTRAINT[0]] if self.objective == "flow" else names
+
+    def constraint_units(self) -> list[str]:
+        """The unit of each constraint's slack, in :meth:`constraint_names` order."""
+        units = [u for _, u in CONSTRAINTS]
+        units = units[:-1] if self.flywheel else units
+        return units + [VERDICT_CONSTRAINT[1]] if self.objective == "flow" else units
 
 
 @dataclass(frozen=True)
@@ -176,7 +212,7 @@ class OptimizationResult:
     @property
     def constraint_units(self) -> tuple[str, ...]:
         """The unit of each constraint's slack, in :meth:`Problem.constraint_names` order."""
-        return tuple(u for _, u in CONSTRAINTS[: len(self.problem.constraint_names())])
+        return tuple(self.problem.constraint_units())
 
     @property
     def spec_violates(self) -> tuple[str, ...]:
@@ -233,10 +269,12 @@ def parse_bounds(items: list[str] | None) -> dict[str, tuple[float, float]]:
 
 
 def _check_spec_range(key: str, lo: float, hi: float) -> None:
-    """Bounds must lie inside the spec's allowed range for the key (spec.Linkage fields)."""
-    from pumplink.inputs.pump import Linkage
+    """Bounds must lie inside the spec's allowed range for the key (the spec's fields)."""
+    from pumplink.inputs.pump import PumpSpec
 
-    info = Linkage.model_fields[key]
+    section, _, name = key.rpartition(".")
+    table = PumpSpec.model_fields[section or "linkage"].annotation
+    info = table.model_fields[name]
     gt = ge = lt = le = None
     for m in info.metadata:
         gt = getattr(m, "gt", gt)
@@ -250,7 +288,8 @@ def _check_spec_range(key: str, lo: float, hi: float) -> None:
         hi_txt = f"< {lt:g}" if lt is not None else f"<= {le:g}"
         unit = VARIABLE_UNITS[key]
         raise SpecError(
-            f"--vary {key}={lo:g}:{hi:g} leaves the allowed range of linkage.{key} "
+            f"--vary {key}={lo:g}:{hi:g} leaves the allowed range of "
+            f"{key if '.' in key else 'linkage.' + key} "
             f"({lo_txt} and {hi_txt} {unit}); narrow the bounds"
         )
 
@@ -293,8 +332,15 @@ def make_problem(
             f"--model {model} needs the wheel's inertia, but {spec.name} gives none; add wheel.mass [kg] "
             "or wheel.inertia [kg m^2] to the spec"
         )
-    if objective not in ("peak", "mean"):
-        raise SpecError(f"--objective {objective!r} is unknown; use peak or mean")
+    if objective not in OBJECTIVES:
+        raise SpecError(f"--objective {objective!r} is unknown; use peak, mean or flow")
+    if objective == "flow" and spec.load.head is None:
+        raise SpecError(
+            f"--objective flow needs the pumping head, but {spec.name} gives load.rope_force; give "
+            "load.head [m] and load.pipe_diameter [m] instead"
+        )
+    if "load.pipe_diameter" in bounds and spec.load.head is None:
+        raise SpecError("--vary load.pipe_diameter needs load.head [m] in the spec (not load.rope_force)")
     if (
         spec.gives_inertia
         and float(pump_designs(spec_values(spec)).inertia) == 0.0
@@ -331,7 +377,8 @@ def _columns(problem: Problem, x: np.ndarray) -> dict[str, np.ndarray]:
     x = np.atleast_2d(np.asarray(x, float))
     n = x.shape[1]
     lk = problem.spec.linkage
-    cols = {k: np.full(n, float(getattr(lk, k))) for k in VARIABLE_UNITS}
+    cols = {k: np.full(n, float(getattr(lk, k))) for k in VARIABLE_UNITS if "." not in k}
+    cols["wheel.axle_height"] = np.full(n, problem.axle_height)
     for i, k in enumerate(problem.names):
         cols[k] = x[i]
     return cols
@@ -368,7 +415,7 @@ def _terms(problem: Problem, x, syn=None) -> _Terms:
     margin = np.where(syn.frame_length > 1e-6, margin, -1.0)
     mu = np.minimum(syn.transmission_min, np.pi - syn.transmission_max)
     g_mu = np.where(ok, np.degrees(mu) - MIN_TRANSMISSION_DEG, 0.0)
-    grip_low, grip_high = grip_heights(problem.axle_height, p["D1"], h, sw)
+    grip_low, grip_high = grip_heights(p["wheel.axle_height"], p["D1"], h, sw)
     stroke = grip_stroke(h, sw)
     plus = syn.stroke_plus_x
     win = np.where(ok, np.degrees(np.minimum(plus, 2 * np.pi - plus) - 2 * band), 0.0)
@@ -398,7 +445,11 @@ def designs(problem: Problem, x) -> PumpDesigns:
         section, name = key.split(".")
         if section == "linkage" and name in p:
             return p[name]
-        return problem.axle_height if key == "wheel.axle_height" else base(key)
+        if key in p:
+            return p[key]
+        if key == "wheel.inertia" and "wheel.mass" in problem.names:
+            return None  # the wheel's mass is varied instead
+        return base(key)
 
     return pump_designs(value)
 
@@ -412,13 +463,14 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
     The forces come from :func:`pumplink.evaluate.evaluate` (the verdict's own route).
     """
     objective_peak = problem.objective == "peak"
+    flow_objective = problem.objective == "flow"
     ev = evaluate(
         designs(problem, x),
         problem.forced,
-        judge=False,
+        judge=flow_objective,
         passing_speed=False,
         dead_band_peak=not search,
-        peak=objective_peak or not search,
+        peak=objective_peak or flow_objective or not search,
     )
     tm = _terms(problem, x, ev.synthesis)
     ok = tm.ok
@@ -428,12 +480,16 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
     verdict = required if problem.flywheel else peak
     mean = np.where(ok, ev.mean_force, np.nan)
     obj = verdict if objective_peak else mean
+    slack = tm.slack
+    if flow_objective:  # the most water [l/min] with no check failing (the verdict's slack)
+        obj = -ev.water.flow * 60_000.0
+        slack = np.vstack([slack, -np.atleast_1d(excess(ev.verdict, True, INFEASIBLE_OBJECTIVE))])
     obj = np.where(np.isfinite(obj), obj, INFEASIBLE_OBJECTIVE)
     return Evaluation(
         obj,
         peak,
         mean,
-        tm.slack,
+        slack,
         np.where(ok, np.degrees(tm.mu), np.nan),
         tm.grip_low,
         tm.grip_high,
@@ -443,11 +499,22 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
     )
 
 
+def _constraint_slack(problem: Problem, x) -> np.ndarray:
+    """The constraints' slacks of designs x: from the geometry alone, but for ``--objective flow``
+    whose verdict constraint needs the whole evaluation."""
+    if problem.objective == "flow":
+        return evaluate_designs(problem, x, search=True).slack
+    return _terms(problem, x).slack
+
+
 def _spec_with(problem: Problem, x) -> PumpSpec:
     data = spec_to_dict(problem.spec)
-    for k, v in zip(problem.names, np.asarray(x, float).ravel()):
-        data["linkage"][k] = float(v)
     data["wheel"]["axle_height"] = problem.axle_height
+    for k, v in zip(problem.names, np.asarray(x, float).ravel()):
+        section, _, name = k.rpartition(".")
+        data.setdefault(section or "linkage", {})[name] = float(v)
+    if "wheel.mass" in problem.names:
+        data["wheel"].pop("inertia", None)
     data["name"] = f"{problem.spec.name} (optimised)"
     return parse_spec(data, source="optimum")
 
@@ -498,7 +565,7 @@ def optimize(
         # those that meet them all: the constraints need the geometry, no force model
         x2 = np.asarray(x, float).reshape(n, -1)
         count[0] += x2.shape[1]
-        return _terms(problem, x2).slack
+        return _constraint_slack(problem, x2)
 
     con = NonlinearConstraint(slack, 0.0, np.inf)
     res = differential_evolution(
@@ -552,7 +619,7 @@ def optimize(
         def g(z):
             # the constraints need the geometry only, no force model
             x2 = (problem.lower + np.asarray(z, float) * scale)[:, None]
-            return _terms(problem, x2).slack[:, 0]
+            return _constraint_slack(problem, x2)[:, 0]
 
         def gradient_map(fun, points):
             # SLSQP's finite-difference gradient asks for n + 1 objective values at once: one
@@ -577,7 +644,7 @@ def optimize(
             ec = evaluate_designs(problem, cand[:, None])
             if _feasible(ec) and ec.objective[0] < e.objective[0]:
                 x, e, polished = cand, ec, True
-    spec_x = np.array([float(getattr(problem.spec.linkage, k)) for k in problem.names])
+    spec_x = np.array([problem.spec_value(k) for k in problem.names])
     at_spec = evaluate_designs(problem, spec_x[:, None])
     names = problem.constraint_names()
     binding = tuple(nm for nm, s in zip(names, e.slack[:, 0]) if s <= BINDING_TOL)
@@ -631,7 +698,11 @@ def _pull_back(problem: Problem, good: np.ndarray, cand: np.ndarray, steps: int 
         for _ in range(50):
             mid = 0.5 * (lo + hi)
             x2 = (good + (cand - good) * mid)[:, None]
-            ok = _feasible(evaluate_designs(problem, x2)) if full else np.all(_terms(problem, x2).slack >= 0)
+            ok = (
+                _feasible(evaluate_designs(problem, x2))
+                if full
+                else np.all(_constraint_slack(problem, x2) >= 0)
+            )
             if ok:
                 lo = mid
             else:

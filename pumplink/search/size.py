@@ -33,7 +33,7 @@ from pumplink.errors import SpecError
 from pumplink.evaluate import Evaluation, evaluate, pump_designs
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
 from pumplink.models.water import rope_pump_flow
-from pumplink.verdict import FAIL, WARN, Verdict
+from pumplink.verdict import WARN, excess
 
 #: Nominal pipe bores searched by default [m]: ½", ¾", 1", 1¼" and 1½" (12.7-38.1 mm), the sizes
 #: rope-pump rising mains are made of.  They are the nominal inch sizes, not measured bores: give
@@ -125,27 +125,6 @@ def _values(problem: SizeProblem, pipe: float, x: np.ndarray):
     return value
 
 
-def excess(verdict: Verdict, allow_warnings: bool = False) -> np.ndarray:
-    """Per design, the sum over checks of the relative distance beyond the warn limit (the fail
-    limit when warnings are allowed): 0 exactly when no check warns (fails); inf for a value that
-    is not finite beyond its limit, NaN values count as :data:`INFEASIBLE`."""
-    total = 0.0
-    for c in verdict.checks:
-        level = np.asarray(c.level)
-        lim = c.fail_limit if (allow_warnings or c.warn_limit is None) else c.warn_limit
-        if lim is None:
-            continue
-        v = np.asarray(c.value, float)
-        lim = np.asarray(lim, float)
-        rel = np.asarray(c.relation)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            beyond = np.where(rel == "<=", v - lim, lim - v) / np.abs(lim)
-        bad = level >= (FAIL if allow_warnings else WARN)
-        beyond = np.where(np.isfinite(beyond), beyond, INFEASIBLE)
-        total = total + np.where(bad, np.maximum(beyond, 0.0), 0.0)
-    return np.asarray(total, float)
-
-
 def _flow(problem: SizeProblem, pipe: float, x: np.ndarray) -> np.ndarray:
     """The flow of designs x [m³/s] (a formula: no model) through :func:`evaluate`'s columns."""
     d = pump_designs(_values(problem, pipe, x))
@@ -169,7 +148,9 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
             if len(cache) > 8:
                 cache.clear()
             ev = evaluate(pump_designs(_values(problem, pipe, x)), passing_speed=False)
-            cache[key] = np.where(ev.feasible, excess(ev.verdict, problem.allow_warnings), INFEASIBLE)
+            cache[key] = np.where(
+                ev.feasible, excess(ev.verdict, problem.allow_warnings, INFEASIBLE), INFEASIBLE
+            )
             count[0] += x.shape[1]
         return cache[key]
 
@@ -195,18 +176,22 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
     ev = evaluate(pump_designs(spec_values(spec)))
     if float(violation(x)[0]) > 0:  # the closest design, as it is
         return Sized(
-            pipe, spec, ev, float(ev.water.flow[0]), float(excess(ev.verdict, problem.allow_warnings)[0])
+            pipe,
+            spec,
+            ev,
+            float(ev.water.flow[0]),
+            float(excess(ev.verdict, problem.allow_warnings, INFEASIBLE)[0]),
         ), count[0]
     # rounding to workshop figures can step over a limit the optimum touches: slow the cadence a
     # degree per second at a time until the rounded design meets them again
     for _ in range(30):
-        if float(excess(ev.verdict, problem.allow_warnings)[0]) == 0.0:
+        if float(excess(ev.verdict, problem.allow_warnings, INFEASIBLE)[0]) == 0.0:
             break
         data = spec_to_dict(spec)
         data["operator"]["speed"] = data["operator"]["speed"] - 1.0
         spec = parse_spec(data, source="the sized design")
         ev = evaluate(pump_designs(spec_values(spec)))
-    miss = float(excess(ev.verdict, problem.allow_warnings)[0])
+    miss = float(excess(ev.verdict, problem.allow_warnings, INFEASIBLE)[0])
     return Sized(pipe, spec, ev, float(ev.water.flow[0]), miss), count[0]
 
 
@@ -344,7 +329,6 @@ __all__ = [
     "SizeResult",
     "Sized",
     "discharge",
-    "excess",
     "problem_for",
     "size",
     "spec_of",

@@ -3,13 +3,12 @@ re-evaluated by the same route as ``pumplink force``."""
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict
 from pumplink.studies.force import ForceResult, force_analysis
-from pumplink.verdict import Verdict
+from pumplink.verdict import excess
 
 
 @dataclass(frozen=True)
@@ -36,20 +35,11 @@ KNOBS = (
     ("linkage.L1", "m", ("+", -0.05, 0.05)),
     ("linkage.D1", "m", ("+", -0.05, 0.05)),
     ("operator.speed", "deg/s", ("x", 0.75, 0.85, 1.15)),
+    ("load.pipe_diameter", "m", ("x", 0.8, 0.9)),
+    ("wheel.radius", "m", ("x", 0.8, 1.2)),
     ("wheel.mass", "kg", ("x", 1.5, 2.0)),
     ("wheel.inertia", "kg m^2", ("x", 1.5, 2.0)),
 )
-
-
-def _excess(verdict: Verdict) -> float:
-    """Sum over failing checks of the relative distance beyond the fail limit (inf: unbounded)."""
-    total = 0.0
-    for c in verdict.failures:
-        v, lim = float(c.value), float(c.fail_limit)
-        if not math.isfinite(v):
-            return math.inf
-        total += (v - lim) / abs(lim) if c.relation == "<=" else (lim - v) / abs(lim)
-    return total
 
 
 def suggest(spec: PumpSpec, result: ForceResult, count: int = 2) -> list[Suggestion]:
@@ -63,7 +53,7 @@ def suggest(spec: PumpSpec, result: ForceResult, count: int = 2) -> list[Suggest
     """
     if result.verdict is None or result.passed:
         return []
-    base = (int(result.verdict.level), _excess(result.verdict))
+    base = (int(result.verdict.level), excess(result.verdict))
     found: dict[str, Suggestion] = {}
     for key, unit, (kind, *steps) in KNOBS:
         table, field = key.split(".")
@@ -89,7 +79,7 @@ def suggest(spec: PumpSpec, result: ForceResult, count: int = 2) -> list[Suggest
                 r.verdict_peak_force,
                 r.outcome,
                 int(r.verdict.level),
-                _excess(r.verdict),
+                excess(r.verdict),
                 tuple(c.key for c in r.verdict.failures),
             )
             if (s.level, s.excess) < base and (
