@@ -47,6 +47,7 @@ def size_row(res: SizeResult) -> dict[str, Any]:
         "profile": spec.operator.limits.name,
         "allow_warnings": res.problem.allow_warnings,
         "found": res.found,
+        "reason": None if res.found else _holding_back(res),
         "design": {k: num(_value(spec, key) * f) for key, k, _, _, f in DESIGN},
         "cycles_per_min": num(_value(spec, "operator.speed") / 6.0),
         "flow_l_min": num(w.flow * L_PER_MIN),

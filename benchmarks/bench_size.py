@@ -1,0 +1,97 @@
+"""`pumplink size` for heads 5, 10, 20 and 35 m and every operator profile: the time of each answer
+and the share of Q* it reaches (the flow the operator's sustained power lifts at that head).
+
+Each answer runs the real command in a subprocess (start-up included), once: the search is
+seeded, so its answer does not change between runs; the time is one run's wall time.  Where a
+design is found, `pumplink force` on the written spec must pass (exit 0) and give the same flow.
+
+    .venv/bin/python benchmarks/bench_size.py [--heads 5,10,20,35] [--profiles men,women,...]
+
+Target: each answer in <= 30 s on this 2-core machine; aim for >= 80 % of Q*, and where an answer
+falls below, its output names the limit that holds it back.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from _record import machine, record
+
+ROOT = Path(__file__).resolve().parents[1]
+PUMPLINK = [sys.executable, "-m", "pumplink"]
+PROFILES = ("men", "women", "children", "accessible")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--heads", default="5,10,20,35")
+    ap.add_argument("--profiles", default=",".join(PROFILES))
+    args = ap.parse_args()
+    heads = [float(h) for h in args.heads.split(",")]
+    profiles = args.profiles.split(",")
+    print(f"pumplink size --head H --profile P ({machine()})")
+    print(
+        f"  {'head':>5} {'profile':<11} {'time':>7} {'flow':>12} {'share of Q*':>12}  what binds / holds it back"
+    )
+    slowest = 0.0
+    with tempfile.TemporaryDirectory() as tmp:
+        for h in heads:
+            for p in profiles:
+                out = Path(tmp) / f"size-{h:g}-{p}.toml"
+                cmd = [
+                    *PUMPLINK,
+                    "size",
+                    "--head",
+                    f"{h:g}",
+                    "--profile",
+                    p,
+                    "--format",
+                    "json",
+                    "--write",
+                    str(out),
+                ]
+                t0 = time.perf_counter()
+                r = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+                wall = time.perf_counter() - t0
+                slowest = max(slowest, wall)
+                row = json.loads(r.stdout)
+                if row["found"]:
+                    force = subprocess.run(
+                        [*PUMPLINK, "force", str(out), "--summary", "--format", "json"],
+                        capture_output=True,
+                        text=True,
+                        cwd=ROOT,
+                    )
+                    checked = json.loads(force.stdout)
+                    assert force.returncode == 0, (h, p, force.stderr)
+                    assert abs(checked["flow_l_min"] - row["flow_l_min"]) <= 1e-9 * row["flow_l_min"]
+                    what = ", ".join(row["binding"]) or "-"
+                    share = row["flow_share"]
+                    print(
+                        f"  {h:>5g} {p:<11} {wall:>6.1f}s {row['flow_l_min']:>7.1f} l/min {share:>11.0%}  {what}"
+                    )
+                    record(f"size --head {h:g} --profile {p}, share of Q*", share, "", ">= 0.80", share >= 0.80,
+                           f"{wall:.1f} s, {row['flow_l_min']:.1f} l/min; binds: {what}")  # fmt: skip
+                else:
+                    print(
+                        f"  {h:>5g} {p:<11} {wall:>6.1f}s {'none':>12} {'-':>12}  {r.stdout and 'see output'}"
+                    )
+                    record(
+                        f"size --head {h:g} --profile {p}, share of Q*",
+                        0.0,
+                        "",
+                        None,
+                        None,
+                        f"{wall:.1f} s, none",
+                    )
+    record("size, slowest answer", slowest, "s", "<= 30 s", slowest <= 30.0)
+
+
+if __name__ == "__main__":
+    main()
