@@ -43,9 +43,12 @@ from pumplink.mechanisms import crank_slider as cs
 from pumplink.mechanisms.fourbar import (
     FourBar,
     Synthesis,
+    analyse,
+    built_grip,
     grip_heights,
     grip_stroke,
     peak_rocker_rate,
+    per_design,
     synthesize,
 )
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, Conditions, Masses
@@ -84,6 +87,9 @@ class PumpDesigns:
     coupler_mass, handle_mass : [kg] (NaN: bars of ``mass_per_length``);  arm_mass : [kg].
     arms_in_verdict : the operator's arms in the verdict's force (one flag for all designs).
     axle_height : [m], or None (no height checks).
+    linkage : a built four-bar (its pivot, link lengths, handle and branch as made), analysed as it
+        is (:func:`pumplink.mechanisms.fourbar.analyse`) instead of synthesised from L1, D1, b,
+        rocker and swing, which are then not read; None: synthesise.
     head, pipe_diameter : pumping head and rising-main bore [m] (NaN: the spec gives a rope force,
         so there is no flow);  force_efficiency, volumetric_efficiency : [-].
     sustained_power, hour_power : the operator's power for hours and for an hour [W];
@@ -125,6 +131,7 @@ class PumpDesigns:
     litres_per_person_day: Any = DEFAULT_LITRES_PER_PERSON_DAY
     arms_in_verdict: bool = False
     axle_height: Any = None
+    linkage: FourBar | None = None
 
 
 def _or(value, default):
@@ -247,7 +254,7 @@ def piston_designs(value: Callable[[str], Any], speed=None) -> PistonDesigns:
 
 def _columns(designs) -> tuple[int, dict[str, np.ndarray]]:
     """The designs' numeric fields as 1-D float arrays of one length (the number of designs)."""
-    names = [f.name for f in fields(designs) if f.name not in ("arms_in_verdict", "axle_height")]
+    names = [f.name for f in fields(designs) if f.name not in ("arms_in_verdict", "axle_height", "linkage")]
     arrays = np.broadcast_arrays(*(np.asarray(getattr(designs, k), float) for k in names))
     cols = {k: np.atleast_1d(a).ravel() for k, a in zip(names, arrays)}
     return next(iter(cols.values())).size, cols
@@ -451,14 +458,26 @@ def evaluate(
     if isinstance(designs, PistonDesigns):
         return _evaluate_piston(designs, judge)
     n, c = _columns(designs)
-    syn = synthesize(c["L1"], c["D1"], c["b"], c["rocker"], c["swing"], c["handle"])
+    built = designs.linkage
+    if built is not None:  # the linkage as built (a workshop's holes): analysed, not re-synthesised
+        _, params = per_design(built, c["wheel_torque"])
+        built = FourBar(*params[:7])
+        syn = analyse(built)
+        c["handle"], c["rocker"] = built.handle, built.rocker
+    else:
+        syn = synthesize(c["L1"], c["D1"], c["b"], c["rocker"], c["swing"], c["handle"])
     feasible = np.asarray(syn.feasible, bool)
     lk = syn.linkage
     mw, speed, band, limit = c["wheel_torque"], c["speed"], c["dead_band"], c["force_limit"]
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
     nan = np.full(n, np.nan)
     ok = np.nonzero(feasible)[0]
-    stroke = grip_stroke(c["handle"], c["swing"])
+    if built is None:
+        stroke = grip_stroke(c["handle"], c["swing"])
+    else:
+        stroke = built_grip(
+            0.0, built.pivot_y, built.handle, syn.rocker_angle_extended, syn.rocker_angle_folded
+        )[0]
     mean, sampled = nan.copy(), nan.copy()
     qs_peak, qs_angle = nan.copy(), nan.copy()
     rate = nan.copy()
@@ -542,7 +561,13 @@ def evaluate(
         share = np.where(index == ORDER.index(FLYWHEEL), share, 0.0)
     grip_speed = _load.grip_speed(rate, speed, c["handle"], np.where(energy, delta, 0.0))
     axle = designs.axle_height
-    heights = None if axle is None else grip_heights(axle, c["D1"], c["handle"], c["swing"])
+    if axle is None:
+        heights = None
+    elif built is None:
+        heights = grip_heights(axle, c["D1"], c["handle"], c["swing"])
+    else:
+        ends = (syn.rocker_angle_extended, syn.rocker_angle_folded)
+        heights = built_grip(axle, built.pivot_y, built.handle, *ends)[1:]
     power = mw * speed
     verdict = None
     if judge:

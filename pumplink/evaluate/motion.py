@@ -40,10 +40,14 @@ __all__ = [
 ]
 
 
+def _at(x, i: int):
+    return None if x is None else np.asarray(x)[i][()]
+
+
 def at_design(ev: Evaluation, i: int = 0) -> tuple[Synthesis, FourBar]:
     """Design ``i`` of an evaluation: its synthesis and four-bar as scalars."""
     syn = ev.synthesis
-    one = Synthesis(**{f.name: np.asarray(getattr(syn, f.name))[i][()] for f in fields(syn)})
+    one = Synthesis(**{f.name: _at(getattr(syn, f.name), i) for f in fields(syn)})
     return one, one.linkage
 
 

@@ -54,6 +54,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.bracket import find_minimum
 
 #: Reason codes for infeasible designs (0 = feasible).
@@ -136,6 +137,8 @@ class Synthesis:
     transmission_max: np.ndarray | float
     branch: np.ndarray | float
     reason: np.ndarray | int
+    rocker_angle_extended: np.ndarray | float | None = None  # built linkages (analyse) only [rad]
+    rocker_angle_folded: np.ndarray | float | None = None
 
     @property
     def feasible(self) -> np.ndarray | bool:
@@ -384,6 +387,108 @@ def synthesize(L1, D1, b, rocker, swing, handle=1.0) -> Synthesis:
         branch=out(branch),
         reason=out(reason),
     )
+
+
+#: Reason code of a built linkage whose crank cannot turn fully (not a Grashof crank-rocker with
+#: the crank the shortest link).
+NOT_A_CRANK_ROCKER = 4
+
+
+def analyse(lk: FourBar) -> Synthesis:
+    """A built four-bar as it is: its dead centres, actual swing, time ratio and transmission
+    angles from the link lengths and the pivot, with nothing re-synthesised (a workshop's linkage,
+    whose holes are where they were drilled).
+
+    The dead centres are where crank and coupler line up (|O2 B| = crank + coupler, extended, or
+    coupler - crank, folded), B on the rocker's circle on the linkage's assembly branch; the
+    rocker's extreme angles follow, and the swing is their difference (not symmetric about the
+    vertical in general).  ``reason`` is 0 for a crank-rocker whose crank turns fully (Grashof,
+    crank the shortest link), :data:`NOT_A_CRANK_ROCKER` otherwise (lengths NaN then).
+
+    Returns
+    -------
+    Synthesis
+        Over the designs of ``lk`` (1-D arrays or floats); ``swing`` the actual swing,
+        ``rocker_angle_extended``/``rocker_angle_folded`` the rocker's angle at each dead centre.
+    """
+    scalar, geom = per_design(lk)
+    px, py, c, k, r, h, br = geom
+    frame = np.hypot(px, py)
+    links = np.stack([frame, c, k, r])
+    shortest, longest = links.min(axis=0), links.max(axis=0)
+    ok = (c <= shortest) & (shortest + longest < links.sum(axis=0) - shortest - longest)
+    nan = np.where(ok, 1.0, np.nan)
+    angles, rockers = [], []
+    with np.errstate(all="ignore"):
+        for dist, flip in ((c + k, 0.0), (k - c, np.pi)):
+            # B on circle(O2, dist) and circle(O4, r): the two points, the branch's one kept
+            a = (dist * dist - r * r + frame * frame) / (2.0 * frame)
+            hh = np.sqrt(np.maximum(dist * dist - a * a, 0.0))
+            ux, uy = px / frame, py / frame
+            cands = []
+            for sgn in (1.0, -1.0):
+                bx = a * ux - sgn * hh * uy
+                by = a * uy + sgn * hh * ux
+                crank = np.mod(np.arctan2(by, bx) + flip, TWO_PI)
+                st = _kinematic_state(FourBar(px, py, c, k, r, h, br), crank, 1.0)
+                cands.append(
+                    (crank, np.hypot(st.coupler_x - bx, st.coupler_y - by), np.arctan2(by - py, bx - px))
+                )
+            pick = cands[0][1] <= cands[1][1]
+            angles.append(np.where(pick, cands[0][0], cands[1][0]) * nan)
+            rockers.append(np.where(pick, cands[0][2], cands[1][2]) * nan)
+    dce, dcf = angles
+    t4e, t4f = rockers
+    plus = np.mod(dcf - dce, TWO_PI)
+    ratio = np.maximum(plus, TWO_PI - plus) / np.minimum(plus, TWO_PI - plus)
+    gmin, gmax = transmission_range(frame, c, k, r)
+    to_o2 = np.arctan2(-py, -px)  # the frame line O4 -> O2
+    psi = [np.abs(np.mod(t - to_o2 + np.pi, TWO_PI) - np.pi) for t in (t4e, t4f)]
+    reason = np.where(ok, FEASIBLE, NOT_A_CRANK_ROCKER).astype(np.int8)
+
+    def out(x):
+        x = np.asarray(x, float)
+        return float(x[0]) if scalar else x
+
+    return Synthesis(
+        frame_length=out(frame),
+        beta=out(np.nan * frame),
+        psi1=out(psi[0]),
+        psi2=out(psi[1]),
+        crank_length=out(c * nan),
+        coupler_length=out(k * nan),
+        rocker_length=out(r + 0.0),
+        handle_length=out(h + 0.0),
+        swing=out(np.abs(np.mod(t4e - t4f + np.pi, TWO_PI) - np.pi)),
+        pivot_x=out(px),
+        pivot_y=out(py),
+        dead_centre_extended=out(dce),
+        dead_centre_folded=out(dcf),
+        time_ratio=out(ratio),
+        stroke_plus_x=out(plus),
+        transmission_min=out(gmin * nan),
+        transmission_max=out(gmax * nan),
+        branch=out(br * nan),
+        reason=reason[0] if scalar else reason,
+        rocker_angle_extended=out(t4e),
+        rocker_angle_folded=out(t4f),
+    )
+
+
+def built_grip(axle_height, pivot_y, handle, rocker_angle_extended, rocker_angle_folded):
+    """The grip's horizontal stroke and its lowest and highest height above the ground over the
+    swing of a built linkage [m] (the rocker swings between its two extreme angles, not
+    necessarily symmetric about the vertical; y up from the axle, the ground ``axle_height``
+    below it)."""
+    a, b = (
+        np.minimum(rocker_angle_extended, rocker_angle_folded),
+        np.maximum(rocker_angle_extended, rocker_angle_folded),
+    )
+    stroke = handle * np.abs(np.cos(a) - np.cos(b))
+    ends = np.minimum(np.sin(a), np.sin(b))
+    top = np.where((a <= 0.5 * np.pi) & (b >= 0.5 * np.pi), 1.0, np.maximum(np.sin(a), np.sin(b)))
+    pivot = np.asarray(axle_height, float) + pivot_y
+    return stroke, pivot + handle * ends, pivot + handle * top
 
 
 def infeasibility_reason(code, L1, D1, b, swing) -> str | None:

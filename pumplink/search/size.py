@@ -255,20 +255,27 @@ def discharge_heads(head: float) -> list[float]:
 
 
 def _binding(problem: SizeProblem, best: Sized) -> tuple[str, ...]:
-    """The checks within :data:`BINDING_SHARE` of their limit, and the varied keys at a bound."""
-    out = []
+    """The checks within :data:`BINDING_SHARE` of their limit, and the varied keys at a bound.
+    Where nothing is that close yet the flow is short of Q*, the check nearest its limit (the least
+    relative slack) is named: it is what holds the flow back."""
+    out, slack = [], {}
     v = best.evaluation.verdict.design(0)
     for c in v.checks:
         lim = c.warn_limit if (c.warn_limit is not None and not problem.allow_warnings) else c.fail_limit
-        if lim is None or not math.isfinite(float(c.value)):
+        if lim is None or not math.isfinite(float(c.value)) or c.key == "axle_height":
             continue
-        if abs(float(c.value) - float(lim)) <= BINDING_SHARE * abs(float(lim)):
+        gap = (float(lim) - float(c.value)) if c.relation == "<=" else (float(c.value) - float(lim))
+        slack[c.key] = gap / abs(float(lim))
+        if abs(gap) <= BINDING_SHARE * abs(float(lim)):
             out.append(c.key)
     values = spec_values(best.spec)
     for k, (lo, hi) in problem.bounds.items():
         x = values(k)
         if x is not None and min(abs(x - lo), abs(hi - x)) <= 1e-3 * (hi - lo):
             out.append(f"{k} at its {'lower' if abs(x - lo) <= abs(hi - x) else 'upper'} bound")
+    short = float(best.evaluation.water.share[0]) < 0.95
+    if short and not any(k in slack for k in out) and slack:
+        out.insert(0, min(slack, key=slack.get))
     return tuple(out)
 
 

@@ -180,12 +180,17 @@ def design(spec: PumpSpec) -> Design:
     return _design(spec, synthesize(lk.L1, lk.D1, lk.b, lk.rocker, swing, lk.handle))
 
 
+def _first(x):
+    """The first design's value of a column (None stays None)."""
+    return None if x is None else np.asarray(x)[0][()]
+
+
 def _design(spec: PumpSpec, syn: Synthesis) -> Design:
     """The :class:`Design` of one spec from its synthesis (scalars, or the first of arrays)."""
     from dataclasses import fields
 
     if np.ndim(syn.reason):
-        syn = Synthesis(**{f.name: getattr(syn, f.name)[0] for f in fields(syn)})
+        syn = Synthesis(**{f.name: _first(getattr(syn, f.name)) for f in fields(syn)})
     lk = spec.linkage
     return Design(spec, syn, infeasibility_reason(syn.reason, lk.L1, lk.D1, lk.b, np.radians(lk.swing)))
 
