@@ -23,6 +23,9 @@ limit gets:
 * ``grip_height``: lowest and highest grip height over the swing (with the axle height); warn
   outside ``GRIP_HEIGHT_RANGE_M``.
 * ``axle_height``: warn outside the pump paper's ``AXLE_HEIGHT_RANGE_M``.
+* ``pin_pressure``, ``handle_fatigue``, ``crank_fatigue``: with the spec's ``[parts]``, the pins'
+  bearing pressure (warn above 12 MPa, fail above 30 MPa) and the fatigue safety factors of the
+  handle and the crank (warn below 1.5, fail below 1); docs/workshop.md §2.
 """
 
 from __future__ import annotations
@@ -194,6 +197,10 @@ def assess(
     power_limits=(SUSTAINED_POWER_W, HOUR_POWER_W),
     grip_speed_limits=(GRIP_SPEED_WARN_M_S, GRIP_SPEED_FAIL_M_S),
     grip_height_range=GRIP_HEIGHT_RANGE_M,
+    pin_pressure=None,
+    handle_fatigue=None,
+    crank_fatigue=None,
+    part_limits=((12.0, 30.0), (1.5, 1.0)),
 ) -> Verdict:
     """Decide the checks and the verdict.
 
@@ -215,6 +222,9 @@ def assess(
     grip_speed_limits : (warn, fail) [m/s].
     grip_height_range : (lowest, highest) comfortable grip height [m].
     The limits are the operator profile's (:mod:`pumplink.profiles`; floats or arrays over designs).
+    pin_pressure : the pins' largest mean bearing pressure [MPa];  handle_fatigue, crank_fatigue :
+        fatigue safety factors [-] (docs/workshop.md §2; given when the spec gives ``[parts]``).
+    part_limits : ((warn, fail) of the pin pressure [MPa], (warn, fail) of a safety factor).
 
     Optional checks are left out when their input is None.
     """
@@ -262,6 +272,12 @@ def assess(
         checks.append(_range("grip_height", value, (lo, hi), "m", feasible))
     if axle_height is not None:
         checks.append(_range("axle_height", axle_height, AXLE_HEIGHT_RANGE_M, "m", feasible))
+    (p_warn, p_fail), (n_warn, n_fail) = part_limits
+    if pin_pressure is not None:
+        checks.append(check("pin_pressure", pin_pressure, "<=", "MPa", feasible, warn=p_warn, fail=p_fail))
+    for key, value in (("handle_fatigue", handle_fatigue), ("crank_fatigue", crank_fatigue)):
+        if value is not None:
+            checks.append(check(key, value, ">=", "", feasible, warn=n_warn, fail=n_fail))
     level = np.where(np.asarray(feasible, bool), PASS, FAIL)
     for c in checks:
         level = np.maximum(level, c.level)

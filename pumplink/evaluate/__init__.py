@@ -37,6 +37,7 @@ from pumplink.constants import (
     DEFAULT_EFFICIENCY,
     DEFAULT_LITRES_PER_PERSON_DAY,
     DEFAULT_VOLUMETRIC_EFFICIENCY,
+    GRAVITY,
     LINK_MASS_PER_METRE,
 )
 from pumplink.mechanisms import crank_slider as cs
@@ -90,6 +91,9 @@ class PumpDesigns:
     linkage : a built four-bar (its pivot, link lengths, handle and branch as made), analysed as it
         is (:func:`pumplink.mechanisms.fourbar.analyse`) instead of synthesised from L1, D1, b,
         rocker and swing, which are then not read; None: synthesise.
+    wheel_mass : [kg] (NaN: not given; its weight loads the axle).  parts : the pins, handle tube and
+        crank bar (the spec's ``[parts]``: attributes pin_diameter, pin_width, handle_diameter,
+        handle_wall, handle_notch, crank_diameter, crank_notch), or None: no part checks.
     head, pipe_diameter : pumping head and rising-main bore [m] (NaN: the spec gives a rope force,
         so there is no flow);  force_efficiency, volumetric_efficiency : [-].
     sustained_power, hour_power : the operator's power for hours and for an hour [W];
@@ -132,6 +136,8 @@ class PumpDesigns:
     arms_in_verdict: bool = False
     axle_height: Any = None
     linkage: FourBar | None = None
+    wheel_mass: Any = np.nan
+    parts: Any = None
 
 
 def _or(value, default):
@@ -190,7 +196,44 @@ def pump_designs(value: Callable[[str], Any], speed=None) -> PumpDesigns:
         litres_per_person_day=_or(value("use.litres_per_person_day"), DEFAULT_LITRES_PER_PERSON_DAY),
         arms_in_verdict=bool(value("operator.arms_in_verdict")),
         axle_height=value("wheel.axle_height"),
+        wheel_mass=_or(value("wheel.mass"), np.nan),
+        parts=_part_sizes(value),
     )
+
+
+#: The keys of a spec's ``[parts]`` table.
+PART_KEYS = (
+    "pin_diameter",
+    "pin_width",
+    "handle_diameter",
+    "handle_wall",
+    "handle_notch",
+    "crank_diameter",
+    "crank_notch",
+)
+
+
+@dataclass(frozen=True)
+class PartSizes:
+    """The pins, handle tube and crank bar of designs [m; notch factors -] (docs/workshop.md §2)."""
+
+    pin_diameter: Any
+    pin_width: Any
+    handle_diameter: Any
+    handle_wall: Any
+    handle_notch: Any
+    crank_diameter: Any
+    crank_notch: Any
+
+    def design(self, i: int) -> PartSizes:
+        return PartSizes(
+            *(float(np.broadcast_to(np.asarray(getattr(self, k), float), (i + 1,))[i]) for k in PART_KEYS)
+        )
+
+
+def _part_sizes(value) -> PartSizes | None:
+    sizes = {k: value(f"parts.{k}") for k in PART_KEYS}
+    return None if all(v is None for v in sizes.values()) else PartSizes(**sizes)
 
 
 @dataclass(frozen=True)
@@ -254,7 +297,8 @@ def piston_designs(value: Callable[[str], Any], speed=None) -> PistonDesigns:
 
 def _columns(designs) -> tuple[int, dict[str, np.ndarray]]:
     """The designs' numeric fields as 1-D float arrays of one length (the number of designs)."""
-    names = [f.name for f in fields(designs) if f.name not in ("arms_in_verdict", "axle_height", "linkage")]
+    skip = ("arms_in_verdict", "axle_height", "linkage", "parts")
+    names = [f.name for f in fields(designs) if f.name not in skip]
     arrays = np.broadcast_arrays(*(np.asarray(getattr(designs, k), float) for k in names))
     cols = {k: np.atleast_1d(a).ravel() for k, a in zip(names, arrays)}
     return next(iter(cols.values())).size, cols
@@ -569,6 +613,9 @@ def evaluate(
         ends = (syn.rocker_angle_extended, syn.rocker_angle_folded)
         heights = built_grip(axle, built.pivot_y, built.handle, *ends)[1:]
     power = mw * speed
+    part_values = {}
+    if judge and designs.parts is not None:
+        part_values = _part_checks(designs, c, syn, index, least, masses, feasible)
     verdict = None
     if judge:
         mu = np.minimum(syn.transmission_min, np.pi - np.asarray(syn.transmission_max))
@@ -587,6 +634,7 @@ def evaluate(
             power_limits=(c["sustained_power"], c["hour_power"]),
             grip_speed_limits=(c["grip_speed_warn"], c["grip_speed_fail"]),
             grip_height_range=(c["grip_height_min"], c["grip_height_max"]),
+            **part_values,
         )
     # Q = η_v (π d²/4) ω̄ r_w: the rope moves with the wheel rim (docs/water.md §1)
     flow = _water_kernels.rope_pump_flow(
@@ -625,6 +673,34 @@ def evaluate(
         verdict,
         water,
     )
+
+
+def _part_checks(designs, c, syn, index, least, masses, feasible) -> dict:
+    """The verdict's part checks (docs/workshop.md §2), design by design: the loads under the
+    model that decided (:mod:`pumplink.evaluate.parts`) against the spec's ``[parts]``."""
+    from pumplink.evaluate import parts as _parts
+
+    n = feasible.size
+    out = {k: np.full(n, np.nan) for k in ("pin_pressure", "handle_fatigue", "crank_fatigue")}
+    coupler, handle = (np.broadcast_to(np.asarray(v, float), (n,)) for v in (masses.coupler, masses.handle))
+    for i in np.nonzero(feasible)[0].tolist():
+        lk = FourBar(*(float(np.asarray(v)[i]) for v in syn.linkage.parameters))
+        dce, dcf = float(syn.dead_centre_extended[i]), float(syn.dead_centre_folded[i])
+        key = ORDER[int(index[i])]
+        if key != ORDER[0] and not np.isfinite(least[i]):
+            continue  # no finite force keeps the wheel turning: the peak-force check fails it
+        links = Masses(coupler[i], handle[i], 0.0)  # the hand is the operator's, not a part
+        sc = _parts.scene(lk, dce, dcf, c["wheel_torque"][i], c["inertia"][i], links, c["speed"][i],
+                          c["speed_fluctuation"][i], float(least[i]), key)  # fmt: skip
+        weight = 0.0 if np.isnan(c["wheel_mass"][i]) else c["wheel_mass"][i] * GRAVITY
+        loads = _parts.part_loads(
+            lk, dce, dcf, c["dead_band"][i], c["wheel_torque"][i], key, sc, c["rope_force"][i], weight
+        )
+        st = _parts.strength(loads, designs.parts.design(i))
+        out["pin_pressure"][i] = st.pin_pressure / 1e6  # [MPa]
+        out["handle_fatigue"][i] = st.handle.safety
+        out["crank_fatigue"][i] = st.crank.safety
+    return out
 
 
 #: Odd 64-bit multipliers that hash a design's seven four-bar parameters (their bits) to one word.

@@ -17,6 +17,7 @@ from dataclasses import fields
 import numpy as np
 
 from pumplink.evaluate import Evaluation
+from pumplink.evaluate import parts as _parts
 from pumplink.mechanisms.fourbar import FourBar, Synthesis
 from pumplink.models import DYNAMICS, FLYWHEEL, ORDER, Masses
 from pumplink.models.quasi_static import in_dead_band
@@ -77,13 +78,7 @@ def scene(ev: Evaluation, i: int = 0):
     d = ev.designs
     args = (lk, syn.dead_centre_extended, syn.dead_centre_folded, _one(d.wheel_torque, i), _one(d.inertia, i))
     speed, delta, force = _one(d.speed, i), _one(d.speed_fluctuation, i), float(ev.least_peak_force[i])
-    if key == DYNAMICS:
-        from pumplink.models import dynamics as _dy
-
-        return _dy.scene(*args, link_masses_of(ev, i), speed, delta, force=force)
-    from pumplink.models import flywheel as _fw
-
-    return _fw.scene(*args, speed, delta, solved=force)
+    return _parts.scene(*args, link_masses_of(ev, i), speed, delta, force, key)
 
 
 def _model(sc):

@@ -269,6 +269,48 @@ class Operator(Section):
         return self
 
 
+class Parts(Section):
+    pin_diameter: float = Field(default=0.012, ge=0.002, le=0.1, description="diameter of the joint pins [m]")
+    pin_width: float = Field(
+        default=0.0052,
+        ge=0.0005,
+        le=0.2,
+        description="length of bore each pin bears on [m] (a bushing's length, or both walls of the tube "
+        "it passes through: 2 x 2.6 mm by default)",
+    )
+    handle_diameter: float = Field(
+        default=0.0269, ge=0.005, le=0.2, description="handle tube's outer diameter [m]"
+    )
+    handle_wall: float = Field(default=0.0026, ge=0.0005, le=0.1, description="handle tube's wall [m]")
+    handle_notch: float = Field(
+        default=1.0,
+        ge=1.0,
+        le=5.0,
+        description="fatigue notch factor at the handle's pin hole [-] (1: plain)",
+    )
+    crank_diameter: float = Field(
+        default=0.0127,
+        ge=0.003,
+        le=0.2,
+        description="crank's diameter [m], a solid round bar (½\" by default)",
+    )
+    crank_notch: float = Field(
+        default=1.0,
+        ge=1.0,
+        le=5.0,
+        description="fatigue notch factor where the crank is welded on [-] (1: plain)",
+    )
+
+    @model_validator(mode="after")
+    def _wall_inside(self) -> Parts:
+        if 2 * self.handle_wall > self.handle_diameter:
+            raise ValueError(
+                f"parts.handle_wall = {self.handle_wall:g} m is more than half the handle_diameter "
+                f"{self.handle_diameter:g} m; give a wall of at most {self.handle_diameter / 2:g} m"
+            )
+        return self
+
+
 class Use(Section):
     hours_per_day: float = Field(
         default=DEFAULT_DAILY_PUMPING_HOURS,
@@ -305,6 +347,11 @@ class PumpSpec(Section):
     operator: Operator = Field(
         default=Operator(),
         description="the [operator] table: profile, force_limit, speed, dead_band, speed_fluctuation",
+    )
+    parts: Parts | None = Field(
+        default=None,
+        description="the [parts] table: pins, handle tube and crank bar; when given, the verdict checks "
+        "pin bearing pressure and the handle's and crank's fatigue (docs/workshop.md)",
     )
     use: Use = Field(
         default=Use(),

@@ -56,6 +56,9 @@ CHECK_KEYS = (
     "stroke",
     "grip_height",
     "axle_height",
+    "pin_pressure",
+    "handle_fatigue",
+    "crank_fatigue",
 )
 CHECK_COLUMNS = tuple(f"check_{k}" for k in CHECK_KEYS)
 #: The water each variant delivers (empty where the spec gives a rope force, not a head and a

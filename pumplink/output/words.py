@@ -55,6 +55,9 @@ CHECK_LABELS = {
     "stroke": "grip stroke",
     "grip_height": "grip height over the swing",
     "axle_height": "axle height",
+    "pin_pressure": "pin bearing pressure",
+    "handle_fatigue": "handle fatigue safety",
+    "crank_fatigue": "crank fatigue safety",
 }
 
 
@@ -88,13 +91,20 @@ def model_line(r: ForceResult) -> str:
 RESULT_MARKUP = {"pass": "[green]pass[/]", "warn": "[yellow]warning[/]", "fail": "[red]FAIL[/]"}
 
 #: Format of each check's value (and its limits) in tables and sentences.
-_CHECK_FORMAT = {"mean_force": "{:.1f}", "peak_force": "{:.1f}", "link_energy_share": "{:.0f}"}
+_CHECK_FORMAT = {
+    "mean_force": "{:.1f}",
+    "peak_force": "{:.1f}",
+    "link_energy_share": "{:.0f}",
+    "pin_pressure": "{:.1f}",
+    "handle_fatigue": "{:.2f}",
+    "crank_fatigue": "{:.2f}",
+}
 
 
 def check_value(ch) -> str:
     """A check's value with its unit, e.g. '85.8 N', '∞ N'."""
     f = _CHECK_FORMAT.get(ch.key, "{:.2f}")
-    return f"{_f(ch.value, f, '∞') if ch.value != -math.inf else '−∞'} {ch.unit}"
+    return f"{_f(ch.value, f, '∞') if ch.value != -math.inf else '−∞'} {ch.unit}".rstrip()
 
 
 def limit_text(ch, limit) -> str:
@@ -102,7 +112,7 @@ def limit_text(ch, limit) -> str:
     if limit is None:
         return ""
     bad = ">" if ch.relation == "<=" else "<"
-    return f"{bad} {limit:g} {ch.unit}"
+    return f"{bad} {limit:g} {ch.unit}".rstrip()
 
 
 #: What to change when a check warns or fails (the check's own advice).
@@ -123,6 +133,12 @@ CHECK_ADVICE = {
     "grip_height": "push and pull with the hands between knuckle and shoulder height (the operator "
     "profile's range); change D1, the handle or the axle height",
     "axle_height": "outside the pump paper's 0.40-0.70 m",
+    "pin_pressure": "the pin wears its bore out: a thicker pin, a longer bushing, or hardened pins and "
+    "bushings",
+    "handle_fatigue": "the handle may crack at its pin hole after years of strokes: a thicker tube or a "
+    "reinforcing sleeve there",
+    "crank_fatigue": "the crank may crack where it is welded on: a thicker bar (rope-pump manuals report "
+    "1/2\" cranks failing after several years)",
 }
 
 

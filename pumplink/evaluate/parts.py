@@ -1,0 +1,162 @@
+"""Will the parts last? The loads on the pins, the crank and the handle over the deciding model's
+cycle, and what they mean for pins, tubes and bars a workshop builds (docs/workshop.md).
+
+One design at a time (the peak search and the cycle's sampling are per design): the verdict's
+part checks (:func:`pumplink.evaluate.evaluate` when a spec gives ``[parts]``) and the workshop
+report (``pumplink force --explain``) both come from :func:`part_loads` and :func:`strength`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from pumplink.constants import GRAVITY
+from pumplink.mechanisms.angles import TWO_PI
+from pumplink.mechanisms.fourbar import FourBar
+from pumplink.models import DYNAMICS, FLYWHEEL, Masses
+from pumplink.models import joints as _joints
+from pumplink.models import strength as _strength
+
+#: Crank angles per turn on which the fatigue cycle (the moments' amplitude and mean) is sampled.
+CYCLE_SAMPLES = 1440
+#: The verdict's levels of the part checks (docs/workshop.md §2): pin bearing pressure warns above
+#: the allowable of an alternating moving joint (12 MPa) and fails above the static one (30 MPa);
+#: a fatigue safety factor warns below 1.5 and fails below 1.
+PIN_PRESSURE_WARN, PIN_PRESSURE_FAIL = _strength.PIN_PRESSURE_ALTERNATING, _strength.PIN_PRESSURE_STATIC
+FATIGUE_WARN, FATIGUE_FAIL = 1.5, 1.0
+
+
+@dataclass(frozen=True)
+class PartLoads:
+    """The loads of one design over its cycle: the peaks (:class:`pumplink.models.joints.PeakLoads`:
+    the four joints, the crank's and the handle's bending moments, each with its crank angle) and
+    the loads on :data:`CYCLE_SAMPLES` crank angles (:class:`pumplink.models.joints.JointForces`)."""
+
+    peaks: object
+    cycle: object
+    model: str
+
+
+def part_loads(
+    lk: FourBar,
+    dead_centre_extended: float,
+    dead_centre_folded: float,
+    dead_band: float,
+    wheel_torque: float,
+    model: str,
+    scene=None,
+    rope_pull: float = 0.0,
+    wheel_weight: float = 0.0,
+) -> PartLoads:
+    """The joint loads of one design under the model that decided (``model``: a key of
+    :data:`pumplink.models.ORDER`; ``scene``: the energy model's, with a finite least peak force).
+
+    The quasi-static model carries no load within ±``dead_band`` of the dead centres (its force is
+    infinite there; the wheel carries the linkage through), so its loads are taken outside them.
+    ``rope_pull`` and ``wheel_weight`` [N] add the rope and the wheel to the axle's load.
+    """
+    if model in (FLYWHEEL, DYNAMICS):
+        motion_of = _joints.dynamics_motion if model == DYNAMICS else _joints.flywheel_motion
+        peaks = _joints.scene_peaks(scene, motion_of, GRAVITY, rope_pull, wheel_weight)
+        th = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
+        cycle = _joints.motion_forces(scene.linkage, motion_of(scene, th), GRAVITY, rope_pull, wheel_weight)
+        return PartLoads(peaks, cycle, model)
+    peaks = _joints.quasi_static_peaks(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque)
+    th = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
+    off = np.minimum(
+        np.abs(np.mod(th - dead_centre_extended + np.pi, TWO_PI) - np.pi),
+        np.abs(np.mod(th - dead_centre_folded + np.pi, TWO_PI) - np.pi),
+    )
+    th = th[off > dead_band]
+    motion = _joints.quasi_static_motion(lk, th, wheel_torque)
+    cycle = _joints.motion_forces(lk, motion, GRAVITY, rope_pull, wheel_weight)
+    return PartLoads(peaks, cycle, model)
+
+
+@dataclass(frozen=True)
+class Strength:
+    """What the loads mean for the parts (docs/workshop.md §2).
+
+    pin_pressure : the largest mean bearing pressure of the four pins, F / (d w) [Pa], and
+        ``pin`` the joint it is on;  handle, crank : :class:`pumplink.models.strength.Fatigue` of
+        the handle's tube at the coupler pin and of the crank's bar at the axle (``safety`` is the
+        fatigue safety factor, modified Goodman);  endurance : their endurance limits [Pa].
+    """
+
+    pin_pressure: float
+    pin: str
+    handle: object
+    crank: object
+    endurance: tuple
+
+
+def strength(loads: PartLoads, parts) -> Strength:
+    """Pin pressure and fatigue of the crank and the handle for ``parts`` (the spec's ``[parts]``
+    table, or its defaults: 12 mm pins on 5.2 mm of bore, a 26.9 x 2.6 mm handle tube, a ½" bar
+    crank, both of S235; docs/workshop.md §2)."""
+    peaks = np.asarray(loads.peaks.force, float)
+    pressure = _strength.bearing_pressure(peaks, parts.pin_diameter, parts.pin_width)
+    k = int(np.nanargmax(pressure))
+    ult = _strength.ULTIMATE_S235
+    tube = _strength.tube_section(parts.handle_diameter, parts.handle_wall)
+    bar = _strength.tube_section(parts.crank_diameter, 0.5 * parts.crank_diameter)
+    se_handle = _strength.endurance_limit(ult, parts.handle_diameter, parts.handle_notch)
+    se_crank = _strength.endurance_limit(ult, parts.crank_diameter, parts.crank_notch)
+    c = loads.cycle
+    ok = np.isfinite(c.handle_moment) & np.isfinite(c.crank_moment)
+    handle = _strength.fatigue(c.handle_moment[ok], c.handle_axial[ok], tube, se_handle, ult)
+    crank = _strength.fatigue(c.crank_moment[ok], c.crank_axial[ok], bar, se_crank, ult)
+    return Strength(float(pressure[k]), _joints.JOINTS[k], handle, crank, (float(se_handle), float(se_crank)))
+
+
+def scene(
+    lk,
+    dead_centre_extended,
+    dead_centre_folded,
+    wheel_torque,
+    inertia,
+    masses: Masses,
+    speed,
+    delta,
+    force,
+    model,
+):
+    """The energy model's scene of one design solved at ``force`` (its least peak force), for
+    the motion the loads are taken along; None for the quasi-static model."""
+    if model == DYNAMICS:
+        from pumplink.models import dynamics as _dy
+
+        return _dy.scene(
+            lk,
+            dead_centre_extended,
+            dead_centre_folded,
+            wheel_torque,
+            inertia,
+            masses,
+            speed,
+            delta,
+            force=force,
+        )
+    if model == FLYWHEEL:
+        from pumplink.models import flywheel as _fw
+
+        return _fw.scene(
+            lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, speed, delta, solved=force
+        )
+    return None
+
+
+__all__ = [
+    "CYCLE_SAMPLES",
+    "FATIGUE_FAIL",
+    "FATIGUE_WARN",
+    "PIN_PRESSURE_FAIL",
+    "PIN_PRESSURE_WARN",
+    "PartLoads",
+    "Strength",
+    "part_loads",
+    "scene",
+    "strength",
+]
