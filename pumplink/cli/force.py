@@ -150,16 +150,20 @@ def force(
     if explain and result.design.feasible:
         from pumplink.output.force import explain_rows
         from pumplink.output.speed import cadence_row
+        from pumplink.output.workshop import workshop_row
         from pumplink.studies.explain import explain as explain_model
         from pumplink.studies.speed import cadence
+        from pumplink.studies.workshop import workshop
 
         effects, why = explain_model(result)
         best = cadence(result) if s.gives_inertia else None
+        shop = workshop(result)
         extra["explain"] = {
             "model": result.model,
             "effects": explain_rows(effects),
             "why": why,
             "best_cadence": None if best is None else cadence_row(best),
+            "workshop": workshop_row(shop),
         }
     scene_ok = result.scene is not None and math.isfinite(result.scene.least_peak_force)
     if verify and not result.flywheel and result.design.feasible:  # the quasi-static model decided
@@ -190,7 +194,10 @@ def force(
 
         side = sys.stdout if fmt.value == "table" else sys.stderr
         if "explain" in extra:
+            from pumplink.output.workshop import render_workshop
+
             render_explain(effects, why, out=side, cadence=best, force_limit=result.force_limit)
+            render_workshop(shop, out=side)
         if "verify" in extra:
             render_verify(extra["verify"], out=side)
     if plot is not None and result.design.feasible:

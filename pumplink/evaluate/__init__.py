@@ -786,6 +786,8 @@ def _evaluate_piston(designs: PistonDesigns, judge: bool) -> PistonEvaluation:
 
 __all__ = [
     "INERTIA_KEYS",
+    "PART_KEYS",
+    "PartSizes",
     "MODEL_LABELS",
     "Evaluation",
     "PistonDesigns",

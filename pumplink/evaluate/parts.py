@@ -160,3 +160,31 @@ __all__ = [
     "scene",
     "strength",
 ]
+
+
+def released(
+    scene, head: float, pipe_diameter: float, wheel_radius: float, wheel_torque: float, masses: Masses
+):
+    """The released handle (docs/workshop.md §3): let go at the grip's fastest point of the energy
+    model's motion, with the pump's losses counted as friction (``friction``) and with none (the
+    upper bound, ``free``): two :class:`pumplink.models.release.Release`."""
+    from pumplink.mechanisms.fourbar import kinematic_state
+    from pumplink.models import release as _release
+
+    lk = scene.linkage
+    th = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
+    from pumplink.models import dynamics as _dy
+    from pumplink.models import flywheel as _fw
+
+    model = _dy if isinstance(scene, _dy.Scene) else _fw
+    w = np.asarray(model.wheel_speed(scene, th), float)
+    grip = np.abs(lk.handle * kinematic_state(lk, th, 1.0).rocker_rate * w)
+    i = int(np.nanargmax(grip))
+    column = float(_release.column_torque(head, pipe_diameter, wheel_radius))
+    water = float(_release.column_inertia(head, pipe_diameter, wheel_radius))
+    links = Masses(masses.coupler, masses.handle, 0.0)
+    args = (lk, float(th[i]), float(w[i]), column)
+    tail = (float(scene.inertia), float(head), float(wheel_radius), links, water)
+    friction = _release.release(*args, max(float(wheel_torque) - column, 0.0), *tail)
+    free = _release.release(*args, 0.0, *tail)
+    return friction, free

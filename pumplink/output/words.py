@@ -138,7 +138,7 @@ CHECK_ADVICE = {
     "handle_fatigue": "the handle may crack at its pin hole after years of strokes: a thicker tube or a "
     "reinforcing sleeve there",
     "crank_fatigue": "the crank may crack where it is welded on: a thicker bar (rope-pump manuals report "
-    "1/2\" cranks failing after several years)",
+    '1/2" cranks failing after several years)',
 }
 
 
@@ -150,7 +150,8 @@ def check_sentence(ch, r: ForceResult | None = None) -> str:
     side = ">" if ch.relation == "<=" else "<"
     val = check_value(ch)
     advice = CHECK_ADVICE.get(f"{ch.key} {ch.result}", CHECK_ADVICE.get(ch.key, ""))
-    return f"{check_label(ch, r)} is {val} ({side} {lim:g} {ch.unit}): {advice}".rstrip(": ")
+    limit = f"{side} {lim:g} {ch.unit}".rstrip()
+    return f"{check_label(ch, r)} is {val} ({limit}): {advice}".rstrip(": ")
 
 
 def verdict_line(r: ForceResult, strict: bool = False) -> str:

@@ -1,0 +1,135 @@
+"""The workshop's view of a design (``pumplink force --explain``, the report): the loads on the pins,
+the crank and the handle, what they mean for the parts, and the released handle.
+
+Renderers only render: every number comes from :func:`pumplink.studies.workshop.workshop`.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from typing import TYPE_CHECKING, Any
+
+from pumplink.output.formats import console, deg, num
+
+if TYPE_CHECKING:
+    from pumplink.studies.workshop import Workshop
+
+#: The joints' words, in the order of the loads (pumplink.models.joints.JOINTS).
+JOINT_WORDS = {
+    "axle": "axle O2 (with the rope and the wheel)",
+    "crank_pin": "crank pin A",
+    "coupler_pin": "coupler-rocker pin B",
+    "rocker_pivot": "rocker pivot O4",
+}
+JOINTS = tuple(JOINT_WORDS)
+
+
+def workshop_row(w: Workshop | None) -> dict[str, Any] | None:
+    """The JSON of the workshop's view (None where it has none: an infeasible design)."""
+    if w is None:
+        return None
+    pk = w.loads.peaks
+    st = w.strength
+    p = w.parts
+    out = {
+        "joints": [
+            {"joint": j, "peak_force_N": num(f), "crank_deg": deg(a)}
+            for j, f, a in zip(JOINTS, pk.force, pk.angle)
+        ],
+        "crank_moment_Nm": {"peak": num(pk.crank_moment[0]), "crank_deg": deg(pk.crank_moment[1])},
+        "handle_moment_Nm": {"peak": num(pk.handle_moment[0]), "crank_deg": deg(pk.handle_moment[1])},
+        "parts": {
+            "from_spec": w.parts_given,
+            "pin_diameter_m": p.pin_diameter,
+            "pin_width_m": p.pin_width,
+            "handle_diameter_m": p.handle_diameter,
+            "handle_wall_m": p.handle_wall,
+            "handle_notch": p.handle_notch,
+            "crank_diameter_m": p.crank_diameter,
+            "crank_notch": p.crank_notch,
+        },
+        "pin_pressure_MPa": num(st.pin_pressure / 1e6),
+        "pin_pressure_at": st.pin,
+        "handle_fatigue_safety": num(st.handle.safety),
+        "crank_fatigue_safety": num(st.crank.safety),
+        "release": None,
+    }
+    if w.release is not None:
+        r, f = w.release, w.release_free
+        out["release"] = {
+            "needs_ratchet_or_brake": w.needs_brake,
+            "stop_time_s": num(r.stop_time),
+            "reverses": r.reverses,
+            "grip_speed_1s_m_s": num(r.grip_speed_1s),
+            "peak_grip_speed_m_s": num(r.peak_grip_speed),
+            "peak_time_s": num(r.peak_time),
+            "end": r.end_reason,
+            "end_time_s": num(r.end_time),
+            "peak_grip_speed_without_losses_m_s": num(f.peak_grip_speed),
+        }
+    return out
+
+
+def release_line(w: Workshop | None) -> str | None:
+    """The released handle in one line: 'needs a ratchet or brake' with its numbers, or None."""
+    if w is None or w.release is None:
+        return None
+    r = w.release
+    if not r.reverses:
+        return (
+            f"released handle: the wheel stops {r.stop_time:.2f} s after the operator lets go and the pump's "
+            "losses hold it: no backlash"
+        )
+    one = (
+        ""
+        if not math.isfinite(r.grip_speed_1s)
+        else f"1 s after letting go the grip moves at {r.grip_speed_1s:.1f} m/s, "
+    )
+    end = "empties" if r.end_reason == "column empty" else "stops"
+    return (
+        f"released handle: NEEDS A RATCHET OR BRAKE — let go at full speed, the wheel stops in "
+        f"{r.stop_time:.2f} s and the water column drives it back; {one}and the grip reaches "
+        f"{r.peak_grip_speed:.1f} m/s after {r.peak_time:.1f} s "
+        f"({w.release_free.peak_grip_speed:.1f} m/s if the pump had no losses) before the column {end}"
+    )
+
+
+def render_workshop(w: Workshop | None, out=None) -> None:
+    """The workshop's view as a table and sentences (after ``--explain``'s report)."""
+    if w is None:
+        return
+    from rich.table import Table
+
+    c = console(out or sys.stdout)
+    pk = w.loads.peaks
+    t = Table(title=f"Loads on the parts ({w.loads.model} model)", title_justify="left")
+    for h in ("where", "peak", "at crank"):
+        t.add_column(h, justify="left" if h == "where" else "right")
+    for j, f, a in zip(JOINTS, pk.force, pk.angle):
+        t.add_row(JOINT_WORDS[j], f"{f:.0f} N", f"{math.degrees(a):.1f}°")
+    t.add_row(
+        "crank, bending at the axle",
+        f"{pk.crank_moment[0]:.1f} N·m",
+        f"{math.degrees(pk.crank_moment[1]):.1f}°",
+    )
+    t.add_row(
+        "handle, bending at pin B",
+        f"{pk.handle_moment[0]:.1f} N·m",
+        f"{math.degrees(pk.handle_moment[1]):.1f}°",
+    )
+    c.print(t)
+    st, p = w.strength, w.parts
+    which = "the spec's [parts]" if w.parts_given else "the default parts (give [parts] to judge them)"
+    c.print(
+        f"with {which}: {p.pin_diameter * 1000:g} mm pins on {p.pin_width * 1000:g} mm of bore bear "
+        f"{st.pin_pressure / 1e6:.1f} MPa at the {JOINT_WORDS[st.pin]} (12 MPa allowed for a moving "
+        f"joint, 30 MPa static); fatigue safety of the {p.handle_diameter * 1000:g} x "
+        f"{p.handle_wall * 1000:g} mm handle tube {st.handle.safety:.2f} (notch factor {p.handle_notch:g}), "
+        f"of the {p.crank_diameter * 1000:g} mm crank bar {st.crank.safety:.2f} (notch factor "
+        f"{p.crank_notch:g}); below 1.5 warns, below 1 fails (docs/workshop.md)",
+        markup=False,
+    )
+    line = release_line(w)
+    if line is not None:
+        c.print(line, markup=False)

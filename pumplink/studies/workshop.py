@@ -1,0 +1,86 @@
+"""Built by hand, used every day: the loads on a design's pins, crank and handle, what they mean
+for the parts, and what the handle does when it is let go (``pumplink force --explain``,
+docs/workshop.md).
+
+The loads come from the model that decided (:mod:`pumplink.evaluate.parts`, the same route as
+the verdict's part checks); the parts are the spec's ``[parts]``, or its defaults for information.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from pumplink.constants import GRAVITY
+from pumplink.evaluate import PartSizes, motion
+from pumplink.evaluate import parts as _parts
+from pumplink.models import ORDER
+from pumplink.studies.force import ForceResult
+
+#: The defaults of a spec's [parts] table, used for information when the spec gives none.
+DEFAULT_PARTS = PartSizes(0.012, 0.0052, 0.0269, 0.0026, 1.0, 0.0127, 1.0)
+
+
+@dataclass(frozen=True)
+class Workshop:
+    """The workshop's view of one design (SI units).
+
+    loads : the peaks of the joint forces and bending moments (:class:`~pumplink.evaluate.parts.PartLoads`).
+    strength : pin pressure and fatigue for ``parts`` (:class:`~pumplink.evaluate.parts.Strength`).
+    parts : the sizes used;  parts_given : True when they are the spec's ``[parts]`` (then they are
+        in the verdict too), False for the defaults, shown for information.
+    release, release_free : the released handle with the pump's losses as friction and with none
+        (:class:`pumplink.models.release.Release`), None without the wheel's inertia or a head.
+    """
+
+    loads: Any
+    strength: Any
+    parts: PartSizes
+    parts_given: bool
+    release: Any = None
+    release_free: Any = None
+
+    @property
+    def needs_brake(self) -> bool:
+        """True when the released wheel runs back (the handle swings back at speed)."""
+        return bool(self.release is not None and self.release.reverses)
+
+
+def workshop(r: ForceResult) -> Workshop | None:
+    """The loads, the parts and the released handle of a force result's design (None when it is
+    infeasible, or when no finite force keeps its wheel turning)."""
+    ev = r.evaluation
+    if ev is None or not r.design.feasible:
+        return None
+    key = ORDER[int(ev.model_index[0])]
+    sc = motion.scene(ev)
+    if key != ORDER[0] and (sc is None or not math.isfinite(sc.least_peak_force)):
+        return None
+    syn, lk = motion.at_design(ev)
+    d = ev.designs
+    spec = r.design.spec
+    wheel = spec.wheel
+    weight = 0.0 if wheel.mass is None else wheel.mass * GRAVITY
+    rope = float(np.asarray(d.rope_force))
+    links = motion.link_masses_of(ev, arms=False)
+    part_scene = sc
+    if key != ORDER[0]:  # the loads are the links' and the hand's, not the operator's arms
+        part_scene = _parts.scene(
+            lk, syn.dead_centre_extended, syn.dead_centre_folded, r.wheel_torque, r.inertia, links,
+            r.speed, r.speed_fluctuation, sc.least_peak_force, key,
+        )  # fmt: skip
+    dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
+    loads = _parts.part_loads(lk, dce, dcf, r.dead_band, r.wheel_torque, key, part_scene, rope, weight)
+    given = ev.designs.parts is not None
+    sizes = ev.designs.parts.design(0) if given else DEFAULT_PARTS
+    strength = _parts.strength(loads, sizes)
+    release = free = None
+    head = spec.load.head
+    if part_scene is not None and head is not None:
+        release, free = _parts.released(
+            part_scene, head, spec.load.pipe_diameter, wheel.radius, r.wheel_torque, links
+        )
+    return Workshop(loads, strength, sizes, given, release, free)
