@@ -1,9 +1,13 @@
 """Golden files for the rendered tables (what a designer reads), through the real entry point.
 
-The numbers inside are checked independently elsewhere (tests/test_force.py, test_synthesis.py
-against the mpmath reference); these files guard the layout: units in headers, dead centres
-marked, the verdict in words without colour.  After a deliberate layout change, regenerate with
-`PUMPLINK_REGEN_GOLDEN=1 pytest tests/test_golden.py` and review the diff.
+The numbers inside are checked independently elsewhere (tests/models/test_quasi_static.py,
+tests/mechanisms/test_fourbar_synthesis.py and tests/mechanisms/test_crank_rocker.py against
+mpmath references); these files guard the layout: units in headers, dead centres marked, the
+verdict in words without colour.  They compare text exactly, so every number in them must be
+known to the digits printed on any processor: closed forms, roots of smooth equations and the
+values (not the arguments) of stationary extrema are; the argument of a flat optimum and what
+is read there are not (docs/crank-rocker.md §5).  After a deliberate layout change, regenerate
+with `PUMPLINK_REGEN_GOLDEN=1 pytest tests/test_golden.py` and review the diff.
 """
 
 from __future__ import annotations
