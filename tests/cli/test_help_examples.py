@@ -131,7 +131,10 @@ def test_every_readme_inline_example_runs(line, workdir):
     """Each inline example, alone in a fresh copy (with a docs/ folder for the ones that write
     the README's pictures), gives the exit code its text implies and no traceback."""
     (workdir / "docs").mkdir(exist_ok=True)
-    # in bash with HOME in the copy: `pumplink --install-completion` edits that HOME's .bashrc
+    # in bash with HOME in the copy: `pumplink --install-completion` edits that HOME's .bashrc.
+    # Typer finds the shell by walking up the process tree, so bash must stay the command's parent:
+    # `bash -c CMD` would exec a lone command in its own place, and the shell found would be the
+    # one that started pytest (`sh -c` under make: "Shell sh not supported"); `; exit $?` keeps it.
     env = {
         **os.environ,
         "PATH": f"{BIN}{os.pathsep}{os.environ.get('PATH', '')}",
@@ -139,7 +142,7 @@ def test_every_readme_inline_example_runs(line, workdir):
         "HOME": str(workdir),
     }
     p = subprocess.run(
-        ["bash", "-c", line], cwd=workdir, env=env, capture_output=True, text=True, timeout=600
+        ["bash", "-c", f"{line}; exit $?"], cwd=workdir, env=env, capture_output=True, text=True, timeout=600
     )
     expected = 1 if line.startswith(INLINE_FAIL) else 0
     assert p.returncode == expected, (line, p.stderr[-500:])
