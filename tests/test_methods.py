@@ -346,6 +346,29 @@ def test_methods_command_json_and_charts(tmp_path):
     assert b"<svg" in svg.read_bytes()[:2000]
 
 
+def test_methods_command_with_named_methods_compares_only_those():
+    r = _run(
+        "methods",
+        "--method",
+        "paper",
+        "-m",
+        "vector",
+        "--format",
+        "json",
+        "--repeats",
+        "1",
+        "--samples",
+        "36",
+    )
+    assert r.returncode == 0, r.stderr
+    obj = json.loads(r.stdout)
+    assert [m["name"] for m in obj["methods"]] == ["paper", "vector"]  # in the order asked
+    pap, vec = obj["methods"]
+    assert vec["failures"] == [] and vec["max_rel_error_uniform"] <= 1e-12
+    # the paper's route flags points at its danger points (xA = 0, xB = l1, ...): reported as such
+    assert any("flagged" in f for f in pap["failures"])
+
+
 def test_methods_command_errors(tmp_path):
     r = _run("methods", "--plot", str(tmp_path / "x.jpg"))  # one suffix rule for every chart
     assert r.returncode == 2 and r.stderr.startswith("error: ") and ".png, .svg or .pdf" in r.stderr

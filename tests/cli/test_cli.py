@@ -834,6 +834,73 @@ def test_init_writes_a_spec_that_loads_and_passes(tmp_path):
     assert "x.toml" in line
 
 
+def test_init_example_writes_the_shipped_example(tmp_path):
+    """``init NAME --example village-10m`` writes the shipped example's text (configs/ in the
+    repository), which loads and gives the same verdict as that file; an unknown name is one line."""
+    root = Path(__file__).parents[2]
+    listed = run("init", "--example", "list")
+    assert listed.returncode == 0 and "village-10m" in listed.stdout
+    p = run("init", "v.toml", "--example", "village-10m", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    written = (tmp_path / "v.toml").read_text(encoding="utf-8")
+    assert written == (root / "configs" / "village-10m.toml").read_text(encoding="utf-8")
+    ours = jrun("force", tmp_path / "v.toml", "--summary", expect=0)
+    shipped = jrun("force", root / "configs" / "village-10m.toml", "--summary", expect=0)
+    assert ours == shipped
+    line = one_error_line(run("init", "x.toml", "--example", "village-11m", cwd=tmp_path))
+    assert "village-11m" in line and not (tmp_path / "x.toml").exists()
+
+
+# ----------------------------------------------------------------------------- --strict
+def _prototype(tmp_path, speed, mass=None) -> Path:
+    """configs/prototype.toml at another wheel speed [deg/s] (and with a wheel mass [kg])."""
+    d = tomllib.loads((Path(__file__).parents[2] / "configs" / "prototype.toml").read_text(encoding="utf-8"))
+    d["operator"]["speed"] = speed
+    if mass is not None:
+        d["wheel"]["mass"] = mass
+    return write(tmp_path, d, f"proto-{speed}-{mass}.toml")
+
+
+@pytest.mark.parametrize(
+    "command,mass",
+    [("force", None), ("speed", 20.0)],
+)
+def test_strict_fails_a_pass_with_warnings_and_passes_a_clean_pass(tmp_path, command, mass):
+    """--strict (the CI gate): exit 1 where the verdict is PASS with warnings, 0 on a clean PASS.
+    The prototype's grip moves at 3.28 m/s at 360 deg/s (warns above 2.5 m/s, docs/models.md §4)
+    and at 2/3 of that at 240 deg/s; with a 20 kg wheel (full dynamics) the same holds."""
+    sweep = ("--from", "240", "--to", "360", "--step", "120") if command == "speed" else ("--summary",)
+    for speed, verdict, strict in ((360.0, "PASS with warnings", 1), (240.0, "PASS", 0)):
+        spec = _prototype(tmp_path, speed, mass)
+        p = run(command, spec, *sweep, "--format", "json")
+        assert p.returncode == 0, p.stderr
+        q = run(command, spec, *sweep, "--format", "json", "--strict")
+        assert q.returncode == strict, q.stderr
+        j, k = json.loads(p.stdout), json.loads(q.stdout)
+        assert k.pop("strict", True) is True and j.pop("strict", False) is False
+        assert k == j  # the same answer, another exit code
+        if command == "speed":  # the row at the spec's own speed decides
+            (j,) = [r for r in j["speeds"] if r["speed_deg_s"] == speed]
+        assert j["verdict"] == verdict
+
+
+def test_strict_optimize_follows_the_verdict_of_the_optimum(tmp_path):
+    """optimize --strict: exit 1 when the optimum only passes with warnings (here its grip height,
+    with the grip-height and stroke limits opened wide), 0 when it passes cleanly (the prototype
+    at 240 deg/s, whose optimum's grip is slower than 2.5 m/s)."""
+    relaxed = ("--vary", "D1=-0.5:0.8", "--grip-height", "0:5", "--stroke", "0:5", "--format", "json")
+    p = run("optimize", "configs/prototype.toml", *relaxed, cwd=Path(__file__).parents[2])
+    assert p.returncode == 0, p.stderr
+    assert json.loads(p.stdout)["optimum"]["verdict"] == "PASS with warnings"
+    q = run("optimize", "configs/prototype.toml", *relaxed, "--strict", cwd=Path(__file__).parents[2])
+    assert q.returncode == 1, q.stderr
+    j, k = json.loads(p.stdout), json.loads(q.stdout)
+    assert k.pop("strict", True) is True and j.pop("strict", False) is False and k == j
+    c = run("optimize", _prototype(tmp_path, 240.0), "--seed", "3", "--format", "json", "--strict")
+    assert c.returncode == 0, c.stderr
+    assert json.loads(c.stdout)["optimum"]["verdict"] == "PASS"
+
+
 def test_bracketed_units_and_extras_survive_rich_markup_in_help():
     """Rich eats lowercase [tags]: units like [deg] and the extra [plot] must be escaped."""
     wants = {

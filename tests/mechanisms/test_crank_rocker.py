@@ -325,6 +325,22 @@ def test_cli_seed_example_json():
     assert all(c["ours_better_by_deg"] > 0.4 for c in d["compare"])
 
 
+def test_cli_no_compare_leaves_out_the_papers_designs_only():
+    """--no-compare: the same optimum, without the paper's designs (JSON and table)."""
+    with_, without = (
+        run("transmission", "--format", "json"),
+        run("transmission", "--no-compare", "--format", "json"),
+    )
+    assert with_.returncode == without.returncode == 0, without.stderr
+    a, b = json.loads(with_.stdout), json.loads(without.stdout)
+    assert b["compare"] == [] and "printed_gamma_min_deg" not in b
+    assert {k: v for k, v in a.items() if k != "printed_gamma_min_deg"} == {**b, "compare": a["compare"]}
+    t = run("transmission", "--no-compare", env={**os.environ, "NO_COLOR": "1", "COLUMNS": "80"})
+    assert t.returncode == 0 and "(1) optimum (this tool)" in t.stdout
+    assert "(2)" not in t.stdout and "better than" not in t.stdout and "46.3698" not in t.stdout
+    assert "γmax = 96.830163131°" in t.stdout  # exact to the digits shown (docs/crank-rocker.md §5)
+
+
 @pytest.mark.parametrize(
     "args,key",
     [
