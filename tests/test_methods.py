@@ -312,6 +312,8 @@ def _run(*args, pre=""):
 
 
 def test_methods_command_json_and_charts(tmp_path):
+    import figures
+
     png, svg = tmp_path / "m.png", tmp_path / "s.svg"
     r = _run(
         "methods",
@@ -325,6 +327,7 @@ def test_methods_command_json_and_charts(tmp_path):
         str(png),
         "--samples-plot",
         str(svg),
+        pre=figures.PRE,
     )
     assert r.returncode == 0, r.stderr
     obj = json.loads(r.stdout)
@@ -344,6 +347,27 @@ def test_methods_command_json_and_charts(tmp_path):
     assert [row["n"] for row in obj["sampling"]] == [12, 36, 72, 360, 3600]
     assert png.read_bytes()[:4] == b"\x89PNG"
     assert b"<svg" in svg.read_bytes()[:2000]
+    # what the charts show: one marker per method and sampling at (time, error) of the JSON ...
+    (ax,) = figures.read(png)["axes"]
+    assert ax["xscale"] == ax["yscale"] == "log" and ax["texts"] == names
+    assert ax["legend"] == ["uniform sweep", "near a dead centre (down to 1e-6 deg)", "danger points"]
+    want = sorted(
+        (s["seconds_per_position"], max(s["max_rel_error"], 1e-17))
+        for m in obj["methods"]
+        for s in m["samplings"].values()
+        if s["max_rel_error"] is not None
+    )
+    got = sorted(map(tuple, ax["scatter"]))
+    assert len(got) == len(want) and np.allclose(got, want, rtol=1e-12, atol=0)
+    # ... and the sampling study's sampled peaks against N, below the exact peak line
+    study = figures.read(svg)
+    peak, errors = study["axes"]
+    sampled = next(ln for ln in peak["lines"] if ln["label"].startswith("sampled peak outside"))
+    assert sampled["x"] == [12.0, 36.0, 72.0, 360.0, 3600.0]
+    assert sampled["y"] == pytest.approx([row["sampled_peak"] for row in obj["sampling"]], rel=1e-12)
+    exact = next(ln for ln in peak["lines"] if ln["label"] == "exact peak outside band")["y"][0]
+    assert exact == pytest.approx(obj["sampling"][0]["exact_peak"], rel=1e-12) and max(sampled["y"]) <= exact
+    assert errors["title"] == "error of sampled values" and study["suptitle"] == "Prototype"
 
 
 def test_methods_command_with_named_methods_compares_only_those():

@@ -1087,10 +1087,23 @@ def test_speed_command(tmp_path):
     _, one = _force_json(FLY, "--speed", "480")
     assert f[3] == pytest.approx(one["least_peak_force_N"], rel=1e-12)  # same numbers as `force`
     assert j["speeds"][3]["verdict"] == one["verdict"] == "FAIL"
+    import figures
+
     png = tmp_path / "s.png"
-    t = run("speed", FLY, "--plot", png)
-    assert png.stat().st_size > 10_000 and "within 100 N: from 390 deg/s up" in t.stdout
+    t = figures.run("speed", FLY, "--plot", png, env=_env({"COLUMNS": "80"}))
+    assert png.read_bytes()[:4] == b"\x89PNG" and "within 100 N: from 390 deg/s up" in t.stdout
     assert "best cadence: 311 deg/s (52 rpm)" in t.stdout
+    # the chart (read from the figure): the models' curves and the limits in the legend, and the
+    # best cadence starred where the JSON puts it
+    chart = figures.read(png)
+    ax = chart["axes"][0]
+    assert ax["title"].startswith("Well, 12 m head: the force a person needs against cadence (J = ")
+    assert chart["figure_legend"][:2] == ["flywheel (links' inertia neglected)", "full dynamics: hand force"]
+    assert "force limit 100 N" in chart["figure_legend"]
+    best = j["best_cadence"]
+    assert figures.marked(ax, "*") == [
+        pytest.approx((best["speed_deg_s"], best["effort_peak_force_N"]), rel=1e-12)
+    ]
     q = run("speed", "configs/prototype.toml", cwd=Path(__file__).parents[2])
     assert q.returncode == 2 and q.stderr.count("\n") == 1 and "wheel.mass" in q.stderr
     bad = run("speed", FLY, "--from", "500", "--to", "100")

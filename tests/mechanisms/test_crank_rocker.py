@@ -365,9 +365,22 @@ def test_cli_chart_without_matplotlib_exits_2(tmp_path):
     assert not (tmp_path / "c.png").exists()
 
 
-def test_cli_chart_writes_png(tmp_path):
-    # needs the [plot] extra: `make test` installs .[test,plot]
+def test_cli_chart_is_the_papers_design_diagram(tmp_path):
+    """--chart draws the paper's Fig. 3 (needs the [plot] extra: `make test` installs .[test,plot]):
+    contours of the best transmission angle (10..85 deg) and of rocker/frame (0.1..2.0) over
+    (phi, theta), with the paper's example marked at phi = 40 deg, theta = 180 (K - 1)/(K + 1) deg
+    for K = 1.1818 (read from the figure, tests/figures.py)."""
+    import figures
+
     out = tmp_path / "diagram.png"
-    p = run("transmission", "--chart", str(out))
+    p = figures.run("transmission", "--chart", out)
     assert p.returncode == 0, p.stderr
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    (ax, *_) = figures.read(out)["axes"]
+    assert ax["title"].startswith("Optimal transmission of the crank-rocker (the paper's Fig. 3, exact)")
+    assert ax["xlabel"] == "rocker swing φ [deg]" and ax["ylabel"].startswith("extreme included angle θ")
+    assert figures.marked(ax, "o") == [pytest.approx((40.0, 180 * 0.1818 / 2.1818), rel=1e-12)]
+    assert "the paper's example" in ax["texts"]
+    mu_levels, ratio_levels = ax["contour_levels"]
+    assert mu_levels == list(range(10, 90, 5)) and ratio_levels == pytest.approx(np.arange(1, 21) / 10)
+    assert "45°" in ax["texts"] and "0.9" in ax["texts"]  # labelled contours near the example
