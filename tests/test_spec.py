@@ -115,6 +115,7 @@ def test_any_out_of_range_value_names_its_key_value_and_range(case):
         assert f"{bound:g}" in msg, (bound, msg)
 
 
+# ~2 ms each; 60 draws of 30 keys x 5 wrong types
 @settings(max_examples=60, deadline=None)
 @given(st.sampled_from(NUMERIC_KEYS), st.sampled_from(["0.2", True, False, [1.0], {"x": 1.0}]))
 def test_wrong_type_names_the_key(entry, value):
@@ -314,6 +315,7 @@ def valid_specs(draw):
     return d
 
 
+# ~4 ms each; 100 specs with each optional section present or not (tmp_path is only overwritten)
 @settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(valid_specs())
 def test_spec_to_dict_round_trips_through_toml(tmp_path, data):

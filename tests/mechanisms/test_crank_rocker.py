@@ -265,6 +265,7 @@ def test_inadmissible_arc_gives_a_different_linkage():
     assert abs(sim.swing - phi) > 1e-3
 
 
+# ~60 ms each (a 400 000-point brute force and a simulation); 12 draws of K and the swing
 @settings(max_examples=12, deadline=None)
 @given(K=st.floats(1.03, 1.6), phi=st.floats(15.0, 120.0))
 def test_optimum_beats_dense_brute_force_and_simulates_exactly(K, phi):

@@ -69,6 +69,7 @@ MIN_CRANK = 1e-6
 # Feasible designs: the synthesised linkage really swings 90 deg +- swing/2
 
 
+# ~60 ms each (50-digit dead centres); 60 draws, 7 in 10 feasible (the rest are assume()d away)
 @settings(max_examples=60)
 @given(R.linkage_inputs())
 def test_feasible_design_swings_exactly_and_dead_centres_are_where_reported(inputs):
@@ -121,6 +122,7 @@ def test_feasible_design_swings_exactly_and_dead_centres_are_where_reported(inpu
         assert R.state(lk, fold + (2 * mp.pi - plus) / 2)["grip_rate"] < 0
 
 
+# ~10 ms each (a 20 000-point sweep); 40 designs
 @settings(max_examples=40)
 @given(R.linkage_inputs())
 def test_transmission_range_matches_a_dense_sweep(inputs):
@@ -178,6 +180,7 @@ def test_published_prototype_numbers():
 # CHANGE_POINT_MARGIN) are feasible, the others carry the right reason and a useful sentence.
 
 
+# ~2 ms each; 300 draws put about 60 on each infeasibility code
 @settings(max_examples=300)
 @given(R.linkage_inputs())
 def test_reason_code_is_exactly_the_psi_condition(inputs):

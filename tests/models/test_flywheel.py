@@ -386,7 +386,8 @@ def test_force_grows_without_bound_as_the_band_vanishes():
 # Scaling
 
 
-@settings(max_examples=6, deadline=None)
+# ~100 ms each (two scenes and two passing speeds); 30 draws of the 5 scale factors
+@settings(max_examples=30, deadline=None)
 @given(
     st.floats(0.1, 20.0), st.floats(1.0, 15.0), st.floats(0.01, 0.5), st.floats(0.2, 5.0), st.floats(0.2, 5.0)
 )
@@ -488,6 +489,7 @@ def _repeat(case, k):
     return lk, np.full(k, case.dcs[0]), np.full(k, case.dcs[1]), np.full(k, case.mw)
 
 
+# ~15 ms each; 15 designs, each with 2-8 bands over 4.5 decades
 @settings(max_examples=15, deadline=None)
 @given(spec_designs(), st.lists(st.floats(-2.0, 2.5), min_size=2, max_size=8))
 def test_larger_band_never_needs_more_force(inputs, log_bands):
@@ -667,7 +669,8 @@ def test_infeasible_design_gives_nan_and_a_zero_band_gives_inf():
     assert DEFAULT.deficit(0.9 * DEFAULT.f_mean) == np.inf
 
 
-@settings(max_examples=5, deadline=None)
+# ~20 ms each; 40 lists of 2-5 designs (infeasible ones included) and bands
+@settings(max_examples=40, deadline=None)
 @given(st.lists(st.tuples(spec_designs(), st.floats(-2.0, 2.5)), min_size=2, max_size=5))
 def test_vectorised_calls_equal_per_design_calls(items):
     cases, bands = [], []
