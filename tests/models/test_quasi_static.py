@@ -108,9 +108,13 @@ def test_peak_force_against_brute_force_and_reference(design, band_deg):
     assert min(_gap(angle, ext), _gap(angle, fold)) >= band - 1e-12
     # ... the reported force is the true force there (50 digits) ...
     assert abs(peak / abs(R.force(lk, angle, mw)) - 1) <= 1e-10
-    # ... and no dense sample beats it; the target is 0.1 %, expected far better.
+    # ... and no dense sample beats it, nor falls short of it by more than a sweep can: each
+    # window's ends are samples, so a peak at a band edge (all 100 designs of a trial) is matched
+    # up to the dead centres' agreement (1e-12 rad) times |F'/F| ~ 1/band, and a smooth interior
+    # maximum up to |F''/F| (step/2)^2 / 2 with step <= 2 pi / 200 000: 1.2e-10 |F''/F|.  Measured
+    # 1.4e-13; the target was 0.1 %.
     assert brute <= peak * (1 + 1e-12)
-    assert (peak - brute) / peak <= 1e-3
+    assert (peak - brute) / peak <= 1e-9
 
 
 def test_peak_at_the_window_end_is_the_force_exactly_dead_band_from_the_dead_centre():
