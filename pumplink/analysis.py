@@ -714,8 +714,12 @@ STATIC_CHECK_ANGLES = 3600
 STATIC_SWEEP = 200_000
 #: Central-difference step [rad] of the virtual-work check (truncation ~h^2, rounding ~1e-16/h).
 STATIC_STEP = 1e-5
-#: How far below the exact peak the dense sweep may stay: one sample step times the force's
-#: slope, relative (the peak outside the dead bands sits at a band edge or a smooth maximum).
+#: How far below the exact peak the dense sweep may stay, relative.  With the sweep's step
+#: h = 2 pi / STATIC_SWEEP = 3.1e-5 rad, a peak at a smooth maximum is missed by at most
+#: |F''/F| h^2 / 8 (~1e-10), a peak at a band edge by h |F'/F| there; next to a dead centre
+#: F ~ 1 / (theta - theta_dc), so |F'/F| ~ 1 / band and the miss is up to h / band: 9e-5 for the
+#: default 20 deg band, 1e-3 at 1.8 deg.  So this bound holds for bands of 1.8 deg and more; below
+#: that a right peak can fail the check (measured: the prototype at a 1 deg band, 1.04e-3).
 STATIC_SWEEP_RTOL = 1e-3
 
 
