@@ -314,7 +314,9 @@ def _optimum_chunk(theta, swing, rocker, n):
         cc, kk, ff, _, _, okc = crank_rocker_at_delta(x, theta, swing, rocker, side)
         with np.errstate(invalid="ignore"):
             root_mu = np.where(okc, effective_transmission(cc, kk, rocker, ff)[0], -np.inf)
-        solved = res.success & (root_mu >= mu[rows, j])
+        # the root is the arc's maximum: it may round below a scan point next to it (the two are
+        # computed by different formulas), never by more than a few eps
+        solved = res.success & (root_mu >= mu[rows, j] - 1e-12)
         cand_delta = np.where(solved, x, scan_delta)
         cand_mu = np.where(solved, root_mu, mu[rows, j])
         cand_binding = np.where(solved, extreme, -1)
