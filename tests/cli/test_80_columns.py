@@ -50,7 +50,19 @@ ALL = (
         ["init", "--example", "list"],
     ]
 )
-COMMANDS = [c for c in ALL if c not in [list(g) for g in GOLDEN]]
+#: Commands that are also a help or README example: tests/cli/test_help_examples.py runs them at
+#: 80 columns and checks the same.
+EXAMPLES_RUN = (
+    ["force", "examples/piston-pump.toml", "--summary"],
+    ["force", "examples/well-12m-flywheel.toml", "--summary"],
+    ["speed", "examples/well-12m-flywheel.toml"],
+    ["batch", "configs/grids/piston-bore.toml"],
+    ["slider", "--stroke", "0.1", "--rod-ratio", "4", "--time-ratio", "1.2"],
+    ["slotted", "--time-ratio", "1.5", "--stroke", "0.3"],
+    ["rocker", "--time-ratio", "1.25", "--swing", "50", "--rocker", "0.3", "--frame", "0.4"],
+    ["structure", "configs/mechanisms/six-link.toml"],
+)
+COMMANDS = [c for c in ALL if c not in [list(g) for g in GOLDEN + EXAMPLES_RUN]]
 
 TRUNCATED = re.compile(r"\S…")
 

@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from rich.cells import cell_len
 
 ROOT = Path(__file__).resolve().parents[2]
 BIN = Path(sys.executable).parent
@@ -67,7 +68,12 @@ def workdir(tmp_path) -> Path:
 
 
 def _run(line: str, cwd: Path) -> subprocess.CompletedProcess:
-    env = {**os.environ, "PATH": f"{BIN}{os.pathsep}{os.environ.get('PATH', '')}", "COLUMNS": "80"}
+    env = {
+        **os.environ,
+        "PATH": f"{BIN}{os.pathsep}{os.environ.get('PATH', '')}",
+        "COLUMNS": "80",
+        "NO_COLOR": "1",
+    }
     return subprocess.run(line, shell=True, cwd=cwd, env=env, capture_output=True, text=True, timeout=600)
 
 
@@ -112,6 +118,9 @@ def check_output(line: str, p: subprocess.CompletedProcess, cwd: Path, expected:
     table = re.search(r"(?:--format|-f) (?:json|csv|parquet)", line) is None
     if not table or cmd in ("schema", "init", "draw", "template", "report") or cmd.startswith("-"):
         return
+    # a newcomer's 80-column terminal (as tests/cli/test_80_columns.py, which leaves these out)
+    for text in (p.stdout + p.stderr).splitlines():
+        assert cell_len(text) <= 80 and not re.search(r"\S…", text), (line, text)
     for path, name in NAMES.items():
         if path in words and cmd != "batch":
             assert name in " ".join(p.stdout.split()), (line, name)
@@ -203,6 +212,7 @@ def test_every_readme_inline_example_runs(line, workdir):
         **os.environ,
         "PATH": f"{BIN}{os.pathsep}{os.environ.get('PATH', '')}",
         "COLUMNS": "80",
+        "NO_COLOR": "1",
         "HOME": str(workdir),
     }
     p = subprocess.run(
