@@ -26,12 +26,14 @@ $(VENV)/.stamp-bench: pyproject.toml | $(BIN)/python
 run: $(VENV)/.stamp-base
 	$(BIN)/pumplink force --speed 360
 
-# Lint, format check and the layering contract first (seconds), then the suite.
+# Lint, format check and the layering contract first (seconds), then the suite on two processes,
+# a test file to a process (its module fixtures built once); PYTEST_ARGS= runs it in one.
+PYTEST_ARGS ?= -n 2 --dist loadfile
 test: $(VENV)/.stamp-test
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
 	$(BIN)/lint-imports --no-cache
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q $(PYTEST_ARGS)
 
 # Every benchmarks/bench_*.py, one after the other in this process's venv (medians of repeats);
 # each also appends its figures to $(BENCH_OUT) (benchmarks/_record.py), and the last step prints

@@ -276,7 +276,8 @@ def linkage_inputs():
 
 
 # ---------------------------------------------------------------------------------------------
-# Shared by test_kinematics.py and test_force.py
+# Shared by tests/mechanisms/test_fourbar_kinematics.py, tests/models/test_quasi_static.py and
+# tests/models/test_flywheel.py
 
 #: Shortest crank [m] for which force and kinematics accuracy is asserted.  The dead-centre
 #: crank angles are conditioned like eps * rocker / crank: for a micrometre crank they move by

@@ -26,6 +26,7 @@ from pathlib import Path
 
 import pytest
 import tomli_w
+from budget import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -177,7 +178,8 @@ FORCE_ARGS = st.sampled_from(
 )
 
 
-@settings(max_examples=500, deadline=None)
+# ~30 ms each through main(); 150 specs, each through one of 5 commands, in the default run (tests/budget.py)
+@settings(max_examples=examples(150, 500), deadline=None)
 @given(specs(), FORCE_ARGS)
 def test_schema_specs_keep_the_contract(tmp_path_factory, data, args):
     p = tmp_path_factory.mktemp("fuzz") / "spec.toml"
@@ -208,7 +210,8 @@ def batch_files(draw) -> dict:
     return doc
 
 
-@settings(max_examples=150, deadline=None)
+# ~30 ms each; 60 batch files in the default run (tests/budget.py)
+@settings(max_examples=examples(60, 150), deadline=None)
 @given(batch_files())
 def test_schema_batch_files_keep_the_contract(tmp_path_factory, data):
     p = tmp_path_factory.mktemp("fuzz") / "batch.toml"
@@ -256,7 +259,8 @@ def mutated(draw) -> bytes:
     return bytes(data)
 
 
-@settings(max_examples=450, deadline=None)
+# ~15 ms each; 150 mutations of the 7 shipped files, each through one of 3 commands (tests/budget.py)
+@settings(max_examples=examples(150, 450), deadline=None)
 @given(mutated(), st.sampled_from(["force", "synth", "batch"]))
 def test_mutated_shipped_files_keep_the_contract(tmp_path_factory, data, command):
     p = tmp_path_factory.mktemp("fuzz") / "mutated.toml"
@@ -273,7 +277,8 @@ OPTION_VALUES = st.one_of(
 )
 
 
-@settings(max_examples=250, deadline=None)
+# ~12 ms each; 100 values over the 4 options in the default run (tests/budget.py)
+@settings(max_examples=examples(100, 250), deadline=None)
 @given(st.sampled_from(["--speed", "--samples", "--at", "--format"]), OPTION_VALUES)
 def test_option_values_keep_the_contract(option, value):
     args = ["force", "--summary", option, value]

@@ -1,21 +1,28 @@
 """Stability and accuracy of the force methods (methods comparison), and the `methods` command.
 
-Ground truth is ``pumplink.studies.methods.reference``: a different route from every method under test
-(rocker angle from d . u4 = (l4^2 + |d|^2 - l3^2) / (2 l4) and the textbook velocity ratio
-l2 sin(t3 - t2) / (l4 sin(t3 - t4))) evaluated in mpmath at 50 digits at the same double
-crank angles.  Its own agreement with an independent closed form is checked first.
+Ground truth is the independent 50-digit reference of ``tests/reference.py`` (Freudenstein form
+of the loop closure, rate by implicit differentiation, derived from docs/physics.md only) at the
+same double crank angles, and its 50-digit dead centres.  The product's own ``reference`` method
+is one of the methods under test here.
+
+The allowed errors are written below (:func:`allowed`) from how each method computes the force,
+as a function of the distance delta to the nearest dead centre (where the force's denominator,
+the grip's rate, vanishes like delta); they are not read from the product's registry, whose
+promises (``Method.tolerance``) are checked against them separately.
 """
 
 from __future__ import annotations
 
 import json
+import math
 import subprocess
 import sys
 import warnings
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+import reference as R
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from pumplink.inputs.pump import default_spec
@@ -32,6 +39,7 @@ from pumplink.studies.methods import (
     METHODS,
     NEAR_DEAD_CENTRE,
     ROCKER_PERPENDICULAR,
+    UNIFORM,
     danger_points,
     paper,
     paper_seed_coordinates,
@@ -40,24 +48,80 @@ from pumplink.studies.methods import (
     vector,
 )
 
-SETTINGS = settings(
-    max_examples=12, deadline=None, suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow]
-)
+EPS = np.finfo(float).eps
+
+
+def allowed(name: str, kind: str, delta):
+    """Relative force error ``name`` is known to achieve at ``delta`` [rad] from the nearest dead
+    centre, near a point of ``kind``.  Each term is a rounding or step error of the method over
+    the rate, which vanishes like delta; measured worst cases (200 random designs of
+    :func:`designs`, all kinds, against ``tests/reference.py``) in brackets.
+
+    * vector: closed-form positions and the analytic velocity ratio carry a few eps of the link
+      angles, relative to a rate ~ delta: 64 eps (1 + 1/delta) [17 eps/delta].
+    * paper: Eq. (6)'s quadratic has coefficients of order l^8 whose differences lose about five
+      digits: 1e6 eps (1 + 1/delta) [1.1e5 eps/delta].  Next to the crank along the frame line
+      its two roots merge and B keeps half the digits: 8 sqrt(eps) (1 + 1/delta) [1.3 sqrt(eps)/delta].
+    * numeric: fsolve's grip positions (converged to ~1e-14 m) differenced over 2 h = 2e-5 rad
+      (h = pumplink.studies.methods.NUMERIC_STEP), plus the h^2 ~ 1e-10 truncation: 4e-9 (1 + 1/delta)
+      [1e-9/delta].
+    * reference (the product's 50-digit route): its doubles are rounded once, then the grip rate and
+      the force take a few roundings of their own: 8 eps.
+    """
+    delta = np.asarray(delta, float)
+    if name == "vector":
+        return 64 * EPS * (1 + 1 / delta)
+    if name == "paper":
+        return (8 * math.sqrt(EPS) if kind == CRANK_ALONG_FRAME else 1e6 * EPS) * (1 + 1 / delta)
+    if name == "numeric":
+        return 4e-9 * (1 + 1 / delta)
+    if name == "reference":
+        return np.full(delta.shape, 8 * EPS)
+    raise KeyError(name)
 
 
 @st.composite
-def designs(draw):
-    """Feasible pump designs with a crank-rocker of transmission angle >= 5 deg from a change point."""
+def designs(draw, rocker_perpendicular=False):
+    """Feasible pump designs with a crank-rocker of transmission angle >= 5 deg from a change point.
+
+    Drawn feasible directly: with reach = L1 + b/2, the swing stays clear of the frame line and
+    its extension iff |D1| < reach cot(swing/2) (Eq. 2, docs/physics.md), so D1 is drawn in that
+    part of its range.  ``rocker_perpendicular``: also |D1| < reach tan(swing/2), where the rocker
+    passes through the normal to the frame line (one of :data:`DANGER_KINDS`)."""
     L1 = draw(st.floats(0.05, 1.0))
     b = draw(st.floats(0.0, 0.3))
-    D1 = draw(st.floats(-0.4, 0.6))
     rocker = draw(st.floats(0.08, 0.6))
     swing = np.radians(draw(st.floats(15.0, 110.0)))
     handle = draw(st.floats(0.4, 1.5))
+    reach = L1 + b / 2
+    limit = reach * math.tan(0.5 * math.pi - 0.5 * swing - 1e-5)  # 1e-5 rad inside (change-point margin)
+    if rocker_perpendicular:
+        limit = min(limit, reach * math.tan(0.5 * swing - 1e-5))
+    D1 = draw(st.floats(max(-0.4, -limit), min(0.6, limit)))
     syn = synthesize(L1, D1, b, rocker, swing, handle)
-    assume(bool(syn.feasible))
-    assume(min(syn.transmission_min, np.pi - syn.transmission_max) > np.radians(5.0))
+    assert syn.feasible
+    assume(min(syn.transmission_min, np.pi - syn.transmission_max) > np.radians(5.0))  # 7 % of draws
     return syn
+
+
+def _truth(syn, angles, wheel_torque):
+    """50-digit force of ``tests/reference.py`` at the given double angles, and each angle's
+    distance to the nearest 50-digit dead centre [rad] (the reference's rate numerator polished
+    to a root from each of pumplink's dead centres: faster than the reference's own scan)."""
+    import mpmath
+
+    lk = R.from_synthesis(syn)
+    force = np.array([float(R.force(lk, float(t), wheel_torque)) for t in np.ravel(angles)])
+    dcs = []
+    with mpmath.workdps(R.DPS):
+        for guess in (syn.dead_centre_extended, syn.dead_centre_folded):
+            root = mpmath.findroot(lambda t: R.state(lk, t)["rate_numerator"], mpmath.mpf(float(guess)))
+            assert abs(root - float(guess)) < 1e-9  # the same dead centre
+            dcs.append(root)
+        delta = np.min(
+            [[float(abs(R._wrap(mpmath.mpf(float(t)) - d))) for t in np.ravel(angles)] for d in dcs], 0
+        )
+    return force.reshape(np.shape(angles)), delta.reshape(np.shape(angles))
 
 
 def _rel(a, b):
@@ -65,6 +129,7 @@ def _rel(a, b):
 
 
 def test_reference_matches_hand_derivation_at_a_dead_centre_neighbour():
+
     # Independent check of the reference: at crank angle t the rocker tip B satisfies both circle
     # equations (|B - A| = l3, |B - O4| = l4) to 40 digits, and omega4/omega2 equals a central
     # difference of its rocker angle taken at 50 digits (step 1e-20).
@@ -96,12 +161,14 @@ def test_reference_matches_hand_derivation_at_a_dead_centre_neighbour():
     assert abs(r0.handle_rate[0] / grip_rate - 1) < 1e-14
 
 
-@SETTINGS
+# ~0.2 s each (50-digit truth at up to 10 angles); 25 designs over the 6-parameter box, with
+# the 24 x 10 of the danger-point test below
+@settings(max_examples=25, deadline=None)
 @given(designs(), st.floats(1.0, 179.0), st.sampled_from([-1.0, 1.0]))
 def test_vector_meets_item4_targets(syn, away_deg, side):
-    """Production path: <= 1e-12 at >= 1 deg from both dead centres, <= 1e-6 at 1e-6 deg,
-    NaN + singular exactly at the dead centres, finite and exact at the paper's danger points,
-    and no warnings."""
+    """Production path: within :func:`allowed` (below the targets: 1e-12 at >= 1 deg from both
+    dead centres, 1e-6 at 1e-6 deg), NaN + singular exactly at the dead centres, finite and exact
+    at the paper's danger points, and no warnings."""
     lk = syn.linkage
     dc = np.array([syn.dead_centre_extended, syn.dead_centre_folded])
     far = dc + side * np.radians(away_deg)
@@ -111,13 +178,15 @@ def test_vector_meets_item4_targets(syn, away_deg, side):
     danger = np.concatenate([pts[k] for k in DANGER_KINDS])
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        for angles, tol in ((far, 1e-12), (near, 1e-6), (danger, 1e-12)):
+        for angles, target in ((far, 1e-12), (near, 1e-6), (danger, 1e-12)):
             if angles.size == 0:
                 continue
-            got, ref = vector(lk, angles, 7.0), reference(lk, angles, 7.0)
+            got = vector(lk, angles, 7.0)
+            truth, delta = _truth(syn, angles, 7.0)
             assert np.all(np.isfinite(got.force)) and not got.singular.any()
-            assert np.all(_rel(got.force, ref.force) <= tol), (angles, _rel(got.force, ref.force))
-            assert np.all(np.sign(got.force) == np.sign(ref.force))
+            err = _rel(got.force, truth)
+            assert np.all(err <= np.minimum(allowed("vector", UNIFORM, delta), target)), (angles, err)
+            assert np.all(np.sign(got.force) == np.sign(truth))
         at = vector(lk, dc, 7.0)
         assert at.singular.all() and np.isnan(at.force).all() and np.isfinite(at.grip_x).all()
 
@@ -128,7 +197,7 @@ def _danger_angles(draw, syn, kind):
         base = np.array([syn.dead_centre_extended, syn.dead_centre_folded])
     else:
         base = danger_points(lk)[kind]
-    assume(base.size > 0)
+    assert base.size > 0, kind  # designs() draws the rocker-perpendicular ones where it gets there
     if kind == DEAD_CENTRE:
         return base
     if kind == NEAR_DEAD_CENTRE:
@@ -140,7 +209,7 @@ def _danger_angles(draw, syn, kind):
     return (base[:, None] + np.concatenate([offs, -offs])[None, :]).ravel()
 
 
-@pytest.mark.parametrize("name", ["vector", "paper", "numeric"])
+@pytest.mark.parametrize("name", ["vector", "paper", "numeric", "reference"])
 @pytest.mark.parametrize(
     "kind",
     [
@@ -152,32 +221,33 @@ def _danger_angles(draw, syn, kind):
         CRANK_ALONG_FRAME,
     ],
 )
-@settings(
-    max_examples=4, deadline=None, suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow]
-)
+# ~60 ms each (up to 16 angles at 50 digits); 10 designs per method and kind, 240 in all
+@settings(max_examples=10, deadline=None)
 @given(data=st.data())
 def test_registered_capabilities_hold_at_danger_points(name, kind, data):
     """Each method does what its registry entry says at its danger points: where it declares
-    'flags' it either flags (NaN + failed/singular) or meets its tolerance; where it declares
-    'exact'/'accurate' it returns a value within tolerance.  Never garbage, never a warning."""
-    syn = data.draw(designs())
+    'flags' it either flags (NaN + failed/singular) or returns a value within :func:`allowed`;
+    where it declares 'exact'/'accurate' it returns a value within :func:`allowed`.  Never
+    garbage, never a warning.  And every tolerance the registry promises is met."""
+    syn = data.draw(designs(rocker_perpendicular=kind == ROCKER_PERPENDICULAR))
     m = METHODS[name]
     angles = _danger_angles(data.draw, syn, kind)
-    if name == "numeric":
-        angles = angles[:4]  # a few points: the numeric route costs ~0.4 ms each
+    if name in ("numeric", "reference"):
+        angles = angles[:4]  # a few points: these routes cost ~0.4 ms each
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         got = m.function(syn.linkage, angles, 3.0)
-    ref = reference(syn.linkage, angles, 3.0)
+    truth, delta = _truth(syn, angles, 3.0)
     flagged = got.failed | got.singular
     assert np.all(np.isnan(got.force[flagged]))
-    tol = m.tolerance[kind]
-    ok = ~flagged & ~ref.singular
+    ok = ~flagged
     assert np.all(np.isfinite(got.force[ok]))
-    assert np.all(_rel(got.force[ok], ref.force[ok]) <= tol), (name, kind, angles[ok])
+    err = _rel(got.force[ok], truth[ok])
+    assert np.all(err <= allowed(name, kind, delta[ok])), (name, kind, angles[ok], err, delta[ok])
+    assert np.all(err <= m.tolerance[kind]), (name, kind, angles[ok], err)  # the registry's promise
     if m.handles[kind] in ("exact", "accurate"):
         assert not got.failed.any(), (name, kind, angles[got.failed])
-    if kind == DEAD_CENTRE:  # finite force at an exact dead centre would be a made-up number
+    if kind == DEAD_CENTRE and name != "reference":  # a finite force there would be made up
         assert flagged.all()
 
 
@@ -195,7 +265,8 @@ def test_paper_route_divides_by_zero_exactly_where_registered():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         got = paper(lk, np.array([theta]), 1.0)
-    assert got.failed[0] or abs(got.force[0] / reference(lk, np.array([theta]), 1.0).force[0] - 1) < 1e-9
+    truth, delta = _truth(syn, np.array([theta]), 1.0)
+    assert got.failed[0] or _rel(got.force[0], truth[0]) <= allowed("paper", CRANK_PERPENDICULAR, delta[0])
 
 
 def test_seed_plus_root_is_the_assembly_branch_for_half_the_cycle_only():
@@ -208,8 +279,9 @@ def test_seed_plus_root_is_the_assembly_branch_for_half_the_cycle_only():
     cs, sn = np.cos(th), np.sin(th)
     seed_angle = np.arctan2(cs * ex[0] + sn * ex[1], cs * ey[0] + sn * ey[1])
     xa, ya, xb, yb, *_ = paper_seed_coordinates(l1, lk.crank, lk.coupler, lk.rocker, seed_angle, 1.0)
-    ref = reference(lk, th, 1.0)
-    rx = ref.coupler_x * ex[0] + ref.coupler_y * ex[1]
+    ref_lk = R.from_synthesis(syn)
+    bx, by = np.array([[float(R.state(ref_lk, float(t))[k]) for k in ("bx", "by")] for t in th]).T
+    rx = bx * ex[0] + by * ex[1]
     right = np.abs(xb - rx) < 1e-9
     assert 0.3 < right.mean() < 0.7
     handed = ex[0] * ey[1] - ex[1] * ey[0]
@@ -217,10 +289,16 @@ def test_seed_plus_root_is_the_assembly_branch_for_half_the_cycle_only():
 
 
 def test_sampling_study_converges_and_never_overshoots():
-    from pumplink.evaluate import pump_designs
-    from pumplink.inputs.pump import spec_values
-
-    rows = accuracy.sampling_study(pump_designs(spec_values(default_spec())))
+    s = default_spec()
+    syn = design(s).synthesis
+    rows = accuracy.sampling_study(
+        syn.linkage,
+        syn.dead_centre_extended,
+        syn.dead_centre_folded,
+        np.radians(s.operator.dead_band),
+        s.wheel_torque,
+        syn.swing,
+    )
     for r in rows:
         assert r["sampled_peak"] <= r["exact_peak"] * (1 + 1e-12)  # samples are points of the window
         assert r["sampled_max"] >= r["sampled_peak"]
@@ -235,6 +313,8 @@ def _run(*args, pre=""):
 
 
 def test_methods_command_json_and_charts(tmp_path):
+    import figures
+
     png, svg = tmp_path / "m.png", tmp_path / "s.svg"
     r = _run(
         "methods",
@@ -248,6 +328,7 @@ def test_methods_command_json_and_charts(tmp_path):
         str(png),
         "--samples-plot",
         str(svg),
+        pre=figures.PRE,
     )
     assert r.returncode == 0, r.stderr
     obj = json.loads(r.stdout)
@@ -267,6 +348,50 @@ def test_methods_command_json_and_charts(tmp_path):
     assert [row["n"] for row in obj["sampling"]] == [12, 36, 72, 360, 3600]
     assert png.read_bytes()[:4] == b"\x89PNG"
     assert b"<svg" in svg.read_bytes()[:2000]
+    # what the charts show: one marker per method and sampling at (time, error) of the JSON ...
+    (ax,) = figures.read(png)["axes"]
+    assert ax["xscale"] == ax["yscale"] == "log" and ax["texts"] == names
+    assert ax["legend"] == ["uniform sweep", "near a dead centre (down to 1e-6 deg)", "danger points"]
+    want = sorted(
+        (s["seconds_per_position"], max(s["max_rel_error"], 1e-17))
+        for m in obj["methods"]
+        for s in m["samplings"].values()
+        if s["max_rel_error"] is not None
+    )
+    got = sorted(map(tuple, ax["scatter"]))
+    assert len(got) == len(want) and np.allclose(got, want, rtol=1e-12, atol=0)
+    # ... and the sampling study's sampled peaks against N, below the exact peak line
+    study = figures.read(svg)
+    peak, errors = study["axes"]
+    sampled = next(ln for ln in peak["lines"] if ln["label"].startswith("sampled peak outside"))
+    assert sampled["x"] == [12.0, 36.0, 72.0, 360.0, 3600.0]
+    assert sampled["y"] == pytest.approx([row["sampled_peak"] for row in obj["sampling"]], rel=1e-12)
+    exact = next(ln for ln in peak["lines"] if ln["label"] == "exact peak outside band")["y"][0]
+    assert exact == pytest.approx(obj["sampling"][0]["exact_peak"], rel=1e-12) and max(sampled["y"]) <= exact
+    assert errors["title"] == "error of sampled values" and study["suptitle"] == "Prototype"
+
+
+def test_methods_command_with_named_methods_compares_only_those():
+    r = _run(
+        "methods",
+        "--method",
+        "paper",
+        "-m",
+        "vector",
+        "--format",
+        "json",
+        "--repeats",
+        "1",
+        "--samples",
+        "36",
+    )
+    assert r.returncode == 0, r.stderr
+    obj = json.loads(r.stdout)
+    assert [m["name"] for m in obj["methods"]] == ["paper", "vector"]  # in the order asked
+    pap, vec = obj["methods"]
+    assert vec["failures"] == [] and vec["max_rel_error_uniform"] <= 1e-12
+    # the paper's route flags points at its danger points (xA = 0, xB = l1, ...): reported as such
+    assert any("flagged" in f for f in pap["failures"])
 
 
 def test_methods_command_errors(tmp_path):

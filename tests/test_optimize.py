@@ -11,7 +11,7 @@ import sys
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.optimize import minimize_scalar
 
@@ -79,29 +79,41 @@ def test_same_seed_same_answer():
     assert np.array_equal(a.x, b.x)
 
 
-bound = st.tuples(st.floats(0.0, 1.0), st.floats(0.05, 1.0))
+@st.composite
+def boxes_around_a_feasible_design(draw):
+    """(bounds, axle height) whose box holds a design that meets the default problem's constraints
+    for the default spec (handle 1 m, b = 0.1 m), drawn directly: with the rocker pivot at
+    axle - D1, the grip heights 0.5..0.9 m ask D1 - axle in [0.1, cos(swing/2) - 0.5], the 1 m
+    stroke asks swing <= 60 deg, and a frame line at <= 25 deg to the horizontal
+    (L1 + b/2 >= D1 / tan 25 deg) keeps the transmission angle >= 45 deg in 19 of 20 such designs.
+    Each variable's bounds reach a random distance either side of that design."""
+    axle = draw(st.floats(0.3, 0.8))
+    swing = draw(st.floats(10.0, 55.0))
+    d1 = draw(st.floats(axle + 0.1, axle - 0.5 + math.cos(math.radians(swing / 2))))
+    l1 = draw(st.floats(d1 / math.tan(math.radians(25.0)) - 0.05, 3.0))
+    rocker = draw(st.floats(0.05, 0.5))
+    bounds = {}
+    for name, x, floor, ceiling, width in (
+        ("rocker", rocker, 0.01, 1.0, 0.3),
+        ("L1", l1, 0.0, 4.0, 1.0),
+        ("D1", d1, -1.0, 2.0, 0.5),
+        ("swing", swing, 1.0, 179.0, 40.0),
+    ):
+        below, above = draw(st.floats(0.0, width)), draw(st.floats(0.0, width))
+        bounds[name] = (max(floor, x - below), min(ceiling, x + above + 1e-3))
+    return bounds, axle
 
 
-@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(
-    rocker=st.tuples(st.floats(0.05, 0.5), st.floats(0.01, 0.5)),
-    l1=st.tuples(st.floats(0.0, 1.5), st.floats(0.01, 1.0)),
-    d1=st.tuples(st.floats(-0.8, 1.2), st.floats(0.01, 1.0)),
-    swing=st.tuples(st.floats(10.0, 150.0), st.floats(1.0, 60.0)),
-    axle=st.floats(0.3, 0.8),
-    seed=st.integers(0, 2**16),
-)
-def test_optimizer_never_returns_an_infeasible_design(rocker, l1, d1, swing, axle, seed):
-    bounds = {
-        "rocker": (rocker[0], rocker[0] + rocker[1]),
-        "L1": (l1[0], l1[0] + l1[1]),
-        "D1": (d1[0], d1[0] + d1[1]),
-        "swing": (swing[0], min(179.0, swing[0] + swing[1])),
-    }
+# ~0.5 s each (a 30-generation search of 8 x 4 designs and the check through force_analysis);
+# 12 boxes, every one of which reaches the feasibility check (3 of the 8 undirected draws did)
+@settings(max_examples=12, deadline=None)
+@given(boxes_around_a_feasible_design(), st.integers(0, 2**16))
+def test_optimizer_never_returns_an_infeasible_design(box, seed):
+    bounds, axle = box
     problem = make_problem(default_spec(), bounds, axle_height=axle)
     try:
         res = optimize(problem, seed=seed, popsize=8, maxiter=30)
-    except InfeasibleDesign as exc:
+    except InfeasibleDesign as exc:  # the search may miss a small feasible region: it must say so
         assert "misses" in str(exc)
         return
     assert np.all(res.x >= problem.lower) and np.all(res.x <= problem.upper)

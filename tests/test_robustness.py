@@ -18,6 +18,7 @@ from pathlib import Path
 
 import pytest
 import tomli_w
+from budget import examples
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -73,7 +74,8 @@ def toml_values():
     )
 
 
-@settings(max_examples=150, deadline=None)
+# ~1 ms each (a parse); bytes rarely get past TOML, so the budget is for the parser's error paths
+@settings(max_examples=examples(60, 150), deadline=None)
 @given(st.binary(max_size=300))
 def test_arbitrary_bytes_give_a_spec_or_a_spec_error(tmp_path_factory, data):
     path = tmp_path_factory.mktemp("fuzz") / "spec.toml"
@@ -84,7 +86,8 @@ def test_arbitrary_bytes_give_a_spec_or_a_spec_error(tmp_path_factory, data):
         assert "\n" not in str(exc) and str(path) in str(exc)
 
 
-@settings(max_examples=300, deadline=None)
+# ~8 ms each; 100 structures over the spec's keys give each key several wrong values (tests/budget.py)
+@settings(max_examples=examples(100, 300), deadline=None)
 @given(st.dictionaries(st.sampled_from(KEYS), toml_values(), max_size=6))
 def test_arbitrary_toml_structures_give_a_spec_or_a_spec_error(data):
     try:
@@ -130,7 +133,8 @@ valid_specs = st.fixed_dictionaries(
 )
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+# ~30 ms each (a full analysis); 60 valid specs, each at one of 3 sample counts (tests/budget.py)
+@settings(max_examples=examples(60, 150), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(valid_specs, st.sampled_from([1, 7, 64]))
 def test_every_valid_spec_is_analysed_without_crash_or_warning(data, samples):
     spec = parse_spec(data, "valid")  # the strategy stays inside the documented ranges
@@ -171,7 +175,8 @@ BATCH_KEYS = [
 ]
 
 
-@settings(max_examples=300, deadline=None)
+# ~12 ms each; 100 batch structures over the batch keys in the default run (tests/budget.py)
+@settings(max_examples=examples(100, 300), deadline=None)
 @given(
     st.dictionaries(st.sampled_from(BATCH_KEYS), toml_values(), max_size=4),
     st.dictionaries(

@@ -84,21 +84,18 @@ def out_of_range(draw):
     options = [st.sampled_from([math.nan, math.inf, -math.inf])]
     if "gt" in c:
         options.append(st.floats(max_value=c["gt"], allow_nan=False, allow_infinity=False))
-    if "ge" in c:
-        options.append(
-            st.floats(max_value=c["ge"], allow_nan=False, allow_infinity=False).filter(lambda v: v < c["ge"])
-        )
+    if "ge" in c:  # below the closed bound, drawn directly (no filter)
+        options.append(st.floats(max_value=c["ge"], exclude_max=True, allow_nan=False, allow_infinity=False))
     if "lt" in c:
         options.append(st.floats(min_value=c["lt"], allow_nan=False, allow_infinity=False))
     if "le" in c:
-        options.append(
-            st.floats(min_value=c["le"], allow_nan=False, allow_infinity=False).filter(lambda v: v > c["le"])
-        )
+        options.append(st.floats(min_value=c["le"], exclude_min=True, allow_nan=False, allow_infinity=False))
     value = draw(st.one_of(options))
     return base, section, key, value, c
 
 
-@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
+# ~1 ms each; 200 draws give every numeric key (about 30) several out-of-range kinds of value
+@settings(max_examples=200, deadline=None)
 @given(out_of_range())
 def test_any_out_of_range_value_names_its_key_value_and_range(case):
     base, section, key, value, c = case
@@ -118,6 +115,7 @@ def test_any_out_of_range_value_names_its_key_value_and_range(case):
         assert f"{bound:g}" in msg, (bound, msg)
 
 
+# ~2 ms each; 60 draws of 30 keys x 5 wrong types
 @settings(max_examples=60, deadline=None)
 @given(st.sampled_from(NUMERIC_KEYS), st.sampled_from(["0.2", True, False, [1.0], {"x": 1.0}]))
 def test_wrong_type_names_the_key(entry, value):
@@ -330,6 +328,7 @@ def valid_specs(draw):
     return d
 
 
+# ~4 ms each; 100 specs with each optional section present or not (tmp_path is only overwritten)
 @settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(valid_specs())
 def test_spec_to_dict_round_trips_through_toml(tmp_path, data):

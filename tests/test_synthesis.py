@@ -95,6 +95,7 @@ def test_slider_bad_input_is_a_spec_error(kwargs):
         S.slider(**kwargs)
 
 
+# ~10 ms each (a re-simulated crank-slider); 40 draws over the 2-parameter valid range
 @settings(max_examples=40, deadline=None)
 @given(
     L=st.floats(1.05, 12.0),
@@ -134,6 +135,7 @@ def test_slotted_boundaries_from_both_sides():
     assert S.slotted(1.0 + 1e-6, 0.3).agrees
 
 
+# ~8 ms each (a re-simulated slotted lever); 30 draws over K, H and the frame fraction
 @settings(max_examples=30, deadline=None)
 @given(K=st.floats(1.01, 5.0), H=st.floats(1e-3, 5.0), frac=st.floats(0.05, 1.0))
 def test_slotted_property(K, H, frac):
@@ -201,6 +203,7 @@ def test_rocker_pivot_point_fixes_k_and_is_checked():
         S.rocker(swing, 0.3, 1.2, pivot=(0.0, 0.1))
 
 
+# ~15 ms each (a scan of both design arcs, a root per crossing, a simulation); 15 draws
 @settings(max_examples=15, deadline=None)
 @given(K=st.floats(1.0, 2.5), swing_deg=st.floats(10.0, 140.0), frac=st.floats(0.02, 0.98))
 def test_rocker_at_frame_property(K, swing_deg, frac):

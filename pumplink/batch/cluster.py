@@ -310,5 +310,8 @@ def run(
             del future  # released on the cluster once the driver holds the arrays
             yield c, (post(batches[c.batch], c) if post is not None else None)
     finally:
-        if pending:
+        # Ctrl-C between two chunks leaves this generator suspended while the client's context
+        # closes; it is finalised later, when a closed client cannot cancel ("IOLoop is closed")
+        # and has nothing left to cancel
+        if pending and client.status == "running":
             client.cancel(list(pending))

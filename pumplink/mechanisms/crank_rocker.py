@@ -44,9 +44,34 @@ extremes occur with crank and frame collinear,
 cos gamma = (coupler^2 + rocker^2 - (frame -+ crank)^2)/(2 coupler rocker); the effective
 minimum is min(gamma_min, pi - gamma_max).
 
+The optimum exactly (docs/crank-rocker.md §5).  On the design circle write the angles at C1 and
+C2 as u, v = (pi - theta)/2 +- delta; the law of sines and the sum-to-product formulas give
+
+    crank = w sin(delta) / cos(theta/2),   coupler = w cos(delta) / sin(theta/2),
+    coupler - crank = a1 = 2 w cos(delta + theta/2) / sin(theta)
+
+and A = C1 + a1 (cos u, side sin u), all smooth in 0 < delta < pi/2 - theta/2.  Which extreme
+binds is fixed on each arc: with f^2 = rocker^2 + a1^2 - 2 a1 (w cos u - side yc sin u) (law of
+cosines in A-C1-D, yc = rocker cos(phi/2)) and coupler^2 - crank^2 = a1 (a1 + 2 crank),
+
+    (cos gamma_min + cos gamma_max) coupler rocker = coupler^2 + rocker^2 - frame^2 - crank^2
+        = 2 a1 cos(delta - theta/2) (w tan(theta/2) - side yc),
+
+whose sign does not change along the arc: gamma_min < 180 deg - gamma_max everywhere on the
+rocker-pivot side (side -1), and gamma_min > 180 deg - gamma_max on the far side wherever it is
+admissible, which needs theta + phi < 180 deg (there line A-D meets the chord's line outside
+C1C2, say beyond C2, so C2 lies inside the triangle A C1 D and angle A C2 D = theta + phi +
+angle A C1 D < 180 deg).  So on each arc the effective minimum is one smooth function of delta,
+gamma_min resp. 180 deg - gamma_max, and its largest value is where that extreme is stationary:
+d/d delta of (coupler^2 + rocker^2 - (frame -+ crank)^2) / coupler = 0 (Eq. 4 resp. 5 of the
+optimal-transmission paper).  That is a smooth equation with a
+simple root, solved by a bracketing root finder to the last bits of delta: the lengths,
+gamma_min and gamma_max of the optimum are exact to rounding, not only the stationary value mu
+(which a maximiser of mu fixes only to ~sqrt(eps) in delta).
+
 K = 1 (theta = 0) has no optimum: the design circle becomes the chord line, and the effective
 minimum rises toward 90 deg - phi/2 as the frame grows without bound (checked numerically in
-``tests/test_transmission.py``), so :func:`optimal_crank_rocker` needs K > 1.
+``tests/mechanisms/test_crank_rocker.py``), so :func:`optimal_crank_rocker` needs K > 1.
 """
 
 from __future__ import annotations
@@ -186,22 +211,87 @@ def crank_rocker_on_circle(s, theta, swing, rocker, side):
     return crank, coupler, frame, ax, ay, admissible
 
 
-def _mu_on_arc(log_s, theta, swing, rocker, side):
-    c, k, f, _, _, _ = crank_rocker_on_circle(np.exp(log_s), theta, swing, rocker, side)
-    return effective_transmission(c, k, rocker, f)[0]
+def crank_rocker_at_delta(delta, theta, swing, rocker, side):
+    """The crank-rocker at the design-circle point with angles (pi - theta)/2 +- delta at C1, C2.
+
+    Parameters
+    ----------
+    delta : half the difference of the angles at C1 and C2 of the triangle C1 A C2 [rad],
+        0 < delta < pi/2 - theta/2 (delta -> 0: crank -> 0; the other end: A -> C1).
+    theta, swing, rocker, side : as :func:`crank_rocker_on_circle`.
+
+    Returns
+    -------
+    crank, coupler, frame, pivot_x, pivot_y, admissible
+        As :func:`crank_rocker_on_circle` (module docstring for the formulas).
+    """
+    half = 0.5 * theta
+    w = rocker * np.sin(0.5 * swing)
+    yc = rocker * np.cos(0.5 * swing)
+    crank = w * np.sin(delta) / np.cos(half)  # Eq. (8) of the optimal-transmission paper, law of sines
+    coupler = w * np.cos(delta) / np.sin(half)  # Eq. (9) of the optimal-transmission paper, law of sines
+    a1 = 2.0 * w * np.cos(delta + half) / np.sin(theta)  # coupler - crank without cancellation
+    u = 0.5 * (np.pi - theta) + delta
+    ax = -w + a1 * np.cos(u)
+    ay = yc + side * a1 * np.sin(u)
+    frame = np.hypot(ax, ay)
+    s1 = (-w - ax) * (-ay) - (yc - ay) * (-ax)  # cross(C1 - A, D - A)
+    s2 = (w - ax) * (-ay) - (yc - ay) * (-ax)  # cross(C2 - A, D - A)
+    admissible = (s1 * s2 > 0) & (crank > 0) & (a1 > 0)
+    return crank, coupler, frame, ax, ay, admissible
+
+
+#: Which extreme binds (:attr:`OptimalCrankRocker.binding`): both, gamma_min alone, gamma_max alone.
+BOTH, GAMMA_MIN, GAMMA_MAX = 0, 1, 2
+
+
+def binding_extreme(side):
+    """The extreme that binds everywhere on the admissible arc ``side`` (module docstring):
+    ``GAMMA_MIN`` on the rocker-pivot side (-1), ``GAMMA_MAX`` on the far side (+1)."""
+    return np.where(np.asarray(side) < 0, GAMMA_MIN, GAMMA_MAX)
+
+
+def stationarity(delta, theta, swing, rocker, side, extreme):
+    """The numerator of d/d delta (n / coupler), n = coupler^2 + rocker^2 - (frame -+ crank)^2
+    (2 rocker cos gamma_min resp. gamma_max times the coupler, Eq. 4 resp. 5 of the
+    optimal-transmission paper), over rocker^3: zero where ``extreme`` (``GAMMA_MIN`` or
+    ``GAMMA_MAX``) is stationary along the design circle (module docstring).  Dimensionless."""
+    half = 0.5 * theta
+    w = rocker * np.sin(0.5 * swing)
+    crank, coupler, frame, ax, ay, _ = crank_rocker_at_delta(delta, theta, swing, rocker, side)
+    d_crank = w * np.cos(delta) / np.cos(half)
+    d_coupler = -w * np.sin(delta) / np.sin(half)
+    a1 = 2.0 * w * np.cos(delta + half) / np.sin(theta)
+    d_a1 = -2.0 * w * np.sin(delta + half) / np.sin(theta)
+    u = 0.5 * (np.pi - theta) + delta
+    d_ax = d_a1 * np.cos(u) - a1 * np.sin(u)
+    d_ay = side * (d_a1 * np.sin(u) + a1 * np.cos(u))
+    d_frame = (ax * d_ax + ay * d_ay) / frame
+    sign = np.where(extreme == GAMMA_MAX, 1.0, -1.0)  # frame + crank for gamma_max, - for gamma_min
+    e, d_e = frame + sign * crank, d_frame + sign * d_crank
+    n = coupler * coupler + rocker * rocker - e * e  # Eq. (4) / (5) times 2 coupler rocker
+    d_n = 2.0 * coupler * d_coupler - 2.0 * e * d_e
+    return (d_n * coupler - n * d_coupler) / rocker**3
+
+
+def _delta_of(log_s, theta):
+    """delta of the design-circle point with |A C1| = 2 w exp(log_s) (sin v = s sin theta)."""
+    return 0.5 * np.pi - 0.5 * theta - np.arcsin(np.clip(np.exp(log_s) * np.sin(theta), -1.0, 1.0))
 
 
 def _optimum_chunk(theta, swing, rocker, n):
-    """Best (mu, log s, side) over both design circles for 1-D arrays of designs."""
-    from scipy.optimize.elementwise import find_minimum  # lazy: keeps start-up fast
+    """Best (mu, delta, side, binding) over both design circles for 1-D arrays of designs."""
+    from scipy.optimize.elementwise import find_root  # lazy: keeps start-up fast
 
     d = theta.size
     best_mu = np.full(d, -np.inf)
-    best_ls = np.full(d, np.nan)
+    best_delta = np.full(d, np.nan)
     best_side = np.zeros(d)
+    best_binding = np.full(d, -1)
     top = np.log(arc_limit(theta))  # (D,)
     frac = np.linspace(0.0, 1.0, n)
     lo = np.log(SCAN_START)
+    rows = np.arange(d)
     for side in (-1.0, 1.0):
         ls = lo + (top[:, None] - lo) * frac[None, 1:-1]  # open interval (SCAN_START, arc limit)
         th, ph, rk = theta[:, None], swing[:, None], rocker[:, None]
@@ -210,23 +300,32 @@ def _optimum_chunk(theta, swing, rocker, n):
         j = np.argmax(mu, axis=1)
         m = ls.shape[1]
         jc = np.clip(j, 1, m - 2)
-        rows = np.arange(d)
-        x0, x1, x2 = ls[rows, jc - 1], ls[rows, jc], ls[rows, jc + 1]
         has = np.isfinite(mu[rows, j])
-        res = find_minimum(
-            lambda x, t, p, r, side=side: -_mu_on_arc(x, t, p, r, side),
-            (x0, x1, x2),
+        # the stationary point of the binding extreme within a scan step of the best point
+        # (larger s is smaller delta); the scan point itself if there is no root in the bracket
+        extreme = binding_extreme(side)
+        res = find_root(
+            lambda x, t, p, r, side=side: stationarity(x, t, p, r, side, binding_extreme(side)),
+            (_delta_of(ls[rows, jc + 1], theta), _delta_of(ls[rows, jc - 1], theta)),
             args=(theta, swing, rocker),
-            tolerances=dict(xatol=1e-15, xrtol=1e-15),
         )
-        cand_ls = np.where(res.success & (-res.f_x >= mu[rows, j]), res.x, ls[rows, j])
-        cc, kk, ff, _, _, okc = crank_rocker_on_circle(np.exp(cand_ls), theta, swing, rocker, side)
-        cand_mu = np.where(okc & has, effective_transmission(cc, kk, rocker, ff)[0], -np.inf)
-        better = cand_mu > best_mu
+        scan_delta = _delta_of(ls[rows, j], theta)
+        x = np.where(res.success, res.x, scan_delta)
+        cc, kk, ff, _, _, okc = crank_rocker_at_delta(x, theta, swing, rocker, side)
+        with np.errstate(invalid="ignore"):
+            root_mu = np.where(okc, effective_transmission(cc, kk, rocker, ff)[0], -np.inf)
+        # the root is the arc's maximum: it may round below a scan point next to it (the two are
+        # computed by different formulas), never by more than a few eps
+        solved = res.success & (root_mu >= mu[rows, j] - 1e-12)
+        cand_delta = np.where(solved, x, scan_delta)
+        cand_mu = np.where(solved, root_mu, mu[rows, j])
+        cand_binding = np.where(solved, extreme, -1)
+        better = has & (cand_mu > best_mu)
         best_mu = np.where(better, cand_mu, best_mu)
-        best_ls = np.where(better, cand_ls, best_ls)
+        best_delta = np.where(better, cand_delta, best_delta)
         best_side = np.where(better, side, best_side)
-    return best_mu, best_ls, best_side
+        best_binding = np.where(better, cand_binding, best_binding)
+    return best_mu, best_delta, best_side, best_binding
 
 
 def optimal_crank_rocker(time_ratio, swing, rocker=1.0, samples: int = SCAN_POINTS) -> OptimalCrankRocker:
@@ -234,9 +333,13 @@ def optimal_crank_rocker(time_ratio, swing, rocker=1.0, samples: int = SCAN_POIN
     optimal-transmission paper, exact).
 
     Both design circles are scanned on ``samples`` points (geometric in |A C1|) restricted to
-    the one-branch arc, and the best point is refined by scipy's bracketing minimiser
-    (``scipy.optimize.elementwise.find_minimum``, Chandrupatla) to |d ln a1| ~ 1e-15, so the
-    angle is exact to ~1e-12 deg.  Broadcasts over ``time_ratio``, ``swing`` and ``rocker``.
+    the one-branch arc; within a scan step of the best point, the condition of the module
+    docstring (the binding extreme stationary on the arc) is solved by scipy's bracketing root
+    finder (``scipy.optimize.elementwise.find_root``, Chandrupatla) to
+    its default tolerance, a few units in the last place of delta; the better arc's root is the
+    optimum.  So the lengths, gamma_min and gamma_max are exact to rounding (measured: 1e-15
+    relative against a 40-digit search), and do not depend on ``samples`` beyond that.
+    Broadcasts over ``time_ratio``, ``swing`` and ``rocker``.
 
     Parameters
     ----------
@@ -264,13 +367,21 @@ def optimal_crank_rocker(time_ratio, swing, rocker=1.0, samples: int = SCAN_POIN
     theta = extreme_included_angle(k)  # Eq. (7) of the optimal-transmission paper
     shape = k.shape
     th, ph, rr = theta.ravel(), phi.ravel(), r.ravel()
-    out_mu, out_ls, out_side = (np.empty(th.size) for _ in range(3))
+    out_mu, out_delta, out_side, out_binding = (np.empty(th.size) for _ in range(4))
     for i0 in range(0, th.size, CHUNK):
         sl = slice(i0, i0 + CHUNK)
-        out_mu[sl], out_ls[sl], out_side[sl] = _optimum_chunk(th[sl], ph[sl], rr[sl], samples)
-    c, kk, f, ax, ay, _ = crank_rocker_on_circle(np.exp(out_ls), th, ph, rr, out_side)
+        out_mu[sl], out_delta[sl], out_side[sl], out_binding[sl] = _optimum_chunk(
+            th[sl], ph[sl], rr[sl], samples
+        )
+    c, kk, f, ax, ay, _ = crank_rocker_at_delta(out_delta, th, ph, rr, out_side)
     mu, gmin, gmax = effective_transmission(c, kk, rr, f)
-    binding = np.where(np.abs(gmin - (np.pi - gmax)) <= BALANCE_TOL, 0, np.where(gmin < np.pi - gmax, 1, 2))
+    # a scan point that no root beat (none in the designs tested): classify by value
+    by_value = np.where(
+        np.abs(gmin - (np.pi - gmax)) <= BALANCE_TOL,
+        BOTH,
+        np.where(gmin < np.pi - gmax, GAMMA_MIN, GAMMA_MAX),
+    )
+    binding = np.where(out_binding >= 0, out_binding, by_value)
 
     def out(a):
         a = np.asarray(a).reshape(shape)

@@ -541,8 +541,9 @@ def infeasibility_reason(code, L1, D1, b, swing) -> str | None:
 #: A crank angle counts as exactly at a dead centre when sin(crank, coupler) <= this.  The
 #: force's relative rounding error grows like eps / sin(crank, coupler), amplified when the
 #: transmission angle is small (a near-change-point linkage is ill-conditioned): just beyond the
-#: threshold it is ~1e-6 for transmission angles of a few degrees and more (tests/test_kinematics.py),
-#: and ~1e-8 at 1e-6 deg from a dead centre of a well-conditioned design.
+#: threshold it is ~1e-6 for transmission angles of a few degrees and more
+#: (tests/mechanisms/test_fourbar_kinematics.py), and ~1e-8 at 1e-6 deg from a dead centre of a
+#: well-conditioned design.
 SINGULAR_SIN = 1e-10
 
 

@@ -94,7 +94,7 @@ REFINE_TOL = dict(xatol=1e-9, xrtol=1e-12, fatol=0.0, frtol=0.0)
 RTOL = 1e-13
 #: Peak forces above this multiple of F_mean are reported as infinite: the energy band is then, for
 #: every practical purpose, zero (no operator pushes 10,000 times the mean force), and beyond it the
-#: rounding of U (~eps Fp S) grows past ~1e-6 of the band (tests/test_flywheel.py).
+#: rounding of U (~eps Fp S) grows past ~1e-6 of the band (tests/models/test_flywheel.py).
 FORCE_CAP_RATIO = 1e4
 
 

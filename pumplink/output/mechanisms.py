@@ -104,6 +104,10 @@ def synthesis_labels(rep) -> dict[str, dict[str, str]]:
     }
 
 
+#: Deviations below this are rounding (a few eps of the lengths) and print as "< 1e-12".
+ROUNDING_LEVEL = 1e-12
+
+
 def print_wrapped(c, text: str) -> None:
     """``text`` on console ``c``, wrapped at 78 columns with a two-space hanging indent."""
     c.print("\n".join(textwrap.wrap(text, 78, subsequent_indent="  ")), markup=False)
@@ -124,7 +128,10 @@ def _limit(c, limit) -> str:
 def _check_value(c, x) -> str:
     if x is None:
         return "—"
-    return f"{x:.2f}°" if c["unit"] == "deg" else f"{x:.1e}"
+    if c["unit"] == "deg":
+        return f"{x:.2f}°"
+    # a deviation at rounding level is shown as such: its digits are the machine's, not the design's
+    return f"{x:.1e}" if x >= ROUNDING_LEVEL else f"< {ROUNDING_LEVEL:.0e}"
 
 
 def _reason(c) -> str:

@@ -599,6 +599,81 @@ def test_fail_on_selects_exit_code_and_junit(tmp_path, small, fail_on, code, fai
     assert "1 pass, 1 fail, 2 infeasible" in r.stderr
 
 
+# The prototype at three wheel speeds: quasi-static, so mean and peak force do not depend on the
+# speed, while the grip speed (omega H |d theta4/d theta2|) and the power (Mw omega, Mw = 45 N x
+# 0.25 m) grow with it.  docs/models.md §4: the grip speed warns above 2.5 m/s and fails above
+# 4 m/s, the power warns above 75 W and fails above 150 W.
+SPEEDS = f"""\
+name = "speeds"
+base = "{PROTOTYPE}"
+[vary]
+"operator.speed" = [240, 360, 480]
+"""
+
+
+@pytest.fixture(scope="module")
+def speeds_run(tmp_path_factory):
+    """The SPEEDS batch with --fail-on none: its rows, and each variant's failing and warning
+    checks as the documented thresholds give them from the row's grip speed and power."""
+    p = tmp_path_factory.mktemp("speeds") / "speeds.toml"
+    p.write_text(SPEEDS)
+    r = pumplink("batch", p, "--fail-on", "none", "--format", "json")
+    assert r.returncode == 0, r.stderr
+    rows = json.loads(r.stdout)["variants"]
+    grip = [x["grip_speed_m_s"] for x in rows]
+    assert grip[1] == pytest.approx(1.5 * grip[0], rel=1e-12) and grip[2] == pytest.approx(
+        2 * grip[0], rel=1e-12
+    )
+    for x, w in zip(rows, (240, 360, 480)):
+        assert x["power_W"] == pytest.approx(45 * 0.25 * math.radians(w), rel=1e-12)
+        assert x["check_mean_force"] == x["check_peak_force"] == "pass"
+    expected = []
+    for x in rows:
+        fails = {"grip_speed"} if x["grip_speed_m_s"] > 4 else set()
+        warns = {"grip_speed"} if 2.5 < x["grip_speed_m_s"] <= 4 else set()
+        fails |= {"power"} if x["power_W"] > 150 else set()
+        warns |= {"power"} if 75 < x["power_W"] <= 150 else set()
+        expected.append((fails, warns))
+    # hand: 2.19, 3.28, 4.38 m/s and 47, 71, 94 W: a clean pass, a grip-speed warning, and a failing
+    # grip speed with a power warning
+    assert expected == [(set(), set()), (set(), {"grip_speed"}), ({"grip_speed"}, {"power"})]
+    assert [set(filter(None, x["failed"].split(";"))) for x in rows] == [e[0] for e in expected]
+    assert [set(filter(None, x["warnings"].split(";"))) for x in rows] == [e[1] for e in expected]
+    return p, rows
+
+
+@pytest.mark.parametrize(
+    "args,variants,code",
+    [
+        # the verdict (default): only a FAIL counts
+        ([], 3, 1),
+        (["--fail-on", "all"], 2, 0),
+        # checks: any check other than mean and peak force that fails (the 480 deg/s grip speed)
+        (["--fail-on", "checks"], 3, 1),
+        (["--fail-on", "checks"], 2, 0),
+        (["--fail-on", "mean,peak"], 3, 0),
+        # warnings, and --strict (the verdict plus warnings): the 360 deg/s grip speed warns
+        (["--fail-on", "warnings"], 2, 1),
+        (["--strict"], 2, 1),
+        (["--strict"], 1, 0),
+        (["--strict", "--fail-on", "none"], 2, 1),
+    ],
+)
+def test_fail_on_checks_warnings_all_and_strict(tmp_path, speeds_run, args, variants, code):
+    """Exit code of each --fail-on selection and of --strict on the first ``variants`` speeds of
+    SPEEDS, whose checks :func:`speeds_run` derives from the documented thresholds; the rows do not
+    depend on the selection."""
+    _, rows = speeds_run
+    p = tmp_path / "speeds.toml"
+    p.write_text(SPEEDS.replace("[240, 360, 480]", str([240, 360, 480][:variants])))
+    r = pumplink("batch", p, *args, "--format", "json")
+    assert r.returncode == code, (args, r.stderr)
+    got = json.loads(r.stdout)["variants"]
+    assert [(x["verdict"], x["failed"], x["warnings"]) for x in got] == [
+        (x["verdict"], x["failed"], x["warnings"]) for x in rows[:variants]
+    ]
+
+
 # The flywheel decides the peak check, with outcomes that follow from the limits of the
 # scene (pumplink/flywheel.py): the energy band W = J w^2 delta is 7.9e3 J for J = 1000 kg m^2 at
 # 360 deg/s and delta = 0.2, far above the few joules the load can draw down near a dead centre

@@ -18,7 +18,18 @@ EXE = Path(sys.executable).parent / "pumplink"
 SPECS = ["configs/prototype.toml", "configs/village-10m.toml", "configs/women-operators-6m.toml"]
 EXAMPLES = ["examples/well-12m-flywheel.toml", "examples/piston-pump.toml"]
 
-COMMANDS = (
+#: Commands whose output at 80 columns is a golden file (tests/test_golden.py checks the output
+#: equals it and that the file fits): not run again here.
+GOLDEN = (
+    ["synth", *SPECS],
+    ["force", "configs/prototype.toml"],
+    ["force", "configs/prototype.toml", "--summary"],
+    ["force", "configs/village-10m.toml", "--summary"],
+    ["batch", "configs/"],
+    ["transmission"],
+)
+
+ALL = (
     [["synth", *SPECS]]
     + [["force", f] for f in SPECS + EXAMPLES]
     + [["force", f, "--summary"] for f in SPECS + EXAMPLES]
@@ -39,6 +50,19 @@ COMMANDS = (
         ["init", "--example", "list"],
     ]
 )
+#: Commands that are also a help or README example: tests/cli/test_help_examples.py runs them at
+#: 80 columns and checks the same.
+EXAMPLES_RUN = (
+    ["force", "examples/piston-pump.toml", "--summary"],
+    ["force", "examples/well-12m-flywheel.toml", "--summary"],
+    ["speed", "examples/well-12m-flywheel.toml"],
+    ["batch", "configs/grids/piston-bore.toml"],
+    ["slider", "--stroke", "0.1", "--rod-ratio", "4", "--time-ratio", "1.2"],
+    ["slotted", "--time-ratio", "1.5", "--stroke", "0.3"],
+    ["rocker", "--time-ratio", "1.25", "--swing", "50", "--rocker", "0.3", "--frame", "0.4"],
+    ["structure", "configs/mechanisms/six-link.toml"],
+)
+COMMANDS = [c for c in ALL if c not in [list(g) for g in GOLDEN + EXAMPLES_RUN]]
 
 TRUNCATED = re.compile(r"\S…")
 

@@ -62,5 +62,10 @@ def test_bash_completion_of_commands_and_options():
 
 
 def test_completion_script_is_offered():
-    p = run("--show-completion", "bash")
-    assert p.returncode == 0 and "_PUMPLINK_COMPLETE" in p.stdout, p.stderr
+    """`--show-completion` prints the script for the shell it runs in, which Typer finds by walking
+    up the process tree: run it from bash (as its parent, `; exit $?` keeps bash from exec'ing
+    it away), so that the shell that started pytest (sh under make) does not decide."""
+    p = subprocess.run(
+        ["bash", "-c", f"{EXE} --show-completion; exit $?"], capture_output=True, text=True, timeout=120
+    )
+    assert p.returncode == 0 and "_PUMPLINK_COMPLETE=complete_bash" in p.stdout, p.stderr

@@ -107,6 +107,7 @@ def _rle(d):
 
 
 # --------------------------------------------------------------------------- analysis
+# ~2 ms each: 60 designs and crank angles
 @settings(max_examples=60)
 @given(designs, st.floats(-10.0, 10.0))
 def test_slider_position_satisfies_the_constraints(d, t):
@@ -119,6 +120,7 @@ def test_slider_position_satisfies_the_constraints(d, t):
     assert _close(s, _position(mpf(r), mpf(rod), mpf(e), mpf(t)), 1e-12)
 
 
+# ~1 ms each: 40 designs and crank angles
 @settings(max_examples=40)
 @given(designs, st.floats(-10.0, 10.0))
 def test_velocity_ratio_is_the_numerical_derivative(d, t):
@@ -128,6 +130,7 @@ def test_velocity_ratio_is_the_numerical_derivative(d, t):
     assert abs(cs.velocity_ratio(r, rod, e, t) - float(ref)) <= 1e-9 * scale
 
 
+# ~1 ms each: 40 designs and crank angles
 @settings(max_examples=40)
 @given(designs, st.floats(-10.0, 10.0))
 def test_pressure_angle_is_the_angle_between_rod_and_guide(d, t):
@@ -139,6 +142,7 @@ def test_pressure_angle_is_the_angle_between_rod_and_guide(d, t):
     assert cs.transmission_angle(r, rod, e, t) == pytest.approx(math.pi / 2 - lam, abs=1e-7)
 
 
+# ~35 ms each (a simulated revolution); 40 designs
 @settings(max_examples=40)
 @given(designs)
 def test_cycle_quantities_match_the_simulated_crank_slider(d):
@@ -201,6 +205,7 @@ def test_broadcasting_over_designs_and_angles():
 
 
 # --------------------------------------------------------------------------- Task 1
+# ~30 ms each (a simulated revolution); 40 draws over H and L
 @settings(max_examples=40)
 @given(st.floats(1e-3, 10.0), st.floats(1.02, 20.0))
 def test_task1_simulated(H, L):
@@ -213,6 +218,7 @@ def test_task1_simulated(H, L):
     assert _close(d.stroke, H) and _close(d.largest_pressure_angle, sim["lam"])
 
 
+# ~20 ms each (a simulated revolution); 30 draws over H, L and the offset
 @settings(max_examples=30)
 @given(st.floats(1e-3, 10.0), st.floats(1.05, 20.0), st.floats(-0.95, 0.95))
 def test_task1_with_offset_simulated(H, L, f):
@@ -240,6 +246,7 @@ def test_task1_realisability_boundary_both_sides():
 
 
 # --------------------------------------------------------------------------- Task 2
+# ~25 ms each (a simulated revolution); 60 draws over H, L and K up to its limit
 @settings(max_examples=60)
 @given(st.floats(1e-3, 10.0), st.floats(1.05, 20.0), st.floats(0.0, 0.99))
 def test_task2_simulated(H, L, u):

@@ -77,6 +77,7 @@ def _angle_close(a, b, tol=1e-9):
 designs = st.tuples(st.floats(0.01, 10.0), st.floats(0.01, 0.99))  # d, r/d
 
 
+# ~2 ms each: 50 designs and crank angles
 @settings(max_examples=50)
 @given(designs, st.floats(-10.0, 10.0))
 def test_lever_passes_through_the_block(dd, t):
@@ -94,6 +95,7 @@ def test_lever_passes_through_the_block(dd, t):
     assert math.hypot(x, y) == pytest.approx(2.5 * d, rel=1e-14)
 
 
+# ~50 ms each (a simulated revolution); 40 designs
 @settings(max_examples=40)
 @given(designs)
 def test_extremes_swing_and_time_ratio_match_simulation(dd):
@@ -115,6 +117,7 @@ def test_extremes_swing_and_time_ratio_match_simulation(dd):
     assert float(sim["slow_arc"]) > math.pi
 
 
+# ~50 ms each (a simulated revolution); 60 draws over K, H and the frame fraction
 @settings(max_examples=60)
 @given(st.floats(1.001, 20.0), st.floats(1e-3, 10.0), st.floats(0.02, 1.0))
 def test_synthesis_simulated(K, H, frac):
@@ -131,6 +134,7 @@ def test_synthesis_simulated(K, H, frac):
     assert _close(design.stroke, H) and _close(design.time_ratio, K)
 
 
+# ~60 ms each (a simulated revolution); 30 draws over K and H
 @settings(max_examples=30)
 @given(st.floats(1.001, 20.0), st.floats(1e-3, 10.0))
 def test_synthesis_without_frame_uses_the_whole_lever_as_slot(K, H):

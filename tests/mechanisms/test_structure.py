@@ -374,6 +374,7 @@ def dyad_chains(draw):
     return {"links": links, "frame": "0", "joints": joints}, groups, drivers
 
 
+# ~7 ms each; 60 chains of 1-4 dyads of the three kinds
 @settings(max_examples=60)
 @given(dyad_chains())
 def test_decomposition_recovers_the_dyads_it_was_built_from(built):

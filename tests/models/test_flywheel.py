@@ -13,14 +13,15 @@ Expected values never come from the code under test.  They come from
 * quadrature of the reported profile (Gauss-Legendre, split where the profile has kinks or
   jumps) and, for the time-domain cross-check, the energy balance in the crank angle.
 
-Tests that fail at the time of writing, on two bugs in ``pumplink/flywheel.py`` (their
-docstrings give input, expected and measured values):
+Two of these tests found bugs in ``pumplink.models.flywheel``, since fixed; they stay as the
+guards (their docstrings give the history):
 
 * ``test_force_grows_without_bound_as_the_band_vanishes``: for bands below ~1e-4 J the least
-  force loses accuracy, is not monotone and stays finite (~2.5e9 N) as W -> 0;
-* ``test_simulation_follows_the_energy_balance_of_the_profile[180]`` (and, through the same
-  bug, ``test_simulation_is_periodic_at_the_mean_speed_within_the_fluctuation[default-180]``):
-  ``simulate`` lets DOP853's step grow without bound where dw/dt = 0, leaping over revolutions.
+  force lost accuracy, was not monotone and stayed finite (~2.5e9 N) as W -> 0;
+* ``test_simulation_follows_the_energy_balance_of_the_profile`` (and, through the same bug,
+  ``test_simulation_is_periodic_at_the_mean_speed_within_the_fluctuation[default-180]``): the
+  time integration let DOP853's step grow without bound where dw/dt = 0, leaping over
+  revolutions; ``integrate_motion`` now bounds the step to 1/64 of a revolution at the top speed.
 """
 
 import dataclasses
@@ -386,7 +387,8 @@ def test_force_grows_without_bound_as_the_band_vanishes():
 # Scaling
 
 
-@settings(max_examples=6, deadline=None)
+# ~100 ms each (two scenes and two passing speeds); 30 draws of the 5 scale factors
+@settings(max_examples=30, deadline=None)
 @given(
     st.floats(0.1, 20.0), st.floats(1.0, 15.0), st.floats(0.01, 0.5), st.floats(0.2, 5.0), st.floats(0.2, 5.0)
 )
@@ -488,6 +490,7 @@ def _repeat(case, k):
     return lk, np.full(k, case.dcs[0]), np.full(k, case.dcs[1]), np.full(k, case.mw)
 
 
+# ~15 ms each; 15 designs, each with 2-8 bands over 4.5 decades
 @settings(max_examples=15, deadline=None)
 @given(spec_designs(), st.lists(st.floats(-2.0, 2.5), min_size=2, max_size=8))
 def test_larger_band_never_needs_more_force(inputs, log_bands):
@@ -586,13 +589,13 @@ def test_reported_profile_and_wheel_speed(name):
 @pytest.mark.parametrize("name", ["default-360", "default-180", "default-flywheel"])
 def test_simulation_is_periodic_at_the_mean_speed_within_the_fluctuation(name):
     """solve_ivp under the reported profile from the reported top speed: periodic to 1e-7, mean
-    speed (max + min)/2 to 1e-7, fluctuation within delta_allow (1 + 1e-6).  Measured 9e-10 /
-    1e-9 / 0.20000000 at 360 deg/s.  At 180 deg/s it fails with commit 6174024 (it passed with
-    33e3777, by luck), on the
-    ``simulate`` bug of :func:`test_simulation_follows_the_energy_balance_of_the_profile`: one
-    pass of the start angle is taken from the dense output inside a leap over a revolution and
-    reads 7.59 rad/s, more than twice the top speed (periodicity 1.2); with a bounded step
-    (max_step 0.02 s, tried outside this file) it is 1.3e-9."""
+    speed (max + min)/2 to 1e-7, fluctuation within delta_allow (1 + 1e-6).  Measured
+    periodicity / mean speed / fluctuation: 6.9e-10 / 8.3e-10 / 0.20000000 at 360 deg/s,
+    7.3e-10 / 1.8e-9 / 0.20000000 at 180 deg/s.  History: at 180 deg/s this failed (periodicity
+    1.2) while the integration's step was unbounded (the bug of
+    :func:`test_simulation_follows_the_energy_balance_of_the_profile`): one pass of the start
+    angle was read from the dense output inside a leap over a revolution, 7.59 rad/s, more than
+    twice the top speed."""
     case, inertia, speed, delta = SCENES[name]
     sc = case.scene(inertia, speed, delta)
     sim = fw.integrate_motion(sc)
@@ -617,22 +620,21 @@ def test_simulation_with_one_percent_less_force_is_not_periodic(name):
 
 @pytest.mark.parametrize("speed_deg", [360, 180])
 def test_simulation_follows_the_energy_balance_of_the_profile(speed_deg):
-    """BUG at 180 deg/s (fails at the time of writing): ``simulate`` does not bound the step of
-    DOP853.  On the ceiling arcs the profile is the quasi-static force, F g = Mw, so dw/dt = 0
-    exactly, the error estimate vanishes and the step grows unchecked: for the default design,
-    J = 1 kg m^2, 180 deg/s, delta 0.2, a single step covers 7.9 rad of crank angle (more than a
-    revolution) at Fp*, and 60 rad with 1 % less force, so the off-ceiling arcs - where the
-    wheel slows down and speeds up again - are not integrated at all and the dense output
-    between is meaningless.  The check here: with the profile a function of the crank angle
-    only, the kinetic energy changes by the same amount every revolution, the integral of
-    (F g - Mw) over a revolution (Gauss-Legendre, split at the kinks and jumps).  With 1 % less
-    force that is -0.112217 J per revolution; simulate gives -0.0459, -0.1122, -0.1122, -0.1122 J
-    with flywheel.py of commit 6174024 and -0.1122, -0.1785, -0.2668, +0.0883 J with that of
-    commit 33e3777 (the last bits of the scene move the leaps).  With
-    ``max_step`` = 0.02 s passed to solve_ivp (tried outside this file) the largest deviation is
-    3.5e-8 J at 180 and 9.1e-8 J at 360 deg/s; the tolerance is the periodicity test's 1e-7 on
-    the speed, 2e-7 E relative on the energy.  (A ``max_step`` of a fraction of the shortest
-    off-ceiling arc over w_min would fix it.)
+    """The time integration follows the energy balance of the profile, revolution by revolution.
+
+    With the profile a function of the crank angle only, the kinetic energy changes by the same
+    amount every revolution: the integral of (F g - Mw) over a revolution (Gauss-Legendre, split
+    at the kinks and jumps).  With 1 % less force than Fp* (default design, J = 1 kg m^2,
+    delta 0.2) that is -0.112217 J per revolution at 180 deg/s and -0.497784 J at 360 deg/s; the
+    energies at the start angle must follow it to 2e-7 E (the periodicity test's 1e-7 on the
+    speed).  Measured: 5.4e-9 J at 180 and 9.3e-8 J at 360 deg/s.
+
+    History (this test found it): on the ceiling arcs the profile is the quasi-static force,
+    F g = Mw, so dw/dt = 0 exactly, the error estimate vanishes and DOP853's step grew unchecked:
+    at 180 deg/s a single step covered 7.9 rad of crank angle at Fp* and 60 rad with 1 % less
+    force, the off-ceiling arcs were not integrated at all, and the energies per revolution came
+    out as -0.0459, -0.1122, -0.1122, -0.1122 J.  ``integrate_motion`` now bounds the step
+    (a 64th of a revolution at the top speed).
     """
     case, inertia, speed, delta = DEFAULT, 1.0, speed_deg * DEG, 0.2
     sc = case.scene(inertia, speed, delta)
@@ -667,7 +669,8 @@ def test_infeasible_design_gives_nan_and_a_zero_band_gives_inf():
     assert DEFAULT.deficit(0.9 * DEFAULT.f_mean) == np.inf
 
 
-@settings(max_examples=5, deadline=None)
+# ~20 ms each; 40 lists of 2-5 designs (infeasible ones included) and bands
+@settings(max_examples=40, deadline=None)
 @given(st.lists(st.tuples(spec_designs(), st.floats(-2.0, 2.5)), min_size=2, max_size=5))
 def test_vectorised_calls_equal_per_design_calls(items):
     cases, bands = [], []

@@ -49,7 +49,8 @@ def test_mean_force_hand_values():
     )
 
 
-@settings(max_examples=6)
+# ~0.25 s each (two 30-digit quadratures of the grip speed); 10 designs
+@settings(max_examples=10)
 @given(designs())
 def test_mean_force_does_the_cycle_work(design):
     """Work per crank turn 2 pi Mw = mean_force * (total grip travel), with the travel the
@@ -92,6 +93,7 @@ def _brute_peak(syn, lk, band, mw, per_window=200_000):
     return best, where, ext, fold
 
 
+# ~0.1 s each (a 200 000-point sweep and 50-digit dead centres); 25 designs and bands
 @settings(max_examples=25)
 @given(designs(), st.floats(0.5, 40.0))
 def test_peak_force_against_brute_force_and_reference(design, band_deg):
@@ -106,9 +108,13 @@ def test_peak_force_against_brute_force_and_reference(design, band_deg):
     assert min(_gap(angle, ext), _gap(angle, fold)) >= band - 1e-12
     # ... the reported force is the true force there (50 digits) ...
     assert abs(peak / abs(R.force(lk, angle, mw)) - 1) <= 1e-10
-    # ... and no dense sample beats it; the issue's target is 0.1 %, expected far better.
+    # ... and no dense sample beats it, nor falls short of it by more than a sweep can: each
+    # window's ends are samples, so a peak at a band edge (all 100 designs of a trial) is matched
+    # up to the dead centres' agreement (1e-12 rad) times |F'/F| ~ 1/band, and a smooth interior
+    # maximum up to |F''/F| (step/2)^2 / 2 with step <= 2 pi / 200 000: 1.2e-10 |F''/F|.  Measured
+    # 1.4e-13; the issue's target was 0.1 %.
     assert brute <= peak * (1 + 1e-12)
-    assert (peak - brute) / peak <= 1e-3
+    assert (peak - brute) / peak <= 1e-9
 
 
 def test_peak_at_the_window_end_is_the_force_exactly_dead_band_from_the_dead_centre():
@@ -163,7 +169,8 @@ def test_peak_near_dead_centre_is_missed_by_sampling_but_decides_the_verdict():
     assert force_analysis(above, samples=360).passed is True
 
 
-@settings(max_examples=10)
+# ~7 ms each; 40 lists of 2-6 designs and bands
+@settings(max_examples=40)
 @given(st.lists(st.tuples(designs(), st.floats(0.5, 40.0)), min_size=2, max_size=6))
 def test_vectorised_peak_force_equals_per_design_calls(items):
     rows = []
