@@ -36,9 +36,8 @@ def main() -> None:
     heads = [float(h) for h in args.heads.split(",")]
     profiles = args.profiles.split(",")
     print(f"pumplink size --head H --profile P ({machine()})")
-    print(
-        f"  {'head':>5} {'profile':<11} {'time':>7} {'flow':>12} {'share of Q*':>12}  what binds / holds it back"
-    )
+    head = f"  {'head':>5} {'profile':<11} {'time':>7} {'flow':>12} {'share of Q*':>12}"
+    print(head + "  what binds / holds it back")
     slowest = 0.0
     with tempfile.TemporaryDirectory() as tmp:
         for h in heads:
@@ -73,11 +72,11 @@ def main() -> None:
                     assert abs(checked["flow_l_min"] - row["flow_l_min"]) <= 1e-9 * row["flow_l_min"]
                     what = ", ".join(row["binding"]) or "-"
                     share = row["flow_share"]
-                    print(
-                        f"  {h:>5g} {p:<11} {wall:>6.1f}s {row['flow_l_min']:>7.1f} l/min {share:>11.0%}  {what}"
-                    )
-                    record(f"size --head {h:g} --profile {p}, share of Q*", share, "", ">= 0.80", share >= 0.80,
-                           f"{wall:.1f} s, {row['flow_l_min']:.1f} l/min; binds: {what}")  # fmt: skip
+                    flow = row["flow_l_min"]
+                    print(f"  {h:>5g} {p:<11} {wall:>6.1f}s {flow:>7.1f} l/min {share:>11.0%}  {what}")
+                    name = f"size --head {h:g} --profile {p}, share of Q*"
+                    note = f"{wall:.1f} s, {flow:.1f} l/min; binds: {what}"
+                    record(name, share, "", ">= 0.80", share >= 0.80, note)
                 else:
                     print(
                         f"  {h:>5g} {p:<11} {wall:>6.1f}s {'none':>12} {'-':>12}  {r.stdout and 'see output'}"

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from pumplink.constants import GRIP_SPEED_FAIL_M_S, HOUR_POWER_W
-from pumplink.inputs.pump import load_spec
+from pumplink.inputs.pump import load_spec, parse_spec, spec_to_dict
 from pumplink.studies.force import force_analysis
 from pumplink.studies.speed import cadence
 from pumplink.studies.verify import verify_quasi_static
@@ -77,3 +77,19 @@ def test_quasi_static_verify_agrees_and_catches_a_wrong_peak():
         assert not verify_quasi_static(dataclasses.replace(r, dead_band_peak_force=wrong)).agrees
     # a peak found for another load: twice the torque, the sweep goes far above it
     assert not verify_quasi_static(dataclasses.replace(r, wheel_torque=2 * r.wheel_torque)).agrees
+
+
+@pytest.mark.parametrize("band_deg", [1.0, 0.5])
+def test_quasi_static_verify_agrees_at_a_narrow_dead_band(band_deg):
+    """Next to a dead centre F ~ 1/(theta - theta_dc), so a sweep of step h = 2 pi / 200,000 stays
+    up to h / band below a peak at a band edge (1.6e-3 at 1 deg): the check allows 2 h / band
+    there and still refuses a peak set 3 h / band too high."""
+    data = spec_to_dict(load_spec(ROOT / "configs" / "prototype.toml"))
+    data["operator"]["dead_band"] = band_deg
+    r = force_analysis(parse_spec(data), keep_samples=False)
+    ok = verify_quasi_static(r)
+    h = 2 * math.pi / 200_000
+    miss = 1 - ok.sweep_peak / ok.peak
+    assert ok.agrees and 0 <= miss <= 2 * h / math.radians(band_deg)
+    wrong = r.dead_band_peak_force * (1 + 3 * h / math.radians(band_deg))
+    assert not verify_quasi_static(dataclasses.replace(r, dead_band_peak_force=wrong)).agrees

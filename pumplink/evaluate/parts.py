@@ -63,7 +63,9 @@ def part_loads(
         th = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
         cycle = _joints.motion_forces(scene.linkage, motion_of(scene, th), GRAVITY, rope_pull, wheel_weight)
         return PartLoads(peaks, cycle, model)
-    peaks = _joints.quasi_static_peaks(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque)
+    peaks = _joints.quasi_static_peaks(
+        lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull, wheel_weight
+    )
     th = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
     off = np.minimum(
         np.abs(np.mod(th - dead_centre_extended + np.pi, TWO_PI) - np.pi),

@@ -1114,7 +1114,7 @@ def _profile(sc: Scene, crank_angle):
     future = np.where(x[None, :] > col, de, de - b).min(axis=1)  # t in (phi, phi + 2 pi)
     cand = np.stack([fp * g_phi - mw * phi + past, up, -fp * g_phi - mw * phi + future])
     regime = 1 - np.argmin(cand, axis=0)
-    return cand.min(axis=0), regime, dup, tm.potential, i, tm.grip_rate
+    return cand.min(axis=0), regime, dup, tm.potential, i, tm.grip_rate, tm
 
 
 def regime(sc: Scene, crank_angle):
@@ -1125,20 +1125,33 @@ def regime(sc: Scene, crank_angle):
 
 def operator_force(sc: Scene, crank_angle):
     """The reported operator force F(t) [N], +x positive (0 at a dead centre, where g = 0)."""
-    _e, regime, dup, _v, _i, g = _profile(sc, crank_angle)
+    out = _force(sc, *_profile(sc, crank_angle)[1:])
+    return out if np.ndim(crank_angle) else float(out[0])
+
+
+def _force(sc: Scene, regime, dup, _v, _i, g, _tm):
     with np.errstate(all="ignore"):
         ride = (dup + sc.wheel_torque) / g  # Eq. (7) along the top of the band
         f = np.where(regime == 0, ride, regime * sc.least_peak_force * np.sign(g))
-    out = np.where(g == 0, 0.0, f)
-    return out if np.ndim(crank_angle) else float(out[0])
+    return np.where(g == 0, 0.0, f)
 
 
 def wheel_speed(sc: Scene, crank_angle):
     """Wheel speed w(t) [rad/s] of the reported motion: sqrt(2 (e - V) / I)."""
-    e, _r, _d, v, i, _g = _profile(sc, crank_angle)
+    e, _r, _d, v, i, _g, _tm = _profile(sc, crank_angle)
     with np.errstate(invalid="ignore"):
         out = np.sqrt(2.0 * (e - v) / i)
     return out if np.ndim(crank_angle) else float(out[0])
+
+
+def motion_state(sc: Scene, crank_angle):
+    """:func:`operator_force`, :func:`wheel_speed` and the links' :func:`terms` at crank angles
+    (1-D), from one evaluation of the profile: (force [N], speed [rad/s], terms)."""
+    prof = _profile(sc, crank_angle)
+    e, v, i, tm = prof[0], prof[3], prof[4], prof[6]
+    with np.errstate(invalid="ignore"):
+        speed = np.sqrt(2.0 * (e - v) / i)
+    return _force(sc, *prof[1:]), speed, tm
 
 
 def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> _fw.TimeIntegration:

@@ -270,9 +270,9 @@ def dynamics_motion(scene, crank_angle) -> Motion:
     from pumplink.models import dynamics as dy
 
     th = np.asarray(crank_angle, float)
-    force = np.asarray(dy.operator_force(scene, th), float)
-    speed = np.asarray(dy.wheel_speed(scene, th), float)
-    tm = dy.terms(scene.linkage, th, scene.masses, scene.gravity)
+    force, speed, tm = dy.motion_state(scene, np.atleast_1d(th))
+    force, speed = force.reshape(th.shape), speed.reshape(th.shape)
+    tm = dy.Terms(*(None if v is None else np.reshape(v, th.shape) for v in vars(tm).values()))
     rhs = force * tm.grip_rate - scene.wheel_torque - tm.potential_rate - 0.5 * tm.inertia_rate * speed**2
     acc = rhs / (scene.inertia + tm.inertia)  # Eq. (7) of pumplink.models.dynamics in time
     return Motion(th, speed, acc, force, scene.masses)
@@ -301,6 +301,13 @@ PEAK_GRID_PER_RAD = 120
 JUMP_OFFSET = 1e-9
 #: Absolute tolerance [rad] of the bracketed refinement of each peak.
 REFINE_XTOL = 1e-10
+#: Points across a bracket per zoom of the refinement (the bracket shrinks (points - 1) / 2 times).
+REFINE_POINTS = 33
+
+
+def _finite_or_floor(values: np.ndarray) -> np.ndarray:
+    """NaN (no load defined there) as -inf, below every load, so a maximum never picks it."""
+    return np.where(np.isnan(values), -np.inf, values)
 
 
 @dataclass(frozen=True)
@@ -337,9 +344,10 @@ def peak_joint_forces(
 
     Each arc is scanned on a grid of :data:`PEAK_GRID_PER_RAD` points per radian including its ends,
     plus nodes :data:`JUMP_OFFSET` either side of each of ``jumps`` (where the loads may jump: the
-    energy models reverse the push at the dead centres); the best node of each load is refined by a
-    bounded Brent search (scipy ``minimize_scalar``, to :data:`REFINE_XTOL`) between its neighbours,
-    and the larger of the node and the refined point kept.  A smooth interior maximum is then exact
+    energy models reverse the push at the dead centres); the best node of each load is refined
+    between its neighbours by zooming, all six loads at once: :data:`REFINE_POINTS` points across
+    the bracket, the best one's neighbours the next bracket, to :data:`REFINE_XTOL`; the largest
+    value met is kept.  A smooth interior maximum is then exact
     to the tolerance; a supremum at a jump is the node's one-sided value, within the load's slope
     times JUMP_OFFSET of it.  Features narrower than a grid cell (0.5 deg) may be merged, as in the
     models' own peak searches.
@@ -354,8 +362,6 @@ def peak_joint_forces(
     -------
     PeakLoads
     """
-    from scipy.optimize import minimize_scalar
-
     nodes = []
     for start, length in arcs:
         n = max(int(np.ceil(PEAK_GRID_PER_RAD * length)), 2) + 1
@@ -368,42 +374,51 @@ def peak_joint_forces(
                 extra = start + off + np.array([-JUMP_OFFSET, JUMP_OFFSET])
                 grid = np.concatenate([grid, extra[(extra >= start) & (extra <= start + length)]])
     grid = np.sort(grid)
-    vals = _loads(loads_at(grid))  # (6, N)
-    vals = np.where(np.isnan(vals), -np.inf, vals)
-    best = np.full(6, np.nan)
-    where = np.full(6, np.nan)
+    vals = _finite_or_floor(_loads(loads_at(grid)))  # (6, N)
+    j = np.argmax(vals, axis=1)
+    best, where = vals[np.arange(6), j], grid[j]
     lo_arc = np.array([s for s, _ in arcs])
     hi_arc = np.array([s + n for s, n in arcs])
-    for i in range(6):
-        j = int(np.argmax(vals[i]))
-        best[i], where[i] = vals[i, j], grid[j]
-        if not np.isfinite(best[i]):
-            best[i] = np.nan if best[i] == -np.inf else best[i]
-            continue
-        a, b = grid[max(j - 1, 0)], grid[min(j + 1, grid.size - 1)]
-        inside = np.any((lo_arc <= a) & (b <= hi_arc))  # neighbours on the same arc
-        if not inside or b <= a:
-            continue
-        res = minimize_scalar(
-            lambda x, i=i: -_loads(loads_at(np.array([x])))[i, 0],
-            bounds=(a, b),
-            method="bounded",
-            options=dict(xatol=REFINE_XTOL),
-        )
-        if np.isfinite(res.fun) and -res.fun > best[i]:
-            best[i], where[i] = -res.fun, res.x
+    a, b = grid[np.maximum(j - 1, 0)], grid[np.minimum(j + 1, grid.size - 1)]
+    inside = ((lo_arc <= a[:, None]) & (b[:, None] <= hi_arc)).any(axis=1)  # neighbours on one arc
+    live = np.isfinite(best) & inside & (b > a)
+    # zoom on every load's bracket at once: REFINE_POINTS points across it, then the cells either
+    # side of the best point, until the bracket is narrower than REFINE_XTOL (a smooth maximum
+    # inside a grid cell stays inside the bracket, as in a bounded golden-section search)
+    steps = np.linspace(0.0, 1.0, REFINE_POINTS)
+    while live.any():
+        rows = np.nonzero(live)[0]
+        x = a[rows, None] + (b - a)[rows, None] * steps  # (k, REFINE_POINTS)
+        v = _finite_or_floor(_loads(loads_at(x.ravel())))[rows].reshape(rows.size, -1, REFINE_POINTS)
+        v = v[np.arange(rows.size), np.arange(rows.size)]  # load i at its own points
+        k = np.argmax(v, axis=1)
+        up = v[np.arange(rows.size), k] > best[rows]
+        best[rows[up]], where[rows[up]] = v[np.arange(rows.size), k][up], x[np.arange(rows.size), k][up]
+        a[rows] = x[np.arange(rows.size), np.maximum(k - 1, 0)]
+        b[rows] = x[np.arange(rows.size), np.minimum(k + 1, REFINE_POINTS - 1)]
+        live[rows] = (b[rows] - a[rows]) > REFINE_XTOL
+    best = np.where(best == -np.inf, np.nan, best)
     where = np.mod(where, TWO_PI)
     return PeakLoads(best[:4], where[:4], (best[4], where[4]), (best[5], where[5]))
 
 
-def quasi_static_peaks(lk: FourBar, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque):
+def quasi_static_peaks(
+    lk: FourBar,
+    dead_centre_extended,
+    dead_centre_folded,
+    dead_band,
+    wheel_torque,
+    rope_pull=0.0,
+    wheel_weight=0.0,
+):
     """Peak joint forces of the quasi-static model (one design) outside ±dead_band of the dead
     centres, where it is judged (docs/models.md §1; the force is infinite at the dead centres).
 
     Parameters
     ----------
     lk : linkage (one design);  dead_centre_extended, dead_centre_folded : [rad];
-    dead_band : [rad];  wheel_torque : Mw [N m].
+    dead_band : [rad];  wheel_torque : Mw [N m];  rope_pull, wheel_weight : [N] on the axle, as
+    :func:`joint_forces`.
     """
     plus = np.mod(dead_centre_folded - dead_centre_extended, TWO_PI)
     arcs = (
@@ -412,7 +427,9 @@ def quasi_static_peaks(lk: FourBar, dead_centre_extended, dead_centre_folded, de
     )
     arcs = tuple((float(s), float(n)) for s, n in arcs if n >= 0)
     return peak_joint_forces(
-        lambda th: motion_forces(lk, quasi_static_motion(lk, th, wheel_torque)),
+        lambda th: motion_forces(
+            lk, quasi_static_motion(lk, th, wheel_torque), rope_pull=rope_pull, wheel_weight=wheel_weight
+        ),
         arcs,
     )
 

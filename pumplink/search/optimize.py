@@ -471,6 +471,7 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
         passing_speed=False,
         dead_band_peak=not search,
         peak=objective_peak or flow_objective or not search,
+        parts_of_failing=False,
     )
     tm = _terms(problem, x, ev.synthesis)
     ok = tm.ok

@@ -151,7 +151,9 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
         if key not in cache:
             if len(cache) > 8:
                 cache.clear()
-            ev = evaluate(pump_designs(_values(problem, pipe, x)), passing_speed=False)
+            ev = evaluate(
+                pump_designs(_values(problem, pipe, x)), passing_speed=False, parts_of_failing=False
+            )
             cache[key] = np.where(
                 ev.feasible, excess(ev.verdict, problem.allow_warnings, INFEASIBLE), INFEASIBLE
             )
@@ -295,7 +297,7 @@ def discharge(spec: PumpSpec, heads, allow_warnings: bool = False, speeds=None):
                 return speeds
             return base(key)
 
-        ev = evaluate(pump_designs(value), passing_speed=False)
+        ev = evaluate(pump_designs(value), passing_speed=False, parts_of_failing=False)
         ok = np.asarray(ev.verdict.level) <= (WARN if allow_warnings else 0)
         ok = np.broadcast_to(ok, speeds.shape)
         if ok.any():
