@@ -65,9 +65,11 @@ def draw(
 
     s = load_specs([spec])[0]
     dr = drawing(s, peak=peak)
-    if out is not None:
-        _, scale = linkage_drawing(dr, out)
-        sys.stderr.write(f"wrote {out} (scale 1:{scale:g} on A4)\n")
+    # the animation (seconds of work) first: once a run's first file is in place an interrupt no
+    # longer stops it (pumplink.cli.Interrupt), and the drawing after it is quick
     if animate is not None:
         animation(dr, motion(s, steps), animate)
         sys.stderr.write(f"wrote {animate} ({steps} frames, one revolution)\n")
+    if out is not None:
+        _, scale = linkage_drawing(dr, out)
+        sys.stderr.write(f"wrote {out} (scale 1:{scale:g} on A4)\n")
