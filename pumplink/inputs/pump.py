@@ -10,15 +10,15 @@ import math
 from pathlib import Path
 from typing import Any
 
-from pydantic import Field, field_validator, model_validator
+from pydantic import Field, model_validator
 
 from pumplink.constants import (
     DEFAULT_ARM_MASS,
     DEFAULT_SPEED_FLUCTUATION,
     FORCE_LIMIT_N,
 )
-from pumplink.errors import SpecError, has_control, shown
-from pumplink.inputs.toml import Section, read_toml, spec_name, validate
+from pumplink.errors import SpecError
+from pumplink.inputs.toml import MAX_NAME_CHARS, Section, read_toml, spec_name, validate
 from pumplink.models import load as _load
 
 
@@ -201,19 +201,8 @@ class Operator(Section):
 
 
 class PumpSpec(Section):
-    name: str = Field(default="pump", min_length=1, max_length=200, description="design name")
-
-    @field_validator("name")
-    @classmethod
-    def _printable_name(cls, name: str) -> str:
-        # names go into tables, JUnit XML and file names: a newline or an escape sequence breaks
-        # the XML and recolours (or clears) the terminal
-        if has_control(name):
-            raise ValueError(
-                f"name = {shown(name)} contains a control character (newline, tab, escape, ...); "
-                "give a name of printable characters"
-            )
-        return name
+    # the characters a name may hold: Section (names go into tables, file names and JUnit XML)
+    name: str = Field(default="pump", min_length=1, max_length=MAX_NAME_CHARS, description="design name")
 
     wheel: Wheel = Field(description="the [wheel] table: radius [m]")
     linkage: Linkage = Field(description="the [linkage] table: L1, D1, b, rocker, handle, swing")

@@ -18,19 +18,39 @@ import typing
 from pathlib import Path
 from typing import Any
 
-from pydantic import BaseModel, ConfigDict, ValidationError
+from pydantic import BaseModel, ConfigDict, ValidationError, field_validator
 
-from pumplink.errors import SHOWN_CHARS, SpecError, escape_control, shown
+from pumplink.errors import SHOWN_CHARS, SpecError, bad_character, escape_control, shown
 
 #: Most of the other problems of a file listed after the first one in an error message.
 MORE_KEYS = 8
 
 
+#: Longest name of a design, a mechanism or a batch [characters] (a batch's name is the prefix
+#: of every variant name).
+MAX_NAME_CHARS = 200
+
+
+def check_name(name: str) -> str:
+    """``name`` if it can be written everywhere a name goes (tables, file names, CSV, JSON, JUnit
+    XML), else ValueError saying which character cannot (:func:`pumplink.errors.bad_character`)."""
+    bad = bad_character(name)
+    if bad is not None:
+        raise ValueError(f"name = {shown(name)} contains {bad}; give a name of printable characters")
+    return name
+
+
 class Section(BaseModel):
     """The base of every input model: unknown keys, strings for numbers, NaN and inf are errors
-    ("0.2" or true is not a number; integers are accepted as floats), and values are frozen."""
+    ("0.2" or true is not a number; integers are accepted as floats), and values are frozen.
+    A ``name`` (of a spec, a piston-pump spec, a mechanism) is checked by :func:`check_name`."""
 
     model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+
+    @field_validator("name", check_fields=False)
+    @classmethod
+    def _writable_name(cls, name: str) -> str:
+        return check_name(name)
 
 
 # ----------------------------------------------------------------------------- error sentences
@@ -334,7 +354,17 @@ def is_piston_file(path: str | Path) -> bool:
 
 
 def spec_name(data: Any, path: str | Path) -> Any:
-    """The mapping read from ``path`` with ``name`` defaulting to the file stem."""
+    """The mapping read from ``path`` with ``name`` defaulting to the file stem (SpecError when
+    the stem cannot be a name, :func:`check_name`)."""
     if isinstance(data, dict) and data and "name" not in data:
-        return {"name": Path(path).stem, **data}
+        stem = Path(path).stem
+        bad = bad_character(stem) or (
+            f"more than {MAX_NAME_CHARS} characters" if len(stem) > MAX_NAME_CHARS else None
+        )
+        if bad is not None:
+            raise SpecError(
+                f"{escape_control(str(path))}: the name defaults to the file's name {shown(stem)}, "
+                f'which holds {bad}; add name = "..." to the file, or rename it'
+            )
+        return {"name": stem, **data}
     return data
