@@ -9,6 +9,7 @@ from typing import Annotated, Optional
 import typer
 
 from pumplink.cli.common import app, load_specs
+from pumplink.errors import SpecError
 
 
 @app.command()
@@ -56,9 +57,13 @@ def draw(
     if animate is not None:
         check_animation_path(animate)
     if out is None and animate is None:
+        if str(spec) == "-":
+            raise SpecError(
+                "draw -: give --out FILE (.png, .svg or .pdf); a spec read from standard input names no file"
+            )
         out = Path(spec.stem + ".png")
     if out is not None:
-        check_path(out)
+        check_path(out, "--out")
     pyplot()
     from pumplink.output.drawings import animation, linkage_drawing
     from pumplink.studies.drawing import drawing, motion

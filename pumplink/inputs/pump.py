@@ -100,13 +100,14 @@ class Linkage(Section):
     @classmethod
     def _swing_in_degrees(cls, data: Any) -> Any:
         # A swing below 2 pi is almost surely radians (1.047 for 60 deg): a 1.8 mm crank that
-        # fails with no hint otherwise.  Said before the range check, with the fix.
+        # fails with no hint otherwise.  Said before the range check, with the fix, when the fix
+        # is itself a valid swing (6.143 rad is 352 deg: the range error says what is allowed).
         swing = data.get("swing") if isinstance(data, dict) else None
         if (
             isinstance(swing, (int, float))
             and not isinstance(swing, bool)
             and 0 < swing < 2 * math.pi
-            and math.degrees(swing) >= 1  # not a slip of 1e-100, which the range error names
+            and 2 * math.pi <= round(math.degrees(swing), 1) < 180
         ):
             deg = f"{round(math.degrees(swing), 1):g}"
             raise ValueError(
@@ -332,7 +333,8 @@ D1 = 0.20              # rocker pivot below the axle [m], -10..10 (negative: abo
 b = 0.10               # width of the pump stand [m], 0-10
 rocker = 0.20          # rocker length l4 [m], 0.001-10
 handle = 1.00          # handle length H, rocker pivot to grip [m], 0.001-20
-swing = 60.0           # total handle swing [deg], 1-179, symmetric about vertical (not radians)
+swing = 60.0           # total handle swing [deg], 2π-180 (degrees, not radians; 180 excluded),
+                       # symmetric about vertical
 # mass_per_length = 1.56  # handle and coupler tube [kg/m] (default: 3/4" steel tube)
 
 [load]
