@@ -40,6 +40,10 @@ class Interrupt:
         self.held = False  # the run is past its point of no return
         self.interrupted = False
 
+    def start(self) -> None:
+        """A command starts (main): a signal from now on unwinds it."""
+        self.running, self.held, self.interrupted = True, False, False
+
     def __call__(self, signum, frame) -> None:
         if self.held or self.interrupted:
             return
@@ -190,8 +194,7 @@ def main(argv: list[str] | None = None) -> None:
     if argv is None:
         os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     previous = [signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)]
-    INTERRUPT.__init__()
-    INTERRUPT.running = True
+    INTERRUPT.start()
     try:
         try:
             INTERRUPT.install()

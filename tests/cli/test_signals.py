@@ -201,17 +201,29 @@ def audit(event, args):
 sys.addaudithook(audit)
 sys.argv = ["pumplink", "--version"]
 try:
-    runpy.run_module("pumplink", run_name="__main__", alter_sys=True)
+    RUN
 except SystemExit:
     pass
 print(seen)
 """
 
 
-def test_the_handler_comes_before_the_heavy_imports():
-    """Run as the program (``python -m pumplink``), the SIGTERM handler is in place before typer
-    and every command module is imported (it was once installed after them, at 20-80 ms)."""
-    p = subprocess.run([sys.executable, "-c", PROBE], cwd=ROOT, env=env(), capture_output=True, text=True)
+@pytest.mark.parametrize(
+    "how",
+    [
+        'runpy.run_module("pumplink", run_name="__main__", alter_sys=True)',  # python -m pumplink
+        f"runpy.run_path({CMD[0]!r}, run_name='__main__')",  # the console script
+    ],
+    ids=["module", "script"],
+)
+def test_the_handler_comes_before_the_heavy_imports(how):
+    """Run as the program (``python -m pumplink`` or the console script), the SIGTERM handler is
+    in place before typer and every command module is imported (it was once installed after
+    them, at 20-80 ms)."""
+    if "run_path" in how and not _SCRIPT.is_file():
+        pytest.skip("no console script next to this interpreter")
+    probe = PROBE.replace("RUN", how)
+    p = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, env=env(), capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     seen = eval(p.stdout.strip().splitlines()[-1])  # a dict literal printed by the probe
     assert seen["pumplink.cli"] == "Handlers"  # the default action while pumplink.cli starts
