@@ -41,21 +41,43 @@ LINE_CHARS = 1000
 _CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f]")
 
 
-def has_control(text: str) -> bool:
-    """True when ``text`` contains a control character (newline, tab, escape, ...)."""
-    return _CONTROL.search(text) is not None
+# Characters no name may hold: the controls above, the surrogates (a lone one has no UTF-8
+# encoding) and the 66 Unicode noncharacters (U+FDD0-U+FDEF and the last two code points of each
+# plane): XML 1.0 cannot carry the C0 controls, the surrogates, U+FFFE and U+FFFF at all, even as
+# character references, and a name is written into JUnit XML, CSV, JSON and file names.
+_NOT_TEXT = re.compile(
+    "[\x00-\x1f\x7f-\x9f\ud800-\udfff\ufdd0-\ufdef"
+    + "".join(chr(plane << 16 | 0xFFFE) + chr(plane << 16 | 0xFFFF) for plane in range(17))
+    + "]"
+)
+
+
+def bad_character(text: str) -> str | None:
+    """What makes ``text`` unfit for a name (the first such character, in words), or None.
+
+    Refused: control characters (C0, DEL, C1), surrogates and the Unicode noncharacters."""
+    m = _NOT_TEXT.search(text)
+    if m is None:
+        return None
+    c = m.group()
+    if _CONTROL.fullmatch(c):
+        return f"a control character ({repr(c)[1:-1]})"
+    kind = "a lone surrogate" if 0xD800 <= ord(c) <= 0xDFFF else "a Unicode noncharacter"
+    return f"U+{ord(c):04X}, {kind}"
 
 
 def escape_control(text: str) -> str:
-    """``text`` with every control character written as a Python escape (``\\n``, ``\\x1b``)."""
-    return _CONTROL.sub(lambda m: repr(m.group())[1:-1], text)
+    """``text`` with every control character, surrogate and noncharacter (what no name may hold,
+    :func:`bad_character`) written as a Python escape (``\\n``, ``\\x1b``, ``\\ufffe``): one printable
+    line, which XML 1.0 can carry too (a file path can hold anything)."""
+    return _NOT_TEXT.sub(lambda m: repr(m.group())[1:-1], text)
 
 
 def shown(value, limit: int = SHOWN_CHARS) -> str:
     """``repr(value)`` for a message: control characters escaped, cut to ``limit`` characters."""
     text = escape_control(repr(value))
-    if len(text) > limit:
-        text = f"{text[: limit - 1]}… ({len(text):,} characters)"
+    if len(text) > limit:  # a text's own length, else the length of what it is shown as
+        text = f"{text[: limit - 1]}… ({len(value) if isinstance(value, str) else len(text):,} characters)"
     return text
 
 

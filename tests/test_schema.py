@@ -159,3 +159,44 @@ def test_batch_schema():
 def test_unknown_kind_is_a_spec_error():
     with pytest.raises(SpecError, match="allowed: spec, piston, batch"):
         sch.schema("grid")
+
+
+#: The name limit as the README's spec table states it ("1–200 printable characters").
+README_NAME_LIMIT = 200
+
+
+@pytest.mark.parametrize("kind", sch.KINDS)
+def test_the_name_limit_is_in_every_schema(kind):
+    """A spec's, a piston-pump spec's and a batch's name: at most 200 characters, no control
+    character, no noncharacter; the schema refuses what pumplink refuses and accepts the rest."""
+    doc = sch.schema(kind)
+    rule = doc["properties"]["name"]
+    assert rule["maxLength"] == README_NAME_LIMIT and rule["minLength"] == 1
+    check = {"spec": SPEC, "piston": PISTON, "batch": BATCH}[kind]
+    if kind == "batch":
+        base = {"base": "prototype.toml", "vary": {"linkage.handle": [1.0]}}
+    elif kind == "piston":
+        base = _toml(ROOT / "examples" / "piston-pump.toml")
+    else:
+        base = dict(DEFAULT_SPEC)
+    for name, ok in [
+        ("x" * 200, True),
+        ("Dorf-Pumpe, Brunnen № 3 — 12 m 😀", True),
+        ("x" * 201, False),
+        ("a\ufffeb", False),
+        ("a\uffffb", False),
+        ("a\ufdd0b", False),
+        ("a\x1b[31m", False),
+        ("a\nb", False),
+        ("a\x85b", False),
+    ]:
+        assert check.is_valid({**base, "name": name}) is ok, (kind, name)
+
+
+def test_the_readme_states_the_name_limit():
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    row = next(line for line in text.splitlines() if line.startswith("| `name` |"))
+    assert f"1–{README_NAME_LIMIT} printable characters" in row, row
+    batch_name = next(line for line in text.splitlines() if line.startswith('name = "rocker-study"'))
+    nxt = text.splitlines()[text.splitlines().index(batch_name) + 1]
+    assert f"1–{README_NAME_LIMIT} printable characters" in batch_name + nxt

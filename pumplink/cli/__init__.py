@@ -3,22 +3,108 @@
 One module per command (Typer's "one file per command" layout); :mod:`pumplink.cli.common`
 holds the app and the shared options.  Exit codes: 0 every design passes (or is feasible, for
 ``synth``); 1 a design fails a check or is infeasible; 2 the input cannot be used (one line on
-stderr, no traceback; ``--debug`` shows it); 130 interrupted.  Heavy imports (numpy, pydantic,
-scipy) happen inside the commands so ``--help`` starts fast.
+stderr, no traceback; ``--debug`` shows it); 130 interrupted, no output file written.  Heavy
+imports (numpy, pydantic, scipy) happen inside the commands so ``--help`` starts fast.
+
+Run as the program, the interrupt handler is installed before anything else of pumplink is
+imported (:class:`Interrupt`), so that Ctrl-C or SIGTERM ends every run with 130 from its first
+line on; only the interpreter's own start-up, before any of pumplink's code runs, is left to
+the signal's default action.
 """
 
 from __future__ import annotations
 
 import contextlib
-import gc
-import math
 import os
-import re
 import signal
 import sys
 
+
+class Interrupt:
+    """The handler of SIGINT and SIGTERM for one run of the program.
+
+    * While the command modules are imported (before :func:`main`): exit 130 at once; nothing
+      has been opened.
+    * While a command runs: raise :class:`KeyboardInterrupt`, so that ``finally`` blocks remove
+      temporary files and stop worker pools on the way out; :func:`main` then exits 130.
+    * Once the run has begun to move a finished file into place (``hold``, called by
+      :func:`pumplink.output.formats.atomic_write` just before it replaces the target), or the
+      command has returned: nothing.  The run completes and exits with its own code, so that
+      130 always means that no output file was written and 0/1 that every file is complete.
+
+    A second signal while the first unwinds is ignored (it would interrupt the clean-up).
+    """
+
+    def __init__(self) -> None:
+        self.running = False  # main() is running the command
+        self.held = False  # the run is past its point of no return
+        self.interrupted = False
+
+    def start(self) -> None:
+        """A command starts (main): a signal from now on unwinds it."""
+        self.running, self.held, self.interrupted = True, False, False
+
+    def __call__(self, signum, frame) -> None:
+        if self.held or self.interrupted:
+            return
+        self.interrupted = True
+        if not self.running:
+            _interrupted()
+        raise KeyboardInterrupt
+
+    def hold(self) -> None:
+        """From now on the run completes: a signal no longer interrupts it."""
+        self.held = True
+
+    def install(self) -> None:
+        signal.signal(signal.SIGINT, self)
+        signal.signal(signal.SIGTERM, self)
+
+
+def _quiet_stdout() -> None:
+    """Point fd 1 at /dev/null so the interpreter's final flush cannot fail a second time."""
+    with contextlib.suppress(OSError, ValueError):
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+
+
+def _interrupted(say: bool = True) -> None:
+    """Exit 130 now.  ``os._exit``: CPython marks a KeyboardInterrupt raised inside ``eval`` (as
+    typer evaluates annotations) as unhandled even when it is caught, and would then end the
+    process by SIGINT instead of the exit code.  Clean-up (temp files, worker pools) has run in
+    the ``finally`` blocks on the way here; stdout is discarded, as the run is incomplete."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    _quiet_stdout()
+    with contextlib.suppress(OSError, ValueError, RuntimeError):  # RuntimeError: a reentrant write
+        if say:
+            sys.stderr.write("interrupted; no output file written\n")
+        sys.stderr.flush()
+    os._exit(130)
+
+
+def _started_as_program() -> bool:
+    """True when this import is the start of the program: the ``pumplink`` console script or
+    ``python -m pumplink`` (not a test or a notebook importing the module)."""
+    main_module = sys.modules.get("__main__")
+    spec = getattr(main_module, "__spec__", None)
+    if spec is not None:
+        return spec.name == "pumplink.__main__"
+    script = os.path.basename(getattr(main_module, "__file__", None) or "")
+    return script.removesuffix(".exe").removesuffix("-script.py") == "pumplink"
+
+
+#: The run's interrupt handler (one per process).
+INTERRUPT = Interrupt()
+if _started_as_program():
+    INTERRUPT.install()
+
+import gc  # noqa: E402 -- after the handler: an interrupt from here on exits 130
+import math  # noqa: E402
+import re  # noqa: E402
+
 # Importing a command module registers it; this order is the order of `pumplink --help`.
-from pumplink.cli import (  # noqa: F401, I001 -- in the order of `pumplink --help`
+from pumplink.cli import (  # noqa: E402, F401, I001 -- in the order of `pumplink --help`
     synth,
     force,
     speed,
@@ -37,15 +123,10 @@ from pumplink.cli import (  # noqa: F401, I001 -- in the order of `pumplink --he
     structure,
     schema,
 )
-from pumplink.cli.common import app, command_group, settings
-from pumplink.errors import SHOWN_CHARS, PumplinkError, one_line
+from pumplink.cli.common import app, command_group, settings  # noqa: E402
+from pumplink.errors import SHOWN_CHARS, PumplinkError, one_line  # noqa: E402
 
 __all__ = ["app", "main"]
-
-
-def _interrupt(signum, frame):  # Ctrl-C and SIGTERM unwind: temp files removed, exit 130
-    settings["interrupted"] = True
-    raise KeyboardInterrupt
 
 
 def _option_error(exc, args: list[str]) -> str:
@@ -91,18 +172,13 @@ def _raw_value(opts: list[str], args: list[str]) -> str | None:
     return value
 
 
-def _quiet_stdout() -> None:
-    """Point fd 1 at /dev/null so the interpreter's final flush cannot fail a second time."""
-    with contextlib.suppress(OSError, ValueError):
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-
-
 def main(argv: list[str] | None = None) -> None:
     """Console-script entry point: every failure is one line on stderr and an exit code.
 
     0 pass, 1 fail or infeasible, 2 unusable input or an output that cannot be written (usage
-    errors included), 130 interrupted (Ctrl-C or SIGTERM, from the first line of this function).
+    errors included), 130 interrupted (Ctrl-C or SIGTERM) before any output file was written
+    (:class:`Interrupt`: a signal that arrives once the run is writing its files, or has
+    finished, lets it complete with its own code).
 
     Run as the program (``argv`` None), two things keep a short command short.  OpenBLAS, which
     numpy loads, starts one thread per core at import, about 60 ms of CPU on a 2-core machine;
@@ -111,36 +187,34 @@ def main(argv: list[str] | None = None) -> None:
     it).  And the garbage collector is told to leave the objects alive at the end alone
     (``gc.freeze``): the process ends next, and the collections the interpreter runs while
     tearing down every module numpy, pydantic, typer and rich loaded cost about a fifth of a
-    short command's time.  Exit handlers, ``finally`` blocks and stream flushes run as usual.
+    short command's time.  Exit handlers, ``finally`` blocks and stream flushes run as usual;
+    SIGINT and SIGTERM are ignored from here on (the interpreter's tear-down would otherwise
+    restore their default action and die of a late signal).  Called with ``argv`` (in a test),
+    the previous handlers are restored instead.
     """
     if argv is None:
         os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-    signal.signal(signal.SIGINT, _interrupt)
-    signal.signal(signal.SIGTERM, _interrupt)
+    previous = [signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)]
+    INTERRUPT.start()
     try:
-        code = _run(sys.argv[1:] if argv is None else list(argv))
+        try:
+            INTERRUPT.install()
+            code = _run(sys.argv[1:] if argv is None else list(argv))
+        finally:
+            INTERRUPT.hold()  # the command has returned or is unwinding: nothing left to interrupt
     except KeyboardInterrupt:
         code = 130
     if code == 130:  # said here, unless the command said why itself (a killed batch worker)
-        _interrupted(say=settings.get("interrupted", False))
+        _interrupted(say=INTERRUPT.interrupted)
     if argv is None:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
         gc.freeze()
+    else:
+        for sig, handler in zip((signal.SIGINT, signal.SIGTERM), previous):
+            if handler is not None:
+                signal.signal(sig, handler)
     sys.exit(code)
-
-
-def _interrupted(say: bool = True) -> None:
-    """Exit 130 now.  ``os._exit``: CPython marks a KeyboardInterrupt raised inside ``eval`` (as
-    typer evaluates annotations) as unhandled even when it is caught, and would then end the
-    process by SIGINT instead of the exit code.  Clean-up (temp files, worker pools) has run in
-    the ``finally`` blocks on the way here; stdout is discarded, as the run is incomplete."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_IGN)
-    _quiet_stdout()
-    with contextlib.suppress(OSError, ValueError):
-        if say:
-            sys.stderr.write("interrupted; no output file written\n")
-        sys.stderr.flush()
-    os._exit(130)
 
 
 def _run(args: list[str]) -> int:
@@ -168,8 +242,8 @@ def _run(args: list[str]) -> int:
         if settings["debug"]:
             raise
         return _fail(_option_error(exc, args), 2)
-    except Abort:
-        settings["interrupted"] = True
+    except Abort:  # typer's word for a KeyboardInterrupt it caught
+        INTERRUPT.interrupted = True
         return 130
     except BrokenPipeError:
         _quiet_stdout()

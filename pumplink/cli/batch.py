@@ -44,7 +44,7 @@ def batch(
         typer.Option(
             "--format",
             "-f",
-            help="Rows as csv or json, or parquet (with --out; needs pip install 'pumplink[parquet]'); "
+            help="Rows as csv or json, or parquet (with --out; needs pip install 'pumplink\\[parquet]'); "
             "table: the summary (and the rows, or the failures of a large run).",
         ),
     ] = BatchFormat.table,
@@ -72,8 +72,9 @@ def batch(
         typer.Option(
             "--fail-on",
             help="What makes the run fail (exit 1): any of mean, peak, infeasible, checks (any "
-            "other check that fails: transmission angle, power, grip speed), warnings; all (= "
-            "a variant whose verdict is FAIL) or none. peak is the verdict's peak: the least peak force "
+            "other check that fails: transmission angle, power, grip speed), warnings; all (the "
+            "default: mean,peak,infeasible,checks, a variant whose verdict is FAIL) or none. peak is "
+            "the verdict's peak: the least peak force "
             "of the flywheel or full dynamics where the variant gives inertia, else the peak outside "
             "the dead bands.",
         ),
@@ -95,7 +96,7 @@ def batch(
             "--scheduler",
             help="Run on Dask instead of the local pool: local:N (a local cluster of N worker "
             "processes) or the address of a running scheduler, tcp://host:8786 (needs pip "
-            "install 'pumplink[dask]'). Same rows, same order.",
+            "install 'pumplink\\[dask]'). Same rows, same order.",
             show_default=False,
         ),
     ] = None,
@@ -111,7 +112,7 @@ def batch(
     least model that is enough (flywheel or full dynamics, or --model), else quasi-static with
     the dead band (the model column says which): PASS, PASS with warnings or FAIL, with each
     check's result in its own column.  Exit 0 if no variant
-    fails a --fail-on check (default: no variant FAILs; --strict: none warns either), 1 if one
+    fails a --fail-on check (default all: no variant FAILs; --strict: none warns either), 1 if one
     does, 2 for bad input.
 
     Example: [bold]pumplink batch configs/ --junit report.xml[/]

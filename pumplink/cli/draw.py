@@ -9,6 +9,7 @@ from typing import Annotated, Optional
 import typer
 
 from pumplink.cli.common import app, load_specs
+from pumplink.errors import SpecError
 
 
 @app.command()
@@ -56,18 +57,24 @@ def draw(
     if animate is not None:
         check_animation_path(animate)
     if out is None and animate is None:
+        if str(spec) == "-":
+            raise SpecError(
+                "draw -: give --out FILE (.png, .svg or .pdf); a spec read from standard input names no file"
+            )
         out = Path(spec.stem + ".png")
     if out is not None:
-        check_path(out)
+        check_path(out, "--out")
     pyplot()
     from pumplink.output.drawings import animation, linkage_drawing
     from pumplink.studies.drawing import drawing, motion
 
     s = load_specs([spec])[0]
     dr = drawing(s, peak=peak)
-    if out is not None:
-        _, scale = linkage_drawing(dr, out)
-        sys.stderr.write(f"wrote {out} (scale 1:{scale:g} on A4)\n")
+    # the animation (seconds of work) first: once a run's first file is in place an interrupt no
+    # longer stops it (pumplink.cli.Interrupt), and the drawing after it is quick
     if animate is not None:
         animation(dr, motion(s, steps), animate)
         sys.stderr.write(f"wrote {animate} ({steps} frames, one revolution)\n")
+    if out is not None:
+        _, scale = linkage_drawing(dr, out)
+        sys.stderr.write(f"wrote {out} (scale 1:{scale:g} on A4)\n")

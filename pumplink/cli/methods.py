@@ -71,9 +71,9 @@ def methods(
     unknown = [m for m in names if m not in METHODS]
     if unknown:
         raise SpecError(f"--method {unknown[0]!r} is not a method; choose from {', '.join(METHODS)}")
-    for path in (plot, samples_plot):
+    for option, path in (("--plot", plot), ("--samples-plot", samples_plot)):
         if path is not None:
-            check_path(path)
+            check_path(path, option)
     if plot is not None or samples_plot is not None:
         pyplot()  # fail early (exit 2) when matplotlib is missing
     try:

@@ -3,16 +3,23 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, app, load_specs
+from pumplink.cli.common import Format, FormatOpt, app, load_specs, spec_or_default
 
 
 @app.command()
 def synth(
-    specs: Annotated[list[Path], typer.Argument(help="One or more TOML pump specs.", show_default=False)],
+    specs: Annotated[
+        Optional[list[Path]],
+        typer.Argument(
+            help="TOML pump specs ('-' reads one from stdin); none: ./pump.toml if present, else the "
+            "built-in design.",
+            show_default=False,
+        ),
+    ] = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Dead-centre synthesis: link lengths, dead centres, time ratio, transmission range.
@@ -24,6 +31,6 @@ def synth(
     from pumplink.output.synth import render_designs
     from pumplink.studies.force import design
 
-    designs = [design(s) for s in load_specs(specs)]
+    designs = [design(s) for s in (load_specs(specs) if specs else [spec_or_default(None)])]
     render_designs(designs, fmt.value)
     raise typer.Exit(0 if all(d.feasible for d in designs) else 1)

@@ -62,7 +62,7 @@ def transmission(
     if chart is not None:
         from pumplink.output.charts import check_path, pyplot, transmission_chart
 
-        check_path(chart)
+        check_path(chart, "--chart")
         pyplot()  # fail early (exit 2) when matplotlib is missing
         transmission_chart(cr.design_chart(), chart)
         typer.echo(f"wrote {chart}", err=True)

@@ -37,10 +37,10 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.errors import SpecError, has_control, shown
+from pumplink.errors import SpecError, bad_character, shown
 from pumplink.inputs.piston import PistonSpec, parse_piston
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_from_file_data, spec_to_dict
-from pumplink.inputs.toml import is_piston_data, read_toml, spec_name
+from pumplink.inputs.toml import MAX_NAME_CHARS, is_piston_data, read_toml, spec_name
 
 #: Checks ``--fail-on`` can select (the default selects all three, as ``pumplink force`` does).
 #: ``peak`` is the verdict's peak: the flywheel's least peak force where the variant gives
@@ -74,10 +74,6 @@ LINSPACE_DIGITS = 12
 
 
 _TOP_KEYS = ("name", "base", "vary")
-
-
-#: Longest batch name (the prefix of every variant name), as for a spec's name.
-MAX_NAME_CHARS = 200
 
 
 def _leaf_keys(model) -> tuple[str, ...]:
@@ -278,10 +274,12 @@ def parse_batch(data: Any, source: str, folder: Path | None = None, stem: str | 
             hint = f" (did you mean '{close[0]}'?)" if close else ""
             raise SpecError(f"{source}: unknown key '{k}' in a batch file{hint}; allowed: name, base, [vary]")
     label = data.get("name", stem or Path(source).stem)
-    if not isinstance(label, str) or not label.strip() or len(label) > MAX_NAME_CHARS or has_control(label):
+    bad = bad_character(label) if isinstance(label, str) else None
+    if not isinstance(label, str) or not label.strip() or len(label) > MAX_NAME_CHARS or bad:
+        holds = f" (it holds {bad})" if bad else ""
         raise SpecError(
-            f"{source}: 'name' = {shown(label)} must be text of 1 to {MAX_NAME_CHARS} printable characters "
-            "(no newline, tab or escape: it is the prefix of variant names)"
+            f"{source}: 'name' = {shown(label)} must be text of 1 to {MAX_NAME_CHARS} printable "
+            f"characters{holds}; it is the prefix of every variant name"
         )
     if "base" not in data:
         raise SpecError(

@@ -10,7 +10,7 @@ import math
 from pathlib import Path
 from typing import Any, Literal
 
-from pydantic import Field, field_validator, model_validator
+from pydantic import Field, model_validator
 
 from pumplink.constants import (
     DEFAULT_ARM_MASS,
@@ -18,8 +18,8 @@ from pumplink.constants import (
     DEFAULT_LITRES_PER_PERSON_DAY,
     DEFAULT_SPEED_FLUCTUATION,
 )
-from pumplink.errors import SpecError, has_control, shown
-from pumplink.inputs.toml import Section, read_toml, spec_name, validate
+from pumplink.errors import SpecError
+from pumplink.inputs.toml import MAX_NAME_CHARS, Section, read_toml, spec_name, validate
 from pumplink.models import load as _load
 from pumplink.profiles import OperatorProfile, operator_limits
 
@@ -102,13 +102,14 @@ class Linkage(Section):
     @classmethod
     def _swing_in_degrees(cls, data: Any) -> Any:
         # A swing below 2 pi is almost surely radians (1.047 for 60 deg): a 1.8 mm crank that
-        # fails with no hint otherwise.  Said before the range check, with the fix.
+        # fails with no hint otherwise.  Said before the range check, with the fix, when the fix
+        # is itself a valid swing (6.143 rad is 352 deg: the range error says what is allowed).
         swing = data.get("swing") if isinstance(data, dict) else None
         if (
             isinstance(swing, (int, float))
             and not isinstance(swing, bool)
             and 0 < swing < 2 * math.pi
-            and math.degrees(swing) >= 1  # not a slip of 1e-100, which the range error names
+            and 2 * math.pi <= round(math.degrees(swing), 1) < 180
         ):
             deg = f"{round(math.degrees(swing), 1):g}"
             raise ValueError(
@@ -327,19 +328,8 @@ class Use(Section):
 
 
 class PumpSpec(Section):
-    name: str = Field(default="pump", min_length=1, max_length=200, description="design name")
-
-    @field_validator("name")
-    @classmethod
-    def _printable_name(cls, name: str) -> str:
-        # names go into tables, JUnit XML and file names: a newline or an escape sequence breaks
-        # the XML and recolours (or clears) the terminal
-        if has_control(name):
-            raise ValueError(
-                f"name = {shown(name)} contains a control character (newline, tab, escape, ...); "
-                "give a name of printable characters"
-            )
-        return name
+    # the characters a name may hold: Section (names go into tables, file names and JUnit XML)
+    name: str = Field(default="pump", min_length=1, max_length=MAX_NAME_CHARS, description="design name")
 
     wheel: Wheel = Field(description="the [wheel] table: radius [m]")
     linkage: Linkage = Field(description="the [linkage] table: L1, D1, b, rocker, handle, swing")
@@ -478,7 +468,8 @@ D1 = 0.20              # rocker pivot below the axle [m], -10..10 (negative: abo
 b = 0.10               # width of the pump stand [m], 0-10
 rocker = 0.20          # rocker length l4 [m], 0.001-10
 handle = 1.00          # handle length H, rocker pivot to grip [m], 0.001-20
-swing = 60.0           # total handle swing [deg], 1-179, symmetric about vertical (not radians)
+swing = 60.0           # total handle swing [deg], 2π-180 (degrees, not radians; 180 excluded),
+                       # symmetric about vertical
 # mass_per_length = 1.56  # handle and coupler tube [kg/m] (default: 3/4" steel tube)
 
 [load]

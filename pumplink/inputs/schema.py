@@ -45,8 +45,31 @@ def _toml_only(node: Any) -> Any:
     return out
 
 
+#: What a name may hold, as a JSON Schema (ECMA-262) pattern: no control character (C0, DEL, C1)
+#: and no noncharacter of the Basic Multilingual Plane (U+FDD0-U+FDEF, U+FFFE, U+FFFF).  The
+#: surrogates and the other planes' noncharacters, which a pattern cannot state the same way in
+#: every regex dialect, are refused by pumplink when it reads the file (pumplink.errors.bad_character).
+NAME_PATTERN = r"^[^\u0000-\u001f\u007f-\u009f\ufdd0-\ufdef\ufffe\uffff]*$"
+
+
+def name_schema(what: str) -> dict[str, Any]:
+    """The ``name`` key of every input file: 1 to MAX_NAME_CHARS printable characters."""
+    from pumplink.inputs.toml import MAX_NAME_CHARS
+
+    return {
+        "type": "string",
+        "minLength": 1,
+        "maxLength": MAX_NAME_CHARS,
+        "pattern": NAME_PATTERN,
+        "description": f"{what}: 1 to {MAX_NAME_CHARS} printable characters (no newline, tab, escape or "
+        "other control character, no Unicode noncharacter)",
+    }
+
+
 def _document(model, title: str, description: str) -> dict[str, Any]:
     schema = _toml_only(model.model_json_schema())
+    name = schema["properties"]["name"]
+    name.update({k: v for k, v in name_schema(name.get("description", "name")).items() if k != "type"})
     return {"$schema": DIALECT, **schema, "title": title, "description": description}
 
 
@@ -126,7 +149,7 @@ def batch_schema() -> dict[str, Any]:
         '(README: "Batch files").',
         "type": "object",
         "properties": {
-            "name": {"type": "string", "minLength": 1, "description": "name of the batch"},
+            "name": name_schema("name of the batch, the prefix of every variant name"),
             "base": {
                 "description": "the base spec: a file path (relative to this file) or the spec inline",
                 "oneOf": [{"type": "string", "minLength": 1}, *inline],

@@ -12,25 +12,46 @@ import difflib
 import os
 import re
 import stat
+import sys
 import tomllib
 import types
 import typing
 from pathlib import Path
 from typing import Any
 
-from pydantic import BaseModel, ConfigDict, ValidationError
+from pydantic import BaseModel, ConfigDict, ValidationError, field_validator
 
-from pumplink.errors import SHOWN_CHARS, SpecError, escape_control, shown
+from pumplink.errors import SHOWN_CHARS, SpecError, bad_character, escape_control, shown
 
 #: Most of the other problems of a file listed after the first one in an error message.
 MORE_KEYS = 8
 
 
+#: Longest name of a design, a mechanism or a batch [characters] (a batch's name is the prefix
+#: of every variant name).
+MAX_NAME_CHARS = 200
+
+
+def check_name(name: str) -> str:
+    """``name`` if it can be written everywhere a name goes (tables, file names, CSV, JSON, JUnit
+    XML), else ValueError saying which character cannot (:func:`pumplink.errors.bad_character`)."""
+    bad = bad_character(name)
+    if bad is not None:
+        raise ValueError(f"name = {shown(name)} contains {bad}; give a name of printable characters")
+    return name
+
+
 class Section(BaseModel):
     """The base of every input model: unknown keys, strings for numbers, NaN and inf are errors
-    ("0.2" or true is not a number; integers are accepted as floats), and values are frozen."""
+    ("0.2" or true is not a number; integers are accepted as floats), and values are frozen.
+    A ``name`` (of a spec, a piston-pump spec, a mechanism) is checked by :func:`check_name`."""
 
     model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+
+    @field_validator("name", check_fields=False)
+    @classmethod
+    def _writable_name(cls, name: str) -> str:
+        return check_name(name)
 
 
 # ----------------------------------------------------------------------------- error sentences
@@ -177,17 +198,26 @@ def describe(root: Any, err: dict) -> str:
 def validate(model: type[Section], data: Any, source: str):
     """``model.model_validate(data)``, or :class:`~pumplink.errors.SpecError` with the first
     problem as one sentence (an unknown key first: it is usually a typo that also causes a
-    "missing" error) and where the others are."""
+    "missing" error) and where the others are.  A mechanism file (frame, links, [joints]) where
+    a pump spec belongs is named as such, with the command that reads it."""
+    if isinstance(data, dict) and "joints" in data and "joints" not in model.model_fields:
+        raise SpecError(
+            f"{source}: is a mechanism file (frame, links, [joints]), not a pump spec; analyse it with "
+            f"`pumplink structure {source}`"
+        )
     try:
         return model.model_validate(data)
     except ValidationError as exc:
         errs = sorted(exc.errors(), key=lambda e: e["type"] != "extra_forbidden")
         first = describe(model, errs[0])
         others = [escape_control(".".join(map(str, e["loc"])) or "the file")[:SHOWN_CHARS] for e in errs[1:]]
-        if len(others) > MORE_KEYS:
-            others = [*others[:MORE_KEYS], "..."]
-        n = len(errs) - 1
-        more = f"; {n} more problem{'s' if n > 1 else ''}: {', '.join(others)}" if n else ""
+        n = len(others)
+        # "at": places in the file, which a reader must not take for more allowed keys
+        if n > MORE_KEYS:
+            where = f"{', '.join(others[:MORE_KEYS])} and {n - MORE_KEYS:,} others"
+        else:
+            where = " and ".join([", ".join(others[:-1]), others[-1]] if n > 1 else others)
+        more = f"; {n} more problem{'s' if n > 1 else ''}, at {where}" if n else ""
         raise SpecError(f"{source}: {first}{more}.") from None
 
 
@@ -209,7 +239,7 @@ _TOML_TOKENS = re.compile(
 )
 
 
-def _check_nesting(text: str, path: Path) -> None:
+def _check_nesting(text: str, path: str | Path) -> None:
     """Refuse TOML nested deeper than :data:`MAX_NESTING` (brackets, braces or dotted-key parts)
     before the parser sees it.  A conservative scan: strings and comments are skipped, a dot run
     ends at any of ``= , [ ] { }`` or a line end (so ``[0.1, 0.2]`` counts one dot per value)."""
@@ -240,13 +270,15 @@ def _check_nesting(text: str, path: Path) -> None:
             dots = 0
 
 
-def _not_utf8(path: Path, data: bytes, exc: UnicodeDecodeError, expected: str) -> SpecError:
+def _not_utf8(path: str | Path, data: bytes, exc: UnicodeDecodeError, expected: str) -> SpecError:
     line = data.count(b"\n", 0, exc.start) + 1
     col = exc.start - (data.rfind(b"\n", 0, exc.start) + 1) + 1
+    name = Path(path).name
+    convert = "iconv -f cp1252 -t utf-8" + ("" if path == STDIN_WORDS else f" {name} > utf8-{name}")
     return SpecError(
         f"{path}: not UTF-8 text (byte 0x{data[exc.start]:02x} at line {line}, column {col}; "
         f"saved as Windows-1252 or Latin-1?), expected {expected}; re-save it as UTF-8 (in the "
-        f"editor: Save As, encoding UTF-8; or: iconv -f cp1252 -t utf-8 {path.name} > utf8-{path.name})"
+        f"editor: Save As, encoding UTF-8; or: {convert})"
     )
 
 
@@ -262,6 +294,8 @@ def read_toml(path: str | Path, expected: str = "a TOML spec") -> dict[str, Any]
         Missing, unreadable, non-regular, too large, too deep or non-UTF-8 file, or invalid TOML;
         ``expected`` names what the file should have been.
     """
+    if is_stdin(path):
+        return _parse(_stdin_bytes(expected), STDIN_WORDS, expected)
     path = Path(path)
     try:
         # O_NONBLOCK: opening a FIFO must not wait for a writer; no effect on a regular file
@@ -293,6 +327,45 @@ def read_toml(path: str | Path, expected: str = "a TOML spec") -> dict[str, Any]
         os.close(fd)
     if len(data) > MAX_INPUT_BYTES:  # grew while being read
         raise SpecError(f"{path}: larger than {MAX_INPUT_BYTES:,} bytes; expected {expected}")
+    return _parse(data, path, expected)
+
+
+#: The path that means standard input (``pumplink init - | pumplink force -``), and its name in
+#: messages.
+STDIN = "-"
+STDIN_WORDS = "standard input"
+
+# What standard input held: it can be read once, and a command may read its spec twice (to see
+# whether it is a piston pump's, then to load it).
+_STDIN_READ: dict[str, bytes] = {}
+
+
+def is_stdin(path: str | Path | None) -> bool:
+    """True for the path ``-``: the spec comes from standard input."""
+    return path is not None and str(path) == STDIN
+
+
+def _stdin_bytes(expected: str) -> bytes:
+    """Standard input, read once, at most :data:`MAX_INPUT_BYTES` (SpecError beyond, or when it is
+    a terminal: a spec is piped in, not typed)."""
+    if "data" not in _STDIN_READ:
+        stream = sys.stdin
+        if stream is None or stream.isatty():
+            raise SpecError(
+                f"-: {STDIN_WORDS} is a terminal; pipe {expected} in, e.g. pumplink init - | pumplink force -"
+            )
+        try:
+            _STDIN_READ["data"] = stream.buffer.read(MAX_INPUT_BYTES + 1)
+        except OSError as exc:
+            raise SpecError(f"{STDIN_WORDS}: cannot be read ({exc.strerror})") from None
+    data = _STDIN_READ["data"]
+    if len(data) > MAX_INPUT_BYTES:
+        raise SpecError(f"{STDIN_WORDS}: larger than {MAX_INPUT_BYTES:,} bytes; expected {expected}")
+    return data
+
+
+def _parse(data: bytes, path: str | Path, expected: str) -> dict[str, Any]:
+    """The bytes of a TOML file, decoded (UTF-8, a byte-order mark allowed) and parsed."""
     try:
         text = data.decode("utf-8").removeprefix("\ufeff")  # a BOM, as Windows editors write
     except UnicodeDecodeError as exc:
@@ -324,7 +397,7 @@ def is_piston_file(path: str | Path) -> bool:
     """True for a piston-pump spec file, or a batch file whose base is one.  Unreadable files are
     not piston files (the rope-pump path reports their errors)."""
     path = Path(path)
-    if not path.is_file():
+    if not is_stdin(path) and not path.is_file():
         return False
     try:
         data = read_toml(path)
@@ -334,7 +407,17 @@ def is_piston_file(path: str | Path) -> bool:
 
 
 def spec_name(data: Any, path: str | Path) -> Any:
-    """The mapping read from ``path`` with ``name`` defaulting to the file stem."""
+    """The mapping read from ``path`` with ``name`` defaulting to the file stem (SpecError when
+    the stem cannot be a name, :func:`check_name`)."""
     if isinstance(data, dict) and data and "name" not in data:
-        return {"name": Path(path).stem, **data}
+        stem = "stdin" if is_stdin(path) else Path(path).stem
+        bad = bad_character(stem) or (
+            f"more than {MAX_NAME_CHARS} characters" if len(stem) > MAX_NAME_CHARS else None
+        )
+        if bad is not None:
+            raise SpecError(
+                f"{escape_control(str(path))}: the name defaults to the file's name {shown(stem)}, "
+                f'which holds {bad}; add name = "..." to the file, or rename it'
+            )
+        return {"name": stem, **data}
     return data

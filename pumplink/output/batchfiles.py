@@ -443,16 +443,22 @@ def render_chunk(
 
 
 # ----------------------------------------------------------------------------- files
+def _attr(text: str) -> str:
+    """An XML attribute value (quoted) that is well-formed whatever ``text`` holds: a file path
+    may hold characters XML 1.0 cannot carry even as references, which are written as escapes
+    (:func:`~pumplink.errors.escape_control`); the names pumplink accepts pass unchanged."""
+    return quoteattr(escape_control(text))
+
+
 def _junit_case(name: str, classname: str, failure: str | None, skipped: str | None) -> str:
-    # file paths may hold control characters, which XML 1.0 cannot carry even escaped
-    head = f'    <testcase classname={quoteattr(escape_control(classname))} name={quoteattr(name)} time="0"'
+    head = f'    <testcase classname={_attr(classname)} name={_attr(name)} time="0"'
     if failure is not None:
         return (
-            f'{head}>\n      <failure message={quoteattr(failure)} type="pumplink">'
-            f"{escape(failure)}</failure>\n    </testcase>\n"
+            f'{head}>\n      <failure message={_attr(failure)} type="pumplink">'
+            f"{escape(escape_control(failure))}</failure>\n    </testcase>\n"
         )
     if skipped is not None:
-        return f"{head}>\n      <skipped message={quoteattr(skipped)}/>\n    </testcase>\n"
+        return f"{head}>\n      <skipped message={_attr(skipped)}/>\n    </testcase>\n"
     return f"{head}/>\n"
 
 
@@ -615,9 +621,8 @@ def write_stream(
         def flush_suite():
             if current < 0:
                 return
-            source = escape_control(batches[current].source)
             jfile.write(
-                f'  <testsuite name={quoteattr(source)} tests="{counts["tests"]}" '
+                f'  <testsuite name={_attr(batches[current].source)} tests="{counts["tests"]}" '
                 f'failures="{counts["failures"]}" errors="0" skipped="{counts["skipped"]}">\n'
             )
             suite.seek(0)

@@ -12,6 +12,7 @@ import errno
 import json
 import math
 import os
+import signal
 import stat
 import sys
 import tempfile
@@ -131,24 +132,25 @@ def atomic_write(path, binary: bool = False) -> Iterator[Any]:
         with _write_errors(path), open(target, mode, **kw) as f:
             yield f
         return
+    tmp = None
     try:
-        fd = _open_unnamed(target.parent)
-        tmp = None
-        if fd is None:
-            fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
-            umask = os.umask(0)
-            os.umask(umask)
-            os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the file a normal file's mode
-    except OSError as exc:
-        raise SpecError(
-            f"{path}: cannot be written ({exc.strerror}); check that the folder "
-            f"{target.parent} exists and is writable"
-        ) from None
-    try:
+        try:
+            fd = _open_unnamed(target.parent)
+            if fd is None:
+                fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+                umask = os.umask(0)
+                os.umask(umask)
+                os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the file a normal file's mode
+        except OSError as exc:
+            raise SpecError(
+                f"{path}: cannot be written ({exc.strerror}); check that the folder "
+                f"{target.parent} exists and is writable"
+            ) from None
         with _write_errors(path), os.fdopen(fd, mode, **kw) as f:
             yield f
             f.flush()
             os.fsync(f.fileno())
+            _hold_interrupts()  # the file is complete: from here the run completes
             if tmp is None:  # give the unnamed file a name next to the target, then move it
                 tmp = tempfile.mktemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
                 root = os.open("/", os.O_RDONLY)
@@ -163,6 +165,18 @@ def atomic_write(path, binary: bool = False) -> Iterator[Any]:
             with contextlib.suppress(OSError):
                 os.unlink(tmp)
         raise
+
+
+def _hold_interrupts() -> None:
+    """Tell the program's interrupt handler, if it has one, that a finished file is about to
+    replace its target: the run then completes, and an interrupt never leaves some of a run's
+    files written while it reports none (exit 130 means no output file was written).  The
+    handler is the command line's (:class:`pumplink.cli.Interrupt`, which has ``hold``); it is
+    found through the signal module, as this layer does not import the command line.  Elsewhere
+    (a notebook, a test) there is no such handler and nothing changes."""
+    hold = getattr(signal.getsignal(signal.SIGTERM), "hold", None)
+    if callable(hold):
+        hold()
 
 
 @contextlib.contextmanager

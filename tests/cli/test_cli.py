@@ -797,7 +797,7 @@ def test_first_bad_spec_in_a_batch_stops_synth(tmp_path):
         (["force", "--at", "ninety"], "--at"),
         (["force", "--samples", "2000000"], "--samples"),
         (["force", "--bogus"], "--bogus"),
-        (["synth"], "spec"),
+        (["speed"], "spec"),  # a command whose spec is required (synth has a default)
     ],
 )
 def test_bad_options_exit_2(args, option):

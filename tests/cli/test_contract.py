@@ -61,7 +61,7 @@ def one_error_line(p: subprocess.CompletedProcess, code: int = 2) -> str:
         (["force", "--bogus"], ["No such option: --bogus", "pumplink force --help"]),
         (["force", "--samples=abc"], ["--samples abc", "not a valid integer"]),
         (["batch", "--workers", "1000", "configs"], ["--workers 1000", "<= 256"]),
-        (["synth"], ["Missing argument", "pumplink synth --help"]),
+        (["draw"], ["Missing argument", "pumplink draw --help"]),
         (["nonsense"], ["No such command", "nonsense"]),
     ],
 )

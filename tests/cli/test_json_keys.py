@@ -1,0 +1,190 @@
+"""The README's "JSON keys other tools can rely on" against the JSON the commands emit.
+
+The list once named keys that no longer existed (``peak_crank_deg``, check fields ``severity``,
+``limit``, ``pass``; ``required_peak_force_N`` for optimize) and left out most of those that did.
+Here the list is read back from the README (each command's bullet: a backticked key, followed
+by ``{...}`` for the keys it holds) and compared, path by path and both ways, with the union of
+the keys emitted by real runs that between them reach every optional part: ``--explain``,
+``--verify`` for each model, the samples, a FAIL with advice, an inertia spec.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import io
+import json
+import re
+import signal
+from pathlib import Path
+
+import pytest
+
+import pumplink.cli as cli
+
+ROOT = Path(__file__).resolve().parents[2]
+MARKER = "JSON keys other tools can rely on"
+
+
+@pytest.fixture(autouse=True)
+def _keep_process_state(monkeypatch):
+    """main() installs signal handlers and may point fd 1 at /dev/null: keep both from pytest."""
+    saved = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
+    monkeypatch.setattr(cli, "_quiet_stdout", lambda: None)
+    yield
+    for s, h in saved.items():
+        signal.signal(s, h)
+
+
+def run(*args) -> str:
+    """stdout of ``pumplink ARGS`` through the real entry point (exit 0 or 1)."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            cli.main([str(a) for a in args])
+        except SystemExit as exc:
+            assert exc.code in (0, 1), err.getvalue()
+    return out.getvalue()
+
+
+def emitted(*args) -> dict:
+    """``pumplink ARGS --format json``, parsed."""
+    return json.loads(run(*args, "--format", "json"))
+
+
+def paths(node, prefix: str = "", skip: tuple[str, ...] = ()) -> set[str]:
+    """Every key path of a JSON document (``a.b``; a list's objects add their keys to the list's
+    path); below the paths in ``skip`` nothing is collected."""
+    out: set[str] = set()
+    if isinstance(node, dict):
+        for k, v in node.items():
+            p = f"{prefix}.{k}" if prefix else k
+            out.add(p)
+            if p not in skip:
+                out |= paths(v, p, skip)
+    elif isinstance(node, list):
+        for item in node:
+            out |= paths(item, prefix, skip)
+    return out
+
+
+def documented() -> dict[str, set[str]]:
+    """The README's key paths per command: ``{"force": {"checks", "checks.key", ...}, ...}``.
+
+    Read from the bullets after the marker line (in README.md, or in the docs/ page the list
+    moves to): a backticked identifier is a key; ``{`` opens the keys of the last key, ``}``
+    closes them.  Other backticked text (options, values, JSON samples) is skipped."""
+    for page in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]:
+        text = page.read_text(encoding="utf-8")
+        if MARKER in text:
+            break
+    else:
+        raise AssertionError(f"no page has {MARKER!r}")
+    section = text.split(MARKER, 1)[1]
+    section = section[section.index("\n- **") :]
+    section = section[: re.search(r"\n(?!\s|- )", section[1:]).start() + 1]  # the list ends
+    out: dict[str, set[str]] = {}
+    for bullet in re.split(r"\n- \*\*", section)[1:]:
+        command, body = bullet.split("**", 1)
+        keys: set[str] = set()
+        stack: list[str] = []
+        last = None
+        for token in re.finditer(r"`([^`]*)`|[{}]", body):
+            if token.group(1) is not None:
+                if re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", token.group(1)):
+                    last = ".".join([*stack, token.group(1)])
+                    keys.add(last)
+            elif token.group() == "{":
+                assert last is not None, body
+                stack = last.split(".")
+            else:
+                stack = stack[:-1]
+                last = ".".join(stack) or None
+        assert not stack, f"unbalanced braces in the {command} bullet"
+        out[command.split()[0]] = keys
+    return out
+
+
+DOC = documented()
+
+
+def assert_same(command: str, documented_keys: set[str], emitted_keys: set[str]) -> None:
+    missing = sorted(emitted_keys - documented_keys)
+    stale = sorted(documented_keys - emitted_keys)
+    assert not missing and not stale, (
+        f"{command}: emitted but not in the README: {missing}; in the README but not emitted: {stale}"
+    )
+
+
+def test_the_list_covers_the_commands():
+    assert set(DOC) == {"synth", "force", "optimize", "batch"}
+
+
+def design_keys() -> set[str]:
+    return {p.removeprefix("designs.") for p in DOC["synth"] if p.startswith("designs.")}
+
+
+def test_synth_keys():
+    doc = emitted("synth", "configs/prototype.toml", "configs/village-10m.toml")
+    assert_same("synth", DOC["synth"], paths(doc))
+
+
+def test_force_keys():
+    runs = [
+        # quasi-static: the samples, --explain, the quasi-static --verify
+        ("force", "configs/prototype.toml", "--explain", "--verify"),
+        # full dynamics decides: the best cadence and the speeds that pass
+        ("force", "configs/village-10m.toml", "--explain", "--summary"),
+        # the flywheel, a FAIL: advice, the energy models' --verify
+        ("force", "examples/well-12m-flywheel.toml", "--model", "flywheel", "--verify", "--summary"),
+    ]
+    docs = [emitted(*r) for r in runs]
+    assert any(d["advice"] for d in docs) and any(d["samples"] for d in docs if "samples" in d)
+    assert len({d["verify"]["method"] for d in docs if "verify" in d}) == 2
+    assert len({d["model"] for d in docs}) == 3
+    keys = set().union(*(paths(d) for d in docs))
+    assert_same("force", design_keys() | DOC["force"], keys)
+
+
+def test_the_old_wrong_keys_are_gone_from_the_readme():
+    """The keys the README once promised: none is emitted, none is listed."""
+    everything = set().union(*DOC.values())
+    leaves = {p.rsplit(".", 1)[-1] for p in everything}
+    assert "peak_crank_deg" not in leaves and "required_peak_force_N" not in leaves
+    checks = {p.removeprefix("checks.") for p in DOC["force"] if p.startswith("checks.")}
+    assert checks == {"key", "name", "value", "unit", "relation", "warn_limit", "fail_limit", "result"}
+
+
+def test_optimize_keys():
+    doc = emitted("optimize", "configs/prototype.toml")
+    assert_same("optimize", DOC["optimize"], paths(doc))
+
+
+def test_batch_keys(tmp_path):
+    grid = tmp_path / "grid.toml"
+    grid.write_text(
+        f'base = "{ROOT / "examples" / "well-12m-flywheel.toml"}"\n[vary]\n"linkage.swing" = [50, 60]\n'
+    )
+    docs = [emitted("batch", grid, "--fail-on", "none"), emitted("batch", "configs/", "--fail-on", "none")]
+    keys = set().union(*(paths(d, skip=("variants.vary",)) for d in docs))
+    assert_same("batch", DOC["batch"], keys)
+
+
+def test_batch_csv_columns_are_the_json_keys(tmp_path):
+    """The README: the CSV has the JSON's columns, one per varied key in place of vary."""
+    grid = tmp_path / "grid.toml"
+    grid.write_text(f'base = "{ROOT / "configs" / "prototype.toml"}"\n[vary]\n"linkage.swing" = [50, 60]\n')
+    text = run("batch", grid, "--fail-on", "none", "--format", "csv")
+    row_keys = [p.split(".")[1] for p in DOC["batch"] if p.startswith("variants.") and p.count(".") == 1]
+    header = next(csv.reader(io.StringIO(text)))
+    assert set(header) == (set(row_keys) - {"vary"}) | {"linkage.swing"}
+
+
+def test_the_parser_reads_nesting():
+    """The README reader itself, on a made-up bullet: braces nest, other backticks are skipped."""
+    assert {p for p in DOC["force"] if p.startswith("explain.best_cadence.force_passes")} == {
+        "explain.best_cadence.force_passes_deg_s",
+        "explain.best_cadence.force_passes_deg_s.min",
+        "explain.best_cadence.force_passes_deg_s.max",
+    }
+    assert "strict" in DOC["force"] and "--strict" not in DOC["force"]
