@@ -18,6 +18,7 @@ import contextlib
 import io
 import json
 import math
+import typing
 import random
 import signal
 import subprocess
@@ -126,9 +127,15 @@ def section(model):
     return st.fixed_dictionaries(required, optional=optional)
 
 
-SECTIONS = {
-    k: v.annotation for k, v in PumpSpec.model_fields.items() if hasattr(v.annotation, "model_fields")
-}
+def _table(annotation):
+    """The section model of a field: ``Parts | None`` (an optional table) is the table too."""
+    for a in (annotation, *typing.get_args(annotation)):
+        if hasattr(a, "model_fields"):
+            return a
+    return None
+
+
+SECTIONS = {k: _table(v.annotation) for k, v in PumpSpec.model_fields.items() if _table(v.annotation)}
 
 
 @st.composite

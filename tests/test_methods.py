@@ -25,7 +25,8 @@ import reference as R
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from pumplink.inputs.pump import default_spec
+from pumplink.evaluate import pump_designs
+from pumplink.inputs.pump import default_spec, spec_values
 from pumplink.mechanisms.angles import angular_distance
 from pumplink.mechanisms.fourbar import synthesize
 from pumplink.studies import accuracy
@@ -289,16 +290,7 @@ def test_seed_plus_root_is_the_assembly_branch_for_half_the_cycle_only():
 
 
 def test_sampling_study_converges_and_never_overshoots():
-    s = default_spec()
-    syn = design(s).synthesis
-    rows = accuracy.sampling_study(
-        syn.linkage,
-        syn.dead_centre_extended,
-        syn.dead_centre_folded,
-        np.radians(s.operator.dead_band),
-        s.wheel_torque,
-        syn.swing,
-    )
+    rows = accuracy.sampling_study(pump_designs(spec_values(default_spec())))
     for r in rows:
         assert r["sampled_peak"] <= r["exact_peak"] * (1 + 1e-12)  # samples are points of the window
         assert r["sampled_max"] >= r["sampled_peak"]

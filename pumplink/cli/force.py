@@ -187,6 +187,13 @@ def force(
         )
     from pumplink.search.suggest import suggest
 
+    released = None
+    if result.design.feasible and "explain" not in extra:  # (the workshop's view has it)
+        from pumplink.output.workshop import release_row
+        from pumplink.studies.workshop import release
+
+        released = release(result)
+        extra["release"] = release_row(released)
     advice = suggest(s, result) if result.design.feasible else []
     render_force(result, fmt.value, summary=summary, extra=extra, strict=strict, advice=advice)
     if fmt.value != "json":  # the reports follow the table; with CSV on stdout they go to stderr
@@ -200,6 +207,11 @@ def force(
             render_workshop(shop, out=side)
         if "verify" in extra:
             render_verify(extra["verify"], out=side)
+        if released is not None:
+            from pumplink.output.formats import console
+            from pumplink.output.workshop import release_line
+
+            console(side).print(release_line(released), markup=False)
     if plot is not None and result.design.feasible:
         from pumplink.output.charts import force_curve
         from pumplink.studies.force import force_curve as curve

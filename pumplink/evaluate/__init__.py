@@ -693,7 +693,25 @@ def _part_checks(designs, c, syn, index, least, masses, feasible) -> dict:
     n = feasible.size
     out = {k: np.full(n, np.nan) for k in ("pin_pressure", "handle_fatigue", "crank_fatigue")}
     coupler, handle = (np.broadcast_to(np.asarray(v, float), (n,)) for v in (masses.coupler, masses.handle))
-    for i in np.nonzero(feasible)[0].tolist():
+    model = np.asarray(index, int)
+    wheel_mass = np.broadcast_to(np.asarray(c["wheel_mass"], float), (n,))
+    weight = np.where(np.isnan(wheel_mass), 0.0, wheel_mass) * GRAVITY
+    # the quasi-static designs all at once, in blocks that bound the peak search's memory
+    quasi = np.nonzero(feasible & (model == 0))[0]
+    for block in np.array_split(quasi, -(-quasi.size // PART_BLOCK)) if quasi.size else ():
+        col = {k: np.broadcast_to(np.asarray(c[k], float), (n,))[block]
+               for k in ("dead_band", "wheel_torque", "rope_force")}  # fmt: skip
+        st = _parts.quasi_static_strength(
+            FourBar(*(np.broadcast_to(np.asarray(v, float), (n,))[block] for v in syn.linkage.parameters)),
+            syn.dead_centre_extended[block], syn.dead_centre_folded[block], col["dead_band"],
+            col["wheel_torque"], col["rope_force"], weight[block],
+            PartSizes(*(np.broadcast_to(np.asarray(getattr(designs.parts, k), float), (n,))[block]
+                        for k in PART_KEYS)),
+        )  # fmt: skip
+        out["pin_pressure"][block] = st.pin_pressure / 1e6  # [MPa]
+        out["handle_fatigue"][block] = st.handle.safety
+        out["crank_fatigue"][block] = st.crank.safety
+    for i in np.nonzero(feasible & (model != 0))[0].tolist():
         lk = FourBar(*(float(np.asarray(v)[i]) for v in syn.linkage.parameters))
         dce, dcf = float(syn.dead_centre_extended[i]), float(syn.dead_centre_folded[i])
         key = ORDER[int(index[i])]
@@ -702,15 +720,19 @@ def _part_checks(designs, c, syn, index, least, masses, feasible) -> dict:
         links = Masses(coupler[i], handle[i], 0.0)  # the hand is the operator's, not a part
         sc = _parts.scene(lk, dce, dcf, c["wheel_torque"][i], c["inertia"][i], links, c["speed"][i],
                           c["speed_fluctuation"][i], float(least[i]), key)  # fmt: skip
-        weight = 0.0 if np.isnan(c["wheel_mass"][i]) else c["wheel_mass"][i] * GRAVITY
         loads = _parts.part_loads(
-            lk, dce, dcf, c["dead_band"][i], c["wheel_torque"][i], key, sc, c["rope_force"][i], weight
+            lk, dce, dcf, c["dead_band"][i], c["wheel_torque"][i], key, sc, c["rope_force"][i], weight[i]
         )
         st = _parts.strength(loads, designs.parts.design(i))
         out["pin_pressure"][i] = st.pin_pressure / 1e6  # [MPa]
         out["handle_fatigue"][i] = st.handle.safety
         out["crank_fatigue"][i] = st.crank.safety
     return out
+
+
+#: Designs a block of the quasi-static part checks holds (its peak search holds ~1,500 crank angles
+#: and ~30 arrays a design: ~100 MB a block).
+PART_BLOCK = 256
 
 
 #: Odd 64-bit multipliers that hash a design's seven four-bar parameters (their bits) to one word.

@@ -66,15 +66,47 @@ def part_loads(
     peaks = _joints.quasi_static_peaks(
         lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull, wheel_weight
     )
+    cycle = quasi_static_cycle(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque,
+                               rope_pull, wheel_weight)  # fmt: skip
+    return PartLoads(peaks, cycle, model)
+
+
+def quasi_static_cycle(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull=0.0,
+                       wheel_weight=0.0):  # fmt: skip
+    """The quasi-static loads (:class:`pumplink.models.joints.JointForces`) on :data:`CYCLE_SAMPLES`
+    crank angles a turn, NaN within ±``dead_band`` of the dead centres (the model carries no load
+    there).  Broadcasts over designs: with parameters and values of shape (n, 1) the loads have
+    shape (n, CYCLE_SAMPLES)."""
     th = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
     off = np.minimum(
         np.abs(np.mod(th - dead_centre_extended + np.pi, TWO_PI) - np.pi),
         np.abs(np.mod(th - dead_centre_folded + np.pi, TWO_PI) - np.pi),
     )
-    th = th[off > dead_band]
+    th = np.where(off > dead_band, th, np.nan)
     motion = _joints.quasi_static_motion(lk, th, wheel_torque)
-    cycle = _joints.motion_forces(lk, motion, GRAVITY, rope_pull, wheel_weight)
-    return PartLoads(peaks, cycle, model)
+    return _joints.motion_forces(lk, motion, GRAVITY, rope_pull, wheel_weight)
+
+
+def quasi_static_strength(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull,
+                          wheel_weight, parts) -> Strength:  # fmt: skip
+    """:func:`strength` of many designs under the quasi-static model at once: ``lk`` with
+    parameters of shape (n,), the other values of shape (n,) and ``parts`` columns
+    (:class:`pumplink.evaluate.PartSizes`); the peaks by
+    :func:`pumplink.models.joints.quasi_static_peak_loads`."""
+    value, _ = _joints.quasi_static_peak_loads(
+        lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull, wheel_weight
+    )
+    n = value.shape[1]
+
+    def column(v):
+        return np.broadcast_to(np.asarray(v, float), (n,))[:, None]
+
+    cycle = quasi_static_cycle(
+        FourBar(*(column(v) for v in lk.parameters)),
+        *(column(v) for v in (dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull,
+                              wheel_weight)),
+    )  # fmt: skip
+    return _strength_of(value[:4], cycle, parts, n)
 
 
 @dataclass(frozen=True)
@@ -98,19 +130,49 @@ def strength(loads: PartLoads, parts) -> Strength:
     """Pin pressure and fatigue of the crank and the handle for ``parts`` (the spec's ``[parts]``
     table, or its defaults: 12 mm pins on 5.2 mm of bore, a 26.9 x 2.6 mm handle tube, a ½" bar
     crank, both of S235; docs/workshop.md §2)."""
-    peaks = np.asarray(loads.peaks.force, float)
-    pressure = _strength.bearing_pressure(peaks, parts.pin_diameter, parts.pin_width)
-    k = int(np.nanargmax(pressure))
+    st = _strength_of(np.asarray(loads.peaks.force, float)[:, None], _batch(loads.cycle), parts, 1)
+    return Strength(
+        float(st.pin_pressure[0]),
+        st.pin[0],
+        _strength.Fatigue(*(float(np.asarray(v)[0]) for v in vars(st.handle).values())),
+        _strength.Fatigue(*(float(np.asarray(v)[0]) for v in vars(st.crank).values())),
+        tuple(float(np.asarray(v)[0]) for v in st.endurance),
+    )
+
+
+def _batch(cycle):
+    """One design's cycle as the first row of a batch of one."""
+    return type(cycle)(*(np.asarray(v, float)[..., None, :] for v in vars(cycle).values()))
+
+
+def _strength_of(peak_force, cycle, parts, n) -> Strength:
+    """Pin pressure and fatigue of n designs: ``peak_force`` (4, n) [N]; ``cycle`` the loads over a
+    turn of shape (n, K), NaN where the model carries none; ``parts`` sizes (scalars or (n,))."""
+
+    def size(k):
+        return np.broadcast_to(np.asarray(getattr(parts, k), float), (n,))
+
+    pressure = _strength.bearing_pressure(peak_force, size("pin_diameter"), size("pin_width"))  # (4, n)
+    filled = np.where(np.isnan(pressure), -np.inf, pressure)
+    k = np.argmax(filled, axis=0)
     ult = _strength.ULTIMATE_S235
-    tube = _strength.tube_section(parts.handle_diameter, parts.handle_wall)
-    bar = _strength.tube_section(parts.crank_diameter, 0.5 * parts.crank_diameter)
-    se_handle = _strength.endurance_limit(ult, parts.handle_diameter, parts.handle_notch)
-    se_crank = _strength.endurance_limit(ult, parts.crank_diameter, parts.crank_notch)
-    c = loads.cycle
-    ok = np.isfinite(c.handle_moment) & np.isfinite(c.crank_moment)
-    handle = _strength.fatigue(c.handle_moment[ok], c.handle_axial[ok], tube, se_handle, ult)
-    crank = _strength.fatigue(c.crank_moment[ok], c.crank_axial[ok], bar, se_crank, ult)
-    return Strength(float(pressure[k]), _joints.JOINTS[k], handle, crank, (float(se_handle), float(se_crank)))
+    handle_d, crank_d = size("handle_diameter"), size("crank_diameter")
+    tube = _strength.tube_section(handle_d[:, None], size("handle_wall")[:, None])
+    bar = _strength.tube_section(crank_d[:, None], 0.5 * crank_d[:, None])
+    se_handle = _strength.endurance_limit(ult, handle_d, size("handle_notch"))
+    se_crank = _strength.endurance_limit(ult, crank_d, size("crank_notch"))
+    # the samples where the model carries a load; the others take the value of one of them, which
+    # leaves the cycle's extremes (all fatigue reads) as they are
+    ok = np.isfinite(cycle.handle_moment) & np.isfinite(cycle.crank_moment)
+    first = np.argmax(ok, axis=-1)[..., None]
+
+    def fill(v):
+        return np.where(ok, v, np.take_along_axis(v, first, -1))
+
+    handle = _strength.fatigue(fill(cycle.handle_moment), fill(cycle.handle_axial), tube, se_handle, ult)
+    crank = _strength.fatigue(fill(cycle.crank_moment), fill(cycle.crank_axial), bar, se_crank, ult)
+    pin = np.asarray(_joints.JOINTS, dtype=object)[k]
+    return Strength(np.take_along_axis(pressure, k[None], 0)[0], pin, handle, crank, (se_handle, se_crank))
 
 
 def scene(
@@ -159,6 +221,8 @@ __all__ = [
     "PartLoads",
     "Strength",
     "part_loads",
+    "quasi_static_cycle",
+    "quasi_static_strength",
     "scene",
     "strength",
 ]

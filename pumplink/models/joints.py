@@ -303,6 +303,12 @@ JUMP_OFFSET = 1e-9
 REFINE_XTOL = 1e-10
 #: Points across a bracket per zoom of the refinement (the bracket shrinks (points - 1) / 2 times).
 REFINE_POINTS = 33
+#: The same for the quasi-static search over many designs, where each zoom is one array operation
+#: and the points, not the calls, cost: 9 points, a quarter of the bracket a zoom.
+ZOOM_POINTS = 9
+#: Grid points on each of the quasi-static model's two arcs (the density of PEAK_GRID_PER_RAD on
+#: a whole turn, so on any arc).
+ARC_POINTS = int(np.ceil(PEAK_GRID_PER_RAD * TWO_PI)) + 1
 
 
 def _finite_or_floor(values: np.ndarray) -> np.ndarray:
@@ -412,7 +418,8 @@ def quasi_static_peaks(
     wheel_weight=0.0,
 ):
     """Peak joint forces of the quasi-static model (one design) outside ±dead_band of the dead
-    centres, where it is judged (docs/models.md §1; the force is infinite at the dead centres).
+    centres, where it is judged (docs/models.md §1; the force is infinite at the dead centres):
+    :func:`quasi_static_peak_loads` for one design, as :class:`PeakLoads`.
 
     Parameters
     ----------
@@ -420,18 +427,89 @@ def quasi_static_peaks(
     dead_band : [rad];  wheel_torque : Mw [N m];  rope_pull, wheel_weight : [N] on the axle, as
     :func:`joint_forces`.
     """
-    plus = np.mod(dead_centre_folded - dead_centre_extended, TWO_PI)
-    arcs = (
-        (dead_centre_extended + dead_band, plus - 2 * dead_band),
-        (dead_centre_folded + dead_band, TWO_PI - plus - 2 * dead_band),
+    value, angle = quasi_static_peak_loads(
+        FourBar(*(np.reshape(np.asarray(v, float), (1,)) for v in lk.parameters)),
+        *(np.reshape(np.asarray(v, float), (1,)) for v in (dead_centre_extended, dead_centre_folded)),
+        *(np.reshape(np.asarray(v, float), (1,)) for v in (dead_band, wheel_torque, rope_pull, wheel_weight)),
     )
-    arcs = tuple((float(s), float(n)) for s, n in arcs if n >= 0)
-    return peak_joint_forces(
-        lambda th: motion_forces(
-            lk, quasi_static_motion(lk, th, wheel_torque), rope_pull=rope_pull, wheel_weight=wheel_weight
-        ),
-        arcs,
-    )
+    best, where = value[:, 0], angle[:, 0]
+    return PeakLoads(best[:4], where[:4], (best[4], where[4]), (best[5], where[5]))
+
+
+def quasi_static_peak_loads(
+    lk: FourBar,
+    dead_centre_extended,
+    dead_centre_folded,
+    dead_band,
+    wheel_torque,
+    rope_pull=0.0,
+    wheel_weight=0.0,
+):
+    """Peaks of the six loads of :func:`peak_joint_forces` under the quasi-static model, for many
+    designs at once, outside ±dead_band of the dead centres (docs/models.md §1).
+
+    The two arcs between the dead bands are each scanned on :data:`ARC_POINTS` points (at least
+    :data:`PEAK_GRID_PER_RAD` per radian, whatever the arc's length); the best node of each load
+    and design is refined by zooming inside its arc, all loads and designs at once
+    (:data:`ZOOM_POINTS` points a bracket, to :data:`REFINE_XTOL`), as :func:`peak_joint_forces`
+    does for one design.
+
+    Parameters
+    ----------
+    lk : linkage whose parameters are arrays of shape (n,);  dead_centre_extended,
+    dead_centre_folded, dead_band : [rad], shape (n,);  wheel_torque : Mw [N m];  rope_pull,
+    wheel_weight : [N] on the axle, as :func:`joint_forces` (shape (n,) or scalars).
+
+    Returns
+    -------
+    value, angle : arrays of shape (6, n): the four joints of :data:`JOINTS` [N], then |crank
+        moment| and |handle moment| [N m], and the crank angle of each [rad] in [0, 2 pi); NaN
+        where a design has no assemblable point outside its dead bands.
+    """
+    dce = np.asarray(dead_centre_extended, float).reshape(-1)
+    n = dce.size
+    dcf, band, torque, rope, weight = (
+        np.broadcast_to(np.asarray(v, float), (n,)) for v in (dead_centre_folded, dead_band, wheel_torque,
+                                                              rope_pull, wheel_weight)
+    )  # fmt: skip
+    column = FourBar(*(np.reshape(np.asarray(v, float), (n, 1)) for v in lk.parameters))
+
+    def loads_at(th):  # (n, k) crank angles -> (6, n, k) loads, NaN as -inf
+        motion = quasi_static_motion(column, th, torque[:, None])
+        return _finite_or_floor(_loads(motion_forces(column, motion, GRAVITY, rope[:, None], weight[:, None])))
+
+    plus = np.mod(dcf - dce, TWO_PI)
+    start = np.stack([dce + band, dcf + band], axis=1)  # (n, 2): the two arcs judged
+    length = np.stack([plus - 2 * band, TWO_PI - plus - 2 * band], axis=1)
+    arc_ok = length >= 0
+    length = np.where(arc_ok, length, 0.0)
+    m = ARC_POINTS  # the same for every design, so a design's peaks do not depend on its batch
+    grid = start[:, :, None] + length[:, :, None] * np.linspace(0.0, 1.0, m)  # (n, 2, m)
+    vals = loads_at(grid.reshape(n, 2 * m)).reshape(6, n, 2, m)
+    vals = np.where(arc_ok[None, :, :, None], vals, -np.inf).reshape(6, n, 2 * m)
+    j = np.argmax(vals, axis=-1)  # (6, n)
+    best = np.take_along_axis(vals, j[..., None], -1)[..., 0]
+    arc, pos = np.divmod(j, m)
+    design = np.arange(n)[None, :]
+    where = grid[design, arc, pos]
+    a = grid[design, arc, np.maximum(pos - 1, 0)]  # the bracket: the neighbours on the same arc
+    b = grid[design, arc, np.minimum(pos + 1, m - 1)]
+    live = np.isfinite(best) & (b > a)
+    steps = np.linspace(0.0, 1.0, ZOOM_POINTS)
+    six = np.arange(6)
+    while live.any():
+        x = a[..., None] + (b - a)[..., None] * steps  # (6, n, R)
+        v = loads_at(x.transpose(1, 0, 2).reshape(n, 6 * ZOOM_POINTS)).reshape(6, n, 6, ZOOM_POINTS)
+        v = v[six, :, six]  # load i at its own points: (6, n, R)
+        k = np.argmax(v, axis=-1)
+        top = np.take_along_axis(v, k[..., None], -1)[..., 0]
+        up = live & (top > best)
+        best = np.where(up, top, best)
+        where = np.where(up, np.take_along_axis(x, k[..., None], -1)[..., 0], where)
+        a = np.where(live, np.take_along_axis(x, np.maximum(k - 1, 0)[..., None], -1)[..., 0], a)
+        b = np.where(live, np.take_along_axis(x, np.minimum(k + 1, ZOOM_POINTS - 1)[..., None], -1)[..., 0], b)
+        live = live & ((b - a) > REFINE_XTOL)
+    return np.where(best == -np.inf, np.nan, best), np.mod(where, TWO_PI)
 
 
 def scene_peaks(scene, motion_of: Callable, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0):

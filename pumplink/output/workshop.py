@@ -10,6 +10,7 @@ import math
 import sys
 from typing import TYPE_CHECKING, Any
 
+from pumplink.constants import MODEL_WORDS
 from pumplink.output.formats import console, deg, num
 
 if TYPE_CHECKING:
@@ -53,29 +54,35 @@ def workshop_row(w: Workshop | None) -> dict[str, Any] | None:
         "pin_pressure_at": st.pin,
         "handle_fatigue_safety": num(st.handle.safety),
         "crank_fatigue_safety": num(st.crank.safety),
-        "release": None,
+        "release": release_row(None if w.release is None else (w.release, w.release_free)),
     }
-    if w.release is not None:
-        r, f = w.release, w.release_free
-        out["release"] = {
-            "needs_ratchet_or_brake": w.needs_brake,
-            "stop_time_s": num(r.stop_time),
-            "reverses": r.reverses,
-            "grip_speed_1s_m_s": num(r.grip_speed_1s),
-            "peak_grip_speed_m_s": num(r.peak_grip_speed),
-            "peak_time_s": num(r.peak_time),
-            "end": r.end_reason,
-            "end_time_s": num(r.end_time),
-            "peak_grip_speed_without_losses_m_s": num(f.peak_grip_speed),
-        }
     return out
 
 
-def release_line(w: Workshop | None) -> str | None:
-    """The released handle in one line: 'needs a ratchet or brake' with its numbers, or None."""
-    if w is None or w.release is None:
+def release_row(both) -> dict[str, Any] | None:
+    """The JSON of the released handle (``both``: with and without losses, or None)."""
+    if both is None:
         return None
-    r = w.release
+    r, f = both
+    return {
+        "needs_ratchet_or_brake": bool(r.reverses),
+        "stop_time_s": num(r.stop_time),
+        "reverses": r.reverses,
+        "grip_speed_1s_m_s": num(r.grip_speed_1s),
+        "peak_grip_speed_m_s": num(r.peak_grip_speed),
+        "peak_time_s": num(r.peak_time),
+        "end": r.end_reason,
+        "end_time_s": num(r.end_time),
+        "peak_grip_speed_without_losses_m_s": num(f.peak_grip_speed),
+    }
+
+
+def release_line(both) -> str | None:
+    """The released handle in one line: 'needs a ratchet or brake' with its numbers, or None
+    (``both``: with and without losses, as :func:`pumplink.studies.workshop.release` gives them)."""
+    if both is None:
+        return None
+    r, free = both
     if not r.reverses:
         return (
             f"released handle: the wheel stops {r.stop_time:.2f} s after the operator lets go and the pump's "
@@ -91,7 +98,7 @@ def release_line(w: Workshop | None) -> str | None:
         f"released handle: NEEDS A RATCHET OR BRAKE — let go at full speed, the wheel stops in "
         f"{r.stop_time:.2f} s and the water column drives it back; {one}and the grip reaches "
         f"{r.peak_grip_speed:.1f} m/s after {r.peak_time:.1f} s "
-        f"({w.release_free.peak_grip_speed:.1f} m/s if the pump had no losses) before the column {end}"
+        f"({free.peak_grip_speed:.1f} m/s if the pump had no losses) before the column {end}"
     )
 
 
@@ -99,11 +106,17 @@ def render_workshop(w: Workshop | None, out=None) -> None:
     """The workshop's view as a table and sentences (after ``--explain``'s report)."""
     if w is None:
         return
+    from rich import box
     from rich.table import Table
 
     c = console(out or sys.stdout)
     pk = w.loads.peaks
-    t = Table(title=f"Loads on the parts ({w.loads.model} model)", title_justify="left")
+    t = Table(
+        title=f"Loads on the parts ({MODEL_WORDS[w.loads.model]}, the peak over a turn)",
+        title_justify="left",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+    )
     for h in ("where", "peak", "at crank"):
         t.add_column(h, justify="left" if h == "where" else "right")
     for j, f, a in zip(JOINTS, pk.force, pk.angle):
@@ -130,6 +143,6 @@ def render_workshop(w: Workshop | None, out=None) -> None:
         f"{p.crank_notch:g}); below 1.5 warns, below 1 fails (docs/workshop.md)",
         markup=False,
     )
-    line = release_line(w)
+    line = release_line(None if w.release is None else (w.release, w.release_free))
     if line is not None:
         c.print(line, markup=False)

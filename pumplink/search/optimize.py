@@ -639,9 +639,11 @@ def optimize(
             constraints=[{"type": "ineq", "fun": g}],
             options=dict(maxiter=200, ftol=1e-12, workers=gradient_map),
         )
-        xp = problem.lower + np.clip(loc.x, 0.0, 1.0) * scale
+        # lower + 1.0 * (upper - lower) can round one ulp past the upper bound: clip in x too
+        xp = np.clip(problem.lower + np.clip(loc.x, 0.0, 1.0) * scale, problem.lower, problem.upper)
         cand = _pull_back(problem, x, xp)
         if cand is not None:
+            cand = np.clip(cand, problem.lower, problem.upper)
             ec = evaluate_designs(problem, cand[:, None])
             if _feasible(ec) and ec.objective[0] < e.objective[0]:
                 x, e, polished = cand, ec, True

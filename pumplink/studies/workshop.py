@@ -49,9 +49,10 @@ class Workshop:
         return bool(self.release is not None and self.release.reverses)
 
 
-def workshop(r: ForceResult) -> Workshop | None:
-    """The loads, the parts and the released handle of a force result's design (None when it is
-    infeasible, or when no finite force keeps its wheel turning)."""
+def _part_scene(r: ForceResult):
+    """(model key, the deciding energy model's scene with the links' masses but not the operator's
+    arms (None for the quasi-static model), its linkage and synthesis), or None when no finite force
+    keeps the wheel turning or the design is infeasible."""
     ev = r.evaluation
     if ev is None or not r.design.feasible:
         return None
@@ -60,11 +61,6 @@ def workshop(r: ForceResult) -> Workshop | None:
     if key != ORDER[0] and (sc is None or not math.isfinite(sc.least_peak_force)):
         return None
     syn, lk = motion.at_design(ev)
-    d = ev.designs
-    spec = r.design.spec
-    wheel = spec.wheel
-    weight = 0.0 if wheel.mass is None else wheel.mass * GRAVITY
-    rope = float(np.asarray(d.rope_force))
     links = motion.link_masses_of(ev, arms=False)
     part_scene = sc
     if key != ORDER[0]:  # the loads are the links' and the hand's, not the operator's arms
@@ -72,15 +68,38 @@ def workshop(r: ForceResult) -> Workshop | None:
             lk, syn.dead_centre_extended, syn.dead_centre_folded, r.wheel_torque, r.inertia, links,
             r.speed, r.speed_fluctuation, sc.least_peak_force, key,
         )  # fmt: skip
+    return key, part_scene, lk, syn, links
+
+
+def release(r: ForceResult, _scene=None):
+    """The released handle of a force result's design (docs/workshop.md §3): (with the pump's
+    losses as friction, with none), two :class:`pumplink.models.release.Release`; None without a
+    head (a rope force given instead) or the wheel's inertia, or for an infeasible design."""
+    found = _scene or _part_scene(r)
+    spec = r.design.spec
+    if found is None or found[1] is None or spec.load.head is None:
+        return None
+    _key, part_scene, _lk, _syn, links = found
+    return _parts.released(
+        part_scene, spec.load.head, spec.load.pipe_diameter, spec.wheel.radius, r.wheel_torque, links
+    )
+
+
+def workshop(r: ForceResult) -> Workshop | None:
+    """The loads, the parts and the released handle of a force result's design (None when it is
+    infeasible, or when no finite force keeps its wheel turning)."""
+    found = _part_scene(r)
+    if found is None:
+        return None
+    key, part_scene, lk, syn, _links = found
+    ev = r.evaluation
+    wheel = r.design.spec.wheel
+    weight = 0.0 if wheel.mass is None else wheel.mass * GRAVITY
+    rope = float(np.asarray(ev.designs.rope_force))
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
     loads = _parts.part_loads(lk, dce, dcf, r.dead_band, r.wheel_torque, key, part_scene, rope, weight)
     given = ev.designs.parts is not None
     sizes = ev.designs.parts.design(0) if given else DEFAULT_PARTS
     strength = _parts.strength(loads, sizes)
-    release = free = None
-    head = spec.load.head
-    if part_scene is not None and head is not None:
-        release, free = _parts.released(
-            part_scene, head, spec.load.pipe_diameter, wheel.radius, r.wheel_torque, links
-        )
-    return Workshop(loads, strength, sizes, given, release, free)
+    both = release(r, found)
+    return Workshop(loads, strength, sizes, given, *(both or (None, None)))

@@ -150,7 +150,8 @@ def small(tmp_path) -> Path:
 
 @pytest.fixture(scope="module")
 def qs_grid(tmp_path_factory) -> Path:
-    """The design-space grid on a quasi-static base: the village well without its wheel mass.
+    """The design-space grid on a quasi-static base: the village well without its wheel mass and
+    its [parts].
 
     configs/grids/design-space.toml builds on configs/village-10m.toml, whose wheel.mass turns on
     the flywheel model for all 27,216 variants (~10 s a run).  The streaming, chunking and worker
@@ -159,7 +160,7 @@ def qs_grid(tmp_path_factory) -> Path:
     """
     folder = tmp_path_factory.mktemp("qs")
     village = tomllib.loads(Path(VILLAGE).read_text())
-    del village["wheel"]["mass"]
+    del village["wheel"]["mass"], village["parts"]  # quasi-static, and no part checks (~2.5 ms a design)
     (folder / "village-10m.toml").write_text(tomli_w.dumps(village))
     text = GRID.read_text()
     assert text.count('base = "../village-10m.toml"') == 1

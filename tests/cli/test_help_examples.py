@@ -180,7 +180,6 @@ def readme_inline_examples() -> list[str]:
 INLINE_FAIL = (
     *EXPECTED_FAIL,
     "pumplink slider --stroke 1 --rod-ratio 3 --time-ratio 2",  # outside the realisability condition
-    "pumplink optimize configs/village-10m.toml",  # its optimum fails 100 N (README, Optimize)
 )
 
 
