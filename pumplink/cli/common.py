@@ -210,3 +210,54 @@ def spec_or_default(path: Path | None):
         typer.echo(f"using ./{LOCAL_SPEC} (give a spec file to use another)", err=True)
         return load_spec(LOCAL_SPEC)
     return default_spec()
+
+
+#: Units a length may be given in on the command line (tolerances), to metres.
+LENGTH_UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0}
+
+
+def parse_length(text: str, option: str) -> float:
+    """A length with its unit -> metres: ``1mm``, ``0.5 mm``, ``0.1cm``, ``0.001m``.
+
+    The unit is required (a bare ``1`` could be a metre or a millimetre).  Raises
+    :class:`~pumplink.errors.SpecError` (one line, exit 2) naming the option.
+    """
+    from pumplink.errors import SpecError, shown
+
+    m = re.fullmatch(r"\s*([0-9.eE+-]+)\s*([a-z]*)\s*", str(text))
+    unit = m.group(2) if m else ""
+    if not m or unit not in LENGTH_UNITS:
+        raise SpecError(
+            f"{option} {shown(str(text))} is not a length with a unit; give e.g. {option} 1mm "
+            "(units: mm, cm, m)"
+        )
+    try:
+        value = float(m.group(1)) * LENGTH_UNITS[unit]
+    except ValueError:
+        raise SpecError(f"{option} {shown(str(text))} is not a number; give e.g. {option} 1mm") from None
+    if not math.isfinite(value) or value < 0:
+        raise SpecError(f"{option} {shown(str(text))} must be a length of 0 or more, e.g. {option} 1mm")
+    return value
+
+
+def need_extra(module: str, option: str, extra: str, what: str) -> None:
+    """One line saying how to install an optional extra when ``module`` cannot be imported (exit 2)."""
+    import importlib
+
+    from pumplink.errors import SpecError
+
+    try:
+        importlib.import_module(module)
+    except ImportError:
+        raise SpecError(
+            f"{option} needs {what}, which is not installed; install it with pip install 'pumplink[{extra}]'"
+        ) from None
+
+
+def dask_cluster():
+    """:mod:`pumplink.batch.cluster` for ``--scheduler``, or one line saying how to install Dask
+    (exit 2)."""
+    need_extra("distributed", "--scheduler", "dask", "Dask")
+    from pumplink.batch import cluster
+
+    return cluster

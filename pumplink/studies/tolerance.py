@@ -49,7 +49,7 @@ import numpy as np
 
 from pumplink.constants import AXLE_HEIGHT_RANGE_M
 from pumplink.errors import InfeasibleDesign, SpecError
-from pumplink.evaluate import Evaluation, PumpDesigns, evaluate, pump_designs
+from pumplink.evaluate import MODEL_LABELS, Evaluation, PumpDesigns, evaluate, pump_designs
 from pumplink.inputs.pump import PumpSpec, spec_values
 from pumplink.mechanisms.fourbar import FourBar
 from pumplink.verdict import FAIL, PASS, WARN
@@ -825,6 +825,16 @@ class Result:
     target: float
     nominal_level: int
     values: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
+    offsets: np.ndarray | None = field(default=None, repr=False)
+
+    # what a renderer needs to name things, without importing this module
+    holes = HOLES
+    dimensions = DIMENSIONS
+    groups = GROUPS
+    quantities = QUANTITIES
+    model_labels = MODEL_LABELS
+    ladder = LADDER
+    workshop_tolerance = WORKSHOP_TOLERANCE
 
     @property
     def first_order_share(self) -> float:
@@ -847,7 +857,8 @@ def summarize(
 ) -> Result:
     """The spread, the shares and the first order of a design's builds, from its chunks (in order).
 
-    ``progress(n)`` after each chunk of n builds; ``keep``: the builds' values in the result.
+    ``progress(n)`` after each chunk of n builds; ``keep``: every build's values, verdict level
+    (``values["level"]``) and offsets (the (builds, 18) array, drawn again) in the result.
     """
     parts: dict[str, list[np.ndarray]] = {k: [] for k, _ in QUANTITIES}
     levels, models = [], []
@@ -892,7 +903,8 @@ def summarize(
         allocate(fo, target, prob.tolerances.distribution),
         target,
         int(np.ravel(nominal_ev.verdict.level)[0]),
-        values if keep else {},
+        {**values, "level": level} if keep else {},
+        np.concatenate([offsets(prob, *t) for t in prob.chunks]) if keep else None,
     )
 
 
