@@ -261,3 +261,43 @@ def dask_cluster():
     from pumplink.batch import cluster
 
     return cluster
+
+
+#: ``--tolerance`` and ``--yield`` of the searches (size, optimize): a robust design.
+ToleranceOpt = Annotated[
+    Optional[str],
+    typer.Option(
+        "--tolerance",
+        metavar="LENGTH",
+        help="Ask for a robust design: every hole and pivot built within ±LENGTH (e.g. 1mm) and at least "
+        "--yield of such builds passing, to first order in the search and checked on the answer by a "
+        "Monte Carlo of 2,000 builds (docs/tolerance.md).",
+        show_default=False,
+    ),
+]
+YieldOpt = Annotated[
+    Optional[float],
+    typer.Option(
+        "--yield",
+        help="With --tolerance: the share of builds that must pass (default 0.95).",
+        min=0.5,
+        max=0.9999,
+        show_default=False,
+    ),
+]
+
+
+def robust_ask(tolerance: str | None, target: float | None, strict: bool = False):
+    """The search's :class:`pumplink.studies.tolerance.Robust` for ``--tolerance``/``--yield`` (None
+    without --tolerance); --yield alone is a SpecError."""
+    from pumplink.errors import SpecError
+
+    if tolerance is None:
+        if target is not None:
+            raise SpecError("--yield is the share of builds at --tolerance that pass: give --tolerance too")
+        return None
+    from pumplink.studies.tolerance import Robust, tolerances
+
+    return Robust(
+        tolerances(parse_length(tolerance, "--tolerance")), 0.95 if target is None else target, strict
+    )

@@ -14,7 +14,7 @@ from pumplink.output.formats import console, num, render
 from pumplink.output.words import CHECK_LABELS, L_PER_MIN
 
 if TYPE_CHECKING:
-    from pumplink.studies.tolerance import Allocation, Result
+    from pumplink.studies.tolerance import Allocation, Result, Robust, RobustCheck
 
 #: The reported quantities: key, JSON key, words, unit as printed, factor from SI, digits.
 QUANTITY_VIEW = (
@@ -268,4 +268,52 @@ def render_tolerance(res: Result, fmt: str, out=None) -> None:
     render(fmt, out, as_json=lambda: row, as_csv=as_csv, table=table)
 
 
-__all__ = ["allocation_words", "build_rows", "render_tolerance", "tolerance_row"]
+# ----------------------------------------------------------------------------- robust searches
+def robust_row(robust: Robust | None, check: RobustCheck | None) -> dict[str, Any] | None:
+    """The JSON of a robust search (``size``/``optimize --tolerance``): what was asked, the
+    answer's first-order share of builds that pass and the Monte Carlo check (None: none asked;
+    the shares None where no design was found)."""
+    if robust is None:
+        return None
+    mc = None if check is None else check.monte_carlo
+    return {
+        "tolerance_mm": robust.tolerance * 1000,
+        "distribution": robust.tolerances.distribution,
+        "target": robust.target,
+        "without_warnings": robust.strict,
+        "first_order_share": None if check is None else num(check.first_order),
+        "monte_carlo": None if mc is None else {**_share_row(mc), "interval": SHARE_RULE},
+        "meets_target": None if check is None else check.meets,
+    }
+
+
+def robust_line(row: dict[str, Any]) -> str:
+    """A robust search's answer in one sentence (``row`` from :func:`robust_row`)."""
+    ask = (
+        f"builds within ±{row['tolerance_mm']:g} mm that pass"
+        f"{' without warnings' if row['without_warnings'] else ''}"
+    )
+    if row["monte_carlo"] is None:
+        return f"{ask}: at least {row['target']:.0%} asked; no design found"
+    mc = row["monte_carlo"]
+    if row["meets_target"]:
+        verdict = "meets"
+    elif mc["high"] >= row["target"]:
+        verdict = "is, within its interval, at"
+    else:
+        verdict = "falls short of"
+    return (
+        f"{ask}: {row['first_order_share']:.1%} to first order (the search's estimate); "
+        f"{mc['share']:.1%} of {mc['builds']:,} built at random ({mc['low']:.1%}-{mc['high']:.1%}), "
+        f"which {verdict} the {row['target']:.0%} asked"
+    )
+
+
+__all__ = [
+    "allocation_words",
+    "build_rows",
+    "render_tolerance",
+    "robust_line",
+    "robust_row",
+    "tolerance_row",
+]

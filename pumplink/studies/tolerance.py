@@ -578,15 +578,23 @@ def sensitivities(prob: Problem, step: float = STEP) -> FirstOrder:
 
 
 def first_order_shares(
-    designs: PumpDesigns, ev: Evaluation, tol: Tolerances, strict: bool, model=None, step: float = STEP
+    designs: PumpDesigns,
+    ev: Evaluation,
+    tol: Tolerances,
+    strict: bool,
+    model=None,
+    step: float = STEP,
+    only: np.ndarray | None = None,
 ) -> np.ndarray:
     """The first-order share of builds that pass, per design of a search's population: 0 where the
-    design itself does not pass.  Forward differences in the six linkage parameters (and the axle
-    height, exactly), mapped onto the holes by :func:`first_order_map`: 7 evaluations a design
-    (docs/tolerance.md §5)."""
+    design itself does not pass (and where ``only``, a mask over the designs, is False).  Forward
+    differences in the six linkage parameters (and the axle height, exactly), mapped onto the holes
+    by :func:`first_order_map`: 6 evaluations a design beside its own (docs/tolerance.md §5)."""
     n = len(ev)
     level = np.asarray(_broadcast(ev.verdict.level, n))
     ok = np.asarray(ev.feasible, bool) & (level <= (PASS if strict else WARN))
+    if only is not None:
+        ok &= np.asarray(only, bool)
     out = np.zeros(n)
     rows = np.nonzero(ok)[0]
     if rows.size == 0:
@@ -926,6 +934,57 @@ def study(
     return summarize(prob, run_chunks(prob, mapper), target, progress, keep)
 
 
+# ----------------------------------------------------------------------------- robust designs
+#: Builds of the Monte Carlo check of a search's answer (the share to about ±1 % at 95 %).
+CHECK_BUILDS = 2000
+
+
+@dataclass(frozen=True)
+class Robust:
+    """What a robust search asks (``--tolerance 1mm --yield 0.95``): at least ``target`` of the
+    builds at ``tolerances`` pass (``strict``: pass without warnings), to first order in the search
+    (:func:`first_order_shares`) and checked on the answer by a Monte Carlo of ``builds`` builds."""
+
+    tolerances: Tolerances
+    target: float = 0.95
+    strict: bool = False
+    builds: int = CHECK_BUILDS
+    seed: int = 0
+
+    @property
+    def tolerance(self) -> float:
+        """The largest tolerance asked for [m] (a search's ``--tolerance``: every hole the same)."""
+        return max(self.tolerances.holes)
+
+
+@dataclass(frozen=True)
+class RobustCheck:
+    """A search's answer at its tolerances: the first-order share of builds that pass (the
+    search's own estimate) and the Monte Carlo's share with its Wilson interval."""
+
+    robust: Robust
+    first_order: float
+    monte_carlo: Share
+
+    @property
+    def meets(self) -> bool:
+        """The Monte Carlo share reaches the target."""
+        return self.monte_carlo.value >= self.robust.target
+
+
+def shortfall(designs: PumpDesigns, ev: Evaluation, robust: Robust, model=None) -> np.ndarray:
+    """How far the first-order share of builds that pass falls short of the target, per design
+    (0: it reaches it; the target where the design itself does not pass) [-]."""
+    shares = first_order_shares(designs, ev, robust.tolerances, robust.strict, model)
+    return np.maximum(robust.target - shares, 0.0)
+
+
+def robust_check(spec: PumpSpec, robust: Robust, model: str | None = None) -> RobustCheck:
+    """The first-order share and the Monte Carlo check of a search's answer (in this process)."""
+    res = study(spec, robust.tolerances, robust.builds, robust.seed, model, robust.strict, robust.target)
+    return RobustCheck(robust, res.first_order_share, res.clean if robust.strict else res.passed)
+
+
 __all__ = [
     "CHUNK_SAMPLES",
     "DIMENSIONS",
@@ -935,7 +994,10 @@ __all__ = [
     "PARTS",
     "QUANTITIES",
     "WORKSHOP_TOLERANCE",
+    "CHECK_BUILDS",
     "Allocation",
+    "Robust",
+    "RobustCheck",
     "Chunk",
     "FirstOrder",
     "GROUPS",
@@ -951,9 +1013,11 @@ __all__ = [
     "margins",
     "problem",
     "run_chunk",
+    "robust_check",
     "run_chunks",
     "sensitivities",
     "share",
+    "shortfall",
     "study",
     "summarize",
     "tolerances",
