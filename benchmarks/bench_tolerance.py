@@ -67,7 +67,8 @@ def main() -> None:
         "",
         None,
         None,
-        f"Wilson 95 % {share['low']:.4f}-{share['high']:.4f}; first order {row['first_order_pass_share']:.4f}",
+        f"Wilson 95 % {share['low']:.4f}-{share['high']:.4f}; "
+        f"first order {row['first_order_pass_share']:.4f}",
     )
     result(
         f"tolerance, {args.samples:,} builds, one process",

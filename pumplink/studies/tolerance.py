@@ -261,6 +261,10 @@ def take(designs: PumpDesigns, idx) -> PumpDesigns:
             out[f.name] = v
         elif f.name == "linkage":
             out[f.name] = FourBar(*(_broadcast(p, n)[idx] for p in v.parameters))
+        elif dataclasses.is_dataclass(v):  # the spec's [parts]: each size a column too
+            out[f.name] = type(v)(
+                **{g.name: _broadcast(getattr(v, g.name), n)[idx] for g in dataclasses.fields(v)}
+            )
         else:
             out[f.name] = _broadcast(v, n)[idx]
     return PumpDesigns(**out)
