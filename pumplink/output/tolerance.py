@@ -178,10 +178,9 @@ def summary_lines(res: Result) -> list[str]:
     prob = res.problem
     p, c = res.passed, res.clean
     lines = [
-        f"builds that pass: {p.value:.1%} ({p.low:.1%}-{p.high:.1%}, {SHARE_RULE}) of {p.n:,}; "
-        f"without warnings: {c.value:.1%} ({c.low:.1%}-{c.high:.1%})",
-        f"first-order estimate: {res.first_order_share:.1%} pass"
-        + (" without warnings" if prob.strict else ""),
+        f"builds that pass: {p.value:.1%} of {p.n:,} ({p.low:.1%}-{p.high:.1%}, {SHARE_RULE})",
+        f"  without warnings: {c.value:.1%} ({c.low:.1%}-{c.high:.1%})",
+        f"  first-order estimate: {res.first_order_share:.1%}" + (" without warnings" if prob.strict else ""),
     ]
     failing = sorted(((v, k) for k, v in res.fails.items() if v), reverse=True)
     if failing:
@@ -218,11 +217,8 @@ def render_tolerance(res: Result, fmt: str, out=None) -> None:
         )
         c.print(f"[bold]{escape(prob.name)}[/]: {prob.samples:,} builds, {escape(what)}")
         models = ", ".join(f"{k} {v:.0%}" for k, v in row["models"].items())
-        c.print(
-            f"{row['sigma_rule']} on each coordinate; seed {prob.seed}; decided by {models}; "
-            f"the design: {row['nominal_verdict']}",
-            markup=False,
-        )
+        c.print(f"{row['sigma_rule']} on each coordinate; seed {prob.seed}", markup=False)
+        c.print(f"the design: {row['nominal_verdict']}; the builds decided by {models}", markup=False)
         t = Table(title="The builds (5 % and 95 %: percentiles)", title_justify="left")
         for h, j in (("quantity", "left"), ("design", "right"), ("median", "right"), ("5 %", "right"),
                      ("95 %", "right")):  # fmt: skip
@@ -246,12 +242,12 @@ def render_tolerance(res: Result, fmt: str, out=None) -> None:
             title_justify="left",
         )
         m.add_column("hole")
-        m.add_column("peak force per mm\nalong/x, across/y", justify="right")
+        m.add_column("peak force \\[N/mm]\nalong/x, across/y", justify="right")
         m.add_column("share of\nthe spread", justify="right")
         for i in order:
             key, _, words = res.holes[i]
             g = fo.peak_force[2 * i : 2 * i + 2] * 1e-3
-            m.add_row(words, f"{g[0]:+.2f}, {g[1]:+.2f} N", f"{contrib[i]:.0%}")
+            m.add_row(words, f"{g[0]:+.2f}, {g[1]:+.2f}", f"{contrib[i]:.0%}")
         c.print(m)
         c.print(
             f"first-order spread of the peak force: σ = {fo.spread(fo.peak_force, tol):.2f} N "
