@@ -267,6 +267,39 @@ def _evaluate(batch: Batch, index: int, start: int, stop: int, samples: int, mod
     return evaluate_chunk(batch, start, stop, samples, index, model)
 
 
+def map_ordered(fn: Callable[..., Any], items: Sequence[tuple], client: distributed.Client) -> Iterator[Any]:
+    """``fn(*item)`` for each item on the cluster, yielded in the items' order, as
+    :func:`pumplink.batch.runner.map_ordered` does on the local pool: at most two items per worker
+    thread in flight, a task that keeps killing its workers or a lost scheduler raises
+    ``BrokenProcessPool`` (with the reason).  ``fn`` must be importable on the workers (a
+    module-level function of pumplink)."""
+    it = iter(items)
+    width = 2 * threads(client)
+    pending: deque = deque(client.submit(fn, *item, pure=False) for _, item in zip(range(width), it))
+    try:
+        while pending:
+            future = pending.popleft()
+            result = _result(future)
+            nxt = next(it, None)
+            if nxt is not None:
+                pending.append(client.submit(fn, *nxt, pure=False))
+            del future  # released on the cluster once the driver holds the result
+            yield result
+    finally:
+        if pending:
+            client.cancel(list(pending))
+
+
+def _result(future: distributed.Future) -> Any:
+    """A task's result; a task that killed its workers, or a lost scheduler, is BrokenProcessPool."""
+    try:
+        return future.result()
+    except distributed.KilledWorker:
+        raise BrokenProcessPool("a task killed its Dask workers (out of memory?)") from None
+    except distributed.client.FutureCancelledError:  # the scheduler went away
+        raise BrokenProcessPool("lost the connection to the Dask scheduler") from None
+
+
 def run(
     batches: Sequence[Batch],
     client: distributed.Client,
@@ -298,12 +331,7 @@ def run(
     try:
         while pending:
             future = pending.popleft()
-            try:
-                c = future.result()
-            except distributed.KilledWorker:
-                raise BrokenProcessPool("a task killed its Dask workers (out of memory?)") from None
-            except distributed.client.FutureCancelledError:  # the scheduler went away
-                raise BrokenProcessPool("lost the connection to the Dask scheduler") from None
+            c = _result(future)
             nxt = next(tasks, None)
             if nxt is not None:
                 pending.append(submit(nxt))

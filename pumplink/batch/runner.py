@@ -361,15 +361,18 @@ def plan(
 _worker_batches: Sequence[Batch] = ()
 
 
-def _init_worker(batches: Sequence[Batch]) -> None:
+def _ignore_stop_signals() -> None:
     import signal
 
-    global _worker_batches
-    _worker_batches = batches
     # The parent handles Ctrl-C and SIGTERM (sent to the whole process group by a terminal or a
     # CI runner): it cancels the queued chunks and the workers exit after their current one.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
+
+
+def _init_worker(batches: Sequence[Batch]) -> None:
+    global _worker_batches
+    _worker_batches = batches
 
 
 def _evaluate_one(batches: Sequence[Batch], task: tuple[int, int, int], samples: int, post, model=None):
@@ -380,6 +383,62 @@ def _evaluate_one(batches: Sequence[Batch], task: tuple[int, int, int], samples:
 
 def _task(task: tuple[int, int, int], samples: int, post, model=None):
     return _evaluate_one(_worker_batches, task, samples, post, model)
+
+
+def map_ordered(
+    fn: Callable[..., Any],
+    items: Sequence[tuple],
+    workers: int = 1,
+    initializer: Callable[..., None] | None = None,
+    initargs: tuple = (),
+) -> Iterator[Any]:
+    """``fn(*item)`` for each item, yielded in the items' order: the batch engine's scheduling.
+
+    With ``workers`` > 1 the items are run by that many processes (at most one per item;
+    ``loky.ProcessPoolExecutor``: a worker killed mid-run raises ``BrokenProcessPool`` here
+    instead of hanging), at most 2 items per worker in flight, so memory stays bounded however
+    many there are; the workers ignore Ctrl-C and SIGTERM, which this process handles.  ``fn``
+    and the items must pickle; ``initializer(*initargs)`` runs once in each worker (after the
+    signals are set), to hand it what every item shares.  Else, one after the other here
+    (``initializer`` first).
+    """
+    workers = min(workers, len(items))  # never more processes than items
+    if workers <= 1:
+        if initializer is not None:
+            initializer(*initargs)
+        for item in items:
+            yield fn(*item)
+        return
+    from collections import deque
+
+    from loky import ProcessPoolExecutor
+
+    pool = ProcessPoolExecutor(max_workers=workers, initializer=_init_pool, initargs=(initializer, initargs))
+    pending: deque = deque()
+    try:
+        it = iter(items)
+        for item in it:
+            pending.append(pool.submit(fn, *item))
+            if len(pending) >= 2 * workers:
+                break
+        while pending:
+            result = pending.popleft().result()
+            nxt = next(it, None)
+            if nxt is not None:
+                pending.append(pool.submit(fn, *nxt))
+            yield result
+    finally:
+        # Ctrl-C, SIGTERM, a dead worker or an error: drop the queued items and let the running
+        # ones finish (tasks are sized to take well under a second at ordinary --samples).
+        for f in pending:
+            f.cancel()
+        pool.shutdown(wait=True)
+
+
+def _init_pool(initializer, initargs) -> None:
+    _ignore_stop_signals()
+    if initializer is not None:
+        initializer(*initargs)
 
 
 def run(
@@ -393,45 +452,22 @@ def run(
 ) -> Iterator[tuple[Chunk, Any]]:
     """Evaluate slice ``chunk`` of the run, yielding ``(Chunk, post(batch, chunk))`` in variant order.
 
-    With ``workers`` > 1 the chunks are evaluated by that many processes (at most one per task;
-    ``loky.ProcessPoolExecutor``: a worker killed mid-run raises ``BrokenProcessPool`` here
-    instead of hanging), at most 2 tasks per worker in flight, so memory stays bounded whatever
-    the grid size.  ``post`` (a picklable module-level function, e.g. the row
-    formatting) runs in the worker too, so it is parallel as well.  ``model``: a model key to
-    decide every variant that gives inertia (``--model``), else the least model that is enough.
+    With ``workers`` > 1 the chunks are evaluated by that many processes (:func:`map_ordered`: at
+    most one per task, at most 2 tasks per worker in flight, a killed worker raises
+    ``BrokenProcessPool``); the batches go to each worker once.  ``post`` (a picklable
+    module-level function, e.g. the row formatting) runs in the worker too, so it is parallel as
+    well.  ``model``: a model key to decide every variant that gives inertia (``--model``), else
+    the least model that is enough.
     """
     if designs is None:
         designs = task_designs(samples)
     tasks = plan(batches, chunk, designs)
-    workers = min(workers, len(tasks))  # never more processes than tasks
-    if workers <= 1:
+    if min(workers, len(tasks)) <= 1:
         for t in tasks:
             yield _evaluate_one(batches, t, samples, post, model)
         return
-    from collections import deque
-
-    from loky import ProcessPoolExecutor
-
-    pool = ProcessPoolExecutor(max_workers=workers, initializer=_init_worker, initargs=(tuple(batches),))
-    pending: deque = deque()
-    try:
-        it = iter(tasks)
-        for t in it:
-            pending.append(pool.submit(_task, t, samples, post, model))
-            if len(pending) >= 2 * workers:
-                break
-        while pending:
-            result = pending.popleft().result()
-            nxt = next(it, None)
-            if nxt is not None:
-                pending.append(pool.submit(_task, nxt, samples, post, model))
-            yield result
-    finally:
-        # Ctrl-C, SIGTERM, a dead worker or an error: drop the queued chunks and let the running
-        # ones finish (tasks are sized to take well under a second at ordinary --samples).
-        for f in pending:
-            f.cancel()
-        pool.shutdown(wait=True)
+    items = [(t, samples, post, model) for t in tasks]
+    yield from map_ordered(_task, items, workers, _init_worker, (tuple(batches),))
 
 
 def task_designs(samples: int) -> int:

@@ -9,7 +9,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import ModelOpt, StrictOpt, app, model_key
+from pumplink.cli.common import ModelOpt, StrictOpt, app, dask_cluster, model_key, need_extra
 from pumplink.errors import SpecError
 
 
@@ -142,11 +142,11 @@ def batch(
     if fmt.value == "parquet":
         if out is None:
             raise SpecError("--format parquet writes a binary file: give --out FILE.parquet with it")
-        _need("pyarrow", "--format parquet", "parquet", "pyarrow")
+        need_extra("pyarrow", "--format parquet", "parquet", "pyarrow")
     for opt, path in (("--out", out), ("--junit", junit)):  # before any work: fail fast, exit 2
         if path is not None:
             check_output(path, opt)
-    cluster = _dask() if scheduler is not None else None  # not installed: one line, exit 2
+    cluster = dask_cluster() if scheduler is not None else None  # not installed: one line, exit 2
     where = cluster.parse_scheduler(scheduler) if cluster is not None else None
     if where is not None and workers != 1:
         raise SpecError(
@@ -211,23 +211,3 @@ def batch(
         wrote = [p for p in (out, junit) if p is not None]
         sys.stderr.write(rb.summary_line(summary, time.perf_counter() - t0, wrote) + "\n")
     raise typer.Exit(1 if summary["failed_selected"] else 0)
-
-
-def _need(module: str, option: str, extra: str, what: str) -> None:
-    """One line saying how to install an optional extra when ``module`` cannot be imported (exit 2)."""
-    import importlib
-
-    try:
-        importlib.import_module(module)
-    except ImportError:
-        raise SpecError(
-            f"{option} needs {what}, which is not installed; install it with pip install 'pumplink[{extra}]'"
-        ) from None
-
-
-def _dask():
-    """:mod:`pumplink.batch.cluster`, or one line saying how to install Dask (exit 2)."""
-    _need("distributed", "--scheduler", "dask", "Dask")
-    from pumplink.batch import cluster
-
-    return cluster

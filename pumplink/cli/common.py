@@ -210,3 +210,94 @@ def spec_or_default(path: Path | None):
         typer.echo(f"using ./{LOCAL_SPEC} (give a spec file to use another)", err=True)
         return load_spec(LOCAL_SPEC)
     return default_spec()
+
+
+#: Units a length may be given in on the command line (tolerances), to metres.
+LENGTH_UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0}
+
+
+def parse_length(text: str, option: str) -> float:
+    """A length with its unit -> metres: ``1mm``, ``0.5 mm``, ``0.1cm``, ``0.001m``.
+
+    The unit is required (a bare ``1`` could be a metre or a millimetre).  Raises
+    :class:`~pumplink.errors.SpecError` (one line, exit 2) naming the option.
+    """
+    from pumplink.errors import SpecError, shown
+
+    m = re.fullmatch(r"\s*([0-9.eE+-]+)\s*([a-z]*)\s*", str(text))
+    unit = m.group(2) if m else ""
+    if not m or unit not in LENGTH_UNITS:
+        raise SpecError(
+            f"{option} {shown(str(text))} is not a length with a unit; give e.g. {option} 1mm "
+            "(units: mm, cm, m)"
+        )
+    try:
+        value = float(m.group(1)) * LENGTH_UNITS[unit]
+    except ValueError:
+        raise SpecError(f"{option} {shown(str(text))} is not a number; give e.g. {option} 1mm") from None
+    if not math.isfinite(value) or value < 0:
+        raise SpecError(f"{option} {shown(str(text))} must be a length of 0 or more, e.g. {option} 1mm")
+    return value
+
+
+def need_extra(module: str, option: str, extra: str, what: str) -> None:
+    """One line saying how to install an optional extra when ``module`` cannot be imported (exit 2)."""
+    import importlib
+
+    from pumplink.errors import SpecError
+
+    try:
+        importlib.import_module(module)
+    except ImportError:
+        raise SpecError(
+            f"{option} needs {what}, which is not installed; install it with pip install 'pumplink[{extra}]'"
+        ) from None
+
+
+def dask_cluster():
+    """:mod:`pumplink.batch.cluster` for ``--scheduler``, or one line saying how to install Dask
+    (exit 2)."""
+    need_extra("distributed", "--scheduler", "dask", "Dask")
+    from pumplink.batch import cluster
+
+    return cluster
+
+
+#: ``--tolerance`` and ``--yield`` of the searches (size, optimize): a robust design.
+ToleranceOpt = Annotated[
+    Optional[str],
+    typer.Option(
+        "--tolerance",
+        metavar="LENGTH",
+        help="Ask for a robust design: every hole and pivot built within ±LENGTH (e.g. 1mm) and at least "
+        "--yield of such builds passing, to first order in the search and checked on the answer by a "
+        "Monte Carlo of 2,000 builds (docs/tolerance.md).",
+        show_default=False,
+    ),
+]
+YieldOpt = Annotated[
+    Optional[float],
+    typer.Option(
+        "--yield",
+        help="With --tolerance: the share of builds that must pass (default 0.95).",
+        min=0.5,
+        max=0.9999,
+        show_default=False,
+    ),
+]
+
+
+def robust_ask(tolerance: str | None, target: float | None, strict: bool = False):
+    """The search's :class:`pumplink.studies.tolerance.Robust` for ``--tolerance``/``--yield`` (None
+    without --tolerance); --yield alone is a SpecError."""
+    from pumplink.errors import SpecError
+
+    if tolerance is None:
+        if target is not None:
+            raise SpecError("--yield is the share of builds at --tolerance that pass: give --tolerance too")
+        return None
+    from pumplink.studies.tolerance import Robust, tolerances
+
+    return Robust(
+        tolerances(parse_length(tolerance, "--tolerance")), 0.95 if target is None else target, strict
+    )

@@ -8,7 +8,18 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, ModelOpt, StrictOpt, app, load_specs, model_key
+from pumplink.cli.common import (
+    Format,
+    FormatOpt,
+    ModelOpt,
+    StrictOpt,
+    ToleranceOpt,
+    YieldOpt,
+    app,
+    load_specs,
+    model_key,
+    robust_ask,
+)
 from pumplink.errors import SpecError
 
 
@@ -79,6 +90,8 @@ def optimize(
     ] = False,
     strict: StrictOpt = False,
     model: ModelOpt = None,
+    tolerance: ToleranceOpt = None,
+    target: YieldOpt = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Search frame placement, rocker and swing for the least operator force.
@@ -86,8 +99,9 @@ def optimize(
     Differential evolution over the vectorised force kernel, then a local polish, subject to: a
     crank-rocker exists, transmission angle >= 45°, grip height and stroke in the ergonomic
     ranges.  The spec's own design and the optimum are then judged exactly as pumplink force
-    judges them: PASS, PASS with warnings or FAIL.  Exit 0 if the optimum passes (1 with
-    --strict if it warns), 1 if it fails or nothing is feasible.
+    judges them: PASS, PASS with warnings or FAIL.  With --tolerance, at least --yield
+    of the pumps built within it pass too (docs/tolerance.md).  Exit 0 if the optimum
+    passes (1 with --strict if it warns), 1 if it fails or nothing is feasible.
 
     Example: [bold]pumplink optimize configs/prototype.toml --write best.toml[/]
     """  # noqa: E501 -- typer prints this docstring as the --help text, keeping its line breaks
@@ -105,7 +119,14 @@ def optimize(
 
         check_output(write, "--write")
     problem = make_problem(
-        load_specs([spec])[0], bounds, objective.value, axle_height, gh, st, model_key(model)
+        load_specs([spec])[0],
+        bounds,
+        objective.value,
+        axle_height,
+        gh,
+        st,
+        model_key(model),
+        robust_ask(tolerance, target, strict),
     )
     from pumplink.output.formats import progress
 

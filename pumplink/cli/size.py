@@ -7,7 +7,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, app, spec_or_default
+from pumplink.cli.common import Format, FormatOpt, ToleranceOpt, YieldOpt, app, robust_ask, spec_or_default
 from pumplink.errors import SpecError
 
 
@@ -62,6 +62,8 @@ def size(
     seed: Annotated[
         int, typer.Option(help="Seed of the search (the same seed, the same answer).", min=0)
     ] = 0,
+    tolerance: ToleranceOpt = None,
+    target: YieldOpt = None,
     write: Annotated[
         Optional[Path], typer.Option(help="Write the sized pump as a spec (TOML).", show_default=False)
     ] = None,
@@ -77,8 +79,10 @@ def size(
     the most flow with no check failing and, unless --allow-warnings, none
     warning; every candidate is judged as pumplink force judges it.  Prints the
     pump, its flow, its share of what the operator's sustained power could lift
-    (Q*), what binds, and the flow at other heads.  Exit 0 when a design is found,
-    1 when none meets the limits (the output says what holds it back).
+    (Q*), what binds, and the flow at other heads.  With --tolerance, at least
+    --yield of the pumps built within it pass too (docs/tolerance.md).  Exit 0
+    when a design is found, 1 when none meets the limits (the output says what
+    holds it back).
 
     Example: [bold]pumplink size --head 12 --profile women --write well.toml[/]
     """
@@ -92,7 +96,8 @@ def size(
         raise SpecError(f"{write} exists; choose another path or add --force to overwrite it")
     if write is not None:
         check_output(write, "--write")
-    problem = sizing.problem_for(spec_or_default(spec), head, profile, _bores(pipes), allow_warnings)
+    robust = robust_ask(tolerance, target)
+    problem = sizing.problem_for(spec_or_default(spec), head, profile, _bores(pipes), allow_warnings, robust)
     with progress(len(problem.pipes), "size (pipe bores)") as advance:
         result = sizing.size(problem, seed=seed, progress=advance)
     render_size(result, fmt.value)

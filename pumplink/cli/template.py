@@ -25,11 +25,24 @@ def template(
         Path, typer.Option("--out", "-o", help="Template file: .pdf (printable pages), .svg or .dxf.")
     ] = Path("template.pdf"),
     paper: Annotated[Paper, typer.Option(help="Paper of the PDF pages (landscape).")] = Paper.A4,
+    target: Annotated[
+        float,
+        typer.Option(
+            "--yield",
+            help="The share of builds that must pass: each hole's tolerance is allocated for it "
+            "(pumplink tolerance, docs/tolerance.md).",
+            min=0.5,
+            max=0.9999,
+        ),
+    ] = 0.95,
 ) -> None:
     """A 1:1 drilling template of each link (PDF, SVG or DXF).
 
     Hole centres, the distance between them in mm, hole diameter
-    (linkage.hole_diameter, default 10 mm), link name.
+    (linkage.hole_diameter, default 10 mm), link name, and each hole's
+    tolerance for --yield of the builds to pass (the critical holes, which
+    need more care than a hand-drilled hole gets, ringed in red;
+    docs/tolerance.md).
 
     PDF: links longer than the paper are tiled over several pages with
     numbered alignment marks; every page has a 100 mm scale bar to check the
@@ -47,11 +60,14 @@ def template(
     if out.suffix.lower() != ".dxf":
         pyplot()
     from pumplink.output.template import write_template
-    from pumplink.studies.drawing import drawing
+    from pumplink.studies.drawing import drawing, tolerance_marks
 
     s = load_specs([spec])[0]
     dr = drawing(s)
-    pages = write_template(dr.parts, out, paper.value, s.name, dr.tube_given)
+    parts, marks = tolerance_marks(s, dr.parts, target)
+    pages = write_template(parts, out, paper.value, s.name, dr.tube_given, marks)
     sys.stderr.write(
         f"wrote {out}" + (f" ({pages} pages, {paper.value})" if out.suffix.lower() == ".pdf" else "") + "\n"
     )
+    if marks.reason is not None:
+        sys.stderr.write(f"no tolerances on the template: {marks.reason}\n")

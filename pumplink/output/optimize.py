@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 from pumplink.output.formats import console, num, render
 from pumplink.output.formats import fmt as _f
+from pumplink.output.tolerance import robust_line, robust_row
 
 if TYPE_CHECKING:
     pass
@@ -90,6 +91,7 @@ def optimize_row(res) -> dict[str, Any]:
         "evaluations": res.evaluations,
         "generations": res.iterations,
         "polished": res.polished,
+        "robust": robust_row(p.robust, res.robust),
     }
 
 
@@ -235,6 +237,8 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
                 "Widen the bounds that bind (--vary), or relax --grip-height / --stroke.",
                 markup=False,
             )
+        if row["robust"] is not None:
+            c.print(robust_line(row["robust"]), markup=False)
         tail = " — fails under --strict" if strict and o["verdict"] == "PASS with warnings" else ""
         how = f" ({o['model']})" if fly else ""
         c.print(

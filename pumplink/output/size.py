@@ -10,6 +10,7 @@ import sys
 from typing import TYPE_CHECKING, Any
 
 from pumplink.output.formats import console, num, render
+from pumplink.output.tolerance import robust_line, robust_row
 from pumplink.output.words import CHECK_ADVICE, CHECK_LABELS, L_PER_MIN, M3_PER_H, OPERATOR_NOUNS, check_row
 
 if TYPE_CHECKING:
@@ -73,6 +74,7 @@ def size_row(res: SizeResult) -> dict[str, Any]:
             for h, v, q in res.discharge
         ],
         "evaluations": res.evaluations,
+        "robust": robust_row(res.problem.robust, res.robust),
     }
 
 
@@ -91,6 +93,13 @@ def _holding_back(res: SizeResult) -> str:
         )
     advice = "; ".join(dict.fromkeys(CHECK_ADVICE.get(c.key, "") for c in bad if CHECK_ADVICE.get(c.key)))
     bores = ", ".join(f"{s.pipe * 1000:g}" for s in res.tried)
+    if not bad and b.shortfall > 0:
+        r = res.problem.robust
+        return (
+            f"no design with a {bores} mm pipe meets the limits with {r.target:.0%} of its builds within "
+            f"±{r.tolerance * 1000:g} mm passing: the closest ({b.pipe * 1000:g} mm) has "
+            f"{r.target - b.shortfall:.1%} to first order; allow a larger --tolerance or a lower --yield"
+        )
     return (
         f"no design with a {bores} mm pipe meets the limits: the closest ({b.pipe * 1000:g} mm) still has "
         f"{'; '.join(parts) or 'a check beyond its limit'}"
@@ -137,6 +146,8 @@ def render_size(res: SizeResult, fmt: str, out=None) -> None:
             markup=False,
         )
         c.print(f"verdict: {row['verdict']} (pumplink force on the written spec says the same)", markup=False)
+        if row["robust"] is not None:
+            c.print(robust_line(row["robust"]), markup=False)
         if row["binding"]:
             words = [CHECK_LABELS.get(b, b) for b in row["binding"]]
             c.print(f"what binds: {'; '.join(words)}", markup=False)

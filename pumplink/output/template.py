@@ -6,7 +6,10 @@
 * SVG: one canvas at 1:1 (for a vector editor or a cutter), no tiling.
 * DXF: millimetres, one layer per link (ezdxf, optional extra ``pumplink[dxf]``).
 
-Renderers only: hole centres, diameters and lengths come from :class:`pumplink.studies.drawing.Part`.
+Renderers only: hole centres, diameters and lengths come from :class:`pumplink.studies.drawing.Part`,
+and each hole's tolerance from :func:`pumplink.studies.drawing.tolerance_marks`: the tolerance under
+each hole, a red ring and "critical" round the holes that need more care than a hand-drilled hole
+gets, the stand's tolerance in the note on the first page (docs/tolerance.md).
 1 mm on the paper is 72 / 25.4 = 2.8346 pt in the PDF and SVG.
 """
 
@@ -36,6 +39,25 @@ OVERLAP = 20.0
 SCALE_BAR = (100.0, 4.0)
 CUT_LIST_HEIGHT = 34.0
 DEFAULT_TUBE = "3/4-inch medium steel tube, 26.9 x 2.6 mm"
+#: The colour of the critical holes' rings and words.
+CRITICAL = "C3"
+
+
+def tolerance_text(t: float) -> str:
+    """A hole's tolerance as printed on the template: ±0.5 mm, or what no workshop holds."""
+    return f"±{t * 1000:g} mm" if math.isfinite(t) else "< ±0.1 mm"
+
+
+def marks_note(marks) -> str:
+    """The first page's line on the tolerances (``marks``: :class:`pumplink.studies.drawing.Marks`)."""
+    if marks.reason is not None:
+        return f"no tolerances: {marks.reason}"
+    read = "anywhere within ±t" if marks.distribution == "uniform" else "t = 3 sigma"
+    stand = tolerance_text(marks.stand) + (" (critical)" if marks.stand_critical else "")
+    return (
+        f"tolerances for {marks.target:.0%} of builds to pass ({read}; docs/tolerance.md): under each hole; "
+        f"red rings: critical holes; axle and rocker pivot on the stand {stand}"
+    )
 
 
 @dataclass(frozen=True)
@@ -163,20 +185,34 @@ def _bar(ax, p, x0, yc, lo_clip, hi_clip, clip):
         artists.append(ax.add_patch(Circle((x, yc), d / 2, fill=False, ec="k", lw=0.6)))
         _cross(ax, x, yc, size=d / 2 + 3, lw=0.3, gid=f"hole-{p.key}-{i}")
         ax.text(x + d / 2 + 1.5, yc + 1.5, f"{label}  Ø{d:g}", fontsize=6.5, va="bottom")
+        if p.hole_tolerances:
+            critical = p.hole_critical[i]
+            words = tolerance_text(p.hole_tolerances[i]) + ("  critical" if critical else "")
+            tol = ax.text(
+                x + d / 2 + 1.5, yc - 1.5, words, fontsize=6.5, va="top", color=CRITICAL if critical else "k"
+            )
+            tol.set_gid(f"tolerance-{p.key}-{i}")
+            if critical:
+                ring = Circle((x, yc), d / 2 + 2.5, fill=False, ec=CRITICAL, lw=1.0)
+                ring.set_gid(f"critical-{p.key}-{i}")
+                artists.append(ax.add_patch(ring))
     if p.end_label:
         x = x0 + p.end * 1000
         if lo_clip - 1e-6 <= p.end * 1000 <= hi_clip + 1e-6:
             (g,) = ax.plot([x, x], [yc - w / 2 - 2, yc + w / 2 + 2], color="C3", lw=0.6)
             artists.append(g)
-            ax.text(
+            tol = "" if p.end_tolerance is None else f", {tolerance_text(p.end_tolerance)}"
+            tol += "  critical" if p.end_critical else ""
+            end = ax.text(
                 x + 2,
                 yc,
-                f"{p.end_label}: {p.end * 1000:.1f} mm from {p.hole_labels[0]}",
+                f"{p.end_label}: {p.end * 1000:.1f} mm from {p.hole_labels[0]}{tol}",
                 fontsize=6.5,
                 ha="left",
                 va="center",
                 color="C3",
             )
+            end.set_gid(f"end-{p.key}")
     for a in artists:
         a.set_clip_path(clip)
 
@@ -190,7 +226,7 @@ def _new_page(plt, W, H):
     return fig, ax
 
 
-def _page(plt, parts, page, k, n, paper, name, cut_rows):
+def _page(plt, parts, page, k, n, paper, name, cut_rows, marks=None):
     from matplotlib.patches import Rectangle
 
     W, H = PAPERS[paper]
@@ -223,6 +259,9 @@ def _page(plt, parts, page, k, n, paper, name, cut_rows):
             for cell, w in zip(row, widths):
                 ax.text(x, top - 6 - 5 * r, cell, fontsize=7, va="top", weight="bold" if r == 0 else "normal")
                 x += w
+        if marks is not None:
+            note = ax.text(MARGIN + 5, top - 6 - 5 * len(cut_rows), marks_note(marks), fontsize=6.5, va="top")
+            note.set_gid("tolerance-note")
         top -= CUT_LIST_HEIGHT
     x_left = MARGIN + 5
     for r, t in enumerate(page):
@@ -274,7 +313,7 @@ def _page(plt, parts, page, k, n, paper, name, cut_rows):
     return fig
 
 
-def template_pdf(parts, path, paper: str, name: str, tube_given: bool) -> int:
+def template_pdf(parts, path, paper: str, name: str, tube_given: bool, marks=None) -> int:
     """Write the tiled PDF template (written to a temporary file, then renamed); returns pages."""
     plt = pyplot()
     from matplotlib.backends.backend_pdf import PdfPages
@@ -295,13 +334,14 @@ def template_pdf(parts, path, paper: str, name: str, tube_given: bool) -> int:
                 paper,
                 name,
                 cut_list_rows(parts, tube_given) if k == 1 else None,
+                marks if k == 1 else None,
             )
             pdf.savefig(fig)
             plt.close(fig)
     return len(pages)
 
 
-def template_svg(parts, path, name: str) -> None:
+def template_svg(parts, path, name: str, marks=None) -> None:
     """Every bar on one canvas at 1:1, untiled, with its hole centres (SVG, in pt: 1 mm = 72/25.4 pt)."""
     plt = pyplot()
     path = Path(path)
@@ -314,6 +354,9 @@ def template_svg(parts, path, name: str) -> None:
     )
     _scale_bar(ax, MARGIN + 5, MARGIN + 6)
     top = H - MARGIN - HEADER
+    if marks is not None:
+        note = ax.text(MARGIN, H - MARGIN - 8, marks_note(marks), fontsize=6.5, va="center")
+        note.set_gid("tolerance-note")
     from matplotlib.patches import Rectangle
 
     for r, p in enumerate(parts):
@@ -337,7 +380,7 @@ def template_svg(parts, path, name: str) -> None:
         plt.close(fig)
 
 
-def template_dxf(parts, path, name: str) -> None:
+def template_dxf(parts, path, name: str, marks=None) -> None:
     """The bars in millimetres, one DXF layer per link: outline, centre line, hole circles, label."""
     try:
         import ezdxf
@@ -359,27 +402,37 @@ def template_dxf(parts, path, name: str) -> None:
             [(lo, yc - w), (hi, yc - w), (hi, yc + w), (lo, yc + w)], close=True, dxfattribs=attr
         )
         msp.add_line((lo - 3, yc), (hi + 3, yc), dxfattribs=attr)
-        for h in p.holes:
+        for i, h in enumerate(p.holes):
             msp.add_circle((h * 1000, yc), p.hole_diameter * 500, dxfattribs=attr)
+            if p.hole_tolerances:
+                words = tolerance_text(p.hole_tolerances[i]) + (" critical" if p.hole_critical[i] else "")
+                msp.add_text(words, height=2.5, dxfattribs=attr).set_placement(
+                    (h * 1000 + p.hole_diameter * 500 + 1.5, yc - w - 4)
+                )
+                if p.hole_critical[i]:  # a ring round the hole, as on the paper template
+                    msp.add_circle((h * 1000, yc), p.hole_diameter * 500 + 2.5, dxfattribs=attr)
         msp.add_text(
             f"{name}: {p.name}, {p.centre_distance * 1000:.1f} mm between hole centres",
             height=4.0,
             dxfattribs=attr,
         ).set_placement((lo, yc + w + 3))
+    if marks is not None:
+        msp.add_text(marks_note(marks), height=3.0).set_placement((0.0, ROW))
     text = io.StringIO()
     doc.write(text)
     with atomic_write(path) as f:
         f.write(text.getvalue())
 
 
-def write_template(parts, path, paper: str, name: str, tube_given: bool) -> int:
-    """The template in the format of ``path``'s extension; returns the number of pages (1 for SVG/DXF)."""
+def write_template(parts, path, paper: str, name: str, tube_given: bool, marks=None) -> int:
+    """The template in the format of ``path``'s extension; returns the number of pages (1 for SVG/DXF).
+    ``marks``: the tolerance notes (:class:`pumplink.studies.drawing.Marks`), with the parts'."""
     path = check_template_path(path)
     suffix = path.suffix.lower()
     if suffix == ".pdf":
-        return template_pdf(parts, path, paper, name, tube_given)
+        return template_pdf(parts, path, paper, name, tube_given, marks)
     if suffix == ".svg":
-        template_svg(parts, path, name)
+        template_svg(parts, path, name, marks)
     else:
-        template_dxf(parts, path, name)
+        template_dxf(parts, path, name, marks)
     return 1

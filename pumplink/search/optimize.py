@@ -35,7 +35,7 @@ Deterministic for a given ``seed``.  Pure functions; the CLI renders the result.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -46,6 +46,7 @@ from pumplink.evaluate import PumpDesigns, evaluate, pump_designs
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
 from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_heights, grip_stroke, synthesize
 from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC
+from pumplink.studies.tolerance import Robust, RobustCheck, first_order_shares, robust_check
 from pumplink.verdict import excess
 
 #: Keys that may vary (the [linkage] table of the spec), with their units.
@@ -106,6 +107,12 @@ class Problem:
     grip_height: tuple[float, float] = (0.0, 5.0)
     stroke: tuple[float, float] = STROKE_M
     forced: str | None = None  # a model key (--model); None: the least model that is enough
+    robust: Robust | None = None  # at least this share of builds at these tolerances pass
+
+    @property
+    def needs_verdict(self) -> bool:
+        """The constraints need the whole evaluation (the verdict), not the geometry alone."""
+        return self.objective == "flow" or self.robust is not None
 
     @property
     def flywheel(self) -> bool:
@@ -149,13 +156,21 @@ class Problem:
         fill = [{}, {}, {"lo": f"{gl:g}"}, {"hi": f"{gh:g}"}, {"lo": f"{sl:g}"}, {"hi": f"{sh:g}"}, {}]
         names = [name.format(**f) for (name, _), f in zip(CONSTRAINTS, fill)]
         names = names[:-1] if self.flywheel else names
-        return names + [VERDICT_CONSTRAINT[0]] if self.objective == "flow" else names
+        names = names + [VERDICT_CONSTRAINT[0]] if self.objective == "flow" else names
+        if self.robust is not None:
+            r = self.robust
+            names.append(
+                f"at least {r.target:.0%} of builds at ±{r.tolerance * 1000:g} mm pass"
+                f"{' without warnings' if r.strict else ''} (first order)"
+            )
+        return names
 
     def constraint_units(self) -> list[str]:
         """The unit of each constraint's slack, in :meth:`constraint_names` order."""
         units = [u for _, u in CONSTRAINTS]
         units = units[:-1] if self.flywheel else units
-        return units + [VERDICT_CONSTRAINT[1]] if self.objective == "flow" else units
+        units = units + [VERDICT_CONSTRAINT[1]] if self.objective == "flow" else units
+        return units + ["share"] if self.robust is not None else units
 
 
 @dataclass(frozen=True)
@@ -203,6 +218,7 @@ class OptimizationResult:
     spec_result: Any = None  # pumplink force's analysis of the spec's own design (ForceResult)
     best_result: Any = None  # ... and of the optimum (its verdict decides the exit code)
     force_evaluations: int = 0  # designs whose force was computed: those meeting every constraint
+    robust: RobustCheck | None = None  # a robust search's optimum at its tolerances
 
     @property
     def variable_units(self) -> tuple[str, ...]:
@@ -319,11 +335,13 @@ def make_problem(
     grip_height=None,
     stroke=STROKE_M,
     model: str | None = None,
+    robust: Robust | None = None,
 ) -> Problem:
     """Assemble a :class:`Problem`; the axle height is ``axle_height``, else the spec's
     ``wheel.axle_height``, else :data:`DEFAULT_AXLE_HEIGHT_M`.  ``model``: a model key that decides
     the peak (``--model``), else the least model that is enough for each design.  ``grip_height``:
-    the range the grip keeps over the swing [m], default the operator profile's."""
+    the range the grip keeps over the swing [m], default the operator profile's.  ``robust``: at
+    least its share of builds at its tolerances must pass (docs/tolerance.md §5)."""
     bounds = dict(DEFAULT_BOUNDS) if bounds is None else bounds
     if grip_height is None:
         grip_height = spec.operator.limits.grip_height_range
@@ -369,6 +387,7 @@ def make_problem(
         tuple(grip_height),
         tuple(stroke),
         model,
+        robust,
     )
 
 
@@ -464,10 +483,11 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
     """
     objective_peak = problem.objective == "peak"
     flow_objective = problem.objective == "flow"
+    columns = designs(problem, x)
     ev = evaluate(
-        designs(problem, x),
+        columns,
         problem.forced,
-        judge=flow_objective,
+        judge=problem.needs_verdict,
         passing_speed=False,
         dead_band_peak=not search,
         peak=objective_peak or flow_objective or not search,
@@ -485,6 +505,11 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
     if flow_objective:  # the most water [l/min] with no check failing (the verdict's slack)
         obj = -ev.water.flow * 60_000.0
         slack = np.vstack([slack, -np.atleast_1d(excess(ev.verdict, True, INFEASIBLE_OBJECTIVE))])
+    if problem.robust is not None:  # the builds: their first-order share over the target
+        r = problem.robust
+        met = np.all(slack >= 0, axis=0)  # the shares cost 6 evaluations a design: only where needed
+        shares = first_order_shares(columns, ev, r.tolerances, r.strict, problem.forced, only=met)
+        slack = np.vstack([slack, shares - r.target])
     obj = np.where(np.isfinite(obj), obj, INFEASIBLE_OBJECTIVE)
     return Evaluation(
         obj,
@@ -502,8 +527,18 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
 
 def _constraint_slack(problem: Problem, x) -> np.ndarray:
     """The constraints' slacks of designs x: from the geometry alone, but for ``--objective flow``
-    whose verdict constraint needs the whole evaluation."""
-    if problem.objective == "flow":
+    and a robust search, whose constraints need the whole evaluation (a robust search without the
+    flow's verdict constraint evaluates only the designs that meet the geometry's; the others
+    count the builds' constraint missed by the whole target)."""
+    if problem.robust is not None and problem.objective != "flow":
+        x = np.atleast_2d(np.asarray(x, float))
+        geometry = _terms(problem, x).slack
+        slack = np.vstack([geometry, np.full((1, x.shape[1]), -problem.robust.target)])
+        met = np.all(geometry >= 0, axis=0)
+        if met.any():
+            slack[:, met] = evaluate_designs(problem, x[:, met], search=True).slack
+        return slack
+    if problem.needs_verdict:
         return evaluate_designs(problem, x, search=True).slack
     return _terms(problem, x).slack
 
@@ -546,8 +581,21 @@ def optimize(
     """
     from scipy.optimize import NonlinearConstraint, differential_evolution, minimize
 
-    cache: dict[bytes, Evaluation] = {}
     count = [0, 0]  # designs looked at (their constraints), and those whose force was computed
+    if problem.robust is not None:
+        # The optimum without the builds' constraint, first: where its builds pass too, it is the
+        # optimum with the constraint (a constraint the unconstrained optimum meets changes
+        # nothing), found at a seventh of the cost (docs/tolerance.md §5).
+        plain = optimize(replace(problem, robust=None), seed, popsize, maxiter, tol, polish, progress)
+        e = evaluate_designs(problem, plain.x[:, None])
+        if _feasible(e):
+            return _result(
+                problem, plain.x, e, plain.evaluations, plain.iterations, plain.polished, seed,
+                plain.message, plain.force_evaluations,
+            )  # fmt: skip
+        count = [plain.evaluations, plain.force_evaluations]  # the search goes on: both count
+
+    cache: dict[bytes, Evaluation] = {}
     n = len(problem.names)
 
     def ev(x, looked_at=True):
@@ -600,7 +648,7 @@ def optimize(
                 f"{INFEASIBLE_OBJECTIVE:g} N; {fix}"
             )
         j = int(np.argmin(e.slack[:, 0]))
-        unit = CONSTRAINTS[j][1]
+        unit = problem.constraint_units()[j]
         raise InfeasibleDesign(
             f"no design inside the bounds meets every constraint: the closest one found "
             f"({_fmt_x(problem, x)}) misses '{names[j]}' by {-e.slack[j, 0]:.4g} {unit}; "
@@ -647,6 +695,14 @@ def optimize(
             ec = evaluate_designs(problem, cand[:, None])
             if _feasible(ec) and ec.objective[0] < e.objective[0]:
                 x, e, polished = cand, ec, True
+    return _result(problem, x, e, count[0], int(res.nit), polished, seed, str(res.message), count[1])
+
+
+def _result(
+    problem: Problem, x, e: Evaluation, looked_at, nit, polished, seed, message, forced
+) -> OptimizationResult:
+    """The result at the optimum ``x`` (its evaluation ``e``): the spec's own design beside it,
+    what binds, both verdicts as pumplink force gives them and a robust search's check."""
     spec_x = np.array([problem.spec_value(k) for k in problem.names])
     at_spec = evaluate_designs(problem, spec_x[:, None])
     names = problem.constraint_names()
@@ -660,6 +716,7 @@ def optimize(
     from pumplink.studies.force import force_analysis
 
     best = _spec_with(problem, x)
+    check = None if problem.robust is None else robust_check(best, problem.robust, problem.forced)
     return OptimizationResult(
         problem,
         x,
@@ -668,15 +725,16 @@ def optimize(
         at_spec,
         binding,
         at_bounds,
-        count[0],
-        int(res.nit),
+        looked_at,
+        nit,
         polished,
         seed,
-        str(res.message),
+        message,
         # the verdicts, exactly as pumplink force gives them on each spec (one verdict)
         force_analysis(problem.spec, keep_samples=False, samples=0, model=problem.forced),
         force_analysis(best, keep_samples=False, samples=0, model=problem.forced),
-        count[1],
+        forced,
+        check,
     )
 
 

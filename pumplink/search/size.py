@@ -25,7 +25,7 @@ Pure functions; the CLI renders the result.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -33,6 +33,7 @@ from pumplink.errors import SpecError
 from pumplink.evaluate import Evaluation, evaluate, pump_designs
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
 from pumplink.models.water import rope_pump_flow
+from pumplink.studies.tolerance import Robust, RobustCheck, robust_check, shortfall
 from pumplink.verdict import WARN, excess
 
 #: Nominal pipe bores searched by default [m]: ½", ¾", 1", 1¼" and 1½" (12.7-38.1 mm), the sizes
@@ -72,6 +73,7 @@ class SizeProblem:
     pipes: tuple[float, ...]
     bounds: dict[str, tuple[float, float]] = field(default_factory=lambda: dict(BOUNDS))
     allow_warnings: bool = False
+    robust: Robust | None = None  # at least this share of builds at these tolerances pass
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -82,17 +84,19 @@ class SizeProblem:
 class Sized:
     """One pipe bore's best design: its spec, evaluation and flow [m³/s].  Where no design of
     this bore meets the limits (``found`` False) they are the closest one's, and ``excess`` says by
-    how much it misses (:func:`excess`)."""
+    how much it misses (:func:`excess`); ``shortfall`` how far the first-order share of builds that
+    pass falls short of a robust search's target (0 without one)."""
 
     pipe: float
     spec: PumpSpec
     evaluation: Evaluation
     flow: float
     excess: float
+    shortfall: float = 0.0
 
     @property
     def found(self) -> bool:
-        return self.excess == 0.0
+        return self.excess == 0.0 and self.shortfall == 0.0
 
 
 @dataclass(frozen=True)
@@ -105,6 +109,7 @@ class SizeResult:
     binding: tuple[str, ...]  # the checks at their limit, and variables at a bound
     evaluations: int
     discharge: tuple = ()  # (head [m], fastest passing cadence [deg/s], flow [m³/s]) at other heads
+    robust: RobustCheck | None = None  # a robust search's answer at its tolerances (found only)
 
     @property
     def found(self) -> bool:
@@ -151,12 +156,12 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
         if key not in cache:
             if len(cache) > 8:
                 cache.clear()
-            ev = evaluate(
-                pump_designs(_values(problem, pipe, x)), passing_speed=False, parts_of_failing=False
-            )
-            cache[key] = np.where(
-                ev.feasible, excess(ev.verdict, problem.allow_warnings, INFEASIBLE), INFEASIBLE
-            )
+            d = pump_designs(_values(problem, pipe, x))
+            ev = evaluate(d, passing_speed=False, parts_of_failing=False)
+            v = np.where(ev.feasible, excess(ev.verdict, problem.allow_warnings, INFEASIBLE), INFEASIBLE)
+            if problem.robust is not None:  # the builds too: the first-order share's shortfall
+                v = v + shortfall(d, ev, problem.robust)
+            cache[key] = v
             count[0] += x.shape[1]
         return cache[key]
 
@@ -181,25 +186,25 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
     x = np.asarray(res.x, float)[:, None]
     spec = spec_of(problem, pipe, x[:, 0])
     ev = evaluate(pump_designs(spec_values(spec)))
+
+    def misses(spec, ev) -> tuple[float, float]:
+        over = float(excess(ev.verdict, problem.allow_warnings, INFEASIBLE)[0])
+        if problem.robust is None:
+            return over, 0.0
+        return over, float(shortfall(pump_designs(spec_values(spec)), ev, problem.robust)[0])
+
     if float(violation(x)[0]) > 0:  # the closest design, as it is
-        return Sized(
-            pipe,
-            spec,
-            ev,
-            float(ev.water.flow[0]),
-            float(excess(ev.verdict, problem.allow_warnings, INFEASIBLE)[0]),
-        ), count[0]
+        return Sized(pipe, spec, ev, float(ev.water.flow[0]), *misses(spec, ev)), count[0]
     # rounding to workshop figures can step over a limit the optimum touches: slow the cadence a
     # degree per second at a time until the rounded design meets them again
     for _ in range(30):
-        if float(excess(ev.verdict, problem.allow_warnings, INFEASIBLE)[0]) == 0.0:
+        if misses(spec, ev) == (0.0, 0.0):
             break
         data = spec_to_dict(spec)
         data["operator"]["speed"] = data["operator"]["speed"] - 1.0
         spec = parse_spec(data, source="the sized design")
         ev = evaluate(pump_designs(spec_values(spec)))
-    miss = float(excess(ev.verdict, problem.allow_warnings, INFEASIBLE)[0])
-    return Sized(pipe, spec, ev, float(ev.water.flow[0]), miss), count[0]
+    return Sized(pipe, spec, ev, float(ev.water.flow[0]), *misses(spec, ev)), count[0]
 
 
 def spec_of(problem: SizeProblem, pipe: float, x) -> PumpSpec:
@@ -243,11 +248,14 @@ def size(problem: SizeProblem, seed: int = 0, progress=None, maxiter: int = 30) 
         if not s.found and any(t.found for t in tried):
             break
     found = [s for s in tried if s.found]
-    best = max(found, key=lambda s: s.flow) if found else min(tried, key=lambda s: s.excess)
+    best = max(found, key=lambda s: s.flow) if found else min(tried, key=lambda s: (s.excess, s.shortfall))
     table = ()
+    check = None
     if best.found:
         table = tuple(discharge(best.spec, discharge_heads(best.spec.load.head), problem.allow_warnings))
-    return SizeResult(problem, best, tuple(tried), _binding(problem, best), evaluations, table)
+        if problem.robust is not None:  # the Monte Carlo check of the first-order answer
+            check = robust_check(best.spec, problem.robust)
+    return SizeResult(problem, best, tuple(tried), _binding(problem, best), evaluations, table, check)
 
 
 def discharge_heads(head: float) -> list[float]:
@@ -314,8 +322,10 @@ def problem_for(
     profile: str | None = None,
     pipes=None,
     allow_warnings: bool = False,
+    robust: Robust | None = None,
 ) -> SizeProblem:
-    """A sizing problem from a base spec: ``head`` [m] and ``profile`` replace the spec's."""
+    """A sizing problem from a base spec: ``head`` [m] and ``profile`` replace the spec's;
+    ``robust``: at least its share of builds at its tolerances must pass (docs/tolerance.md §5)."""
     data = spec_to_dict(spec)
     load = {k: v for k, v in data["load"].items() if k != "rope_force"}
     if head is not None:
@@ -333,7 +343,9 @@ def problem_for(
     chosen = tuple(STANDARD_PIPES if pipes is None else pipes)
     if not chosen or any(not (0.001 <= p <= 0.5) for p in chosen):
         raise SpecError(f"--pipes {chosen}: each bore must be 0.001-0.5 m (e.g. --pipes 16,20,25mm)")
-    return SizeProblem(base, chosen, dict(BOUNDS), allow_warnings)
+    if robust is not None:  # the builds are judged as the design is: warnings fail unless allowed
+        robust = replace(robust, strict=not allow_warnings)
+    return SizeProblem(base, chosen, dict(BOUNDS), allow_warnings, robust)
 
 
 __all__ = [

@@ -89,6 +89,10 @@ class Part:
     end_label : what is at ``end`` when it is not a hole (the grip), else None.
     edge : material beyond the outer hole centres [m] (:data:`EDGE_FACTOR` × hole diameter).
     mass_per_length : [kg/m] (linkage.mass_per_length or the 3/4-inch tube default).
+    hole_tolerances, end_tolerance : how far each hole (and the grip) may be off [m] for the share
+        of builds that pass to stay at the target (:func:`tolerance_marks`; empty / None: not
+        allocated, NaN: tighter than a workshop holds).
+    hole_critical, end_critical : the hole needs more care than a hand-drilled one gets.
     """
 
     key: str
@@ -100,6 +104,10 @@ class Part:
     end_label: str | None
     edge: float
     mass_per_length: float
+    hole_tolerances: tuple[float, ...] = ()
+    hole_critical: tuple[bool, ...] = ()
+    end_tolerance: float | None = None
+    end_critical: bool = False
 
     @property
     def centre_distance(self) -> float:
@@ -116,6 +124,26 @@ class Part:
     def mass(self) -> float:
         """Mass of the cut bar [kg]."""
         return self.cut_length * self.mass_per_length
+
+
+@dataclass(frozen=True)
+class Marks:
+    """The tolerance notes of a workshop template (docs/tolerance.md §4).
+
+    target : the share of builds that pass the tolerances keep, to first order;
+    distribution : how ±t is read ("uniform": anywhere within; "normal": t = 3σ);
+    stand, stand_critical : the tolerance of the axle and the rocker pivot on the stand [m], and
+        whether it needs more care than welding by eye gets;
+    share : the first-order share at the allocated tolerances;
+    reason : why nothing is allocated (the design itself fails), else None.
+    """
+
+    target: float
+    distribution: str
+    stand: float
+    stand_critical: bool
+    share: float
+    reason: str | None = None
 
 
 @dataclass(frozen=True)
@@ -205,6 +233,36 @@ def parts(spec: PumpSpec, d: Design | None = None) -> tuple[Part, ...]:
             mpl,
         ),
     )
+
+
+def tolerance_marks(spec: PumpSpec, parts_: tuple[Part, ...], target: float = 0.95):
+    """The parts with each hole's tolerance for ``target`` of the builds to pass, and the notes:
+    the allocation of :func:`pumplink.studies.tolerance.allocate` from the design's first-order
+    sensitivities (the holes of one link share a tolerance; the grip has its own).  Returns
+    ``(parts, Marks)``; where the design itself fails, the parts unchanged and the reason."""
+    from dataclasses import replace
+
+    from pumplink.studies import tolerance as tl
+
+    fo = tl.sensitivities(tl.problem(spec, tl.tolerances(tl.WORKSHOP_TOLERANCE)))
+    a = tl.allocate(fo, target)
+    groups = dict(zip((g for g, _ in tl.GROUPS), zip(a.groups, a.critical)))
+    if a.reason is not None:
+        return parts_, Marks(target, a.distribution, math.nan, False, a.share, a.reason)
+    marked = []
+    for p in parts_:
+        t, critical = groups["rocker" if p.key == "rocker-handle" else p.key]
+        marked.append(
+            replace(
+                p,
+                hole_tolerances=tuple(t for _ in p.holes),
+                hole_critical=tuple(critical for _ in p.holes),
+                end_tolerance=groups["grip"][0] if p.end_label else None,
+                end_critical=bool(groups["grip"][1]) if p.end_label else False,
+            )
+        )
+    stand, stand_critical = groups["stand"]
+    return tuple(marked), Marks(target, a.distribution, stand, bool(stand_critical), a.share)
 
 
 def drawing(spec: PumpSpec, peak: bool = False) -> Drawing:

@@ -1,0 +1,221 @@
+"""Build tolerances (pumplink.studies.tolerance): the linkage a build is, the builds' independence of
+the chunking, the Monte Carlo spread against the first-order prediction, the Wilson interval and
+the tolerance allocation.
+
+References: the build's geometry is rebuilt here from hole positions with plain 2-D vectors (the
+definition in docs/tolerance.md §1, not the module's formulas); the Wilson score interval from its
+closed form (Wilson 1927, Eq. as in Brown, Cai & DasGupta 2001, Eq. 4); the first-order spread is
+compared with the Monte Carlo's own sample standard deviation.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from pumplink.inputs.pump import load_spec
+from pumplink.studies import tolerance as tl
+
+VILLAGE = "configs/village-10m.toml"
+
+
+@pytest.fixture(scope="module")
+def village():
+    return load_spec(VILLAGE)
+
+
+@pytest.fixture(scope="module")
+def village_problem(village):
+    return tl.problem(village, tl.tolerances(0.001), samples=2000)
+
+
+@pytest.fixture(scope="module")
+def village_first_order(village_problem):
+    return tl.sensitivities(village_problem)
+
+
+# ----------------------------------------------------------------------------- the linkage a build is
+def _by_hand(nominal, axle, offs: dict) -> dict:
+    """Hole positions as 2-D points in each bar's own frame (first hole at the origin, the bar
+    along +x), offset by (along, across); the stand's pivots in product coordinates."""
+
+    def point(base, key):
+        return np.array([base + offs[key, "along"], offs[key, "across"]])
+
+    crank = np.linalg.norm(point(nominal.crank, "crank.A") - point(0.0, "crank.O2"))
+    coupler = np.linalg.norm(point(nominal.coupler, "coupler.B") - point(0.0, "coupler.A"))
+    o4, b, grip = (
+        point(0.0, "rocker.O4"),
+        point(nominal.rocker, "rocker.B"),
+        point(nominal.handle, "rocker.grip"),
+    )
+    rocker = np.linalg.norm(b - o4)
+    handle = np.dot(grip - o4, (b - o4) / rocker)  # the grip measured along the rocker O4 -> B
+    o2_stand = np.array([offs["stand.O2", "x"], offs["stand.O2", "y"]])
+    o4_stand = np.array([nominal.pivot_x + offs["stand.O4", "x"], nominal.pivot_y + offs["stand.O4", "y"]])
+    pivot = o4_stand - o2_stand
+    return dict(
+        crank=crank, coupler=coupler, rocker=rocker, handle=handle, pivot_x=pivot[0], pivot_y=pivot[1],
+        axle=axle + offs["stand.O2", "y"],
+    )  # fmt: skip
+
+
+@settings(max_examples=30)  # 30 random builds: each checks all seven parameters; cheap
+@given(st.lists(st.floats(-0.005, 0.005), min_size=18, max_size=18))
+def test_a_build_is_the_linkage_between_its_holes(values):
+    nominal = tl.FourBar(-1.048, -0.307, 0.0484, 1.0659, 0.123, 0.897, -1.0)
+    offs = dict(zip(tl.DIMENSIONS, values))
+    lk, axle = tl.build(nominal, 0.574, np.array([values]))
+    want = _by_hand(nominal, 0.574, offs)
+    got = dict(
+        crank=lk.crank[0], coupler=lk.coupler[0], rocker=lk.rocker[0], handle=lk.handle[0],
+        pivot_x=lk.pivot_x[0], pivot_y=lk.pivot_y[0], axle=axle[0],
+    )  # fmt: skip
+    for k in want:
+        assert got[k] == pytest.approx(want[k], abs=1e-15), k
+    assert lk.branch[0] == -1.0
+
+
+def test_the_first_order_map_is_the_derivative_of_the_build():
+    nominal = tl.FourBar(-1.048, -0.307, 0.0484, 1.0659, 0.123, 0.897, -1.0)
+    h = 1e-7
+    eye = np.eye(18) * h
+    up, axle_up = tl.build(nominal, 0.574, eye)
+    down, axle_down = tl.build(nominal, 0.574, -eye)
+    fd = np.array(
+        [(getattr(up, p) - getattr(down, p)) / (2 * h) for p in tl.PARAMETERS[:-1]]
+        + [(axle_up - axle_down) / (2 * h)]
+    )
+    assert np.allclose(fd, tl.first_order_map(), atol=1e-7)
+
+
+# ----------------------------------------------------------------------------- the builds
+def test_a_builds_dimensions_do_not_depend_on_how_many_are_drawn(village):
+    """Builds are drawn per fixed chunk from the seed and the chunk's number: the first 1,500 of
+    2,500 builds are the 1,500 builds of a run of 1,500."""
+    small = tl.problem(village, tl.tolerances(0.001), samples=1500, seed=3)
+    large = tl.problem(village, tl.tolerances(0.001), samples=2500, seed=3)
+    a = np.concatenate([tl.offsets(small, *t) for t in small.chunks])
+    b = np.concatenate([tl.offsets(large, *t) for t in large.chunks])
+    assert [t[1:] for t in large.chunks] == [(0, 1000), (1000, 2000), (2000, 2500)]
+    assert np.array_equal(a, b[:1500])
+    ra = tl.summarize(small, tl.run_chunks(small), keep=True)
+    rb = tl.summarize(large, tl.run_chunks(large), keep=True)
+    assert np.array_equal(ra.values["peak_force"], rb.values["peak_force"][:1500])
+
+
+@pytest.mark.parametrize("distribution, bound", [("uniform", 1.0), ("normal", 3.0)])
+def test_offsets_follow_the_distribution(village, distribution, bound):
+    """Uniform: within ±t, σ = t/√3; normal: σ = t/3 (t = 3σ)."""
+    prob = tl.problem(village, tl.tolerances(0.002, distribution=distribution), samples=20_000)
+    offs = np.concatenate([tl.offsets(prob, *t) for t in prob.chunks])
+    sigma = 0.002 / (math.sqrt(3) if distribution == "uniform" else 3.0)
+    # 360,000 draws: the sample σ is within 0.5 % of σ with overwhelming probability
+    assert np.std(offs) == pytest.approx(sigma, rel=5e-3)
+    assert np.abs(offs).max() <= 0.002 * bound * (1.0 if distribution == "uniform" else 2.0)
+
+
+@pytest.mark.parametrize("distribution", ["uniform", "normal"])
+def test_the_monte_carlo_spread_at_a_small_tolerance_is_the_first_order_spread(village, distribution):
+    """±0.1 mm on every hole and pivot: the builds' standard deviation of the peak and the mean
+    force is the first-order σ = sqrt(Σ (∂F/∂x_j σ_j)²) within 3 % (8,000 builds: the sample
+    σ's own standard error is ~1/sqrt(2n) = 0.8 %, the curvature over 0.1 mm far less)."""
+    tol = tl.tolerances(0.0001, distribution=distribution)
+    prob = tl.problem(village, tol, samples=8000)
+    res = tl.summarize(prob, tl.run_chunks(prob))
+    fo = res.first_order
+    for key, gradient in (("peak_force", fo.peak_force), ("mean_force", fo.mean_force)):
+        predicted = fo.spread(gradient, tol)
+        assert res.spread[key].std == pytest.approx(predicted, rel=0.03), key
+        assert predicted > 0.05  # not a vacuous comparison of two zeros
+    assert res.passed.value == 1.0  # 2.4 N of margin, σ ≈ 0.19 N
+
+
+def test_holes_across_a_bar_do_nothing_to_first_order(village_first_order):
+    fo = village_first_order
+    for j, (key, axis) in enumerate(tl.DIMENSIONS):
+        if axis == "across":
+            assert abs(fo.peak_force[j]) < 1e-6, key
+        else:
+            assert abs(fo.peak_force[j]) > 1.0, key  # every other dimension moves the peak force
+
+
+def test_the_search_route_of_the_first_order_share_is_the_reports(village, village_first_order):
+    """The searches' first-order share (forward differences in the six linkage parameters, mapped
+    onto the holes) equals the report's (central differences in the 18 dimensions)."""
+    from pumplink.evaluate import evaluate
+
+    tol = tl.tolerances(0.001)
+    prob = tl.problem(village, tol)
+    ev = evaluate(prob.designs, passing_speed=False, dead_band_peak=False)
+    fast = tl.first_order_shares(prob.designs, ev, tol, strict=False)
+    assert fast[0] == pytest.approx(village_first_order.share(tol), abs=2e-4)
+
+
+# ----------------------------------------------------------------------------- the share
+@pytest.mark.parametrize("count, n", [(8, 10), (0, 50), (950, 1000), (100_000, 100_000)])
+def test_the_share_interval_is_wilsons(count, n):
+    z = 1.959963984540054  # Φ⁻¹(0.975)
+    p = count / n
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z / (1 + z * z / n) * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    s = tl.share(count, n)
+    assert s.value == p
+    assert s.low == pytest.approx(max(0.0, centre - half), abs=1e-12)
+    assert s.high == pytest.approx(min(1.0, centre + half), abs=1e-12)
+
+
+# ----------------------------------------------------------------------------- the allocation
+def test_the_allocation_is_the_loosest_ladder_that_keeps_the_target(village_first_order):
+    fo = village_first_order
+    a = tl.allocate(fo, 0.95)
+    assert a.found and a.share >= 0.95
+    assert all(t in tl.LADDER for t in a.groups)
+    for g, t in enumerate(a.groups):  # one step looser on any group drops below the target
+        if t == tl.LADDER[-1]:
+            continue
+        looser = list(a.holes)
+        for k, (key, _, _) in enumerate(tl.HOLES):
+            if key in tl.GROUPS[g][1]:
+                looser[k] = tl.LADDER[tl.LADDER.index(t) + 1]
+        assert fo.share(tl.Tolerances(tuple(looser))) < 0.95, tl.GROUPS[g][0]
+    # the crank, whose holes carry 80 % of the spread, is the tightest group
+    assert a.groups[0] == min(a.groups) and a.critical[0]
+
+
+def test_the_allocation_holds_in_the_monte_carlo(village, village_first_order):
+    """At the allocated tolerances 95 % of 4,000 builds pass, within the Wilson interval."""
+    a = tl.allocate(village_first_order, 0.95)
+    prob = tl.problem(village, a.tolerances, samples=4000)
+    res = tl.summarize(prob, tl.run_chunks(prob))
+    assert res.passed.high >= 0.95
+
+
+def test_a_design_that_fails_gets_no_allocation(village):
+    from pumplink.inputs.pump import parse_spec, spec_to_dict
+
+    data = spec_to_dict(village)
+    data["operator"]["force_limit"] = 90.0  # below the design's 97.6 N peak
+    fo = tl.sensitivities(tl.problem(parse_spec(data), tl.tolerances(0.001)))
+    a = tl.allocate(fo)
+    assert not a.found and "fails" in a.reason and fo.binding == "peak_force"
+
+
+@pytest.mark.parametrize(
+    "s2, budget, cap",
+    [([4.0, 1.0, 0.25], 1.0, 10.0), ([4.0, 1.0, 1e-6], 1.0, 0.5), ([1.0, 0.0, 1.0], 2.0, 0.1)],
+)
+def test_equal_effect_shares_the_variance_equally_below_the_cap(s2, budget, cap):
+    s2 = np.array(s2)
+    sig = tl._equal_effect(s2, budget, cap)
+    assert np.all(sig <= cap + 1e-15)
+    var = s2 * sig**2
+    free = (s2 > 0) & (sig < cap)
+    if free.any():
+        assert np.sum(var) == pytest.approx(budget**2)
+        assert np.allclose(var[free], var[free][0])
+    assert np.all(sig[s2 == 0] == cap)  # a hole that moves nothing takes the top of the ladder
