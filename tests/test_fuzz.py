@@ -18,11 +18,11 @@ import contextlib
 import io
 import json
 import math
-import typing
 import random
 import signal
 import subprocess
 import sys
+import typing
 from pathlib import Path
 
 import pytest

@@ -25,7 +25,7 @@ from pumplink.search import size as sizing
 from pumplink.studies import tolerance as tl
 
 ROOT = Path(__file__).resolve().parents[1]
-VILLAGE = ROOT / "configs" / "village-10m.toml"
+VILLAGE = ROOT / "tests" / "data" / "village-first-sized.toml"  # a fixed design: see its header
 ONE_MM = tl.Robust(tl.tolerances(0.001), 0.95)
 
 

@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 from pumplink.inputs.pump import load_spec
 from pumplink.studies import tolerance as tl
 
-VILLAGE = "configs/village-10m.toml"
+VILLAGE = "tests/data/village-first-sized.toml"  # a fixed design: see its header
 
 
 @pytest.fixture(scope="module")

@@ -301,11 +301,9 @@ PEAK_GRID_PER_RAD = 120
 JUMP_OFFSET = 1e-9
 #: Absolute tolerance [rad] of the bracketed refinement of each peak.
 REFINE_XTOL = 1e-10
-#: Points across a bracket per zoom of the refinement (the bracket shrinks (points - 1) / 2 times).
-REFINE_POINTS = 33
-#: The same for the quasi-static search over many designs, where each zoom is one array operation
-#: and the points, not the calls, cost: 9 points, a quarter of the bracket a zoom.
-ZOOM_POINTS = 9
+#: Points across a bracket per zoom of the refinement (the bracket shrinks (points - 1) / 2 = 16
+#: times a zoom: seven zooms from a grid cell to REFINE_XTOL).
+ZOOM_POINTS = 33
 #: Grid points on each of the quasi-static model's two arcs (the density of PEAK_GRID_PER_RAD on
 #: a whole turn, so on any arc).
 ARC_POINTS = int(np.ceil(PEAK_GRID_PER_RAD * TWO_PI)) + 1
@@ -345,13 +343,14 @@ def peak_joint_forces(
     loads_at: Callable,
     arcs=((0.0, TWO_PI),),
     jumps=(),
+    nodes=None,
 ) -> PeakLoads:
     """Peaks of the joint forces and bending moments of one design over crank arcs.
 
     Each arc is scanned on a grid of :data:`PEAK_GRID_PER_RAD` points per radian including its ends,
     plus nodes :data:`JUMP_OFFSET` either side of each of ``jumps`` (where the loads may jump: the
     energy models reverse the push at the dead centres); the best node of each load is refined
-    between its neighbours by zooming, all six loads at once: :data:`REFINE_POINTS` points across
+    between its neighbours by zooming, all six loads at once: :data:`ZOOM_POINTS` points across
     the bracket, the best one's neighbours the next bracket, to :data:`REFINE_XTOL`; the largest
     value met is kept.  A smooth interior maximum is then exact
     to the tolerance; a supremum at a jump is the node's one-sided value, within the load's slope
@@ -363,24 +362,37 @@ def peak_joint_forces(
     loads_at : callable of crank angles (1-D array) returning :class:`JointForces` over them.
     arcs : (start, length) pairs [rad] to search (the whole turn by default).
     jumps : crank angles [rad] where the loads may jump.
+    nodes : (angles, JointForces) already computed on a grid of at least the density above, to
+        start from instead of the grid (the jumps' nodes are still added); one whole-turn arc.
 
     Returns
     -------
     PeakLoads
     """
-    nodes = []
-    for start, length in arcs:
-        n = max(int(np.ceil(PEAK_GRID_PER_RAD * length)), 2) + 1
-        nodes.append(start + np.linspace(0.0, length, n))
-    grid = np.concatenate(nodes)
+    if nodes is None:
+        grid = np.concatenate(
+            [start + np.linspace(0.0, length, max(int(np.ceil(PEAK_GRID_PER_RAD * length)), 2) + 1)
+             for start, length in arcs]
+        )  # fmt: skip
+        given = None
+    else:
+        grid, given = np.asarray(nodes[0], float), _loads(nodes[1])
+    extra = []
     for j in jumps:
         for start, length in arcs:
             off = np.mod(j - start, TWO_PI)
             if off <= length:
-                extra = start + off + np.array([-JUMP_OFFSET, JUMP_OFFSET])
-                grid = np.concatenate([grid, extra[(extra >= start) & (extra <= start + length)]])
-    grid = np.sort(grid)
-    vals = _finite_or_floor(_loads(loads_at(grid)))  # (6, N)
+                e = start + off + np.array([-JUMP_OFFSET, JUMP_OFFSET])
+                extra.append(e[(e >= start) & (e <= start + length)])
+    extra = np.concatenate(extra) if extra else np.zeros(0)
+    if given is None:
+        grid = np.concatenate([grid, extra])
+        vals = _loads(loads_at(grid))
+    else:
+        vals = np.concatenate([given, _loads(loads_at(extra))], axis=1) if extra.size else given
+        grid = np.concatenate([grid, extra])
+    order = np.argsort(grid, kind="stable")
+    grid, vals = grid[order], _finite_or_floor(vals[:, order])  # (6, N)
     j = np.argmax(vals, axis=1)
     best, where = vals[np.arange(6), j], grid[j]
     lo_arc = np.array([s for s, _ in arcs])
@@ -391,17 +403,17 @@ def peak_joint_forces(
     # zoom on every load's bracket at once: REFINE_POINTS points across it, then the cells either
     # side of the best point, until the bracket is narrower than REFINE_XTOL (a smooth maximum
     # inside a grid cell stays inside the bracket, as in a bounded golden-section search)
-    steps = np.linspace(0.0, 1.0, REFINE_POINTS)
+    steps = np.linspace(0.0, 1.0, ZOOM_POINTS)
     while live.any():
         rows = np.nonzero(live)[0]
-        x = a[rows, None] + (b - a)[rows, None] * steps  # (k, REFINE_POINTS)
-        v = _finite_or_floor(_loads(loads_at(x.ravel())))[rows].reshape(rows.size, -1, REFINE_POINTS)
+        x = a[rows, None] + (b - a)[rows, None] * steps  # (k, ZOOM_POINTS)
+        v = _finite_or_floor(_loads(loads_at(x.ravel())))[rows].reshape(rows.size, -1, ZOOM_POINTS)
         v = v[np.arange(rows.size), np.arange(rows.size)]  # load i at its own points
         k = np.argmax(v, axis=1)
         up = v[np.arange(rows.size), k] > best[rows]
         best[rows[up]], where[rows[up]] = v[np.arange(rows.size), k][up], x[np.arange(rows.size), k][up]
         a[rows] = x[np.arange(rows.size), np.maximum(k - 1, 0)]
-        b[rows] = x[np.arange(rows.size), np.minimum(k + 1, REFINE_POINTS - 1)]
+        b[rows] = x[np.arange(rows.size), np.minimum(k + 1, ZOOM_POINTS - 1)]
         live[rows] = (b[rows] - a[rows]) > REFINE_XTOL
     best = np.where(best == -np.inf, np.nan, best)
     where = np.mod(where, TWO_PI)
@@ -476,7 +488,8 @@ def quasi_static_peak_loads(
 
     def loads_at(th):  # (n, k) crank angles -> (6, n, k) loads, NaN as -inf
         motion = quasi_static_motion(column, th, torque[:, None])
-        return _finite_or_floor(_loads(motion_forces(column, motion, GRAVITY, rope[:, None], weight[:, None])))
+        forces = motion_forces(column, motion, GRAVITY, rope[:, None], weight[:, None])
+        return _finite_or_floor(_loads(forces))
 
     plus = np.mod(dcf - dce, TWO_PI)
     start = np.stack([dce + band, dcf + band], axis=1)  # (n, 2): the two arcs judged
@@ -506,21 +519,26 @@ def quasi_static_peak_loads(
         up = live & (top > best)
         best = np.where(up, top, best)
         where = np.where(up, np.take_along_axis(x, k[..., None], -1)[..., 0], where)
-        a = np.where(live, np.take_along_axis(x, np.maximum(k - 1, 0)[..., None], -1)[..., 0], a)
-        b = np.where(live, np.take_along_axis(x, np.minimum(k + 1, ZOOM_POINTS - 1)[..., None], -1)[..., 0], b)
+        left, right = np.maximum(k - 1, 0), np.minimum(k + 1, ZOOM_POINTS - 1)
+        a = np.where(live, np.take_along_axis(x, left[..., None], -1)[..., 0], a)
+        b = np.where(live, np.take_along_axis(x, right[..., None], -1)[..., 0], b)
         live = live & ((b - a) > REFINE_XTOL)
     return np.where(best == -np.inf, np.nan, best), np.mod(where, TWO_PI)
 
 
-def scene_peaks(scene, motion_of: Callable, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0):
+def scene_peaks(scene, motion_of: Callable, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0, cycle=None):
     """Peak joint forces over the whole turn of an energy model's scene (one design).
 
     Parameters
     ----------
     scene : a flywheel or full-dynamics scene;  motion_of : :func:`flywheel_motion` or
         :func:`dynamics_motion`;  gravity, rope_pull, wheel_weight : as :func:`joint_forces`.
+    cycle : (crank angles, JointForces) over the whole turn already computed (at least
+        :data:`PEAK_GRID_PER_RAD` a radian, and the nodes :data:`JUMP_OFFSET` either side of each
+        dead centre), the search's starting grid.
     """
     return peak_joint_forces(
         lambda th: motion_forces(scene.linkage, motion_of(scene, th), gravity, rope_pull, wheel_weight),
-        jumps=(scene.dead_centre_extended, scene.dead_centre_folded),
+        jumps=() if cycle is not None else (scene.dead_centre_extended, scene.dead_centre_folded),
+        nodes=cycle,
     )

@@ -23,7 +23,7 @@ from pumplink.studies import tolerance as tl
 from pumplink.studies.drawing import drawing, tolerance_marks
 
 ROOT = Path(__file__).resolve().parents[2]
-VILLAGE = ROOT / "configs" / "village-10m.toml"
+VILLAGE = ROOT / "tests" / "data" / "village-first-sized.toml"  # a fixed design: see its header
 
 
 @pytest.fixture(scope="module")
