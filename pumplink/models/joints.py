@@ -299,10 +299,11 @@ PEAK_GRID_PER_RAD = 120
 #: Offset [rad] of the extra nodes either side of a point where the motion may jump (a dead centre,
 #: where the energy models' push reverses): the one-sided limits are sampled there.
 JUMP_OFFSET = 1e-9
-#: Absolute tolerance [rad] of the bracketed refinement of each peak.
-REFINE_XTOL = 1e-10
+#: Absolute tolerance [rad] of the bracketed refinement of each peak: a smooth maximum's value is
+#: then off by about |F''| XTOL^2 / 2, some 1e-14 of it; a supremum at a jump is the node's value.
+REFINE_XTOL = 1e-7
 #: Points across a bracket per zoom of the refinement (the bracket shrinks (points - 1) / 2 = 16
-#: times a zoom: seven zooms from a grid cell to REFINE_XTOL).
+#: times a zoom: five zooms from a grid cell to REFINE_XTOL).
 ZOOM_POINTS = 33
 #: Grid points on each of the quasi-static model's two arcs (the density of PEAK_GRID_PER_RAD on
 #: a whole turn, so on any arc).
