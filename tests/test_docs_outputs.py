@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import importlib.util
 import re
+import sys
 from pathlib import Path
 
 import pytest
@@ -20,6 +21,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 _spec = importlib.util.spec_from_file_location("docs_outputs", ROOT / "scripts" / "docs_outputs.py")
 docs_outputs = importlib.util.module_from_spec(_spec)
+sys.modules["docs_outputs"] = docs_outputs  # its dataclass looks its module up there
 _spec.loader.exec_module(docs_outputs)
 
 BLOCKS = docs_outputs.all_blocks()
