@@ -31,7 +31,7 @@ def test_the_pages_have_blocks():
     """The README quotes the first design session and the docs quote theirs (a marker that the
     pattern stopped matching would otherwise pass silently)."""
     readme = [b for b in BLOCKS if b.page.name == "README.md"]
-    assert len(readme) >= 5
+    assert len(readme) >= 2  # the first design session and the sizing example
     commands = " ".join(b.command for b in BLOCKS)
     for needed in ("pumplink force configs/village-10m.toml", "pumplink size", "pumplink tolerance"):
         assert needed in commands, needed
