@@ -119,9 +119,10 @@ def masked(text: str) -> str:
     return ELAPSED.sub(r"\1 in <elapsed>", text)
 
 
-def difference(block: Block) -> str:
-    """A unified diff of the committed block against a fresh run ('' when they agree)."""
-    fresh = run(block.command, block.exit_code)
+def difference(block: Block, fresh: str | None = None) -> str:
+    """A unified diff of the committed block against a fresh run (``fresh``, else run now; '' when
+    they agree)."""
+    fresh = run(block.command, block.exit_code) if fresh is None else fresh
     if masked(fresh) == masked(block.body):
         return ""
     return "".join(
