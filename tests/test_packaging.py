@@ -90,3 +90,18 @@ def test_sdist_test_suite_collects_and_a_slice_runs(sdist):
     p = _pytest_in(sdist, *SDIST_SLICE)
     assert p.returncode == 0, p.stdout[-3000:]
     assert re.search(r"\b(\d+) passed\b", p.stdout) and "failed" not in p.stdout and "error" not in p.stdout
+
+
+def test_the_all_extra_pulls_every_optional_feature():
+    """`pip install 'pumplink[all]'` (the README's Quick start) installs every optional feature:
+    each requirement of every other extra except ``test`` (the suite's tools) and ``bench``
+    (pylinkage and numba, only for the benchmarks' comparison) is in ``all``, and ``all`` holds
+    nothing else."""
+    import tomllib
+
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"][
+        "optional-dependencies"
+    ]
+    features = {name: set(reqs) for name, reqs in extras.items() if name not in ("all", "test", "bench")}
+    assert {"plot", "dxf", "dask", "parquet"} <= set(features)
+    assert set(extras["all"]) == set().union(*features.values())

@@ -201,7 +201,8 @@ def test_the_fail_on_default_is_said_one_way(tmp_path):
     assert summary == "mean,peak,infeasible,checks"
     help_text = _flat(run("batch", "--help", columns=200).stdout)
     assert f"all (the default: {summary}," in help_text and "[default: all]" in help_text
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    pages = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]  # batch's options: docs/batch.md
+    readme = "\n".join(p.read_text(encoding="utf-8") for p in pages)
     assert f"(default `all`: `{summary}`," in " ".join(readme.split())
     assert "--fail-on mean,peak,infeasible]" not in readme  # the old usage line
     for m in re.finditer(r"default[^.;]{0,20}--fail-on ([a-z,]+)", readme):
