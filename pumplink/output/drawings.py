@@ -45,6 +45,19 @@ def _axes_mm(fig, rect_mm):
     return fig.add_axes((left / W, bottom / H, w / W, h / H))
 
 
+#: The mean width of a label's character [em]: a label longer than its dimension line on paper
+#: is written beyond the line's end.
+LABEL_CHAR_WIDTH = 0.6
+
+
+def _paper_pt(ax, length) -> float:
+    """A length in data units [m] as drawn on the figure [pt]."""
+    fig = ax.figure
+    box = ax.get_position()
+    span = ax.get_xlim()[1] - ax.get_xlim()[0]
+    return float(length) / span * box.width * fig.get_figwidth() * 72.0
+
+
 def _dimension(ax, dim, fs=6.5):
     s, e = np.asarray(dim.start, float), np.asarray(dim.end, float)
     if dim.kind == "horizontal":
@@ -71,15 +84,20 @@ def _dimension(ax, dim, fs=6.5):
         ang -= 180.0
     elif ang <= -90.0:
         ang += 180.0
-    mid = 0.5 * (p0 + p1)
+    mid, ha = 0.5 * (p0 + p1), "center"
+    text = f"{dim.label} = {dim.value * 1000:.1f} mm"
+    if not np.any(s) and len(text) * LABEL_CHAR_WIDTH * fs > _paper_pt(ax, np.hypot(*d)):
+        # a length from the axle (the crank, the wheel's radius) whose label is longer than its
+        # line: written beyond the line's end, clear of the axle where the other labels are
+        mid, ha = p1, ("left" if d[0] >= 0 else "right")
     ax.annotate(
-        f"{dim.label} = {dim.value * 1000:.1f} mm",
+        text,
         mid,
         xytext=(-1.8 * math.sin(math.radians(ang)), 1.8 * math.cos(math.radians(ang))),
         textcoords="offset points",
         rotation=ang,
         rotation_mode="anchor",
-        ha="center",
+        ha=ha,
         va="bottom",
         fontsize=fs,
         color="0.15",
@@ -207,7 +225,13 @@ def linkage_drawing(dr, path) -> tuple[Path, float]:
     ext = dr.poses[0]
     for name in ("O2", "A", "B", "O4", "P"):
         x, y = ext.joint(name)
-        ax.annotate(name, (x, y), xytext=(4, 3), textcoords="offset points", fontsize=7, color="C0", zorder=7)
+        at = dict(xytext=(4, 3))
+        if name == "O2":  # above the axle, on the wheel's centre line, where no link is drawn
+            at = dict(xytext=(2, 5), ha="left", va="bottom")
+        elif name == "A":  # beyond the crank pin, away from the axle (a short crank's labels met)
+            u = ext.joint("A") / max(float(np.hypot(*ext.joint("A"))), 1e-12)
+            at = dict(xytext=(6 * u[0], 6 * u[1] + 2), ha="left" if u[0] >= 0 else "right", va="bottom")
+        ax.annotate(name, (x, y), textcoords="offset points", fontsize=7, color="C0", zorder=7, **at)
     for dim in dr.dimensions:
         _dimension(ax, dim)
 
