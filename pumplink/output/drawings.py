@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from pumplink.errors import SpecError
-from pumplink.output.charts import check_path, pyplot, save
+from pumplink.output.charts import check_path, fit_text, pyplot, save
 from pumplink.output.formats import atomic_write, check_output
 
 MM_PER_INCH = 25.4
@@ -238,8 +238,11 @@ def linkage_drawing(dr, path) -> tuple[Path, float]:
     panel = _axes_mm(fig, PANEL_MM)
     panel.set_axis_off()
     panel.set(xlim=(0, 1), ylim=(0, 1))
+    # the name: wrapped (at most three lines; a longer one loses its middle) inside the page border
+    title = panel.text(0.0, 0.98, "", fontsize=11, weight="bold", va="top")
+    fit_text(title, dr.name, lambda name: name, PANEL_MM[2] / W, lines=3)
+    top = title.get_window_extent(fig.canvas.get_renderer()).transformed(panel.transAxes.inverted()).y0
     lines = [
-        (dr.name, 11, "bold"),
         (f"scale 1:{n:g} on A4 (print at 100 %)", 8, "normal"),
         ("", 6, "normal"),
     ]
@@ -266,7 +269,7 @@ def linkage_drawing(dr, path) -> tuple[Path, float]:
         lines.append((f"{p.name}: {p.centre_distance * 1000:.1f} mm", 7.5, "normal"))
     handle = dr.parts[-1]
     lines.append((f"grip at H = {handle.end * 1000:.1f} mm from O4", 7.5, "normal"))
-    y = 0.98
+    y = top - 0.015
     for text, size, style in lines:
         colour = style if style.startswith("C") else "k"
         weight = "bold" if style == "bold" else "normal"
