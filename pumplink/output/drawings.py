@@ -291,6 +291,15 @@ def check_animation_path(path) -> Path:
     return check_output(path, "--animate")
 
 
+def arrow_lengths(force, cap: float) -> np.ndarray:
+    """The force arrow's signed length in newtons at each frame: the force, at most ``cap``
+    (an infinite or NaN force, at a dead centre, drawn at ``cap`` pointing +x)."""
+    f = np.asarray(force, float)
+    finite = np.isfinite(f)
+    shown = np.where(finite, np.minimum(np.abs(f), cap), cap)
+    return np.where(finite & (f < 0), -shown, shown)
+
+
 def animation(dr, mo, path, fps: int = 12) -> Path:
     """One revolution of the linkage, one frame per crank step, with the operator's force at the grip.
 
@@ -318,7 +327,16 @@ def animation(dr, mo, path, fps: int = 12) -> Path:
         raise SpecError(
             "the GIF animation needs Pillow, which is not installed; pip install pillow"
         ) from None
+    h = float(np.hypot(*(dr.poses[0].joint("P") - dr.poses[0].joint("O4"))))
+    per_newton = 0.3 * h / mo.force_limit  # [m/N]
+    cap = 3.0 * mo.force_limit
+    lengths = arrow_lengths(mo.force, cap) * per_newton
+    tips = mo.joints[:, 4, 0] + lengths
     x0, x1, y0, y1 = dr.extent
+    # wide enough for the arrow at every frame, its head too (the longest arrows point out of the
+    # grip's path at the dead centres, the frame's edges)
+    pad = 0.04 * (max(x1, tips.max()) - min(x0, tips.min()))
+    x0, x1 = min(x0, float(tips.min()) - pad), max(x1, float(tips.max()) + pad)
     fig = plt.figure(figsize=(6.4, 6.4 * (y1 - y0) / (x1 - x0) + 0.5), dpi=80)
     ax = fig.add_axes((0.02, 0.02, 0.96, 0.96 * (y1 - y0) / ((y1 - y0) + 0.5 * (x1 - x0) / 6.4)))
     ax.set(xlim=(x0, x1), ylim=(y0, y1))
@@ -329,14 +347,11 @@ def animation(dr, mo, path, fps: int = 12) -> Path:
         _pose(ax, pose, "0.75", "-", key, lw=1.2, gid=False)
         x, y = pose.joint("P")
         ax.text(x, y, f" {key} dead centre", fontsize=7, color="0.45", ha="center", va="bottom")
-    h = float(np.hypot(*(dr.poses[0].joint("P") - dr.poses[0].joint("O4"))))
-    per_newton = 0.3 * h / mo.force_limit  # [m/N]
-    cap = 3.0 * mo.force_limit
     moving = _pose(ax, dr.poses[0], "C0", "-", "frame", gid=False)
-    (arrow,) = ax.plot([], [], color="C3", lw=2.5, zorder=8)
-    (head,) = ax.plot([], [], marker=">", color="C3", ms=8, zorder=8)
+    (arrow,) = ax.plot([], [], color="C3", lw=2.5, zorder=8, gid="force-arrow")
+    (head,) = ax.plot([], [], marker=">", color="C3", ms=8, zorder=8, gid="force-arrow-head")
     text = fig.text(0.02, 0.99, "", fontsize=9, va="top", family="monospace")
-    fig.text(0.98, 0.99, f"{mo.model}", fontsize=6, va="top", ha="right", color="0.4", wrap=True)
+    fig.text(0.98, 0.99, f"model: {mo.model}", fontsize=8, va="top", ha="right", color="0.3")
 
     def frame(k):
         js = mo.joints[k]
@@ -346,9 +361,7 @@ def animation(dr, mo, path, fps: int = 12) -> Path:
         moving[3].set_data(js[:4, 0], js[:4, 1])
         f = float(mo.force[k])
         dead = mo.dead_centre[k]
-        shown = cap if not math.isfinite(f) else min(abs(f), cap)
-        sign = 1.0 if not math.isfinite(f) or f >= 0 else -1.0
-        length = sign * shown * per_newton
+        length = float(lengths[k])
         arrow.set_data([p[0], p[0] + length], [p[1], p[1]])
         head.set_data([p[0] + length], [p[1]])
         head.set_marker(">" if length >= 0 else "<")
