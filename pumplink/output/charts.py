@@ -195,7 +195,8 @@ def force_curve(result, curve, path) -> Path:
         xlabel="crank angle θ2 [deg]",
         ylabel="horizontal force at the grip [N]",
     )
-    fit_text(ax.set_title("x"), result.design.spec.name, lambda n: f"{n}: operator force, {what}", TITLE_WIDTH)
+    title = ax.set_title("x")
+    fit_text(title, result.design.spec.name, lambda n: f"{n}: operator force, {what}", TITLE_WIDTH)
     ax.set_xticks(range(0, 361, 45))
     ax.grid(alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)

@@ -311,7 +311,11 @@ def drawing(spec: PumpSpec, peak: bool = False) -> Drawing:
         Dimension("H (handle)", float(syn.handle_length), o4, p, 1.6 * gap),
         Dimension(
             # steeply down to the right: its label, beyond the rim, clears the D1 dimension
-            "rw (wheel)", rw, o2, rw * np.array([math.cos(-0.4 * math.pi), math.sin(-0.4 * math.pi)]), 0.0
+            "rw (wheel)",
+            rw,
+            o2,
+            rw * np.array([math.cos(-0.4 * math.pi), math.sin(-0.4 * math.pi)]),
+            0.0,
         ),
     ]
     if ah is not None:
