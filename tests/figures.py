@@ -20,10 +20,11 @@ TESTS = Path(__file__).resolve().parent
 PRE = f"import sys; sys.path.insert(0, {str(TESTS)!r}); import figures; figures.capture(); "
 
 
-def run(*args, cwd=None, env=None, pre: str = "") -> subprocess.CompletedProcess:
-    """``pumplink ARGS`` through its entry point (``pumplink.cli.main``) with the capture on."""
+def run(*args, cwd=None, env=None, pre: str = "", log=None) -> subprocess.CompletedProcess:
+    """``pumplink ARGS`` through its entry point (``pumplink.cli.main``) with the capture on (with
+    ``log``, every figure saved by any route is described there too: :func:`capture`)."""
     code = (
-        PRE
+        (PRE if log is None else PRE.replace("capture()", f"capture(log={str(log)!r})"))
         + pre
         + f"sys.argv = ['pumplink', *{[str(a) for a in args]!r}]; from pumplink.cli import main; main()"
     )
