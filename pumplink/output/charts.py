@@ -184,7 +184,9 @@ def force_curve(result, curve, path) -> Path:
         )
         top = max(top, 1.1 * abs(curve.peak_force))
     if result.flywheel:
-        what = f"{words} decides (J = {result.inertia:.3f} kg·m², δ ≤ {result.speed_fluctuation:g})"
+        # no-break spaces keep a number with its unit when the title is wrapped
+        j, delta = f"{result.inertia:.3f}", f"{result.speed_fluctuation:g}"
+        what = f"{words} decides (J\u00a0=\u00a0{j}\u00a0kg·m², δ\u00a0≤\u00a0{delta})"
         if not np.isfinite(result.verdict_peak_force):
             what += ": no finite peak force keeps the wheel turning"
     else:
@@ -273,7 +275,7 @@ def speed_chart(sweep, path) -> Path:
         xlim=(v.min(), v.max()),
         ylim=(0, min(max(top * 1.12, limit * 1.25), 4 * limit)),
     )
-    how = f"(J = {sweep.inertia:.3f} kg·m², δ ≤ {sweep.speed_fluctuation:g})"
+    how = f"(J\u00a0=\u00a0{sweep.inertia:.3f}\u00a0kg·m², δ\u00a0≤\u00a0{sweep.speed_fluctuation:g})"
     title = ax.set_title("x", fontsize=11)
     fit_text(title, spec.name, lambda n: f"{n}: the force a person needs against cadence {how}", TITLE_WIDTH)
     rpm = ax.secondary_xaxis("top", functions=(lambda d: d / 6.0, lambda r: r * 6.0))
