@@ -275,7 +275,7 @@ def speed_chart(sweep, path) -> Path:
         xlim=(v.min(), v.max()),
         ylim=(0, min(max(top * 1.12, limit * 1.25), 4 * limit)),
     )
-    how = f"(J\u00a0=\u00a0{sweep.inertia:.3f}\u00a0kg·m², δ\u00a0≤\u00a0{sweep.speed_fluctuation:g})"
+    how = f"(J = {sweep.inertia:.3f} kg·m², δ ≤ {sweep.speed_fluctuation:g})"
     title = ax.set_title("x", fontsize=11)
     fit_text(title, spec.name, lambda n: f"{n}: the force a person needs against cadence {how}", TITLE_WIDTH)
     rpm = ax.secondary_xaxis("top", functions=(lambda d: d / 6.0, lambda r: r * 6.0))
