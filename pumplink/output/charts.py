@@ -9,12 +9,15 @@ from pathlib import Path
 
 import numpy as np
 
-from pumplink.constants import DANGER, DEAD_CENTRE, NEAR_DEAD_CENTRE, UNIFORM
+from pumplink.constants import DANGER, DEAD_CENTRE, MODEL_WORDS, NEAR_DEAD_CENTRE, UNIFORM
 from pumplink.errors import SpecError
 from pumplink.output.methods import POINT_LABELS
 
 PLOT_HINT = "install it with: pip install 'pumplink[plot]'"
 SUFFIXES = (".png", ".svg", ".pdf")
+#: The widest a chart's title may be [fraction of the figure's width]: centred over the axes,
+#: which constrained layout shifts a little off the figure's centre.
+TITLE_WIDTH = 0.86
 
 
 def pyplot():
@@ -58,8 +61,65 @@ def check_path(path, option: str = "--plot") -> Path:
     return check_output(path, option)
 
 
+#: The most lines a title may take; a longer name loses its middle to an ellipsis.
+TITLE_LINES = 3
+
+
+def shorten_middle(text: str, keep: int) -> str:
+    """``text`` cut to ``keep`` characters by an ellipsis in its middle (both ends stay)."""
+    if len(text) <= keep:
+        return text
+    head = keep // 2
+    return text[:head] + "…" + text[len(text) - (keep - 1 - head) :]
+
+
+def width_of(artist) -> float:
+    """The width of a text artist as drawn [fraction of its figure's width] (renderer extents)."""
+    fig = artist.figure
+    box = artist.get_window_extent(fig.canvas.get_renderer())
+    return box.width / fig.bbox.width
+
+
+def fit_text(artist, name: str, compose, width: float, lines: int = TITLE_LINES) -> str:
+    """Set ``artist``'s text to ``compose(name)``, wrapped at spaces (a word longer than a line is
+    broken) so that no line is wider than ``width`` [fraction of the figure's width]; where that
+    takes more than ``lines`` lines the name loses characters from its middle (an ellipsis, so
+    that both ends stay) until it does.  Returns the text set."""
+    import textwrap
+
+    artist.set_parse_math(False)  # a name is text: a '$' in it is a dollar sign
+
+    def wrapped(text: str) -> str:
+        artist.set_text(text)
+        full = width_of(artist)
+        if full <= width:
+            return text
+        n = max(1, int(len(text) * width / full))
+        while True:
+            out = "\n".join(textwrap.wrap(text, n, break_on_hyphens=False))
+            artist.set_text(out)
+            if n == 1 or width_of(artist) <= width:
+                return out
+            n -= 1
+
+    text = wrapped(compose(name))
+    if text.count("\n") < lines:
+        return text
+    lo, hi = 3, len(name)  # the most characters of the name that fit in the lines (bisection)
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        fits = wrapped(compose(shorten_middle(name, mid))).count("\n") < lines
+        lo, hi = (mid, hi) if fits else (lo, mid)
+    return wrapped(compose(shorten_middle(name, lo)))
+
+
 def force_curve(result, curve, path) -> Path:
-    """Operator force against crank angle: spikes at the dead centres, bands shaded, limit lines.
+    """Operator force against crank angle by the model that decided, its peak marked.
+
+    The quasi-static force (spikes at the dead centres) is always drawn; where it decided, its
+    dead bands are shaded and its peak outside them is marked; where an energy model decided
+    (the flywheel or full dynamics), its operator force and wheel speed are drawn and its peak
+    is marked where the wheel is slowest (:class:`pumplink.studies.force.ForceCurve`).
 
     Parameters
     ----------
@@ -71,6 +131,7 @@ def force_curve(result, curve, path) -> Path:
     plt = pyplot()
     syn = result.design.synthesis
     lim = result.force_limit
+    words = MODEL_WORDS[result.model_key]
     theta = curve.crank_angle
     f = curve.force.copy()
     f[np.abs(f) > 10 * lim] = np.nan  # off the chart: break the line instead of joining -inf to +inf
@@ -81,6 +142,8 @@ def force_curve(result, curve, path) -> Path:
         x = np.degrees(dc)
         ax.axvline(x, color="k", lw=0.8, ls=":")
         ax.text(x, 2.6 * lim, f" dead centre\n ({label})", fontsize=8, va="top")
+        if result.flywheel:
+            continue  # the dead bands decide nothing: not shaded
         for lo, hi in (
             (x - band, x + band),
             (x - band + 360, x + band + 360),
@@ -103,28 +166,39 @@ def force_curve(result, curve, path) -> Path:
             curve.operator_force,
             color="C1",
             lw=1.8,
-            label=f"operator force with the flywheel (peak {result.least_peak_force:.1f} N)",
+            label=f"operator force, {words} (peak {result.verdict_peak_force:.1f} N)",
         )
         ax2 = ax.twinx()
         ax2.plot(np.degrees(theta), np.degrees(curve.wheel_speed), color="C4", lw=1, ls="--")
         ax2.set_ylabel("wheel speed [deg/s] (dashed)", color="C4")
         ax2.set_ylim(0, 1.3 * np.degrees(result.scene.max_speed))
-    pk = np.degrees(result.dead_band_peak_angle)
-    ax.plot(
-        [pk],
-        [curve.peak_sign * result.dead_band_peak_force],
-        "o",
-        color="C3",
-        label=f"peak outside dead bands {result.dead_band_peak_force:.1f} N",
-    )
+    top = 3 * lim
+    if np.isfinite(curve.peak_force):
+        ax.plot(
+            [np.degrees(curve.peak_angle)],
+            [curve.peak_force],
+            "o",
+            color="C3",
+            zorder=5,
+            label=f"verdict's peak {abs(curve.peak_force):.1f} N ({words})",
+        )
+        top = max(top, 1.1 * abs(curve.peak_force))
+    if result.flywheel:
+        # no-break spaces keep a number with its unit when the title is wrapped
+        j, delta = f"{result.inertia:.3f}", f"{result.speed_fluctuation:g}"
+        what = f"{words} decides (J\u00a0=\u00a0{j}\u00a0kg·m², δ\u00a0≤\u00a0{delta})"
+        if not np.isfinite(result.verdict_peak_force):
+            what += ": no finite peak force keeps the wheel turning"
+    else:
+        what = f"{words} decides (grey: ±{band:g}° dead bands left to the wheel's inertia)"
     ax.set(
         xlim=(0, 360),
-        ylim=(-3 * lim, 3 * lim),
+        ylim=(-top, top),
         xlabel="crank angle θ2 [deg]",
         ylabel="horizontal force at the grip [N]",
-        title=f"{result.design.spec.name}: operator force "
-        f"(grey: ±{band:g}° dead bands left to the wheel's inertia)",
     )
+    title = ax.set_title("x")
+    fit_text(title, result.design.spec.name, lambda n: f"{n}: operator force, {what}", TITLE_WIDTH)
     ax.set_xticks(range(0, 361, 45))
     ax.grid(alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)
@@ -186,6 +260,13 @@ def speed_chart(sweep, path) -> Path:
             arrowprops=dict(arrowstyle="->", lw=0.9),
             bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="0.6"),
         )  # fmt: skip
+    r = sweep.result  # pumplink force at the spec's own speed: the model that decides there, its peak
+    if r is not None and np.isfinite(r.verdict_peak_force):
+        ax.plot(
+            [r.speed_deg_s], [r.verdict_peak_force], "D", ms=8, color="k", mfc="yellow", zorder=6,
+            label=f"the verdict at the spec's {r.speed_deg_s:g} deg/s: {MODEL_WORDS[r.model_key]}, "
+            f"peak {r.verdict_peak_force:.1f} N",
+        )  # fmt: skip
     finite = [np.asarray(a, float) for a in (sweep.flywheel_force, sweep.dynamics_force, sweep.effort_force)]
     top = max(np.nanmax(np.where(np.isfinite(a), a, np.nan)) for a in finite)
     ax.set(
@@ -194,11 +275,9 @@ def speed_chart(sweep, path) -> Path:
         xlim=(v.min(), v.max()),
         ylim=(0, min(max(top * 1.12, limit * 1.25), 4 * limit)),
     )
-    ax.set_title(
-        f"{spec.name}: the force a person needs against cadence (J = {sweep.inertia:.3f} kg·m², "
-        f"δ ≤ {sweep.speed_fluctuation:g})",
-        fontsize=11,
-    )
+    how = f"(J = {sweep.inertia:.3f} kg·m², δ ≤ {sweep.speed_fluctuation:g})"
+    title = ax.set_title("x", fontsize=11)
+    fit_text(title, spec.name, lambda n: f"{n}: the force a person needs against cadence {how}", TITLE_WIDTH)
     rpm = ax.secondary_xaxis("top", functions=(lambda d: d / 6.0, lambda r: r * 6.0))
     rpm.set_xlabel("wheel speed [rpm]")
     ax.grid(alpha=0.3)

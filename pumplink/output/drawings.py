@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from pumplink.errors import SpecError
-from pumplink.output.charts import check_path, pyplot, save
+from pumplink.output.charts import check_path, fit_text, pyplot, save
 from pumplink.output.formats import atomic_write, check_output
 
 MM_PER_INCH = 25.4
@@ -45,6 +45,19 @@ def _axes_mm(fig, rect_mm):
     return fig.add_axes((left / W, bottom / H, w / W, h / H))
 
 
+#: The mean width of a label's character [em]: a label longer than its dimension line on paper
+#: is written beyond the line's end.
+LABEL_CHAR_WIDTH = 0.6
+
+
+def _paper_pt(ax, length) -> float:
+    """A length in data units [m] as drawn on the figure [pt]."""
+    fig = ax.figure
+    box = ax.get_position()
+    span = ax.get_xlim()[1] - ax.get_xlim()[0]
+    return float(length) / span * box.width * fig.get_figwidth() * 72.0
+
+
 def _dimension(ax, dim, fs=6.5):
     s, e = np.asarray(dim.start, float), np.asarray(dim.end, float)
     if dim.kind == "horizontal":
@@ -71,15 +84,20 @@ def _dimension(ax, dim, fs=6.5):
         ang -= 180.0
     elif ang <= -90.0:
         ang += 180.0
-    mid = 0.5 * (p0 + p1)
+    mid, ha = 0.5 * (p0 + p1), "center"
+    text = f"{dim.label} = {dim.value * 1000:.1f} mm"
+    if not np.any(s) and len(text) * LABEL_CHAR_WIDTH * fs > _paper_pt(ax, np.hypot(*d)):
+        # a length from the axle (the crank, the wheel's radius) whose label is longer than its
+        # line: written beyond the line's end, clear of the axle where the other labels are
+        mid, ha = p1, ("left" if d[0] >= 0 else "right")
     ax.annotate(
-        f"{dim.label} = {dim.value * 1000:.1f} mm",
+        text,
         mid,
         xytext=(-1.8 * math.sin(math.radians(ang)), 1.8 * math.cos(math.radians(ang))),
         textcoords="offset points",
         rotation=ang,
         rotation_mode="anchor",
-        ha="center",
+        ha=ha,
         va="bottom",
         fontsize=fs,
         color="0.15",
@@ -207,15 +225,24 @@ def linkage_drawing(dr, path) -> tuple[Path, float]:
     ext = dr.poses[0]
     for name in ("O2", "A", "B", "O4", "P"):
         x, y = ext.joint(name)
-        ax.annotate(name, (x, y), xytext=(4, 3), textcoords="offset points", fontsize=7, color="C0", zorder=7)
+        at = dict(xytext=(4, 3))
+        if name == "O2":  # above the axle, on the wheel's centre line, where no link is drawn
+            at = dict(xytext=(2, 5), ha="left", va="bottom")
+        elif name == "A":  # beyond the crank pin, away from the axle (a short crank's labels met)
+            u = ext.joint("A") / max(float(np.hypot(*ext.joint("A"))), 1e-12)
+            at = dict(xytext=(6 * u[0], 6 * u[1] + 2), ha="left" if u[0] >= 0 else "right", va="bottom")
+        ax.annotate(name, (x, y), textcoords="offset points", fontsize=7, color="C0", zorder=7, **at)
     for dim in dr.dimensions:
         _dimension(ax, dim)
 
     panel = _axes_mm(fig, PANEL_MM)
     panel.set_axis_off()
     panel.set(xlim=(0, 1), ylim=(0, 1))
+    # the name: wrapped (at most three lines; a longer one loses its middle) inside the page border
+    title = panel.text(0.0, 0.98, "", fontsize=11, weight="bold", va="top")
+    fit_text(title, dr.name, lambda name: name, PANEL_MM[2] / W, lines=3)
+    top = title.get_window_extent(fig.canvas.get_renderer()).transformed(panel.transAxes.inverted()).y0
     lines = [
-        (dr.name, 11, "bold"),
         (f"scale 1:{n:g} on A4 (print at 100 %)", 8, "normal"),
         ("", 6, "normal"),
     ]
@@ -242,7 +269,7 @@ def linkage_drawing(dr, path) -> tuple[Path, float]:
         lines.append((f"{p.name}: {p.centre_distance * 1000:.1f} mm", 7.5, "normal"))
     handle = dr.parts[-1]
     lines.append((f"grip at H = {handle.end * 1000:.1f} mm from O4", 7.5, "normal"))
-    y = 0.98
+    y = top - 0.015
     for text, size, style in lines:
         colour = style if style.startswith("C") else "k"
         weight = "bold" if style == "bold" else "normal"
@@ -262,6 +289,15 @@ def check_animation_path(path) -> Path:
             f"--animate {path}: unknown animation type '{path.suffix}'; use a file ending in .gif"
         )
     return check_output(path, "--animate")
+
+
+def arrow_lengths(force, cap: float) -> np.ndarray:
+    """The force arrow's signed length in newtons at each frame: the force, at most ``cap``
+    (an infinite or NaN force, at a dead centre, drawn at ``cap`` pointing +x)."""
+    f = np.asarray(force, float)
+    finite = np.isfinite(f)
+    shown = np.where(finite, np.minimum(np.abs(f), cap), cap)
+    return np.where(finite & (f < 0), -shown, shown)
 
 
 def animation(dr, mo, path, fps: int = 12) -> Path:
@@ -291,7 +327,16 @@ def animation(dr, mo, path, fps: int = 12) -> Path:
         raise SpecError(
             "the GIF animation needs Pillow, which is not installed; pip install pillow"
         ) from None
+    h = float(np.hypot(*(dr.poses[0].joint("P") - dr.poses[0].joint("O4"))))
+    per_newton = 0.3 * h / mo.force_limit  # [m/N]
+    cap = 3.0 * mo.force_limit
+    lengths = arrow_lengths(mo.force, cap) * per_newton
+    tips = mo.joints[:, 4, 0] + lengths
     x0, x1, y0, y1 = dr.extent
+    # wide enough for the arrow at every frame, its head too (the longest arrows point out of the
+    # grip's path at the dead centres, the frame's edges)
+    pad = 0.04 * (max(x1, tips.max()) - min(x0, tips.min()))
+    x0, x1 = min(x0, float(tips.min()) - pad), max(x1, float(tips.max()) + pad)
     fig = plt.figure(figsize=(6.4, 6.4 * (y1 - y0) / (x1 - x0) + 0.5), dpi=80)
     ax = fig.add_axes((0.02, 0.02, 0.96, 0.96 * (y1 - y0) / ((y1 - y0) + 0.5 * (x1 - x0) / 6.4)))
     ax.set(xlim=(x0, x1), ylim=(y0, y1))
@@ -302,14 +347,11 @@ def animation(dr, mo, path, fps: int = 12) -> Path:
         _pose(ax, pose, "0.75", "-", key, lw=1.2, gid=False)
         x, y = pose.joint("P")
         ax.text(x, y, f" {key} dead centre", fontsize=7, color="0.45", ha="center", va="bottom")
-    h = float(np.hypot(*(dr.poses[0].joint("P") - dr.poses[0].joint("O4"))))
-    per_newton = 0.3 * h / mo.force_limit  # [m/N]
-    cap = 3.0 * mo.force_limit
     moving = _pose(ax, dr.poses[0], "C0", "-", "frame", gid=False)
-    (arrow,) = ax.plot([], [], color="C3", lw=2.5, zorder=8)
-    (head,) = ax.plot([], [], marker=">", color="C3", ms=8, zorder=8)
+    (arrow,) = ax.plot([], [], color="C3", lw=2.5, zorder=8, gid="force-arrow")
+    (head,) = ax.plot([], [], marker=">", color="C3", ms=8, zorder=8, gid="force-arrow-head")
     text = fig.text(0.02, 0.99, "", fontsize=9, va="top", family="monospace")
-    fig.text(0.98, 0.99, f"{mo.model}", fontsize=6, va="top", ha="right", color="0.4", wrap=True)
+    fig.text(0.98, 0.99, f"model: {mo.model}", fontsize=8, va="top", ha="right", color="0.3")
 
     def frame(k):
         js = mo.joints[k]
@@ -319,9 +361,7 @@ def animation(dr, mo, path, fps: int = 12) -> Path:
         moving[3].set_data(js[:4, 0], js[:4, 1])
         f = float(mo.force[k])
         dead = mo.dead_centre[k]
-        shown = cap if not math.isfinite(f) else min(abs(f), cap)
-        sign = 1.0 if not math.isfinite(f) or f >= 0 else -1.0
-        length = sign * shown * per_newton
+        length = float(lengths[k])
         arrow.set_data([p[0], p[0] + length], [p[1], p[1]])
         head.set_data([p[0] + length], [p[1]])
         head.set_marker(">" if length >= 0 else "<")

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from pumplink.errors import SpecError
-from pumplink.output.charts import pyplot
+from pumplink.output.charts import fit_text, pyplot, width_of
 from pumplink.output.formats import atomic_write, check_output
 
 MM_PER_INCH = 25.4
@@ -231,15 +231,7 @@ def _page(plt, parts, page, k, n, paper, name, cut_rows, marks=None):
 
     W, H = PAPERS[paper]
     fig, ax = _new_page(plt, W, H)
-    ax.text(
-        MARGIN + 5,
-        H - MARGIN - 3,
-        f"{name}: drilling template 1:1, {paper}, page {k} of {n}",
-        fontsize=10,
-        weight="bold",
-        va="center",
-    )
-    ax.text(
+    note = ax.text(
         W - MARGIN - 5,
         H - MARGIN - 3,
         "print at 100 % (actual size); lengths in mm",
@@ -247,6 +239,10 @@ def _page(plt, parts, page, k, n, paper, name, cut_rows, marks=None):
         va="center",
         ha="right",
     )
+    # one line between the margin and the note: a long name loses its middle to an ellipsis
+    title = ax.text(MARGIN + 5, H - MARGIN - 3, "", fontsize=10, weight="bold", va="center")
+    room = 1 - (2 * MARGIN + 15) / W - width_of(note)
+    fit_text(title, name, lambda s: f"{s}: drilling template 1:1, {paper}, page {k} of {n}", room, lines=1)
     for x, y in ((MARGIN, MARGIN), (W - MARGIN, MARGIN), (MARGIN, H - MARGIN), (W - MARGIN, H - MARGIN)):
         _cross(ax, x, y, size=3.0, lw=0.5)  # corner alignment marks
     _scale_bar(ax, MARGIN + 5, MARGIN + 6)
@@ -349,9 +345,8 @@ def template_svg(parts, path, name: str, marks=None) -> None:
     W = length + 2 * MARGIN + 10
     H = len(parts) * ROW + 2 * MARGIN + HEADER + FOOTER
     fig, ax = _new_page(plt, W, H)
-    ax.text(
-        MARGIN, H - MARGIN - 3, f"{name}: link template 1:1 (mm)", fontsize=10, weight="bold", va="center"
-    )
+    title = ax.text(MARGIN, H - MARGIN - 3, "", fontsize=10, weight="bold", va="center")
+    fit_text(title, name, lambda s: f"{s}: link template 1:1 (mm)", 1 - 2 * MARGIN / W, lines=1)
     _scale_bar(ax, MARGIN + 5, MARGIN + 6)
     top = H - MARGIN - HEADER
     if marks is not None:

@@ -310,7 +310,12 @@ def drawing(spec: PumpSpec, peak: bool = False) -> Drawing:
         Dimension("l4 (rocker)", float(syn.rocker_length), o4, bb, 0.6 * gap),
         Dimension("H (handle)", float(syn.handle_length), o4, p, 1.6 * gap),
         Dimension(
-            "rw (wheel)", rw, o2, rw * np.array([math.cos(-0.25 * math.pi), math.sin(-0.25 * math.pi)]), 0.0
+            # steeply down to the right: its label, beyond the rim, clears the D1 dimension
+            "rw (wheel)",
+            rw,
+            o2,
+            rw * np.array([math.cos(-0.4 * math.pi), math.sin(-0.4 * math.pi)]),
+            0.0,
         ),
     ]
     if ah is not None:

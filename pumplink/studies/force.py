@@ -347,7 +347,13 @@ class ForceCurve:
     """The force over one revolution on a fine grid, for a chart (SI units, radians).
 
     ``force`` is the quasi-static force (NaN at a dead centre); ``operator_force`` and
-    ``wheel_speed`` the flywheel model's profile (None for the quasi-static model).
+    ``wheel_speed`` the deciding energy model's profile (None for the quasi-static model).
+    ``peak_angle`` and ``peak_force`` are the verdict's peak as a chart marks it: the crank angle
+    [rad] and the signed force [N] (+x positive) whose size is :attr:`ForceResult.verdict_peak_force`.
+    The quasi-static model's is its exact peak outside the dead bands; an energy model's operator
+    pushes with the peak force over whole arcs, and the one marked is where the wheel is slowest
+    (the operator at the peak force there, which is the least that keeps the wheel in its speed
+    band).  NaN when the peak is infinite or the design infeasible.
     """
 
     crank_angle: np.ndarray
@@ -355,6 +361,8 @@ class ForceCurve:
     operator_force: np.ndarray | None
     wheel_speed: np.ndarray | None
     peak_sign: float  # sign of the quasi-static force at the dead-band peak
+    peak_angle: float = float("nan")  # the verdict's peak: crank angle [rad]
+    peak_force: float = float("nan")  # the verdict's peak: signed force [N]
 
 
 def force_curve(r: ForceResult, points: int = CURVE_POINTS) -> ForceCurve:
@@ -365,4 +373,11 @@ def force_curve(r: ForceResult, points: int = CURVE_POINTS) -> ForceCurve:
     op = ws = None
     if r.flywheel and r.scene is not None and np.isfinite(r.scene.least_peak_force):
         op, ws = motion.operator_force(r.scene, theta), motion.wheel_speed(r.scene, theta)
-    return ForceCurve(theta, f, op, ws, float(np.sign(np.interp(r.dead_band_peak_angle, theta, f))))
+    sign = float(np.sign(np.interp(r.dead_band_peak_angle, theta, f)))
+    angle, peak = r.dead_band_peak_angle, sign * r.dead_band_peak_force
+    if r.flywheel:
+        angle = peak = float("nan")
+        if op is not None:
+            k = int(np.nanargmin(ws))  # the slowest wheel: the operator at the peak force
+            angle, peak = float(theta[k]), float(op[k])
+    return ForceCurve(theta, f, op, ws, sign, angle, peak)

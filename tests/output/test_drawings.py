@@ -7,6 +7,7 @@ matplotlib's SVG both use the PostScript point), so the 100 mm scale bar is 283.
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import re
@@ -17,6 +18,7 @@ import sys
 import zlib
 from pathlib import Path
 
+import figures
 import pytest
 import reference as ref
 
@@ -246,3 +248,109 @@ def test_report_of_a_failing_design_is_written_and_exits_1(tmp_path):
     assert p.returncode == 1 and "FAIL" in p.stderr
     text = out.read_text(encoding="utf-8")
     assert "FAIL" in text and "model: full dynamics" in text
+
+
+# ----------------------------------------------------------------------------- what fits, read back
+#: A 150-character name of words, and one of a single 150-character word (it cannot be wrapped).
+LONG_NAME = (
+    "Start village well pump for the district council, second revision with the heavier wheel and "
+    "the longer handle, village well pump for the distr finish"
+)
+LONG_WORD = "S" + "x" * 148 + "F"
+
+
+def named(tmp_path, name, source="configs/village-10m.toml") -> Path:
+    text = (ROOT / source).read_text(encoding="utf-8")
+    out = tmp_path / f"{len(name)}-{name[-1]}.toml"
+    out.write_text(re.sub(r"^name = .*$", f'name = "{name}"', text, count=1, flags=re.M), encoding="utf-8")
+    return out
+
+
+def inside(box, lo, hi) -> bool:
+    """``box`` (x0, y0, x1, y1, figure fractions) lies within [lo, hi] on both axes."""
+    return lo[0] <= box[0] <= box[2] <= hi[0] and lo[1] <= box[1] <= box[3] <= hi[1]
+
+
+def overlap(a, b) -> bool:
+    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+
+@pytest.mark.parametrize("name", [LONG_NAME, LONG_WORD])
+def test_draw_title_of_a_long_name_stays_inside_the_page_border_with_both_ends(tmp_path, name):
+    """The A4 drawing's name (the side panel's first text): inside the page border drawn 4 mm from
+    the sheet's edges (renderer extents), its first and last characters kept (wrapped, or
+    shortened in its middle); a 150-character name once ran past the border."""
+
+    out = tmp_path / "d.png"
+    p = figures.run("draw", named(tmp_path, name), "--out", out, cwd=ROOT)
+    assert p.returncode == 0, p.stderr
+    panel = figures.read(out)["axes"][1]
+    title, box = panel["texts"][0], panel["text_boxes"][0]
+    W, H = 297.0, 210.0
+    assert inside(box, (4 / W, 4 / H), (1 - 4 / W, 1 - 4 / H)), box
+    flat = title.replace("\n", " ")
+    assert flat.startswith(name[:12]) and flat.endswith(name[-12:]) if " " in name else True
+    assert title[0] == name[0] and title[-1] == name[-1]
+    below = [b[3] for b in panel["text_boxes"][1:]]
+    assert max(below) < box[1]  # the panel's other lines start below the name
+
+
+def test_template_titles_of_a_long_name_fit_the_page_with_both_ends(tmp_path):
+    """Each PDF page's title of a 150-character name: one line between the margins, clear of the
+    "print at 100 %" note, its first and last characters kept (shortened in its middle)."""
+    log = tmp_path / "pages.jsonl"
+    out = tmp_path / "t.pdf"
+    p = figures.run("template", named(tmp_path, LONG_NAME), "--out", out, cwd=ROOT, log=log)
+    assert p.returncode == 0, p.stderr
+    pages = figures.logged(log)
+    assert len(pages) >= 2
+    W = 297.0
+    for k, page in enumerate(pages, 1):
+        ax = page["axes"][0]
+        (i,) = [n for n, t in enumerate(ax["texts"]) if t.startswith(LONG_NAME[:10])]
+        title, box = ax["texts"][i], ax["text_boxes"][i]
+        note = ax["text_boxes"][ax["texts"].index("print at 100 % (actual size); lengths in mm")]
+        assert "\n" not in title and title.endswith(
+            f"{LONG_NAME[-10:]}: drilling template 1:1, A4, page {k} of {len(pages)}"
+        )
+        assert 10 / W <= box[0] and box[2] <= 1 - 10 / W and not overlap(box, note), (box, note)
+
+
+@pytest.mark.parametrize("spec", ["configs/prototype.toml", "configs/village-10m.toml"])
+def test_animation_force_arrow_inside_the_frame_at_every_frame(tmp_path, spec):
+    """The force arrow and its head (drawn extents) inside the axes at every frame of a revolution;
+    the prototype's quasi-static force is drawn at three times the limit near a dead centre, where
+    the grip is at the end of its path, and its arrow was once clipped at the frame's edge."""
+
+    log = tmp_path / "frames.jsonl"
+    p = figures.run("draw", spec, "--animate", tmp_path / "a.gif", "--steps", "36", cwd=ROOT, log=log)
+    assert p.returncode == 0, p.stderr
+    frames = [f for f in figures.logged(log) if "force-arrow" in f["axes"][0]["gids"]]
+    assert len(frames) >= 36
+    texts = {f["figure_texts"][1] for f in frames}
+    model = json.loads(run("force", spec, "--summary", "--format", "json").stdout)["model"]
+    assert texts == {f"model: {model}"}
+    for f in frames:
+        ax = f["axes"][0]
+        lo, hi = ax["box"][:2], ax["box"][2:]
+        for gid in ("force-arrow", "force-arrow-head"):
+            line = ax["gids"][gid]
+            assert inside(line["box"], lo, hi), (gid, line)
+            assert all(ax["xlim"][0] <= x <= ax["xlim"][1] for x in line["x"])
+
+
+@pytest.mark.parametrize("spec", ["configs/prototype.toml", "configs/village-10m.toml"])
+def test_draw_labels_at_the_axle_do_not_overlap(tmp_path, spec):
+    """The joint names O2 and A, and the crank's and the wheel's dimensions, drawn where no two of
+    them overlap (renderer extents); on the village well's 53.6 mm crank they once piled up."""
+
+    out = tmp_path / "d.png"
+    p = figures.run("draw", spec, "--out", out, "--peak", cwd=ROOT)
+    assert p.returncode == 0, p.stderr
+    ax = figures.read(out)["axes"][0]
+    boxes = {t: b for t, b in zip(ax["texts"], ax["text_boxes"])}
+    keys = ["O2", "A"] + [t for t in boxes if t.startswith(("l2 (crank)", "rw (wheel)"))]
+    assert len(keys) == 4
+    for i, a in enumerate(keys):
+        for b in keys[i + 1 :]:
+            assert not overlap(boxes[a], boxes[b]), (a, b)
