@@ -201,11 +201,7 @@ def batch(
             what = str(exc) if client is not None else "a worker process was killed (out of memory?)"
             sys.stderr.write(f"interrupted: {what}; no output file written\n")
             raise typer.Exit(130) from None
-    if fmt.value == "table" and kinds == {"crank-slider"}:
-        from pumplink.output.piston import render_batch_table
-
-        render_batch_table(rows, summary)
-    elif fmt.value == "table":
+    if fmt.value == "table":
         rb.render_table(summary, rows)
     else:
         wrote = [p for p in (out, junit) if p is not None]
