@@ -779,7 +779,7 @@ def summary_line(s: dict[str, Any], elapsed: float | None = None, wrote: Sequenc
         best_txt = "; no variant passes: none is feasible"
     elif best["pass"]:
         fly, peak, _ = _passing_words(s)
-        best_txt = f"; best (lowest passing peak{fly}) {peak}: {best['name']}"
+        best_txt = f"; lowest passing peak{fly} {peak}: {best['name']}"
     else:
         best_txt = f"; no variant passes (closest: {best['name']}, fails {_failed_words(s['_best_failed'])})"
     sel = ",".join(s["fail_on"]) or "none"
@@ -844,29 +844,43 @@ def _header(name: str, unit: str) -> str:
     return f"{name}\n[{unit}]" if unit else name
 
 
-def _layout(c, heads: list[tuple[str, str]], cells: list[list]):
-    """A Rich table of ``heads`` (header, justify) and rows of ``cells`` that fits the console
-    without cutting a value: two spaces between columns, one when two do not fit; if even that is
-    too wide, cells wrap onto more lines (``fold``), never an ellipsis."""
-    from rich import box
+def _widths(heads: list[tuple[str, str]], cells: list[list]) -> list[int]:
+    """Each column's natural width: its widest header line or cell [characters]."""
     from rich.cells import cell_len
-    from rich.table import Table
 
     def width(x) -> int:
         return max(cell_len(line) for line in str(x).split("\n"))
 
-    natural = [max([width(h), *(width(row[j]) for row in cells)]) for j, (h, _) in enumerate(heads)]
-    gap = 2 if sum(natural) + 2 * (len(heads) - 1) <= c.width else 1
+    return [max([width(h), *(width(row[j]) for row in cells)]) for j, (h, _) in enumerate(heads)]
+
+
+def _gap(c, heads: list[tuple[str, str]], cells: list[list]) -> int | None:
+    """Spaces between columns for the table to fit the console: 2, else 1, else None."""
+    total = sum(_widths(heads, cells))
+    return next((g for g in (2, 1) if total + g * (len(heads) - 1) <= c.width), None)
+
+
+def _layout(c, heads: list[tuple[str, str]], cells: list[list]):
+    """A Rich table of ``heads`` (header, justify) and rows of ``cells`` that fits the console
+    without cutting a value: two spaces between columns, one when two do not fit.  If even that
+    is too wide, only the first column (the variant) wraps, at spaces where it has them; the
+    other columns keep their natural width; nothing is cut to an ellipsis."""
+    from rich import box
+    from rich.table import Table
+    from rich.text import Text
+
+    gap = _gap(c, heads, cells) or 1
     t = Table(
         box=box.SIMPLE_HEAD,
         show_edge=False,
         pad_edge=False,
         padding=(0, 1, 0, 0) if gap == 2 else 0,  # and the box puts one space between columns
     )
-    for head, justify in heads:
-        t.add_column(head.replace("[", "\\["), justify=justify, overflow="fold")
+    for j, ((head, justify), width) in enumerate(zip(heads, _widths(heads, cells), strict=True)):
+        fixed = {} if j == 0 else {"min_width": width, "no_wrap": True}
+        t.add_column(Text(head), justify=justify, overflow="fold", **fixed)
     for row in cells:
-        t.add_row(*row)
+        t.add_row(*(Text(x) if isinstance(x, str) else x for x in row))  # text, never markup
     return t
 
 
@@ -934,31 +948,41 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
         caption += ("" if piston else "; γ smallest transmission angle; v peak grip speed") + (
             "; warn: PASS with warnings"
         )
-        heads = [("#" if one else "variant", "right" if one else "left")]
-        heads += [(_header(k.split(".")[-1], units.get(k, "")), "right") for k in keys]
-        heads += [(_header("peak", "N"), "right"), (_header("mean", "N"), "right")]
-        if not piston:
-            heads += [(_header("γ", "°"), "right"), (_header("v", "m/s"), "right")]
-        heads.append(("verdict", "left"))
-        cells = []
-        for r in rows:
-            if piston:
-                lpf = r["least_peak_force_N"]
-                peak_value = lpf if lpf is not None else r["quasi_static_peak_N"]
-            else:
-                peak_value = r["peak_force_N"]
-            row = [r["index"] if one else r["id"]]
-            row += [_f(r["vary"].get(k), "{:g}", none="") for k in keys]
-            row += [
-                _f(peak_value, "{:.1f}", none="∞" if r["feasible"] else "—"),
-                _f(r["mean_force_N"], "{:.1f}"),
-            ]
+
+        def table(keys: list[str], named: bool):
+            """Headers and cells: one column per varied key, or (``named``) the variant's whole
+            name in the first column, which gives the varied values as key=value."""
+            first = "variant (varied values in spec units)" if named else "#" if one else "variant"
+            heads = [(first, "right" if one and not named else "left")]
+            heads += [(_header(k.split(".")[-1], units.get(k, "")), "right") for k in keys]
+            heads += [(_header("peak", "N"), "right"), (_header("mean", "N"), "right")]
             if not piston:
-                tmin, tmax = r["transmission_min_deg"], r["transmission_max_deg"]
-                gamma = None if tmin is None or tmax is None else min(tmin, 180.0 - tmax)
-                row += [_f(gamma, "{:.1f}"), _f(r["grip_speed_m_s"], "{:.2f}")]
-            row.append(_verdict_cell(r))
-            cells.append(row)
+                heads += [(_header("γ", "°"), "right"), (_header("v", "m/s"), "right")]
+            heads.append(("verdict", "left"))
+            cells = []
+            for r in rows:
+                if piston:
+                    lpf = r["least_peak_force_N"]
+                    peak_value = lpf if lpf is not None else r["quasi_static_peak_N"]
+                else:
+                    peak_value = r["peak_force_N"]
+                row = [r.get("variant", r.get("name")) if named else r["index"] if one else r["id"]]
+                row += [_f(r["vary"].get(k), "{:g}", none="") for k in keys]
+                row += [
+                    _f(peak_value, "{:.1f}", none="∞" if r["feasible"] else "—"),
+                    _f(r["mean_force_N"], "{:.1f}"),
+                ]
+                if not piston:
+                    tmin, tmax = r["transmission_min_deg"], r["transmission_max_deg"]
+                    gamma = None if tmin is None or tmax is None else min(tmin, 180.0 - tmax)
+                    row += [_f(gamma, "{:.1f}"), _f(r["grip_speed_m_s"], "{:.2f}")]
+                row.append(_verdict_cell(r))
+                cells.append(row)
+            return heads, cells
+
+        heads, cells = table(keys, named=False)
+        if keys and _gap(c, heads, cells) is None:  # too many keys for a column each
+            heads, cells = table([], named=True)
         c.print(title, markup=False)
         c.print(_layout(c, heads, cells))
         c.print(caption, markup=False)
