@@ -476,9 +476,7 @@ def quasi_static_peak_loads(
 
     def loads_at(th):  # (n, k) crank angles -> (6, n, k) loads, NaN as -inf
         motion = quasi_static_motion(column, th, torque[:, None])
-        return _finite_or_floor(
-            _loads(motion_forces(column, motion, GRAVITY, rope[:, None], weight[:, None]))
-        )
+        return _finite_or_floor(_loads(motion_forces(column, motion, GRAVITY, rope[:, None], weight[:, None])))
 
     plus = np.mod(dcf - dce, TWO_PI)
     start = np.stack([dce + band, dcf + band], axis=1)  # (n, 2): the two arcs judged
@@ -509,9 +507,7 @@ def quasi_static_peak_loads(
         best = np.where(up, top, best)
         where = np.where(up, np.take_along_axis(x, k[..., None], -1)[..., 0], where)
         a = np.where(live, np.take_along_axis(x, np.maximum(k - 1, 0)[..., None], -1)[..., 0], a)
-        b = np.where(
-            live, np.take_along_axis(x, np.minimum(k + 1, ZOOM_POINTS - 1)[..., None], -1)[..., 0], b
-        )
+        b = np.where(live, np.take_along_axis(x, np.minimum(k + 1, ZOOM_POINTS - 1)[..., None], -1)[..., 0], b)
         live = live & ((b - a) > REFINE_XTOL)
     return np.where(best == -np.inf, np.nan, best), np.mod(where, TWO_PI)
 
