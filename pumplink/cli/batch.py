@@ -107,8 +107,8 @@ def batch(
     "section.key" = \\[values] or { start, stop, num }.  Plain spec files count as one variant;
     a folder means its *.toml files (not sub-folders).
 
-    One row per variant (lengths, feasibility, forces, verdict) and a summary (counts, lowest
-    peak force).  The verdict is that of pumplink force: where the variant gives inertia the
+    One row per variant (lengths, feasibility, forces, verdict) and a summary (counts, the
+    passing variant with the lowest peak force, or the closest if none passes).  The verdict is that of pumplink force: where the variant gives inertia the
     least model that is enough (flywheel or full dynamics, or --model), else quasi-static with
     the dead band (the model column says which): PASS, PASS with warnings or FAIL, with each
     check's result in its own column.  Exit 0 if no variant

@@ -695,8 +695,10 @@ def write_stream(
                 if pick and piston:
                     rows = batch_rows(b.names(c.start, c.stop), c)
                     failed = c.failed(fail_on)
+                    peaks = _floats(c.verdict_peak_force)  # the peak that decided, as the summary's
                     table_rows.extend(
-                        {**rows[i], **w, "failed": bool(failed[i])} for i, w in zip(pick, where)
+                        {**rows[i], **w, "failed": bool(failed[i]), "peak_force_N": peaks[i]}
+                        for i, w in zip(pick, where)
                     )
                 elif pick:
                     cc = chunk_columns(b, c)
@@ -961,11 +963,7 @@ def render_table(s: dict[str, Any], rows: list[dict], out=None) -> None:
             heads.append(("verdict", "left"))
             cells = []
             for r in rows:
-                if piston:
-                    lpf = r["least_peak_force_N"]
-                    peak_value = lpf if lpf is not None else r["quasi_static_peak_N"]
-                else:
-                    peak_value = r["peak_force_N"]
+                peak_value = r["peak_force_N"]
                 row = [r.get("variant", r.get("name")) if named else r["index"] if one else r["id"]]
                 row += [_f(r["vary"].get(k), "{:g}", none="") for k in keys]
                 row += [
