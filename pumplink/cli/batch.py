@@ -107,8 +107,8 @@ def batch(
     "section.key" = \\[values] or { start, stop, num }.  Plain spec files count as one variant;
     a folder means its *.toml files (not sub-folders).
 
-    One row per variant (lengths, feasibility, forces, verdict) and a summary (counts, lowest
-    peak force).  The verdict is that of pumplink force: where the variant gives inertia the
+    One row per variant (lengths, feasibility, forces, verdict) and a summary (counts, the
+    passing variant with the lowest peak force, or the closest if none passes).  The verdict is that of pumplink force: where the variant gives inertia the
     least model that is enough (flywheel or full dynamics, or --model), else quasi-static with
     the dead band (the model column says which): PASS, PASS with warnings or FAIL, with each
     check's result in its own column.  Exit 0 if no variant
@@ -201,11 +201,7 @@ def batch(
             what = str(exc) if client is not None else "a worker process was killed (out of memory?)"
             sys.stderr.write(f"interrupted: {what}; no output file written\n")
             raise typer.Exit(130) from None
-    if fmt.value == "table" and kinds == {"crank-slider"}:
-        from pumplink.output.piston import render_batch_table
-
-        render_batch_table(rows, summary)
-    elif fmt.value == "table":
+    if fmt.value == "table":
         rb.render_table(summary, rows)
     else:
         wrote = [p for p in (out, junit) if p is not None]

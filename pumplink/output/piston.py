@@ -356,32 +356,3 @@ def batch_json(rows: list[dict[str, Any]]) -> str:
     """JSON of piston-pump batch rows as items of the ``variants`` list (indented as
     :func:`pumplink.output.formats.write_json` would), each followed by ',\n    '."""
     return "".join(json.dumps(r, indent=2, allow_nan=False).replace("\n", "\n    ") + ",\n    " for r in rows)
-
-
-def render_batch_table(rows: list[dict[str, Any]], summary: dict[str, Any], out=None) -> None:
-    """``pumplink batch --format table`` over piston-pump variants: one row each, then a summary."""
-    from rich.markup import escape
-    from rich.table import Table
-
-    failed = [r["failed"] for r in rows]
-    n_fail = summary["failed_selected"]
-    c = console(out or sys.stdout)
-    t = Table(title="Piston-pump variants", title_justify="left")
-    for h in ("variant", "mean [N]", "peak [N]", "verdict"):
-        t.add_column(escape(h), justify="left" if h == "variant" else "right")
-    for r, bad in zip(rows, failed, strict=True):
-        peak = r["least_peak_force_N"] if r["least_peak_force_N"] is not None else r["quasi_static_peak_N"]
-        t.add_row(
-            escape(r["variant"]),
-            _f(r["mean_force_N"], "{:.1f}"),
-            _f(peak, "{:.1f}"),
-            ("infeasible" if not r["feasible"] else "PASS" if r["pass"] else "FAIL") + ("*" if bad else ""),
-        )
-    c.print(t)
-    best = min((r for r in rows if r["feasible"]), key=lambda r: r["mean_force_N"], default=None)
-    total = summary["variants"]
-    c.print(
-        f"{total} variants, {total - n_fail} pass the --fail-on checks, {n_fail} fail (*)"
-        + (f"\nlowest mean force: {best['variant']}" if best else ""),
-        markup=False,
-    )

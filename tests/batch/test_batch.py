@@ -743,7 +743,7 @@ def test_fail_on_peak_is_the_flywheel_peak(tmp_path, fail_on, code, failures):
     assert len(msgs) == failures and all(
         "peak force with the flywheel (δ ≤ 0.2) infinite" in m and "J = 1e-06" in m for m in msgs
     )
-    assert "lowest peak (flywheel) 35.3 N: flysmall#2" in r.stderr
+    assert "lowest passing peak (flywheel) 35.3 N: flysmall#2" in r.stderr
 
 
 def test_the_links_carry_the_dead_centres_when_the_wheel_cannot(tmp_path):
@@ -767,13 +767,14 @@ def test_flywheel_table_shows_the_verdict_peak_and_the_model(tmp_path):
     p.write_text(FLY_SMALL)
     r = pumplink("batch", p, PROTOTYPE, "--fail-on", "none", "--model", "flywheel")
     assert r.returncode == 0, r.stderr
-    rows = {ln.split()[0]: ln.split() for ln in r.stdout.splitlines() if ln[:3].strip().isdigit()}
-    # '#', the two varied values, then peak [N]: the flywheel's least peak (the mean, 62.8 N at 80 N
-    # rope force) where inertia is given; the dead-band peak of the quasi-static prototype (85.8 N)
-    assert rows["4"][1:4] == ["1000", "80", "62.8"]
-    assert rows["5"][1] == "85.8"
-    assert "designs: 1-4 flysmall; 5 Prototype" in r.stdout
-    assert "lowest peak force (flywheel): flysmall#2" in r.stdout
+    rows = {
+        ln.split()[0]: ln.split() for ln in r.stdout.splitlines() if ln.startswith(("flysmall#", "Proto"))
+    }
+    # the variant, the two varied values, then peak [N]: the flywheel's least peak (the mean, 62.8 N
+    # at 80 N rope force) where inertia is given; the dead-band peak of the quasi-static prototype
+    assert rows["flysmall#3"][1:4] == ["1000", "80", "62.8"]
+    assert rows["Prototype"][1] == "85.8"
+    assert "best: flysmall#2[inertia=1000 rope_force=45] — lowest peak force (flywheel) of 3" in r.stdout
     assert max(len(ln) for ln in r.stdout.splitlines()) <= 80
 
 
