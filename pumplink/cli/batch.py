@@ -46,8 +46,9 @@ def batch(
             "--format",
             "-f",
             metavar="FORMAT",
-            help="table, csv, json or parquet.  Rows as csv or json, or parquet (with --out; needs pip install 'pumplink\\[parquet]'); "
-            "table: the summary (and the rows, or the failures of a large run).",
+            help="table, csv, json or parquet.  Rows as csv or json, or parquet (with --out; needs "
+            "pip install 'pumplink\\[parquet]'); table: the summary (and the rows, or the failures "
+            "of a large run).",
         ),
     ] = BatchFormat.table,
     out: Annotated[

@@ -13,6 +13,7 @@ from typing import Annotated, Optional
 
 import typer
 
+
 def terminal_paragraphs(doc: str) -> str:
     """A docstring as help text for the terminal to wrap: each paragraph (blank-line separated) on
     one line.  Typer's rich mode keeps a docstring's line breaks after the first paragraph, so a

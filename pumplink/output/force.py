@@ -245,8 +245,8 @@ def render_force(
                     if fly
                     else ""
                 )
-                + "; bar: █ up to the limit, ▒ past it, full at 1.5× it; v grip speed; φ handle from vertical; "
-                "γ transmission angle",
+                + "; bar: █ up to the limit, ▒ past it, full at 1.5× it; v grip speed; "
+                "φ handle from vertical; γ transmission angle",
                 caption_justify="left",
                 box=box.SIMPLE_HEAD,
                 pad_edge=False,
@@ -432,7 +432,8 @@ def render_explain(effects, why: str, out=None, cadence=None, force_limit: float
         ratio = (
             "" if not math.isfinite(e.ratio) else (f"{e.ratio:.0%}" if e.ratio < 10 else f"{e.ratio:.1f}×")
         )
-        t.add_row(f"{i}. {escape(_effect_head(e.name))}", inc, f"{_f(e.value, '{:.3g}', '∞')} {e.unit}", ratio)
+        size = f"{_f(e.value, '{:.3g}', '∞')} {e.unit}"
+        t.add_row(f"{i}. {escape(_effect_head(e.name))}", inc, size, ratio)
         share = f"{ratio} {e.compared_with}; " if ratio else ""
         notes.append(f"{i}. {e.name}: {share}{e.note}")
     c.print(t)
