@@ -171,7 +171,7 @@ WITHOUT_SPEC = [
     ["slotted", "--time-ratio", "1.5", "--stroke", "0.3"],
     ["slotted", "--crank", "120", "--frame", "240", "--lever", "450"],
     ["rocker", "--time-ratio", "1.25", "--swing", "50", "--rocker", "0.3", "--frame", "0.4"],
-    ["rocker", "--time-ratio", "1", "--swing", "40", "--rocker", "0.3"],
+    ["rocker", "--time-ratio", "1", "--swing", "40", "--rocker", "0.3", "--frame", "0.4"],
     ["init", "--example", "list"],
 ]
 
