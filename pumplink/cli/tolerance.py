@@ -113,7 +113,7 @@ def tolerance(
         typer.Option(
             "--scheduler",
             help="Run on Dask instead of the local pool: local:N or tcp://host:8786 (needs pip install "
-            "'pumplink[dask]'). The same numbers as one process.",
+            "'pumplink\\[dask]'). The same numbers as one process.",
             show_default=False,
         ),
     ] = None,

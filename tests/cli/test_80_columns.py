@@ -87,6 +87,8 @@ def test_help_fits_80_columns(name):
             assert METAVAR.match(line, m.start()), f"split metavar: {line!r}"
         for m in re.finditer(r"\[(?=\S)", line):  # '[1<=x<=720]', '[deg/s]'
             assert BRACKETED.match(line, m.start()), f"split bracket: {line!r}"
+    # an extra in brackets is text, not Rich markup ('pumplink[dask]' once printed as 'pumplink')
+    assert "'pumplink'" not in p.stdout, p.stdout
     if name is None:
         return
     cmd = click_command(name)
