@@ -33,6 +33,7 @@ def batch(
     samples: Annotated[
         int,
         typer.Option(
+            metavar="N",
             help="Uniform crank samples per variant for the sampled-peak column "
             "(0: skip it); peak_force_N is exact whatever this is.",
             min=0,
@@ -44,8 +45,10 @@ def batch(
         typer.Option(
             "--format",
             "-f",
-            help="Rows as csv or json, or parquet (with --out; needs pip install 'pumplink\\[parquet]'); "
-            "table: the summary (and the rows, or the failures of a large run).",
+            metavar="FORMAT",
+            help="table, csv, json or parquet.  Rows as csv or json, or parquet (with --out; needs "
+            "pip install 'pumplink\\[parquet]'); table: the summary (and the rows, or the failures "
+            "of a large run).",
         ),
     ] = BatchFormat.table,
     out: Annotated[
@@ -65,7 +68,9 @@ def batch(
     ] = None,
     workers: Annotated[
         int,
-        typer.Option(help="Worker processes (0: one per CPU; never more than the tasks).", min=0, max=256),
+        typer.Option(
+            metavar="N", help="Worker processes (0: one per CPU; never more than the tasks).", min=0, max=256
+        ),
     ] = 1,
     fail_on: Annotated[
         str,

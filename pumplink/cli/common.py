@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+import inspect
 import math
 import re
 from collections.abc import MutableMapping
@@ -12,7 +13,31 @@ from typing import Annotated, Optional
 
 import typer
 
-app = typer.Typer(
+
+def terminal_paragraphs(doc: str) -> str:
+    """A docstring as help text for the terminal to wrap: each paragraph (blank-line separated) on
+    one line.  Typer's rich mode keeps a docstring's line breaks after the first paragraph, so a
+    text wrapped at the source's width would come out ragged in an 80-column terminal."""
+    return "\n\n".join(" ".join(p.split()) for p in inspect.cleandoc(doc).split("\n\n"))
+
+
+class _App(typer.Typer):
+    """The Typer app, whose commands' help is their docstring as :func:`terminal_paragraphs`."""
+
+    def command(self, *args, **kwargs):
+        register = super().command(*args, **kwargs)
+
+        def decorator(f):
+            register(f)
+            info = self.registered_commands[-1]
+            if info.help is None and f.__doc__:
+                info.help = terminal_paragraphs(f.__doc__)
+            return f
+
+        return decorator
+
+
+app = _App(
     name="pumplink",
     help="Design the four-bar linkage that lets a standing operator drive a rope pump by hand.\n\n"
     "Example: [bold]pumplink init pump.toml && pumplink force pump.toml --speed 360[/]",
@@ -104,6 +129,7 @@ ModelOpt = Annotated[
     Optional[Model],
     typer.Option(
         "--model",
+        metavar="MODEL",
         help="Decide with this model: quasi-static, flywheel or dynamics (default: the least model "
         "that is enough, see force --explain; the last two need the wheel's inertia).",
         show_default=False,

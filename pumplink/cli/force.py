@@ -79,18 +79,18 @@ def force(
 ) -> None:
     """Operator force over the crank cycle, the checks and the 100 N verdict.
 
-    Two models decide the verdict.  With the wheel's inertia in the spec
-    (wheel.mass or wheel.inertia; the rope and water are added) the
-    [bold]flywheel[/] model finds the least peak force that keeps the wheel at
-    the mean --speed with a speed fluctuation within
-    operator.speed_fluctuation: the speed changes the answer.  Without it the
-    force is [bold]quasi-static[/] (Eq. 3 of the pump paper), infinite at the
-    two dead centres, so the peak is taken outside ±operator.dead_band of
-    them, exactly, whatever --samples.  The verdict is PASS, PASS with
-    warnings or FAIL (docs/models.md §4); after a FAIL the one or two single
-    changes that help most are printed.  Exit 0 on PASS and PASS with
-    warnings (1 with --strict), 1 on FAIL, an infeasible design or a
-    --verify disagreement.
+    Three models; the least one that is enough decides the verdict (docs/models.md §3; --model
+    picks one, --explain says why).  Without the wheel's inertia in the spec the force is
+    [bold]quasi-static[/] (Eq. 3 of the pump paper), infinite at the two dead centres, so the
+    peak is taken outside ±operator.dead_band of them, exactly, whatever --samples.  With it
+    (wheel.mass or wheel.inertia; the rope and water are added) the [bold]flywheel[/] model
+    finds the least peak force that keeps the wheel at the mean --speed with a speed
+    fluctuation within operator.speed_fluctuation: the speed changes the answer.  Where the
+    coupler's and handle's inertia and weight are too large to neglect, [bold]full dynamics[/]
+    keeps them in the same least-peak-force test (docs/models.md §3a).  The verdict is PASS,
+    PASS with warnings or FAIL (docs/models.md §4); after a FAIL the one or two single changes
+    that help most are printed.  Exit 0 on PASS and PASS with warnings (1 with --strict), 1 on
+    FAIL, an infeasible design or a --verify disagreement.
 
     Example: [bold]pumplink force pump.toml --speed 360 --at 90 --at 270 --format json[/]
 

@@ -28,6 +28,14 @@ class Distribution(str, Enum):  # noqa: UP042 -- typer needs the str mixin seman
     normal = "normal"
 
 
+def _below_2_63(value: int) -> int:
+    """--seed: numpy's generators take a seed below 2**63 here (the range is stated in the help
+    rather than as Typer's range, whose 19 digits would not fit an 80-column help)."""
+    if value >= 2**63:
+        raise typer.BadParameter(f"must be < 2**63 ({2**63 - 1} at most)")
+    return value
+
+
 def _length(option: str):
     return typer.Option(
         option,
@@ -77,7 +85,12 @@ def tolerance(
     ] = Distribution.uniform,
     samples: Annotated[int, typer.Option(help="Builds drawn.", min=100, max=10_000_000)] = 10_000,
     seed: Annotated[
-        int, typer.Option(help="Seed of the builds (the same seed, the same builds).", min=0, max=2**63 - 1)
+        int,
+        typer.Option(
+            help="Seed of the builds (the same seed, the same builds), below 2**63.",
+            min=0,
+            callback=_below_2_63,
+        ),
     ] = 0,
     target: Annotated[
         float,
@@ -100,7 +113,7 @@ def tolerance(
         typer.Option(
             "--scheduler",
             help="Run on Dask instead of the local pool: local:N or tcp://host:8786 (needs pip install "
-            "'pumplink[dask]'). The same numbers as one process.",
+            "'pumplink\\[dask]'). The same numbers as one process.",
             show_default=False,
         ),
     ] = None,

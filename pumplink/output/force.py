@@ -142,12 +142,30 @@ def iter_sample_rows(r: ForceResult) -> Iterator[dict[str, Any]]:
             yield row
 
 
+#: Eighths of a cell, for a bar's last partial cell.
+_EIGHTHS = ("", "▏", "▎", "▍", "▌", "▋", "▊", "▉")
+
+
 def _bar(value, limit, width=12) -> str:
+    """A force as a bar of ``width`` cells that is full at 1.5x ``limit``: solid up to the limit in
+    eighths of a cell, then a lighter block for each cell past it (at least one, so that a force
+    over the limit reads as such without colour), an arrow at the end when full; arrows
+    throughout for an infinite force.  ``width`` is a multiple of 3, so the limit falls on a cell
+    boundary."""
     if value is None or not math.isfinite(value):
         return "[red]" + "▶" * width + "[/]"
-    full = abs(value) / limit * width / 1.5 >= width  # full bar at 1.5x the limit, then an arrow
-    mark = "█" * (width - 1) + "▶" if full else "█" * int(round(abs(value) / limit * width / 1.5))
-    return f"[red]{mark}[/]" if abs(value) > limit else f"[green]{mark}[/]"
+    at_limit = width * 2 // 3  # cells up to the limit
+    v = abs(value)
+    if v <= limit:
+        eighths = round(v / (1.5 * limit) * width * 8)
+        mark = "█" * (eighths // 8) + _EIGHTHS[eighths % 8]
+        return f"[green]{mark}[/]"
+    past = round((v - limit) / (1.5 * limit) * width)
+    if v >= 1.5 * limit or at_limit + past >= width:
+        mark = "█" * at_limit + "▒" * (width - at_limit - 1) + "▶"
+    else:
+        mark = "█" * at_limit + "▒" * max(1, past)
+    return f"[red]{mark}[/]"
 
 
 def _condensed_indices(r: ForceResult, max_rows: int = 24) -> list[int]:
@@ -214,7 +232,7 @@ def render_force(
 
         if not summary and r.samples is not None and r.samples.crank_angle.size:
             s = r.samples
-            kind = "flywheel scene" if fly else "quasi-static"
+            kind = "full dynamics" if r.dynamics else "flywheel" if fly else "quasi-static"
             t = Table(
                 title=f"Operator force over the crank cycle ({kind}, {r.samples_n} samples"
                 f"{', condensed' if s.crank_angle.size > 28 else ''})",
@@ -227,8 +245,8 @@ def render_force(
                     if fly
                     else ""
                 )
-                + "; bar full at 1.5× the limit; v grip speed; φ handle from vertical; "
-                "γ transmission angle",
+                + "; bar: █ up to the limit, ▒ past it, full at 1.5× it; v grip speed; "
+                "φ handle from vertical; γ transmission angle",
                 caption_justify="left",
                 box=box.SIMPLE_HEAD,
                 pad_edge=False,
@@ -240,9 +258,14 @@ def render_force(
                 else [f"|Fh| vs {r.force_limit:g} N"]
             )
             heads += ["v [m/s]", "φ [°]", "γ [°]", "note"]
+            bar = 6 if fly else 12  # cells (a multiple of 3: the limit on a cell boundary)
             for h in heads:
+                is_bar = h.startswith("|")
                 t.add_column(
-                    escape(h), justify="left" if h.startswith(("|", "note")) else "right", no_wrap=h == "note"
+                    escape(h),
+                    justify="left" if is_bar or h == "note" else "right",
+                    no_wrap=h == "note",
+                    min_width=bar if is_bar else None,  # a bar is never folded or cropped
                 )
             rows = []
             hs = r.handle_speed
@@ -251,9 +274,9 @@ def render_force(
                 f = st.force[i]
                 qs = "∞" if st.singular[i] else _f(f, "{:+.1f}")
                 if fly:
-                    mid = [_f(op, "{:+.1f}"), _bar(op, r.force_limit, 8), _f(np.degrees(w), "{:.1f}")]
+                    mid = [_f(op, "{:+.1f}"), _bar(op, r.force_limit, bar), _f(np.degrees(w), "{:.1f}")]
                 else:
-                    mid = [_bar(None if st.singular[i] else float(f), r.force_limit, 12)]
+                    mid = [_bar(None if st.singular[i] else float(f), r.force_limit, bar)]
                 rows.append(
                     (
                         float(st.crank_angle[i]) % (2 * math.pi),
@@ -376,9 +399,20 @@ def explain_rows(effects) -> list[dict[str, Any]]:
     ]
 
 
+def _effect_head(name: str) -> str:
+    """The words of an effect's name before its first qualifier (' (...)' or ', ...'): what the
+    model-choice table shows; the whole name is in the numbered line under it."""
+    cut = min((i for i in (name.find(" ("), name.find(", ")) if i > 0), default=len(name))
+    return name[:cut]
+
+
 def render_explain(effects, why: str, out=None, cadence=None, force_limit: float = 0.0) -> None:
     """`pumplink force --explain` (table output): the effects table, the reason, and the best
-    cadence (:class:`pumplink.studies.speed.Cadence`, when the spec gives inertia)."""
+    cadence (:class:`pumplink.studies.speed.Cadence`, when the spec gives inertia).
+
+    The table (one line an effect, to fit 80 columns) gives each effect's short name, whether
+    the model includes it, its size and its share of what it is compared with; the numbered
+    lines under it give the whole name, what the share is of, and the note."""
     from rich import box
     from rich.markup import escape
     from rich.table import Table
@@ -390,21 +424,18 @@ def render_explain(effects, why: str, out=None, cadence=None, force_limit: float
         box=box.SIMPLE_HEAD,
         pad_edge=False,
     )
-    for h in ("effect", "in model", "size", "compared with"):
-        t.add_column(h, justify="right" if h == "size" else "left")
+    for h in ("effect", "in model", "size", "share"):
+        t.add_column(h, justify="right" if h in ("size", "share") else "left", no_wrap=True)
     notes = []
     for i, e in enumerate(effects, 1):
         inc = "[green]yes[/]" if e.included else "[dim]neglected[/]"
         ratio = (
             "" if not math.isfinite(e.ratio) else (f"{e.ratio:.0%}" if e.ratio < 10 else f"{e.ratio:.1f}×")
         )
-        t.add_row(
-            f"{i}. {escape(e.name)}",
-            inc,
-            f"{_f(e.value, '{:.3g}', '∞')} {e.unit}",
-            escape(f"{ratio} {e.compared_with}" if ratio else ""),
-        )
-        notes.append(f"{i}. {e.note}")
+        size = f"{_f(e.value, '{:.3g}', '∞')} {e.unit}"
+        t.add_row(f"{i}. {escape(_effect_head(e.name))}", inc, size, ratio)
+        share = f"{ratio} {e.compared_with}; " if ratio else ""
+        notes.append(f"{i}. {e.name}: {share}{e.note}")
     c.print(t)
     for n in notes:
         c.print(n, markup=False)

@@ -225,8 +225,7 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
         c.print(f"binding: {', '.join(row['binding']) or 'none (interior optimum)'}", markup=False)
         c.print(
             f"grip {o['grip_height_m'][0]:.3f}–{o['grip_height_m'][1]:.3f} m, stroke {o['stroke_m']:.3f} m, "
-            f"rocker pivot {o['rocker_pivot_height_m']:+.3f} m above the ground"
-            f"{' (below ground: needs a pit)' if o['rocker_pivot_height_m'] < 0 else ''}",
+            f"rocker pivot {pivot_height(o['rocker_pivot_height_m'])}",
             markup=False,
         )
         if not o["pass"]:
@@ -249,3 +248,11 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
         )
 
     render(fmt, out, as_json=as_json, as_csv=as_csv, table=table)
+
+
+def pivot_height(height: float) -> str:
+    """The rocker pivot's height [m] in words: '0.150 m above the ground', or '0.300 m below the
+    ground (needs a pit)' for a negative height (never 'above' with a minus sign)."""
+    if height < 0:
+        return f"{-height:.3f} m below the ground (needs a pit)"
+    return f"{height:.3f} m above the ground"

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from pumplink.constants import AXLE_HEIGHT_RANGE_M
 from pumplink.output.formats import fmt as _f
 from pumplink.output.formats import num
 
@@ -111,6 +112,9 @@ def limit_text(ch, limit) -> str:
     """'> 75 W' style: the side of ``limit`` on which the check warns or fails ('' for none)."""
     if limit is None:
         return ""
+    if ch.key == "axle_height":  # a range: it warns on either side (pumplink.verdict)
+        lo, hi = AXLE_HEIGHT_RANGE_M
+        return f"<{lo:g}, >{hi:g} {ch.unit}"
     bad = ">" if ch.relation == "<=" else "<"
     return f"{bad} {limit:g} {ch.unit}".rstrip()
 

@@ -8,6 +8,7 @@ range; the radians hint only when its fix is valid; ``batch --help`` showing the
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import subprocess
@@ -207,3 +208,25 @@ def test_the_fail_on_default_is_said_one_way(tmp_path):
     assert "--fail-on mean,peak,infeasible]" not in readme  # the old usage line
     for m in re.finditer(r"default[^.;]{0,20}--fail-on ([a-z,]+)", readme):
         assert m.group(1) in ("all", summary), m.group(0)
+
+
+# ----------------------------------------------------------------------------- words in tables
+def test_a_pivot_under_ground_is_below_it_not_minus_above():
+    """optimize printed "rocker pivot -0.300 m above the ground"."""
+    from pumplink.output.optimize import pivot_height
+
+    assert pivot_height(-0.3) == "0.300 m below the ground (needs a pit)"
+    assert pivot_height(0.15) == "0.150 m above the ground"
+
+
+def test_the_axle_height_row_shows_both_sides_of_its_range():
+    """The check warns below 0.40 m as well as above 0.70 m (the pump paper's range); the row
+    once showed only '> 0.7 m'."""
+    p = run("force", ROOT / "configs" / "village-10m.toml", "--summary", columns=80)
+    row = next(line for line in p.stdout.splitlines() if line.strip().startswith("axle height"))
+    assert "<0.4, >0.7 m" in row, row
+    text = (ROOT / "configs" / "village-10m.toml").read_text(encoding="utf-8")
+    assert "axle_height = 0.645" in text
+    low = run("force", "-", "--summary", "--format", "json", stdin=text.replace("0.645", "0.3"))
+    axle = next(c for c in json.loads(low.stdout)["checks"] if c["key"] == "axle_height")
+    assert axle["value"] == 0.3 and axle["result"] == "warn", axle
