@@ -113,10 +113,11 @@ def batch(
     a folder means its *.toml files (not sub-folders).
 
     One row per variant (lengths, feasibility, forces, verdict) and a summary (counts, the
-    passing variant with the lowest peak force, or the closest if none passes).  The verdict is that of pumplink force: where the variant gives inertia the
-    least model that is enough (flywheel or full dynamics, or --model), else quasi-static with
-    the dead band (the model column says which): PASS, PASS with warnings or FAIL, with each
-    check's result in its own column.  Exit 0 if no variant
+    passing variant with the lowest peak force, or the closest if none passes).  The verdict is
+    that of pumplink force: where the variant gives inertia the least model that is enough
+    (flywheel or full dynamics, or --model), else quasi-static with the dead band (the model
+    column says which): PASS, PASS with warnings or FAIL, with each check's result in its own
+    column.  Exit 0 if no variant
     fails a --fail-on check (default all: no variant FAILs; --strict: none warns either), 1 if one
     does, 2 for bad input.
 
@@ -127,7 +128,7 @@ def batch(
 
     Example: [bold]pumplink batch configs/grids/piston-bore.toml --junit piston.xml[/]
 
-    Grids too large for one machine run on Dask (README, "Grids too large for one machine").
+    Grids too large for one machine run on Dask (docs/batch.md, "Grids too large for one machine").
     """
     import contextlib
     import functools

@@ -9,7 +9,7 @@ said by pumplink when the file is read.
 
 Three kinds of file: ``spec`` (a rope-pump spec, :class:`pumplink.inputs.pump.PumpSpec`), ``piston`` (a
 piston-pump spec, :class:`pumplink.studies.piston.PistonSpec`) and ``batch`` (a base spec and the keys to
-vary, README: "Batch files").
+vary, docs/batch.md: "Batch files").
 """
 
 from __future__ import annotations
@@ -80,7 +80,7 @@ def spec_schema() -> dict[str, Any]:
     return _document(
         PumpSpec,
         "pumplink rope-pump spec",
-        "A rope pump driven through a four-bar linkage by a standing operator (README: the spec).",
+        "A rope pump driven through a four-bar linkage by a standing operator (docs/guide.md: the spec).",
     )
 
 
@@ -146,7 +146,7 @@ def batch_schema() -> dict[str, Any]:
         "$schema": DIALECT,
         "title": "pumplink batch file",
         "description": "A base spec and the spec keys to vary; every combination is one variant "
-        '(README: "Batch files").',
+        '(docs/batch.md: "Batch files").',
         "type": "object",
         "properties": {
             "name": name_schema("name of the batch, the prefix of every variant name"),
