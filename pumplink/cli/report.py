@@ -19,8 +19,8 @@ def report(
     """One self-contained HTML design report to send to a client.
 
     The spec, the synthesis table, the verdict with its model and checks, the
-    force chart, the drawing and the cut list (images embedded; needs
-    pumplink\\[plot]).
+    force chart, the drawing, the loads on the parts with the released handle
+    and the cut list (images embedded; needs pumplink\\[plot]).
 
     Exit 0 if the design passes, 1 if it fails (the report is written
     either way) or no crank-rocker exists, 2 for bad input.
@@ -38,10 +38,11 @@ def report(
     from pumplink.output.report import report_html
     from pumplink.studies.drawing import drawing
     from pumplink.studies.force import force_analysis, force_curve
+    from pumplink.studies.workshop import workshop
 
     s = load_specs([spec])[0]
     dr = drawing(s)
     r = force_analysis(s, keep_samples=False)
-    report_html(r, force_curve(r), dr, tomli_w.dumps(spec_to_dict(s)), out)
+    report_html(r, force_curve(r), dr, tomli_w.dumps(spec_to_dict(s)), out, shop=workshop(r))
     sys.stderr.write(f"wrote {out} ({r.outcome})\n")
     raise typer.Exit(0 if r.passed else 1)

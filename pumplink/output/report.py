@@ -1,8 +1,9 @@
 """The design report: one self-contained HTML file (images embedded as base64 PNG).
 
-Spec, synthesis table, verdict with its model and checks, the force chart, the linkage drawing
-and the cut list.  Renderers only: every number comes from the library's results
-(:class:`pumplink.studies.force.ForceResult`, :class:`pumplink.studies.drawing.Drawing`).
+Spec, synthesis table, verdict with its model and checks, the force chart, the linkage drawing,
+the loads on the parts with the released handle, and the cut list.  Renderers only: every number
+comes from the library's results (:class:`pumplink.studies.force.ForceResult`,
+:class:`pumplink.studies.drawing.Drawing`, :class:`pumplink.studies.workshop.Workshop`).
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from pumplink.output.drawings import linkage_drawing
 from pumplink.output.formats import atomic_write, check_output, fmt
 from pumplink.output.template import cut_list_rows
 from pumplink.output.words import check_label, model_line
+from pumplink.output.workshop import load_rows, loads_title, parts_sentence, workshop_release_line
 
 REPORT_SUFFIXES = (".html", ".htm")
 
@@ -116,9 +118,25 @@ def verdict_html(r) -> str:
     return head + f"<p>{html.escape(model_line(r))}</p>" + _table(rows, numeric=(1, 2, 3))
 
 
-def report_html(r, curve, dr, spec_toml: str, path) -> Path:
+def workshop_html(w) -> str:
+    """The workshop's view (:func:`pumplink.studies.workshop.workshop`): the peak loads on the
+    pins, the crank and the handle, what they mean for the parts and the released handle."""
+    if w is None:
+        return "<p>No crank-rocker: no loads to report.</p>"
+    rows = [("where", "peak", "at crank"), *load_rows(w)]
+    line = workshop_release_line(w)
+    return (
+        f"<p>{html.escape(loads_title(w))}</p>"
+        + _table(rows, numeric=(1, 2))
+        + f"<p>{html.escape(parts_sentence(w))}</p>"
+        + ("" if line is None else f"<p>{html.escape(line)}</p>")
+    )
+
+
+def report_html(r, curve, dr, spec_toml: str, path, shop=None) -> Path:
     """Write the report for one design (``r``: ForceResult, ``curve``: its ForceCurve, ``dr``:
-    its Drawing, ``spec_toml``: the spec as TOML text) to ``path`` atomically."""
+    its Drawing, ``spec_toml``: the spec as TOML text, ``shop``: its workshop view) to ``path``
+    atomically."""
     path = check_report_path(path)
     name = html.escape(r.design.spec.name)
     force_png = _png(force_curve, r, curve)
@@ -141,6 +159,8 @@ def report_html(r, curve, dr, spec_toml: str, path) -> Path:
         f'<img alt="operator force over one crank revolution" src="data:image/png;base64,{force_png}">',
         "<h2>Drawing</h2>",
         f'<img alt="the linkage at its dead centres, dimensioned" src="data:image/png;base64,{drawing_png}">',
+        "<h2>Loads on the parts</h2>",
+        workshop_html(shop),
         "<h2>Cut list</h2>",
         _table(cut, numeric=(2, 3, 5)),
         "<p>Hole centres and the 1:1 drilling template: <code>pumplink template SPEC</code>.</p>",

@@ -102,6 +102,43 @@ def release_line(both) -> str | None:
     )
 
 
+def load_rows(w: Workshop) -> list[tuple[str, str, str]]:
+    """The peak loads as (where, peak with its unit, crank angle) rows."""
+    pk = w.loads.peaks
+    rows = [
+        (JOINT_WORDS[j], f"{f:.0f} N", f"{math.degrees(a):.1f}°")
+        for j, f, a in zip(JOINTS, pk.force, pk.angle)
+    ]
+    for words, (value, angle) in (
+        ("crank, bending at the axle", pk.crank_moment),
+        ("handle, bending at pin B", pk.handle_moment),
+    ):
+        rows.append((words, f"{value:.1f} N·m", f"{math.degrees(angle):.1f}°"))
+    return rows
+
+
+def loads_title(w: Workshop) -> str:
+    return f"Loads on the parts ({MODEL_WORDS[w.loads.model]}, the peak over a turn)"
+
+
+def parts_sentence(w: Workshop) -> str:
+    """What the loads mean for the parts, in one sentence."""
+    st, p = w.strength, w.parts
+    which = "the spec's [parts]" if w.parts_given else "the default parts (give [parts] to judge them)"
+    return (
+        f"with {which}: {p.pin_diameter * 1000:g} mm pins on {p.pin_width * 1000:g} mm of bore bear "
+        f"{st.pin_pressure / 1e6:.1f} MPa at the {JOINT_WORDS[st.pin]} (12 MPa allowed for a moving "
+        f"joint, 30 MPa static); fatigue safety of the {p.handle_diameter * 1000:g} x "
+        f"{p.handle_wall * 1000:g} mm handle tube {st.handle.safety:.2f} (notch factor {p.handle_notch:g}), "
+        f"of the {p.crank_diameter * 1000:g} mm crank bar {st.crank.safety:.2f} (notch factor "
+        f"{p.crank_notch:g}); below 1.5 warns, below 1 fails (docs/workshop.md)"
+    )
+
+
+def workshop_release_line(w: Workshop) -> str | None:
+    return release_line(None if w.release is None else (w.release, w.release_free))
+
+
 def render_workshop(w: Workshop | None, out=None) -> None:
     """The workshop's view as a table and sentences (after ``--explain``'s report)."""
     if w is None:
@@ -110,39 +147,13 @@ def render_workshop(w: Workshop | None, out=None) -> None:
     from rich.table import Table
 
     c = console(out or sys.stdout)
-    pk = w.loads.peaks
-    t = Table(
-        title=f"Loads on the parts ({MODEL_WORDS[w.loads.model]}, the peak over a turn)",
-        title_justify="left",
-        box=box.SIMPLE_HEAD,
-        pad_edge=False,
-    )
+    t = Table(title=loads_title(w), title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
     for h in ("where", "peak", "at crank"):
         t.add_column(h, justify="left" if h == "where" else "right")
-    for j, f, a in zip(JOINTS, pk.force, pk.angle):
-        t.add_row(JOINT_WORDS[j], f"{f:.0f} N", f"{math.degrees(a):.1f}°")
-    t.add_row(
-        "crank, bending at the axle",
-        f"{pk.crank_moment[0]:.1f} N·m",
-        f"{math.degrees(pk.crank_moment[1]):.1f}°",
-    )
-    t.add_row(
-        "handle, bending at pin B",
-        f"{pk.handle_moment[0]:.1f} N·m",
-        f"{math.degrees(pk.handle_moment[1]):.1f}°",
-    )
+    for row in load_rows(w):
+        t.add_row(*row)
     c.print(t)
-    st, p = w.strength, w.parts
-    which = "the spec's [parts]" if w.parts_given else "the default parts (give [parts] to judge them)"
-    c.print(
-        f"with {which}: {p.pin_diameter * 1000:g} mm pins on {p.pin_width * 1000:g} mm of bore bear "
-        f"{st.pin_pressure / 1e6:.1f} MPa at the {JOINT_WORDS[st.pin]} (12 MPa allowed for a moving "
-        f"joint, 30 MPa static); fatigue safety of the {p.handle_diameter * 1000:g} x "
-        f"{p.handle_wall * 1000:g} mm handle tube {st.handle.safety:.2f} (notch factor {p.handle_notch:g}), "
-        f"of the {p.crank_diameter * 1000:g} mm crank bar {st.crank.safety:.2f} (notch factor "
-        f"{p.crank_notch:g}); below 1.5 warns, below 1 fails (docs/workshop.md)",
-        markup=False,
-    )
-    line = release_line(None if w.release is None else (w.release, w.release_free))
+    c.print(parts_sentence(w), markup=False)
+    line = workshop_release_line(w)
     if line is not None:
         c.print(line, markup=False)

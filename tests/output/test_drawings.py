@@ -250,6 +250,30 @@ def test_report_of_a_failing_design_is_written_and_exits_1(tmp_path):
     assert "FAIL" in text and "model: full dynamics" in text
 
 
+def test_report_carries_the_loads_on_the_parts_and_the_released_handle(tmp_path):
+    """The village well's report states the peak joint loads, the parts' pin pressure and fatigue
+    safety and the released handle with the numbers `force --explain --format json` gives."""
+    import html as html_module
+    import json
+
+    out = tmp_path / "r.html"
+    p = run("report", "configs/village-10m.toml", "--out", str(out))
+    assert p.returncode == 0, p.stderr
+    text = html_module.unescape(out.read_text(encoding="utf-8"))
+    shop = json.loads(run("force", "configs/village-10m.toml", "--explain", "--format", "json").stdout)
+    shop = shop["explain"]["workshop"]
+    assert "Loads on the parts (full dynamics, the peak over a turn)" in text
+    for j in shop["joints"]:
+        assert f"{j['peak_force_N']:.0f} N" in text and f"{j['crank_deg']:.1f}°" in text
+    assert f"bear {shop['pin_pressure_MPa']:.1f} MPa" in text and "the spec's [parts]" in text
+    assert f"handle tube {shop['handle_fatigue_safety']:.2f}" in text
+    assert f"crank bar {shop['crank_fatigue_safety']:.2f}" in text
+    rel = shop["release"]
+    assert rel["needs_ratchet_or_brake"] and "NEEDS A RATCHET OR BRAKE" in text
+    assert f"stops in {rel['stop_time_s']:.2f} s" in text
+    assert f"grip reaches {rel['peak_grip_speed_m_s']:.1f} m/s" in text
+
+
 # ----------------------------------------------------------------------------- what fits, read back
 #: A 150-character name of words, and one of a single 150-character word (it cannot be wrapped).
 LONG_NAME = (
