@@ -133,7 +133,7 @@ def tolerance(
     stderr.  Exit 0 when at least --yield of the builds pass (with --strict:
     without warnings), 1 when fewer do, 2 for bad input.
 
-    Example: [bold]pumplink tolerance configs/village-10m.toml --hole 0.5mm --samples 2000[/]
+    Example: [bold]pumplink tolerance configs/village-10m.toml --hole 0.5mm --samples 500[/]
     """
     import contextlib
     import functools

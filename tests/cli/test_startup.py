@@ -83,10 +83,17 @@ def test_single_spec_commands_load_nothing_heavy(args, expect):
 
 def test_a_spec_with_inertia_loads_the_inertia_models():
     """The guard above is not vacuous: where the wheel's inertia decides, the force command loads
-    the flywheel and full-dynamics modules (and still none of the other heavy ones)."""
+    the flywheel and full-dynamics modules, and, the spec giving a head, the released handle's
+    integration (scipy.integrate's solve_ivp, scipy.optimize's bounded search: the line printed
+    under the verdict); still none of the other heavy ones."""
     res = _probe("force", "examples/well-12m-flywheel.toml", "--summary")
-    assert "VERDICT" in res["out"], res["out"]
-    assert sorted(res["loaded"]) == ["pumplink.models.dynamics", "pumplink.models.flywheel"], res["loaded"]
+    assert "VERDICT" in res["out"] and "released handle" in res["out"], res["out"]
+    assert sorted(res["loaded"]) == [
+        "pumplink.models.dynamics",
+        "pumplink.models.flywheel",
+        "scipy.integrate",
+        "scipy.optimize",
+    ], res["loaded"]
 
 
 def test_importing_the_cli_loads_no_library():
