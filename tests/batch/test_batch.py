@@ -479,6 +479,12 @@ def _assert_rows_equal_force_json(tmp_path, b: B.Batch, rows: dict, picks) -> No
             "speed_fluctuation",
             "least_peak_force_N",
             "min_passing_speed_deg_s",
+            # the water: the same numbers in every format as in force's JSON
+            "flow_l_min",
+            "flow_share",
+            "water_power_W",
+            "pump_efficiency",
+            "people_served",
         ):
             assert got[key] == _val(row[key]), (i, key)
         assert got["model"] == row["model"]
