@@ -56,12 +56,11 @@ def test_sdist_carries_every_file_the_suite_needs(sdist):
 
 
 #: A handful of the suite, run from the unpacked sdist: the golden tables through the CLI (the
-#: configs, the golden files and the entry point), the JSON Schemas against the docs, and two
-#: 50-digit reference checks (tests/reference.py through conftest, and the crank-rocker's).
+#: configs, the golden files and the entry point), the JSON Schemas against the docs, and a
+#: 50-digit reference check (the crank-rocker's).
 SDIST_SLICE = (
     "tests/test_golden.py::test_rendered_table_matches_golden",
     "tests/test_schema.py",
-    "tests/mechanisms/test_fourbar_kinematics.py::test_evaluate_matches_50_digit_reference",
     "tests/mechanisms/test_crank_rocker.py::test_seed_example_matches_high_precision_reference",
 )
 

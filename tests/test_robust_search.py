@@ -115,10 +115,11 @@ def test_the_commands_report_both_shares():
     r = json.loads(p.stdout)["robust"]
     assert r["tolerance_mm"] == 1.0 and r["target"] == 0.95 and r["without_warnings"] is False
     assert r["first_order_share"] >= 0.95 - 1e-3 and r["monte_carlo"]["builds"] == tl.CHECK_BUILDS
-    table = _run(
-        "optimize", VILLAGE, "--objective", "flow", "--vary", "operator.speed=100:700", "--tolerance", "1mm"
-    )
-    assert "builds within ±1 mm that pass:" in " ".join(table.stdout.split())
+    # the table's line, on a quasi-static design (the search and its Monte Carlo take seconds)
+    table = _run("optimize", ROOT / "configs" / "prototype.toml", "--tolerance", "1mm")
+    text = " ".join(table.stdout.split())
+    assert table.returncode == 0 and "builds within ±1 mm that pass: 100.0% to first order" in text, text
+    assert "of 2,000 built at random" in text
 
 
 @pytest.mark.parametrize("command", ["size", "optimize"])

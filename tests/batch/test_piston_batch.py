@@ -48,36 +48,42 @@ def grids(tmp_path_factory) -> dict[str, Path]:
     return out
 
 
-def _run(tmp_path: Path, grid: Path, tag: str, *opts) -> dict[str, bytes]:
-    """CSV, JSON, Parquet and JUnit of one run with the given options; their bytes by format."""
+def _run(tmp_path: Path, grid, tag: str, *opts) -> dict[str, bytes]:
+    """CSV, JSON, Parquet and JUnit of one run of ``grid`` (a path or a tuple of paths, one run)
+    with the given options; their bytes by format."""
+    grid = grid if isinstance(grid, tuple) else (grid,)
     files = {}
     for fmt in ("csv", "json", "parquet"):
         out = tmp_path / f"{tag}.{fmt}"
         junit = tmp_path / f"{tag}-{fmt}.xml"
-        r = pumplink("batch", grid, "--format", fmt, "--out", out, "--junit", junit, *opts)
+        r = pumplink("batch", *grid, "--format", fmt, "--out", out, "--junit", junit, *opts)
         assert r.returncode in (0, 1), r.stderr
         files[fmt] = out.read_bytes()
         files[f"junit-{fmt}"] = junit.read_bytes()
     return files
 
 
-@pytest.mark.parametrize("kind, size", [("plain", 24), ("flywheel", 48)])
-def test_a_piston_grid_on_dask_gives_the_one_process_output_byte_for_byte(grids, tmp_path, kind, size):
-    one = _run(tmp_path, grids[kind], "one", "--workers", "1")
-    dask = _run(tmp_path, grids[kind], "dask", "--scheduler", "local:2")
+def test_a_piston_grid_on_dask_gives_the_one_process_output_byte_for_byte(grids, tmp_path):
+    """Both grids in one run (one local cluster a format): the plain grid (quasi-static) and the
+    flywheel grid (the flywheel model decides)."""
+    both = (grids["plain"], grids["flywheel"])
+    one = _run(tmp_path, both, "one", "--workers", "1")
+    dask = _run(tmp_path, both, "dask", "--scheduler", "local:2")
     for fmt in one:
         if fmt == "parquet":  # the file's metadata names the writer, the table is what must agree
             import pyarrow.parquet as pq
 
             a, b = (pq.read_table(io.BytesIO(x)) for x in (one[fmt], dask[fmt]))
-            assert a.equals(b) and a.num_rows == size
+            assert a.equals(b) and a.num_rows == 24 + 48
         else:
             assert one[fmt] == dask[fmt], fmt
-    rows = json.loads(one["json"])["variants"]
-    assert len(rows) == size and {r["mechanism"] for r in rows} == {"crank-slider"}
-    assert sum(not r["feasible"] for r in rows) == size // 3  # rod 0.05 m: too short for the 0.05 m crank
-    if kind == "flywheel":
-        assert {r["model"] for r in rows if r["feasible"]} == {"flywheel"}
+    variants = json.loads(one["json"])["variants"]
+    for kind, rows in (("plain", variants[:24]), ("flywheel", variants[24:])):  # in the order given
+        size = len(rows)
+        assert {r["mechanism"] for r in rows} == {"crank-slider"}
+        assert sum(not r["feasible"] for r in rows) == size // 3  # rod 0.05 m: too short for the 0.05 m crank
+        if kind == "flywheel":
+            assert {r["model"] for r in rows if r["feasible"]} == {"flywheel"}
 
 
 def test_the_parquet_rows_are_the_csv_rows(grids, tmp_path):
