@@ -30,7 +30,7 @@ run: $(VENV)/.stamp-base
 # a test file to a process (its module fixtures built once); PYTEST_ARGS= runs it in one.
 PYTEST_ARGS ?= -n 2 --dist loadfile
 # The package's bytecode is compiled once first: the CLI tests start pumplink in subprocesses,
-# and where PYTHONDONTWRITEBYTECODE is set (as on this project's CI) each would compile it again.
+# and where PYTHONDONTWRITEBYTECODE is set (as on this machine) each would compile it again.
 test: $(VENV)/.stamp-test
 	$(BIN)/python -m compileall -q pumplink
 	$(BIN)/ruff check .
