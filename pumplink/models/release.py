@@ -147,22 +147,25 @@ def release(
     rw, jc, mcol, mloss = float(wheel_radius), float(column_inertia), float(column_torque), float(loss_torque)
     empty_angle = head / rw  # crank angle the rope must run back to empty the column
 
+    # the links' terms one crank angle at a time on floats (the right-hand side is called ~8,000
+    # times a release; dynamics.terms on one angle costs several times more in numpy's per-call work)
+    terms_at = dy.point_terms(lk, masses, gravity)
+
     def share(th, top):
         """Fraction of the column left, 1 - s / head, s = rw (top - th) clipped to [0, head]."""
-        return 1.0 - np.clip((top - th) / empty_angle, 0.0, 1.0)
+        return 1.0 - min(max((top - th) / empty_angle, 0.0), 1.0)  # np.clip on one float
 
     def driving(th, top):
         """The torques at rest: column + links' weight, without the losses [N m] (forward positive)."""
-        tm = dy.terms(lk, th, masses, gravity)
-        return -mcol * share(th, top) - float(tm.potential_rate)
+        return -mcol * share(th, top) - terms_at(th)[3]
 
     def rhs_of(sign, top):
         def rhs(_t, y):
-            th, w = y
-            tm = dy.terms(lk, th, masses, gravity)
+            th, w = float(y[0]), float(y[1])
+            li, rate, _v, vrate = terms_at(th)[:4]
             left = share(th, top)
-            i = inertia - jc * (1.0 - left) + float(tm.inertia)
-            q = -mcol * left - sign * mloss - float(tm.potential_rate) - 0.5 * float(tm.inertia_rate) * w * w
+            i = inertia - jc * (1.0 - left) + li
+            q = -mcol * left - sign * mloss - vrate - 0.5 * rate * w * w
             return [w, q / i]
 
         return rhs
