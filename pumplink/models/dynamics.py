@@ -1222,9 +1222,9 @@ def _profile_at(sc: Scene):
         sd = to_fold if at_fold else (phi if phi <= TWO_PI - phi else phi - TWO_PI)
         base = (stroke if at_fold else (0.0 if sd >= 0 else 2.0 * stroke)) + 0.0
         if abs(sd) < arc:  # integrated from the rate on the 12 Gauss-Legendre nodes, as there
-            nodes = 0.5 * sd * (1.0 + _fw._GL_X)
-            rate = _fw._grip_rate((geom_dce + plus if at_fold else geom_dce) + nodes, *geom)
-            local = float(0.5 * sd * (np.abs(rate) * _fw._GL_W).sum(axis=-1))
+            nodes = 0.5 * sd * (1.0 + _fw.GAUSS_LEGENDRE_NODES)
+            rate = _fw.grip_rate((geom_dce + plus if at_fold else geom_dce) + nodes, *geom)
+            local = float(0.5 * sd * (np.abs(rate) * _fw.GAUSS_LEGENDRE_WEIGHTS).sum(axis=-1))
         else:
             px_grip = grip_at(geom_dce + phi, rates=False, values=False, fly_x=True)[6]
             local = (1.0 if sd > 0 else -1.0) * abs(px_grip - (xf if at_fold else xe))

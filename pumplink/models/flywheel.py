@@ -124,10 +124,11 @@ def grip_position(theta, px, py, crank, coupler, rocker, handle, branch):
 #: |dPx/dt2|) instead of taken from position differences, which cancel there: the deficit arc
 #: around a dead centre has travel ~ kappa a^2 / 2, far below the rounding of positions for small bands.
 TRAVEL_INTEGRATION_ARC = 0.02
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(12)
+#: Gauss-Legendre nodes on [-1, 1] and their weights (12 points) of the travel integration.
+GAUSS_LEGENDRE_NODES, GAUSS_LEGENDRE_WEIGHTS = np.polynomial.legendre.leggauss(12)
 
 
-def _grip_rate(theta, px, py, crank, coupler, rocker, handle, branch):
+def grip_rate(theta, px, py, crank, coupler, rocker, handle, branch):
     """dPx/dt2 [m/rad] (the kinematics of ``pumplink.mechanisms.fourbar``, no cancellation at a
     dead centre)."""
     cs, sn = np.cos(theta), np.sin(theta)
@@ -184,9 +185,9 @@ def travel_parts(
         geom = [np.broadcast_to(v, s.shape)[near] for v in (px, py, crank, coupler, rocker, handle, branch)]
         dc = np.broadcast_to(np.where(at_fold, dce + plus, dce), s.shape)[near]
         sn = s[near]
-        t = 0.5 * sn[..., None] * (1.0 + _GL_X)  # nodes on (0, s)
-        g = _grip_rate(dc[..., None] + t, *(v[..., None] for v in geom))
-        local[near] = 0.5 * sn * (np.abs(g) * _GL_W).sum(axis=-1)  # not @: no BLAS threads
+        t = 0.5 * sn[..., None] * (1.0 + GAUSS_LEGENDRE_NODES)  # nodes on (0, s)
+        g = grip_rate(dc[..., None] + t, *(v[..., None] for v in geom))
+        local[near] = 0.5 * sn * (np.abs(g) * GAUSS_LEGENDRE_WEIGHTS).sum(axis=-1)  # not @: no BLAS threads
     return base, local
 
 
@@ -458,7 +459,7 @@ _EPS = np.finfo(float).eps
 
 def _rate_table_into(geom, dce, out, work):
     """|g| = |dPx/dt2| [m/rad] at the uniform nodes (rows, GRID) into ``out``: the formulas of
-    :func:`_grip_rate`, in place in ``work`` (9, rows, GRID), the crank direction by angle addition."""
+    :func:`grip_rate`, in place in ``work`` (9, rows, GRID), the crank direction by angle addition."""
     px, py, c, k, r, hd, br = (v[:, None] for v in geom)
     cd, sd = np.cos(dce)[:, None], np.sin(dce)[:, None]
     cs, sn, p1, p2, e2, t, q, a, b = work
@@ -583,7 +584,7 @@ def _secant(par, level, lo, hi, flo, fhi, x):
     slope = (fhi - flo) / (hi - lo)  # first step: Newton with the table's slope
     side = np.zeros(x.size, np.int8)  # the bracket's end moved last: 1 lo, -1 hi
     for _ in range(MAX_SECANT):
-        f = np.abs(_grip_rate(par[_DCE] + x, *par[:7])) - level
+        f = np.abs(grip_rate(par[_DCE] + x, *par[:7])) - level
         on_lo = (f > 0.0) == (flo > 0.0)
         # Illinois: an end kept twice in a row has its value halved (false position then converges)
         fhi = np.where(on_lo & (side == 1), 0.5 * fhi, fhi)
