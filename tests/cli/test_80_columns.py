@@ -188,6 +188,12 @@ WITHOUT_SPEC = [
 ELSEWHERE = QUOTED | {e for _, e in help_examples()} | set(readme_examples())
 
 
+#: optimize's table on one passing energy-model spec (the village well: its water and parts rows)
+#: and one failing one (the 12 m well); the women's 6 m well fails as the 12 m well does, with the
+#: same rows (8 s a run).
+SKIP = [["optimize", "configs/women-operators-6m.toml"]]
+
+
 def table_runs() -> list[list[str]]:
     runs = []
     for spec in SHIPPED:
@@ -198,7 +204,7 @@ def table_runs() -> list[list[str]]:
     return [
         r
         for r in runs + WITHOUT_SPEC
-        if r not in [list(g) for g in GOLDEN] and " ".join(["pumplink", *r]) not in ELSEWHERE
+        if r not in [list(g) for g in GOLDEN] + SKIP and " ".join(["pumplink", *r]) not in ELSEWHERE
     ]
 
 

@@ -142,18 +142,19 @@ def test_the_holes_of_one_bar_act_through_its_length_alone(village_tolerance):
 
 
 # ----------------------------------------------------------------------------- the same numbers anywhere
-@pytest.mark.parametrize("fmt", ["json", "csv"])
-def test_a_pool_and_a_dask_cluster_give_the_numbers_of_one_process(fmt):
+def test_a_pool_and_a_dask_cluster_give_the_numbers_of_one_process():
     """1,500 builds in two chunks of unequal size (1,000 and 500): on one process, two loky workers
-    and a local Dask cluster of two, the output is byte for byte the same."""
+    and a local Dask cluster of two, the output is byte for byte the same.  CSV: every build's
+    dimensions and results at full precision on stdout, the summary (shares, interval, first-order
+    estimate) on stderr; the JSON is computed from the same builds by the same driver."""
     pytest.importorskip("distributed")
     assert tl.CHUNK_SAMPLES == 1000
-    args = ("tolerance", VILLAGE, "--samples", "1500", "--seed", "7", "--format", fmt)
+    args = ("tolerance", VILLAGE, "--samples", "1500", "--seed", "7", "--format", "csv")
     one, pool, dask = run(*args), run(*args, "--workers", "2"), run(*args, "--scheduler", "local:2")
     for p in (one, pool, dask):
         assert p.returncode in (0, 1) and "Traceback" not in p.stderr, p.stderr
     assert one.stdout and pool.stdout == one.stdout and dask.stdout == one.stdout
-    assert pool.stderr == one.stderr == dask.stderr or fmt == "json"
+    assert one.stdout.count("\n") == 1501 and pool.stderr == one.stderr == dask.stderr
 
 
 def test_another_seed_gives_other_builds_and_the_same_seed_the_same():
