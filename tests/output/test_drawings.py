@@ -11,8 +11,6 @@ import json
 import math
 import os
 import re
-import shlex
-import shutil
 import subprocess
 import sys
 import zlib
@@ -210,17 +208,7 @@ def test_draw_infeasible_spec_exits_1_with_one_line(tmp_path):
     assert len(p.stderr.strip().splitlines()) == 1 and not (tmp_path / "d.png").exists()
 
 
-@pytest.mark.parametrize("command", ["draw", "template", "report"])
-def test_help_example_runs(tmp_path, command):
-    """The example in --help, run as written in a folder holding the shipped specs."""
-    shutil.copytree(ROOT / "configs", tmp_path / "configs")
-    shutil.copytree(ROOT / "examples", tmp_path / "examples")
-    text = run(command, "--help").stdout
-    example = re.search(r"Example: (pumplink .*)", text).group(1).strip()
-    args = shlex.split(example)[1:]
-    p = run(*args, cwd=tmp_path)
-    assert p.returncode == 0, (example, p.stderr)
-    assert "wrote" in p.stderr
+# The --help examples of draw, template and report run in tests/cli/test_help_examples.py.
 
 
 # ----------------------------------------------------------------------------- report
