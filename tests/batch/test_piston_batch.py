@@ -65,19 +65,27 @@ def _run(tmp_path: Path, grid, tag: str, *opts) -> dict[str, bytes]:
 
 def test_a_piston_grid_on_dask_gives_the_one_process_output_byte_for_byte(grids, tmp_path):
     """Both grids in one run: the plain grid (quasi-static) and the flywheel grid (the flywheel
-    model decides).  The CSV (every row at full precision) and the JUnit report are the same bytes
-    on a local cluster as on one process; JSON and Parquet render the same rows
-    (test_the_parquet_rows_are_the_csv_rows, tests/batch/test_batch.py)."""
+    model decides).  On a local cluster as on one process: the CSV (every row at full precision)
+    and its JUnit report the same bytes, and with ``--chunk 1/2`` the Parquet file the same table
+    (its metadata names the writer) and its JUnit report the same bytes.  JSON renders the same
+    rows (tests/batch/test_batch.py)."""
+    import pyarrow.parquet as pq
+
     both = [grids["plain"], grids["flywheel"]]
     files = {}
     for tag, opts in (("one", ["--workers", "1"]), ("dask", ["--scheduler", "local:2"])):
-        out, junit = tmp_path / f"{tag}.csv", tmp_path / f"{tag}.xml"
-        r = pumplink("batch", *both, "--format", "csv", "--out", out, "--junit", junit, *opts)
-        assert r.returncode in (0, 1), r.stderr
-        files[tag] = out.read_bytes(), junit.read_bytes()
-    assert files["one"] == files["dask"]
-    rows = list(csv.DictReader(io.StringIO(files["one"][0].decode())))
+        for fmt, extra in (("csv", []), ("parquet", ["--chunk", "1/2"])):
+            out, junit = tmp_path / f"{tag}.{fmt}", tmp_path / f"{tag}-{fmt}.xml"
+            r = pumplink("batch", *both, "--format", fmt, "--out", out, "--junit", junit, *extra, *opts)
+            assert r.returncode in (0, 1), r.stderr
+            files[tag, fmt] = out.read_bytes(), junit.read_bytes()
+    assert files["one", "csv"] == files["dask", "csv"]
+    assert files["one", "parquet"][1] == files["dask", "parquet"][1]  # the JUnit reports
+    a, b = (pq.read_table(io.BytesIO(files[tag, "parquet"][0])) for tag in ("one", "dask"))
+    assert a.equals(b) and a.num_rows == (24 + 48) // 2
+    rows = list(csv.DictReader(io.StringIO(files["one", "csv"][0].decode())))
     assert len(rows) == 24 + 48 and {r["mechanism"] for r in rows} == {"crank-slider"}
+    assert a.column("name").to_pylist() == [r["name"] for r in rows[:36]]  # the first half
     for kind, part in (("plain", rows[:24]), ("flywheel", rows[24:])):  # in the order given
         assert sum(r["feasible"] == "False" for r in part) == len(part) // 3  # rod 0.05 m < the crank
         if kind == "flywheel":
