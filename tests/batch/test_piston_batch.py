@@ -85,7 +85,7 @@ def test_a_piston_grid_on_dask_gives_the_one_process_output_byte_for_byte(grids,
     assert a.equals(b) and a.num_rows == (24 + 48) // 2
     rows = list(csv.DictReader(io.StringIO(files["one", "csv"][0].decode())))
     assert len(rows) == 24 + 48 and {r["mechanism"] for r in rows} == {"crank-slider"}
-    assert a.column("name").to_pylist() == [r["name"] for r in rows[:36]]  # the first half
+    assert a.column("variant").to_pylist() == [r["variant"] for r in rows[:36]]  # the first half
     for kind, part in (("plain", rows[:24]), ("flywheel", rows[24:])):  # in the order given
         assert sum(r["feasible"] == "False" for r in part) == len(part) // 3  # rod 0.05 m < the crank
         if kind == "flywheel":
