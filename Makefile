@@ -10,17 +10,25 @@ $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
-# One stamp per set of extras; reinstalls when pyproject.toml changes.
+# One stamp per set of extras; reinstalls when pyproject.toml changes.  pip compiles the installed
+# packages' bytecode one file after another (most of the install's time); it is compiled here on
+# every core instead (a file that does not compile is skipped, as pip skips it).
+INSTALL = $(BIN)/python -m pip install --quiet --no-compile
+COMPILE = $(BIN)/python -m compileall -q -j 0 "$$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')" >/dev/null || true
+
 $(VENV)/.stamp-base: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install --quiet -e .
+	$(INSTALL) -e .
+	$(COMPILE)
 	touch $@
 
 $(VENV)/.stamp-test: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install --quiet -e ".[test,plot]"
+	$(INSTALL) -e ".[test,plot]"
+	$(COMPILE)
 	touch $@
 
 $(VENV)/.stamp-bench: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install --quiet -e ".[test,bench,plot]"
+	$(INSTALL) -e ".[test,bench,plot]"
+	$(COMPILE)
 	touch $@
 
 run: $(VENV)/.stamp-base
@@ -38,7 +46,9 @@ test: $(VENV)/.stamp-test
 	$(BIN)/lint-imports --no-cache
 	$(BIN)/python -m pytest -q $(PYTEST_ARGS)
 
-# Every benchmarks/bench_*.py, one after the other in this process's venv (medians of repeats);
+# Every benchmarks/bench_*.py, one after the other in this process's venv (medians of repeats),
+# with pumplink's bytecode compiled first as for the tests (the pinned baseline is a regular
+# install, compiled by pip: a command's start-up is then compared like for like);
 # each also appends its figures to $(BENCH_OUT) (benchmarks/_record.py), and the last step prints
 # them all in one table with their targets (benchmarks/summary.py).
 BENCH_OUT := $(CURDIR)/build/bench.jsonl
@@ -55,6 +65,7 @@ $(BASE_DIR)/.venv/.stamp:
 	touch $@
 
 bench: $(VENV)/.stamp-bench $(BASE_DIR)/.venv/.stamp
+	$(BIN)/python -m compileall -q pumplink
 	@mkdir -p $(dir $(BENCH_OUT)) && rm -f $(BENCH_OUT)
 	@for b in benchmarks/bench_*.py; do echo "== $$b"; \
 		PUMPLINK_BENCH_OUT=$(BENCH_OUT) $(BIN)/python $$b || exit 1; done

@@ -40,11 +40,19 @@ def _workdir(d: Path) -> Path:
     return d
 
 
+@pytest.fixture(scope="module")
+def initial_spec(tmp_path_factory) -> Path:
+    """The ./pump.toml the force examples edit, as `pumplink init pump.toml` writes it (once)."""
+    d = tmp_path_factory.mktemp("init")
+    subprocess.run([BIN / "pumplink", "init", "pump.toml"], cwd=d, check=True, capture_output=True)
+    return d / "pump.toml"
+
+
 @pytest.fixture
-def workdir(tmp_path) -> Path:
+def workdir(tmp_path, initial_spec) -> Path:
     """A fresh copy of configs/ and examples/, with the ./pump.toml the force example edits."""
     d = _workdir(tmp_path)
-    subprocess.run([BIN / "pumplink", "init", "pump.toml"], cwd=d, check=True, capture_output=True)
+    shutil.copyfile(initial_spec, d / "pump.toml")
     return d
 
 
