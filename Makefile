@@ -14,8 +14,8 @@ $(BIN)/python:
 # packages' bytecode one file after another (most of the install's time); it is compiled here on
 # every core instead (a file that does not compile is skipped, as pip skips it).  The editable
 # install puts this folder on sys.path (setuptools' compat mode) rather than an import hook that
-# every Python start in the venv loads (15 ms instead of 50 ms a start here; the suite starts
-# hundreds of processes).
+# every Python start in the venv loads (15 ms instead of 50 ms a start here; most CLI tests
+# start pumplink in a subprocess).
 INSTALL = $(BIN)/python -m pip install --quiet --no-compile --config-settings editable_mode=compat
 COMPILE = $(BIN)/python -m compileall -q -j 0 "$$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')" >/dev/null || true
 
