@@ -94,10 +94,27 @@ def _started_as_program() -> bool:
     return script.removesuffix(".exe").removesuffix("-script.py") == "pumplink"
 
 
+def _unraisable(hook):
+    """``sys.unraisablehook`` for the program: a KeyboardInterrupt the handler raised while Python
+    ran a callback whose exceptions it cannot propagate (a weak reference's, as the import system's
+    module locks use) is not printed as "Exception ignored ... Traceback" and lost: the signal is
+    delivered again, to be raised in the command's own code (:class:`Interrupt`)."""
+
+    def unraisable(args) -> None:
+        if issubclass(args.exc_type, KeyboardInterrupt) and INTERRUPT.running and not INTERRUPT.held:
+            INTERRUPT.interrupted = False
+            signal.raise_signal(signal.SIGINT)
+            return
+        hook(args)
+
+    return unraisable
+
+
 #: The run's interrupt handler (one per process).
 INTERRUPT = Interrupt()
 if _started_as_program():
     INTERRUPT.install()
+    sys.unraisablehook = _unraisable(sys.unraisablehook)
 
 import gc  # noqa: E402 -- after the handler: an interrupt from here on exits 130
 import math  # noqa: E402

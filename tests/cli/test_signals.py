@@ -235,3 +235,32 @@ def test_the_handler_comes_before_the_heavy_imports(how):
     commands = [m for m in seen if m.startswith("pumplink.cli.") and m != "pumplink.cli"]
     assert "pumplink.cli.force" in commands and "pumplink.cli.batch" in commands
     assert {seen[m] for m in commands} == {"Interrupt"}, seen
+
+
+def test_an_interrupt_python_could_not_raise_is_delivered_again_not_printed():
+    """A KeyboardInterrupt the handler raised inside a callback Python cannot propagate from (a
+    weak reference's, as the import system's module locks use) reaches ``sys.unraisablehook``,
+    which printed it as "Exception ignored ... Traceback" while the run went on (seen once in the
+    first-200-ms test): the program's hook delivers the signal again instead, and leaves every
+    other unraisable exception to the hook before it."""
+    import types
+
+    from pumplink import cli
+
+    before, seen, printed = signal.getsignal(signal.SIGINT), [], []
+    signal.signal(signal.SIGINT, lambda signum, frame: seen.append(signum))
+    hook = cli._unraisable(printed.append)
+    state = (cli.INTERRUPT.running, cli.INTERRUPT.held, cli.INTERRUPT.interrupted)
+    try:
+        cli.INTERRUPT.running, cli.INTERRUPT.held, cli.INTERRUPT.interrupted = True, False, True
+        hook(types.SimpleNamespace(exc_type=KeyboardInterrupt))
+        assert seen == [signal.SIGINT] and printed == [] and cli.INTERRUPT.interrupted is False
+        other = types.SimpleNamespace(exc_type=ValueError)
+        hook(other)
+        cli.INTERRUPT.held = True  # past the point of no return: the run completes, as before
+        late = types.SimpleNamespace(exc_type=KeyboardInterrupt)
+        hook(late)
+        assert seen == [signal.SIGINT] and printed == [other, late]
+    finally:
+        cli.INTERRUPT.running, cli.INTERRUPT.held, cli.INTERRUPT.interrupted = state
+        signal.signal(signal.SIGINT, before)
