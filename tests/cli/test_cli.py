@@ -741,7 +741,7 @@ sys.__stdout__.write(json.dumps(out))
 def bad_results(tmp_path_factory) -> dict:
     """Every bad file through the console script's function, ``pumplink.cli.main`` (the parsing,
     the one-line error and the exit code of the installed ``pumplink``), all in one interpreter:
-    38 start-ups of ~0.4 s each otherwise.  The console script itself meets a bad spec in
+    36 start-ups of ~0.4 s each otherwise.  The console script itself meets a bad spec in
     test_missing_file_and_folder_exit_2, test_heavy_load_fails_with_exit_1 and the others."""
     folder = tmp_path_factory.mktemp("bad")
     jobs = []
