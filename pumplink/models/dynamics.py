@@ -1131,10 +1131,24 @@ def scene(
     )
 
 
+def _point_margins(sc: Scene):
+    """The scene's refined points x [rad] and, at them, upper - Q (``al``) and upper - P (``de``)
+    [J], with the shifts a and b [J] of Q and P over a revolution: what :func:`_profile` takes
+    the past and future minima of."""
+    fp, mw, s = sc.least_peak_force, sc.wheel_torque, sc.stroke
+    x, kb, kl, kup, _klo = sc.points
+    gk = kb + kl
+    a = 2.0 * fp * s - TWO_PI * mw
+    b = -2.0 * fp * s - TWO_PI * mw
+    al = kup - (fp * gk - mw * x)  # upper - Q at the points
+    de = kup - (-fp * gk - mw * x)  # upper - P
+    return x, a, b, al, de
+
+
 def _profile(sc: Scene, crank_angle):
     """Energy e, regime (-1 brake, 0 ride, +1 push), upper, its rate, V, I and g at crank angles."""
     th = np.atleast_1d(np.asarray(crank_angle, float))
-    fp, mw, s = sc.least_peak_force, sc.wheel_torque, sc.stroke
+    fp, mw = sc.least_peak_force, sc.wheel_torque
     phi = np.mod(th - sc.dead_centre_extended, TWO_PI)
     base, local = _fw.travel_parts(phi, *sc.travel)
     g_phi = base + local
@@ -1142,12 +1156,7 @@ def _profile(sc: Scene, crank_angle):
     i = sc.inertia + tm.inertia
     up = tm.potential + 0.5 * i * sc.max_speed**2
     dup = tm.potential_rate + 0.5 * tm.inertia_rate * sc.max_speed**2
-    x, kb, kl, kup, _klo = sc.points
-    gk = kb + kl
-    a = 2.0 * fp * s - TWO_PI * mw
-    b = -2.0 * fp * s - TWO_PI * mw
-    al = kup - (fp * gk - mw * x)  # upper - Q at the points
-    de = kup - (-fp * gk - mw * x)  # upper - P
+    x, a, b, al, de = _point_margins(sc)
     col = phi[:, None]
     past = np.where(x[None, :] < col, al, al + a).min(axis=1)  # t in (phi - 2 pi, phi)
     future = np.where(x[None, :] > col, de, de - b).min(axis=1)  # t in (phi, phi + 2 pi)
@@ -1174,14 +1183,9 @@ def _profile_at(sc: Scene):
     import bisect
     import math
 
-    fp, mw, s = sc.least_peak_force, sc.wheel_torque, sc.stroke
+    fp, mw = sc.least_peak_force, sc.wheel_torque
     dce = sc.dead_centre_extended
-    x, kb, kl, kup, _klo = sc.points
-    gk = kb + kl
-    a = 2.0 * fp * s - TWO_PI * mw
-    b = -2.0 * fp * s - TWO_PI * mw
-    al = kup - (fp * gk - mw * x)  # upper - Q at the points
-    de = kup - (-fp * gk - mw * x)  # upper - P
+    x, a, b, al, de = _point_margins(sc)
     order = np.argsort(x, kind="stable")
     xs = [float(v) for v in x[order]]
     inf = np.array([np.inf])
