@@ -79,29 +79,24 @@ def main():
         unit="s",
     )
 
-    # the same search without its shortcuts, once: the polish's finite differences one point at a
-    # time (scipy's own), the arms' energy computed although they are out of the verdict
+    # the same search without its shortcut, once: the polish's finite differences one point at a
+    # time (scipy's own)
     import scipy.optimize
-
-    from pumplink.search import optimize as opt
 
     problem = make_problem(load_spec(VILLAGE))
     fast = optimize(problem, seed=0)
-    minimize, evaluate = scipy.optimize.minimize, opt.evaluate
+    minimize = scipy.optimize.minimize
 
     def one_at_a_time(*args, options=None, **kwargs):
         return minimize(*args, options={k: v for k, v in (options or {}).items() if k != "workers"}, **kwargs)
 
-    def with_arms(*args, **kwargs):
-        return evaluate(*args, **kwargs, arm_energy=True)
-
-    scipy.optimize.minimize, opt.evaluate = one_at_a_time, with_arms
+    scipy.optimize.minimize = one_at_a_time
     try:
         t0 = time.perf_counter()
         slow = optimize(problem, seed=0)
         slow_t = time.perf_counter() - t0
     finally:
-        scipy.optimize.minimize, opt.evaluate = minimize, evaluate
+        scipy.optimize.minimize = minimize
     dpeak = abs(fast.at_best.verdict_peak_force[0] / slow.at_best.verdict_peak_force[0] - 1.0)
     dx = float(np.max(np.abs(fast.x - slow.x) / (problem.upper - problem.lower)))
     result(

@@ -156,7 +156,7 @@ def test_the_searches_shortcut_gives_the_same_verdicts():
         return base(key)
 
     full = evaluate(pump_designs(value))
-    quick = evaluate(pump_designs(value), parts_of_failing=False)
+    quick = evaluate(pump_designs(value), screen_parts=True)
     assert np.array_equal(np.asarray(full.verdict.level), np.asarray(quick.verdict.level))
     levels = np.asarray(full.verdict.level)
     assert {PASS, WARN, FAIL} <= set(levels.tolist()) or {PASS, FAIL} <= set(levels.tolist())

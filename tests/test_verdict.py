@@ -132,9 +132,10 @@ def test_arrays_decide_as_each_design_alone(rows):
 
 def test_every_command_decides_through_assess(monkeypatch, tmp_path):
     """force, speed, batch, optimize and piston pumps all decide through pumplink.verdict.assess,
-    called by the one evaluation (pumplink.evaluate): replace it there with one that fails every
-    design and each of them reports FAIL."""
-    import pumplink.evaluate
+    called by the one evaluation (its verdict stage, and the piston pumps' evaluation): replace it
+    there with one that fails every design and each of them reports FAIL."""
+    import pumplink.evaluate.piston
+    import pumplink.evaluate.stages
     import pumplink.search.optimize
     import pumplink.studies.force
     import pumplink.studies.speed
@@ -147,7 +148,8 @@ def test_every_command_decides_through_assess(monkeypatch, tmp_path):
         v = real(feasible, *a, **k)
         return verdict.Verdict(v.checks, np.full(np.shape(v.level), verdict.FAIL) if np.ndim(v.level) else 2)
 
-    monkeypatch.setattr(pumplink.evaluate, "assess", never)
+    monkeypatch.setattr(pumplink.evaluate.stages, "assess", never)
+    monkeypatch.setattr(pumplink.evaluate.piston, "assess", never)
     spec = default_spec()
     assert real(True, 1.0, 1.0, 100.0).passed  # the real one passes such a design
     assert not pumplink.studies.force.force_analysis(spec, keep_samples=False).passed

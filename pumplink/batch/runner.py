@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.evaluate import PistonEvaluation, Water, evaluate, piston_designs, pump_designs
+from pumplink.evaluate import REPORTED, PistonEvaluation, Water, evaluate, piston_designs, pump_designs
 from pumplink.inputs.batch import CRANK_SLIDER, FOUR_BAR, Batch, axis_indices
 from pumplink.mechanisms import crank_slider as cs
 from pumplink.mechanisms.fourbar import infeasibility_reason
@@ -250,7 +250,7 @@ def evaluate_chunk(
     if batch.mechanism == CRANK_SLIDER:
         return _piston_chunk(batch, start, stop, batch_index, values, value)
     designs = pump_designs(value)
-    ev = evaluate(designs, model, samples=samples)
+    ev = evaluate(designs, (*REPORTED, "sampled_peak"), model=model, samples=samples)
 
     def column(x):
         return np.broadcast_to(np.asarray(x, float), (n,))

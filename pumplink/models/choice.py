@@ -78,13 +78,15 @@ def energy_model(
     arms_in_verdict,
     forced: str | None = None,
     solve=True,
+    rocker_rate=None,
 ) -> EnergyModel:
     """Choose between the flywheel and full dynamics and solve the chosen one's least peak force.
 
     ``masses``: coupler and handle [kg] and the arms at the grip (operator.arm_mass); the arms
     enter the solved force only where ``arms_in_verdict``.  ``forced``: a model key that overrides
     the choice.  ``solve``: False (or False per design) to leave the force unsolved (NaN), e.g. for
-    an infeasible design.
+    an infeasible design.  ``rocker_rate``: max|dθ4/dθ2| of each design where known (the arms'
+    energy), else found here.
     """
     from pumplink.models import dynamics as _dy  # loaded when first needed (start-up)
     from pumplink.models import flywheel as _fw  # loaded when first needed (start-up)
@@ -107,7 +109,7 @@ def energy_model(
     four = FourBar(*geom)
     arms, todo = arms.astype(bool), todo.astype(bool)
     band = _fw.energy_band(j, w, delta)
-    link, weight, arm = _dy.effect_sizes(four, _dy.Masses(mc, mh, ma), w)
+    link, weight, arm = _dy.effect_sizes(four, _dy.Masses(mc, mh, ma), w, rocker_rate=rocker_rate)
     index = np.asarray(model_index(j, band, link, weight, arm, arms, forced))
     peak = np.full(j.shape, np.nan)
     for key in (FLYWHEEL, DYNAMICS):

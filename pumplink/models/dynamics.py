@@ -935,7 +935,7 @@ def band_margin(
 EFFECT_GRID = 360
 
 
-def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY):
+def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY, rocker_rate=None):
     """The sizes the model choice compares with the flywheel's energy band (docs/models.md §3).
 
     Parameters
@@ -943,6 +943,7 @@ def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY):
     lk : linkage (scalars or 1-D arrays over designs).
     masses : coupler and handle masses [kg]; ``grip`` is the operator's arms [kg].
     mean_speed : w_bar [rad/s].
+    rocker_rate : max|dt4/dt2| of each design when known [-] (None: found here).
 
     Returns
     -------
@@ -954,8 +955,10 @@ def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY):
     """
     from pumplink.mechanisms.fourbar import peak_rocker_rate
 
-    scalar, arrays = per_design(lk, masses.coupler, masses.handle, masses.grip, mean_speed)
-    geom, (mc, mh, ma, w) = arrays[:7], arrays[7:]
+    known = rocker_rate is not None
+    scalar, arrays = per_design(lk, masses.coupler, masses.handle, masses.grip, mean_speed,
+                                rocker_rate if known else np.nan)  # fmt: skip
+    geom, (mc, mh, ma, w, rate) = arrays[:7], arrays[7:]
     th = np.arange(EFFECT_GRID) * (TWO_PI / EFFECT_GRID)
     col = FourBar(*(v[:, None] for v in geom))
     with np.errstate(all="ignore"):
@@ -968,8 +971,8 @@ def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY):
         arm = np.zeros(np.shape(ma))
         r = np.nonzero(ma != 0.0)[0]
         if r.size:
-            rate = peak_rocker_rate(FourBar(*(v[r] for v in geom)))
-            arm[r] = 0.5 * ma[r] * (geom[5][r] * rate * w[r]) ** 2
+            at = rate[r] if known else peak_rocker_rate(FourBar(*(v[r] for v in geom)))
+            arm[r] = 0.5 * ma[r] * (geom[5][r] * at * w[r]) ** 2
     out = (link, weight, arm)
     return tuple(float(v[0]) for v in out) if scalar else out
 

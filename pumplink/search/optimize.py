@@ -42,7 +42,7 @@ import numpy as np
 
 from pumplink.constants import MIN_TRANSMISSION_DEG, STROKE_LIMIT_M
 from pumplink.errors import InfeasibleDesign, SpecError
-from pumplink.evaluate import PumpDesigns, evaluate, pump_designs
+from pumplink.evaluate import JUDGED, PumpDesigns, evaluate, pump_designs
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
 from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_heights, grip_stroke, synthesize
 from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC
@@ -484,20 +484,23 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Evaluation:
     objective_peak = problem.objective == "peak"
     flow_objective = problem.objective == "flow"
     columns = designs(problem, x)
-    ev = evaluate(
-        columns,
-        problem.forced,
-        judge=problem.needs_verdict,
-        passing_speed=False,
-        dead_band_peak=not search,
-        peak=objective_peak or flow_objective or not search,
-        parts_of_failing=False,
-    )
+    want = ["mean_force"]
+    if problem.needs_verdict:
+        want += JUDGED
+    if objective_peak or flow_objective or not search:
+        want.append("peak")
+    if not search:  # the quasi-static peak of every design, for the report
+        want.append("dead_band_peak")
+    ev = evaluate(columns, want, model=problem.forced, screen_parts=True)
     tm = _terms(problem, x, ev.synthesis)
     ok = tm.ok
+    nan = np.full(ok.shape, np.nan)
+    quasi_static = ev.dead_band_peak_force
+    if quasi_static is None:  # a search: only where the quasi-static model decides
+        quasi_static = nan if ev.peak_force is None else np.where(ev.energy_decides, np.nan, ev.peak_force)
     # the dead-band peak is defined where the crank arcs outside the dead bands are not empty
-    peak = np.where(ok & (tm.win > 0), ev.dead_band_peak_force, np.nan)
-    required = ev.least_peak_force if problem.flywheel else np.full(ok.shape, np.nan)
+    peak = np.where(ok & (tm.win > 0), quasi_static, np.nan)
+    required = ev.least_peak_force if problem.flywheel and ev.least_peak_force is not None else nan
     verdict = required if problem.flywheel else peak
     mean = np.where(ok, ev.mean_force, np.nan)
     obj = verdict if objective_peak else mean

@@ -30,7 +30,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from pumplink.errors import SpecError
-from pumplink.evaluate import Evaluation, evaluate, pump_designs
+from pumplink.evaluate import JUDGED, Evaluation, evaluate, pump_designs
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
 from pumplink.models.water import rope_pump_flow
 from pumplink.studies.tolerance import Robust, RobustCheck, robust_check, shortfall
@@ -157,7 +157,7 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
             if len(cache) > 8:
                 cache.clear()
             d = pump_designs(_values(problem, pipe, x))
-            ev = evaluate(d, passing_speed=False, parts_of_failing=False)
+            ev = evaluate(d, JUDGED, screen_parts=True)
             v = np.where(ev.feasible, excess(ev.verdict, problem.allow_warnings, INFEASIBLE), INFEASIBLE)
             if problem.robust is not None:  # the builds too: the first-order share's shortfall
                 v = v + shortfall(d, ev, problem.robust)
@@ -305,7 +305,7 @@ def discharge(spec: PumpSpec, heads, allow_warnings: bool = False, speeds=None):
                 return speeds
             return base(key)
 
-        ev = evaluate(pump_designs(value), passing_speed=False, parts_of_failing=False)
+        ev = evaluate(pump_designs(value), JUDGED, screen_parts=True)
         ok = np.asarray(ev.verdict.level) <= (WARN if allow_warnings else 0)
         ok = np.broadcast_to(ok, speeds.shape)
         if ok.any():

@@ -180,7 +180,7 @@ def sampling_study(designs: PumpDesigns, counts=SAMPLE_COUNTS) -> list[dict]:
     """
     rows = []
     for n in counts:
-        ev = evaluate(designs, QUASI_STATIC, judge=False, passing_speed=False, samples=n)
+        ev = evaluate(designs, ("sampled_peak", "dead_band_peak"), model=QUASI_STATIC, samples=n)
         _, lk = motion.at_design(ev)
         exact_peak, exact_mean, peak = (
             float(v[0]) for v in (ev.dead_band_peak_force, ev.mean_force, ev.sampled_peak)
@@ -223,7 +223,7 @@ def method_study(spec: PumpSpec, names, samples: int, repeats: int, advance=None
     InfeasibleDesign : no crank-rocker for this spec.
     """
     designs = pump_designs(spec_values(spec))
-    ev = evaluate(designs, QUASI_STATIC, judge=False, passing_speed=False, peak=False)
+    ev = evaluate(designs, ("mean_force",), model=QUASI_STATIC)
     if not ev.feasible[0]:
         from pumplink.studies.force import design
 

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from pumplink.errors import SpecError
-from pumplink.evaluate import Evaluation, Water, evaluate, motion, pump_designs
+from pumplink.evaluate import REPORTED, Evaluation, Water, evaluate, motion, pump_designs
 from pumplink.inputs.pump import PumpSpec, spec_values
 from pumplink.mechanisms.fourbar import State, Synthesis, infeasibility_reason, kinematic_state, synthesize
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
@@ -226,9 +226,8 @@ def force_analysis(
         )
     ev = evaluate(
         pump_designs(spec_values(spec), speed_deg),
-        model,
-        effort=True,
-        arm_energy=True,
+        (*REPORTED, "effort", "sampled_peak"),
+        model=model,
         samples=samples if at_deg is None else 0,
         progress=progress,
     )

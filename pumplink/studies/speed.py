@@ -174,12 +174,9 @@ def speed_sweep(
     given = np.asarray(speeds_deg_s, float)
     designs = pump_designs(spec_values(spec), np.append(given, op.speed))  # the spec's own speed last
     w, mw, j = np.asarray(designs.speed), float(designs.wheel_torque), float(designs.inertia)
-    ev = evaluate(designs, model, effort=True, passing_speed=False)
+    ev = evaluate(designs, ("verdict", "water", "effort", "dead_band_peak"), model=model)
     # the least peak force of each energy model at every speed (the chart's curves)
-    fly, hand = (
-        evaluate(designs, key, judge=False, dead_band_peak=False, passing_speed=False).least_peak_force
-        for key in (FLYWHEEL, DYNAMICS)
-    )
+    fly, hand = (evaluate(designs, ("model",), model=key).least_peak_force for key in (FLYWHEEL, DYNAMICS))
     effort = ev.effort_peak_force
     lk, dce, dcf, delta = syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, op.speed_fluctuation
     index = ev.model_index

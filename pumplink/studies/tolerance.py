@@ -49,7 +49,7 @@ import numpy as np
 
 from pumplink.constants import AXLE_HEIGHT_RANGE_M
 from pumplink.errors import InfeasibleDesign, SpecError
-from pumplink.evaluate import MODEL_LABELS, Evaluation, PumpDesigns, evaluate, pump_designs
+from pumplink.evaluate import JUDGED, MODEL_LABELS, Evaluation, PumpDesigns, evaluate, pump_designs
 from pumplink.inputs.pump import PumpSpec, spec_values
 from pumplink.mechanisms.fourbar import FourBar
 from pumplink.verdict import FAIL, PASS, WARN
@@ -401,7 +401,7 @@ def problem(
     InfeasibleDesign : the spec gives no crank-rocker (there is nothing to build).
     """
     designs = pump_designs(spec_values(spec))
-    ev = evaluate(designs, model, passing_speed=False, dead_band_peak=False)
+    ev = evaluate(designs, JUDGED, model=model)
     if not bool(ev.feasible[0]):
         raise InfeasibleDesign(f"{spec.name}: nothing to build, the spec gives no crank-rocker")
     nominal = FourBar(*(float(np.ravel(p)[0]) for p in ev.synthesis.linkage.parameters))
@@ -423,7 +423,7 @@ def offsets(prob: Problem, index: int, start: int, stop: int) -> np.ndarray:
 def evaluate_builds(prob: Problem, offs: np.ndarray) -> Evaluation:
     """The one evaluation of builds with these offsets (:func:`build`)."""
     lk, axle = build(prob.nominal, prob.axle_height, offs)
-    return evaluate(as_built(prob.designs, lk, axle), prob.model, passing_speed=False, dead_band_peak=False)
+    return evaluate(as_built(prob.designs, lk, axle), JUDGED, model=prob.model)
 
 
 def quantities(ev: Evaluation) -> dict[str, np.ndarray]:
@@ -617,9 +617,7 @@ def first_order_shares(
     for i in range(p):
         params[i][i * rows.size : (i + 1) * rows.size] += step
     tiled = take(base, np.tile(np.arange(rows.size), p))
-    e = evaluate(
-        as_built(tiled, FourBar(*params), np.tile(axle, p)), model, passing_speed=False, dead_band_peak=False
-    )
+    e = evaluate(as_built(tiled, FourBar(*params), np.tile(axle, p)), JUDGED, model=model)
     m1 = margins(e, strict)
     mp = first_order_map()
     sigma = tol.sigma

@@ -1,0 +1,264 @@
+"""The inputs of the evaluation: designs and their operating conditions as columns.
+
+A spec is one design of floats; a batch chunk gives arrays for the keys it varies.
+:func:`pump_designs` and :func:`piston_designs` build the columns from spec values (``value(key)``
+gives a dotted spec key's value in spec units, or None where it is not given), so every route into
+the evaluation assembles its inputs here.  SI units, radians.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, fields
+from typing import Any
+
+import numpy as np
+
+from pumplink.constants import (
+    DEFAULT_ARM_MASS,
+    DEFAULT_DAILY_PUMPING_HOURS,
+    DEFAULT_EFFICIENCY,
+    DEFAULT_LITRES_PER_PERSON_DAY,
+    DEFAULT_VOLUMETRIC_EFFICIENCY,
+    LINK_MASS_PER_METRE,
+)
+from pumplink.mechanisms.fourbar import FourBar
+from pumplink.models import load as _load
+from pumplink.profiles import DEFAULT_PROFILE, operator_limits
+
+#: Spec keys that give the wheel's inertia (the flywheel or full dynamics can then decide).
+INERTIA_KEYS = ("wheel.inertia", "wheel.mass", "load.moving_mass")
+
+
+@dataclass(frozen=True)
+class PumpDesigns:
+    """Rope-pump designs (the pump paper's four-bar) and their operating conditions, as columns.
+
+    Floats for one design, 1-D arrays over designs otherwise (broadcast together); SI units,
+    angles in radians.
+
+    Attributes
+    ----------
+    L1, D1, b : frame placement [m] (docs/physics.md §1);  rocker, handle : [m];  swing : [rad].
+    wheel_radius : rw [m];  rope_force : Fw at the rim [N];  wheel_torque : Mw = Fw rw [N m].
+    moving_mass : rope and water moving with the rim [kg];  inertia : J about the axle [kg m^2]
+    (NaN: not given).
+    speed : mean wheel speed ω̄ [rad/s];  dead_band : [rad];  speed_fluctuation : δ [-].
+    force_limit : [N];  mass_per_length : [kg/m] of the handle and coupler tube.
+    coupler_mass, handle_mass : [kg] (NaN: bars of ``mass_per_length``);  arm_mass : [kg].
+    arms_in_verdict : the operator's arms in the verdict's force (one flag for all designs).
+    axle_height : [m], or None (no height checks).
+    linkage : a built four-bar (its pivot, link lengths, handle and branch as made), analysed as it
+        is (:func:`pumplink.mechanisms.fourbar.analyse`) instead of synthesised from L1, D1, b,
+        rocker and swing, which are then not read; None: synthesise.
+    wheel_mass : [kg] (NaN: not given; its weight loads the axle).  parts : the pins, handle tube and
+        crank bar (the spec's ``[parts]``: attributes pin_diameter, pin_width, handle_diameter,
+        handle_wall, handle_notch, crank_diameter, crank_notch), or None: no part checks.
+    head, pipe_diameter : pumping head and rising-main bore [m] (NaN: the spec gives a rope force,
+        so there is no flow);  force_efficiency, volumetric_efficiency : [-].
+    sustained_power, hour_power : the operator's power for hours and for an hour [W];
+    grip_height_min, grip_height_max [m], grip_speed_warn, grip_speed_fail [m/s]: the operator
+    profile's limits (:mod:`pumplink.profiles`, with the spec's own keys instead where given).
+    hours_per_day [h], litres_per_person_day [l]: how the water is used (the people it serves).
+    """
+
+    L1: Any
+    D1: Any
+    b: Any
+    rocker: Any
+    handle: Any
+    swing: Any
+    wheel_radius: Any
+    rope_force: Any
+    wheel_torque: Any
+    moving_mass: Any
+    inertia: Any
+    speed: Any
+    dead_band: Any
+    speed_fluctuation: Any
+    force_limit: Any
+    mass_per_length: Any
+    coupler_mass: Any
+    handle_mass: Any
+    arm_mass: Any
+    head: Any = np.nan
+    pipe_diameter: Any = np.nan
+    force_efficiency: Any = DEFAULT_EFFICIENCY
+    volumetric_efficiency: Any = DEFAULT_VOLUMETRIC_EFFICIENCY
+    sustained_power: Any = DEFAULT_PROFILE.sustained_power
+    hour_power: Any = DEFAULT_PROFILE.hour_power
+    grip_height_min: Any = DEFAULT_PROFILE.grip_height_range[0]
+    grip_height_max: Any = DEFAULT_PROFILE.grip_height_range[1]
+    grip_speed_warn: Any = DEFAULT_PROFILE.grip_speed_warn
+    grip_speed_fail: Any = DEFAULT_PROFILE.grip_speed_fail
+    hours_per_day: Any = DEFAULT_DAILY_PUMPING_HOURS
+    litres_per_person_day: Any = DEFAULT_LITRES_PER_PERSON_DAY
+    arms_in_verdict: bool = False
+    axle_height: Any = None
+    linkage: FourBar | None = None
+    wheel_mass: Any = np.nan
+    parts: Any = None
+
+
+def _or(value, default):
+    return default if value is None else value
+
+
+def pump_designs(value: Callable[[str], Any], speed=None) -> PumpDesigns:
+    """The columns of rope-pump designs from their spec values.
+
+    Parameters
+    ----------
+    value : ``value("linkage.swing")`` gives a spec key's value in spec units (degrees, deg/s):
+        a float, an array over designs, or None where the key is not given.
+    speed : mean wheel speed [deg/s] instead of ``operator.speed`` (a float or an array).
+    """
+    inertia = np.nan
+    mass = _load.moving_mass(value("load.moving_mass"), value("load.head"), value("load.pipe_diameter"))
+    if any(value(k) is not None for k in INERTIA_KEYS):
+        inertia = _load.inertia(value("wheel.radius"), value("wheel.inertia"), value("wheel.mass"), mass)
+    rope = _load.rope_force(
+        value("load.rope_force"), value("load.head"), value("load.pipe_diameter"), value("load.efficiency")
+    )
+    limits = operator_limits(value)
+    by_head = value("load.head") is not None
+    return PumpDesigns(
+        L1=value("linkage.L1"),
+        D1=value("linkage.D1"),
+        b=value("linkage.b"),
+        rocker=value("linkage.rocker"),
+        handle=value("linkage.handle"),
+        swing=np.radians(value("linkage.swing")),
+        wheel_radius=value("wheel.radius"),
+        rope_force=rope,
+        wheel_torque=rope * value("wheel.radius"),  # Mw = Fw rw, Eq. (3) of the pump paper
+        moving_mass=mass,
+        inertia=inertia,
+        speed=np.radians(value("operator.speed") if speed is None else speed),
+        dead_band=np.radians(value("operator.dead_band")),
+        speed_fluctuation=value("operator.speed_fluctuation"),
+        force_limit=limits.force_limit,
+        mass_per_length=_or(value("linkage.mass_per_length"), LINK_MASS_PER_METRE),
+        coupler_mass=_or(value("linkage.coupler_mass"), np.nan),
+        handle_mass=_or(value("linkage.handle_mass"), np.nan),
+        arm_mass=_or(value("operator.arm_mass"), DEFAULT_ARM_MASS),
+        head=value("load.head") if by_head else np.nan,
+        pipe_diameter=value("load.pipe_diameter") if by_head else np.nan,
+        force_efficiency=_or(value("load.efficiency"), DEFAULT_EFFICIENCY),
+        volumetric_efficiency=_or(value("load.volumetric_efficiency"), DEFAULT_VOLUMETRIC_EFFICIENCY),
+        sustained_power=limits.sustained_power,
+        hour_power=limits.hour_power,
+        grip_height_min=limits.grip_height_range[0],
+        grip_height_max=limits.grip_height_range[1],
+        grip_speed_warn=limits.grip_speed_warn,
+        grip_speed_fail=limits.grip_speed_fail,
+        hours_per_day=_or(value("use.hours_per_day"), DEFAULT_DAILY_PUMPING_HOURS),
+        litres_per_person_day=_or(value("use.litres_per_person_day"), DEFAULT_LITRES_PER_PERSON_DAY),
+        arms_in_verdict=bool(value("operator.arms_in_verdict")),
+        axle_height=value("wheel.axle_height"),
+        wheel_mass=_or(value("wheel.mass"), np.nan),
+        parts=_part_sizes(value),
+    )
+
+
+#: The keys of a spec's ``[parts]`` table.
+PART_KEYS = (
+    "pin_diameter",
+    "pin_width",
+    "handle_diameter",
+    "handle_wall",
+    "handle_notch",
+    "crank_diameter",
+    "crank_notch",
+)
+
+
+@dataclass(frozen=True)
+class PartSizes:
+    """The pins, handle tube and crank bar of designs [m; notch factors -] (docs/workshop.md §2)."""
+
+    pin_diameter: Any
+    pin_width: Any
+    handle_diameter: Any
+    handle_wall: Any
+    handle_notch: Any
+    crank_diameter: Any
+    crank_notch: Any
+
+    def design(self, i: int) -> PartSizes:
+        return PartSizes(
+            *(float(np.broadcast_to(np.asarray(getattr(self, k), float), (i + 1,))[i]) for k in PART_KEYS)
+        )
+
+
+def _part_sizes(value) -> PartSizes | None:
+    sizes = {k: value(f"parts.{k}") for k in PART_KEYS}
+    return None if all(v is None for v in sizes.values()) else PartSizes(**sizes)
+
+
+@dataclass(frozen=True)
+class PistonDesigns:
+    """Piston pumps (a crank-slider turned by a hand crank, docs/piston-pump.md) as columns.
+
+    crank, rod, offset : r, l, e [m];  handle : radius R of the crank the operator turns [m];
+    load_force : the piston's force on its working stroke [N] (Eq. P.1);  speed : [rad/s];
+    force_limit : [N];  inertia : J on the crank shaft [kg m^2] (NaN: none);  speed_fluctuation : δ.
+    bore, head [m], force_efficiency, volumetric_efficiency [-]: the flow (docs/water.md);
+    sustained_power, hour_power [W]: the operator profile's;  hours_per_day, litres_per_person_day.
+    """
+
+    crank: Any
+    rod: Any
+    offset: Any
+    handle: Any
+    load_force: Any
+    speed: Any
+    force_limit: Any
+    inertia: Any
+    speed_fluctuation: Any
+    bore: Any = np.nan
+    head: Any = np.nan
+    force_efficiency: Any = DEFAULT_EFFICIENCY
+    volumetric_efficiency: Any = DEFAULT_VOLUMETRIC_EFFICIENCY
+    sustained_power: Any = DEFAULT_PROFILE.sustained_power
+    hour_power: Any = DEFAULT_PROFILE.hour_power
+    hours_per_day: Any = DEFAULT_DAILY_PUMPING_HOURS
+    litres_per_person_day: Any = DEFAULT_LITRES_PER_PERSON_DAY
+
+
+def piston_designs(value: Callable[[str], Any], speed=None) -> PistonDesigns:
+    """The columns of piston pumps from their spec values (``value`` as in :func:`pump_designs`)."""
+    limits = operator_limits(value)
+    inertia = np.nan
+    if value("wheel.inertia") is not None or value("wheel.mass") is not None:
+        inertia = _load.rim_inertia(value("wheel.inertia"), value("wheel.mass"), value("wheel.radius"))
+    return PistonDesigns(
+        crank=value("crank_slider.crank"),
+        rod=value("crank_slider.rod"),
+        offset=_or(value("crank_slider.offset"), 0.0),
+        handle=value("operator.handle"),
+        load_force=_load.piston_load_force(
+            value("piston.bore"), value("piston.head"), value("piston.efficiency")
+        ),
+        speed=np.radians(value("operator.speed") if speed is None else speed),
+        force_limit=limits.force_limit,
+        inertia=inertia,
+        speed_fluctuation=value("operator.speed_fluctuation"),
+        bore=value("piston.bore"),
+        head=value("piston.head"),
+        force_efficiency=value("piston.efficiency"),
+        volumetric_efficiency=_or(value("piston.volumetric_efficiency"), DEFAULT_VOLUMETRIC_EFFICIENCY),
+        sustained_power=limits.sustained_power,
+        hour_power=limits.hour_power,
+        hours_per_day=_or(value("use.hours_per_day"), DEFAULT_DAILY_PUMPING_HOURS),
+        litres_per_person_day=_or(value("use.litres_per_person_day"), DEFAULT_LITRES_PER_PERSON_DAY),
+    )
+
+
+def columns(designs) -> tuple[int, dict[str, np.ndarray]]:
+    """The designs' numeric fields as 1-D float arrays of one length (the number of designs)."""
+    skip = ("arms_in_verdict", "axle_height", "linkage", "parts")
+    names = [f.name for f in fields(designs) if f.name not in skip]
+    arrays = np.broadcast_arrays(*(np.asarray(getattr(designs, k), float) for k in names))
+    cols = {k: np.atleast_1d(a).ravel() for k, a in zip(names, arrays)}
+    return next(iter(cols.values())).size, cols
