@@ -103,6 +103,16 @@ class Evaluation:
         """W = J ω̄² δ [J] (NaN without inertia)."""
         return np.full(len(self), np.nan) if self.energy is None else self.energy.band
 
+    @property
+    def inertia(self) -> np.ndarray:
+        """J about the axle [kg m^2] (NaN where the design gives none)."""
+        return np.broadcast_to(np.asarray(self.designs.inertia, float), (len(self),))
+
+    @property
+    def energy_speed_fluctuation(self) -> np.ndarray:
+        """The speed fluctuation δ an energy model allows [-] (NaN without the wheel's inertia)."""
+        return np.where(np.isnan(self.inertia), np.nan, self.designs.speed_fluctuation)
+
 
 @dataclass(frozen=True, kw_only=True)
 class PistonEvaluation:

@@ -33,41 +33,27 @@ from pumplink.output.words import (
     model_line,
     verdict_line,
     water_lines,
-    water_row,
 )
+from pumplink.quantities import json_items
 
 
 def force_summary(r: ForceResult) -> dict[str, Any]:
-    """The JSON contract of a force analysis without samples."""
+    """The JSON contract of a force analysis without samples: the design, then every quantity of
+    the catalogue (:data:`pumplink.quantities.CATALOGUE`) that force's JSON holds, then the
+    verdict and its checks."""
     out = design_row(r.design)
     out.update(
         {
             "speed_deg_s": r.speed_deg_s,
-            "wheel_torque_Nm": num(r.wheel_torque),
-            "power_W": num(r.power),
-            **water_row(r.water),
             "operator_profile": r.profile,
-            "force_limit_N": num(r.force_limit),
             "dead_band_deg": r.design.spec.operator.dead_band,
             "model": r.model,
-            "inertia_kg_m2": None if r.inertia is None else num(r.inertia),
-            "speed_fluctuation": r.speed_fluctuation,
-            "energy_band_J": None if r.energy_band is None else num(r.energy_band),
-            "least_peak_force_N": None if r.least_peak_force is None else num(r.least_peak_force),
-            "min_passing_speed_deg_s": None if r.min_passing_speed is None else deg(r.min_passing_speed),
-            "wheel_speed_range_deg_s": _speed_range(r),
-            "link_kinetic_energy_J": num(r.link_energy),
-            "link_weight_J": None if r.effects is None else num(r.effects.link_weight),
-            "arm_kinetic_energy_J": None if r.effects is None else num(r.effects.arm_energy),
-            "effort_peak_force_N": None if r.effort_peak_force is None else num(r.effort_peak_force),
-            "mean_force_N": num(r.mean_force),
-            # the verdict's peak (of the model that decided), and the dead-band model's under its own name
-            "peak_force_N": num(r.verdict_peak_force),
-            "peak_force_infinite": bool(r.verdict_peak_force == math.inf),
-            "dead_band_peak_force_N": num(r.dead_band_peak_force),
-            "dead_band_peak_crank_deg": deg(r.dead_band_peak_angle),
+            **{k: num(v) for k, v in json_items(r.evaluation).items()},
+            # the sampled peak of the angles this study kept (--at), else the evaluation's sweep
             "sampled_peak_force_N": num(r.sampled_peak),
             "samples_n": r.samples_n,
+            "wheel_speed_range_deg_s": _speed_range(r),
+            "peak_force_infinite": bool(r.verdict_peak_force == math.inf),
             "verdict": r.outcome,
             "pass": r.passed,
             "checks": [check_row(c, r) for c in r.checks],

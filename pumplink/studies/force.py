@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from pumplink.errors import SpecError
-from pumplink.evaluate import REPORTED, Evaluation, Water, evaluate, motion, pump_designs
+from pumplink.evaluate import MODEL_LABELS, REPORTED, Evaluation, Water, evaluate, motion, pump_designs
 from pumplink.inputs.pump import PumpSpec, spec_values
 from pumplink.mechanisms.fourbar import State, Synthesis, infeasibility_reason, kinematic_state, synthesize
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
@@ -64,50 +64,141 @@ class Design:
         return min(syn.transmission_min, np.pi - syn.transmission_max)
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, kw_only=True)
 class ForceResult:
-    """Force analysis of one design at one wheel speed (SI units, radians).
+    """Force analysis of one design at one wheel speed (SI units, radians): a view of the one
+    evaluation (``evaluation``, n = 1) with what a study of one design adds: the force at sampled
+    crank angles, the dead centres and the peak marked, and the deciding energy model's motion.
 
     Three peak forces, named apart: ``dead_band_peak_force`` (the quasi-static model's exact peak
-    outside the dead bands), ``least_peak_force`` (the flywheel model's, None without inertia) and
+    outside the dead bands), ``least_peak_force`` (the energy model's, None without inertia) and
     :attr:`verdict_peak_force` (the one of the model that decided).
     """
 
     design: Design
+    evaluation: Evaluation  # the one evaluation this result shows (one design)
     speed_deg_s: float  # wheel speed as given [deg/s] (echoed exactly in reports)
-    speed: float  # wheel speed [rad/s]
-    wheel_torque: float  # Mw [N m]
-    power: float  # Mw * omega [W]
-    force_limit: float  # [N]
-    dead_band: float  # [rad]
-    mean_force: float  # [N]
-    dead_band_peak_force: float  # exact windowed peak [N]
-    dead_band_peak_angle: float  # [rad]
-    sampled_peak: float  # peak over the requested samples outside the dead bands [N]
-    samples_n: int
-    verdict: Verdict | None  # None for an infeasible design
-    samples: State | None  # None with --summary
-    in_dead_band: np.ndarray | None
+    sampled_peak: float = float("nan")  # peak over the requested samples outside the dead bands [N]
+    samples_n: int = 0
+    samples: State | None = None  # None with --summary
+    in_dead_band: np.ndarray | None = None
     marks: State | None = None  # state at (extended dead centre, folded dead centre, dead-band peak)
-    # The flywheel model; model == the quasi-static label leaves the rest None.
-    model: str = MODELS["quasi-static"].label
-    inertia: float | None = None  # J [kg m^2]
-    speed_fluctuation: float | None = None  # delta_allow [-]
-    energy_band: float | None = None  # W = J w^2 delta [J]
-    least_peak_force: float | None = None  # Fp* [N]
-    min_passing_speed: float | None = None  # [rad/s]; inf: no speed passes
     scene: Any = None  # the deciding energy model's motion (pumplink.evaluate.motion.scene)
     operator_force: np.ndarray | None = None  # at the samples [N]
     wheel_speed: np.ndarray | None = None  # at the samples [rad/s]
     on_ceiling: np.ndarray | None = None  # at the samples: the wheel at its top speed
     mark_operator_force: np.ndarray | None = None  # at the marks [N] (flywheel)
     mark_wheel_speed: np.ndarray | None = None  # at the marks [rad/s]
-    link_energy: float = float("nan")  # largest kinetic energy of coupler + handle at this speed [J]
-    effort_peak_force: float | None = None  # least peak effort: hand force + the arms (full dynamics) [N]
-    effects: EnergyModel | None = None  # the model choice with the wheel's inertia (None without)
-    evaluation: Evaluation | None = None  # the one evaluation this result shows (one design)
-    water: Water | None = None  # the water it delivers and the most its operator could lift
-    profile: str = "men"  # the operator profile whose limits judged it (pumplink.profiles)
+
+    def _at(self, x) -> float:
+        return float(np.asarray(x, float).ravel()[0])
+
+    @property
+    def speed(self) -> float:
+        """Mean wheel speed [rad/s]."""
+        return self._at(self.evaluation.designs.speed)
+
+    @property
+    def wheel_torque(self) -> float:
+        """Mw = Fw rw [N m]."""
+        return self._at(self.evaluation.designs.wheel_torque)
+
+    @property
+    def power(self) -> float:
+        """Mw ω̄ [W]."""
+        return self._at(self.evaluation.power)
+
+    @property
+    def force_limit(self) -> float:
+        """The operator profile's force limit [N]."""
+        return self._at(self.evaluation.designs.force_limit)
+
+    @property
+    def dead_band(self) -> float:
+        """[rad]"""
+        return self._at(self.evaluation.designs.dead_band)
+
+    @property
+    def mean_force(self) -> float:
+        """F_mean [N] (NaN: infeasible)."""
+        return self._at(self.evaluation.mean_force)
+
+    @property
+    def dead_band_peak_force(self) -> float:
+        """The quasi-static model's exact peak outside the dead bands [N]."""
+        return self._at(self.evaluation.dead_band_peak_force)
+
+    @property
+    def dead_band_peak_angle(self) -> float:
+        """Where it is [rad]."""
+        return self._at(self.evaluation.dead_band_peak_angle)
+
+    @property
+    def verdict(self) -> Verdict | None:
+        """Every check and the verdict (None for an infeasible design)."""
+        return self.evaluation.verdict.design(0) if self.design.feasible else None
+
+    @property
+    def model(self) -> str:
+        """The words of the model that decided."""
+        return MODEL_LABELS[int(self.evaluation.model_index[0])]
+
+    @property
+    def effects(self) -> EnergyModel | None:
+        """The model choice with the wheel's inertia (None without)."""
+        em = self.evaluation.energy
+        return None if em is None or not self.design.spec.gives_inertia else em.design(0)
+
+    def _with_inertia(self, x) -> float | None:
+        return None if self.effects is None else self._at(x)
+
+    @property
+    def inertia(self) -> float | None:
+        """J [kg m^2] (None without)."""
+        return self._with_inertia(self.evaluation.designs.inertia)
+
+    @property
+    def speed_fluctuation(self) -> float | None:
+        """δ allowed [-] (None without inertia)."""
+        return self._with_inertia(self.evaluation.designs.speed_fluctuation)
+
+    @property
+    def energy_band(self) -> float | None:
+        """W = J ω̄² δ [J] (None without inertia)."""
+        return self._with_inertia(self.evaluation.energy_band)
+
+    @property
+    def link_energy(self) -> float:
+        """The coupler's and handle's largest kinetic energy at this speed [J] (NaN without inertia)."""
+        return float("nan") if self.effects is None else self.effects.link_energy
+
+    def _with_scene(self, x) -> float | None:
+        return None if self.scene is None else self._at(x)
+
+    @property
+    def least_peak_force(self) -> float | None:
+        """Fp* [N] of the energy model that decided (None where none did)."""
+        return None if self.scene is None else self.scene.least_peak_force
+
+    @property
+    def min_passing_speed(self) -> float | None:
+        """The flywheel's slowest passing speed [rad/s] (inf: none passes; NaN: full dynamics)."""
+        return self._with_scene(self.evaluation.min_passing_speed)
+
+    @property
+    def effort_peak_force(self) -> float | None:
+        """Least peak effort: the hand force plus the arms (full dynamics) [N]."""
+        return self._with_scene(self.evaluation.effort_peak_force)
+
+    @property
+    def water(self) -> Water:
+        """The water it delivers and the most its operator could lift."""
+        return self.evaluation.water.design(0)
+
+    @property
+    def profile(self) -> str:
+        """The operator profile whose limits judged it (pumplink.profiles)."""
+        return self.design.spec.operator.limits.name
 
     @property
     def flywheel(self) -> bool:
@@ -217,8 +308,7 @@ def force_analysis(
     model : "quasi-static", "flywheel" or "dynamics" to override the choice of the least model that
         is enough (the energy models need the wheel's inertia).
     """
-    op = spec.operator
-    speed_deg = float(op.speed if speed_deg_s is None else speed_deg_s)
+    speed_deg = float(spec.operator.speed if speed_deg_s is None else speed_deg_s)
     if model is not None and model != QUASI_STATIC and not spec.gives_inertia:
         raise SpecError(
             f"--model {model} needs the wheel's inertia, but {spec.name} gives none; add wheel.mass [kg] "
@@ -232,46 +322,11 @@ def force_analysis(
         progress=progress,
     )
     d = _design(spec, ev.synthesis)
-    syn = d.synthesis
-    profile = spec.operator.limits.name
-    mw, speed, band = float(ev.designs.wheel_torque), float(ev.designs.speed), float(ev.designs.dead_band)
-    inertia = float(ev.designs.inertia) if spec.gives_inertia else None
-    nan = float("nan")
-    em = None if ev.energy is None else ev.energy.design(0)
-    model = MODELS[model] if model == QUASI_STATIC else MODELS[ORDER[int(ev.model_index[0])]]
-    fly = (
-        {}
-        if inertia is None
-        else dict(inertia=inertia, speed_fluctuation=op.speed_fluctuation, energy_band=em.band, effects=em)
-    )
     if not d.feasible:
-        return ForceResult(
-            d,
-            speed_deg,
-            speed,
-            mw,
-            mw * speed,
-            float(ev.designs.force_limit),
-            band,
-            nan,
-            nan,
-            nan,
-            nan,
-            0,
-            None,
-            None,
-            None,
-            model=model.label,
-            evaluation=ev,
-            water=ev.water.design(0),
-            profile=profile,
-            **fly,
-        )
-    lk = syn.linkage
-    dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
-    mean = float(ev.mean_force[0])
-    peak, peak_angle = float(ev.dead_band_peak_force[0]), float(ev.dead_band_peak_angle[0])
-
+        return ForceResult(design=d, evaluation=ev, speed_deg_s=speed_deg)
+    syn = d.synthesis
+    lk, mw = syn.linkage, float(ev.designs.wheel_torque)
+    dce, dcf, band = syn.dead_centre_extended, syn.dead_centre_folded, float(ev.designs.dead_band)
     # Kept samples: the given --at angles, else the uniform sweep.  The sampled peak of a
     # uniform sweep always comes from the one streamed route (so --summary does not change it).
     if at_deg is not None:
@@ -282,62 +337,30 @@ def force_analysis(
         theta = np.arange(samples) * (2 * np.pi / samples)
     else:
         theta = None
-    state = band_mask = None
+    view = {}
     if theta is not None:
         state = kinematic_state(lk, theta, mw)
-        band_mask = motion.in_dead_band(theta, dce, dcf, band)
+        view.update(samples=state, in_dead_band=motion.in_dead_band(theta, dce, dcf, band))
     if at_deg is not None:
-        f = np.where(band_mask | state.singular, -np.inf, np.abs(state.force))
-        sampled = float(f.max()) if f.size and np.isfinite(f.max()) else nan
-        n = int(theta.size)
+        f = np.where(view["in_dead_band"] | state.singular, -np.inf, np.abs(state.force))
+        sampled = float(f.max()) if f.size and np.isfinite(f.max()) else float("nan")
+        view.update(sampled_peak=sampled, samples_n=int(theta.size))
     else:
-        sampled = float(ev.sampled_peak[0])
-        n = samples
-
-    marks = kinematic_state(lk, np.array([dce, dcf, peak_angle]), mw)
-    link = nan if em is None else em.link_energy
+        view.update(sampled_peak=float(ev.sampled_peak[0]), samples_n=samples)
+    marks = kinematic_state(lk, np.array([dce, dcf, float(ev.dead_band_peak_angle[0])]), mw)
     sc = motion.scene(ev)
-    if sc is not None:
-        fly.update(
-            least_peak_force=sc.least_peak_force, scene=sc, min_passing_speed=float(ev.min_passing_speed[0])
+    if sc is not None and np.isfinite(sc.least_peak_force):
+        view.update(
+            mark_operator_force=motion.operator_force(sc, marks.crank_angle),
+            mark_wheel_speed=motion.wheel_speed(sc, marks.crank_angle),
         )
-        # the operator's effort: the hand force plus accelerating and lifting their own arms
-        fly.update(effort_peak_force=float(ev.effort_peak_force[0]))
-        if np.isfinite(sc.least_peak_force):
-            fly.update(
-                mark_operator_force=motion.operator_force(sc, marks.crank_angle),
-                mark_wheel_speed=motion.wheel_speed(sc, marks.crank_angle),
+        if theta is not None:
+            view.update(
+                operator_force=motion.operator_force(sc, theta),
+                wheel_speed=motion.wheel_speed(sc, theta),
+                on_ceiling=motion.on_ceiling(sc, theta),
             )
-            if theta is not None:
-                fly.update(
-                    operator_force=motion.operator_force(sc, theta),
-                    wheel_speed=motion.wheel_speed(sc, theta),
-                    on_ceiling=motion.on_ceiling(sc, theta),
-                )
-    return ForceResult(
-        d,
-        speed_deg,
-        speed,
-        mw,
-        mw * speed,
-        float(ev.designs.force_limit),
-        band,
-        mean,
-        peak,
-        peak_angle,
-        sampled,
-        n,
-        ev.verdict.design(0),
-        state if keep_samples or at_deg is not None else None,
-        band_mask,
-        marks,
-        model=model.label,
-        link_energy=link,
-        evaluation=ev,
-        water=ev.water.design(0),
-        profile=profile,
-        **fly,
-    )
+    return ForceResult(design=d, evaluation=ev, speed_deg_s=speed_deg, marks=marks, scene=sc, **view)
 
 
 # ----------------------------------------------------------------------------- curves for charts

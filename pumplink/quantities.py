@@ -1,0 +1,130 @@
+"""The catalogue of reported quantities: every number the evaluation reports, listed once.
+
+Data outside the layers (as :mod:`pumplink.constants`): the evaluation fills the values, the views
+read them through this table by their attribute paths, and neither imports the other for it.
+
+Each :class:`Quantity` names where its value lives on an :class:`~pumplink.evaluate.Evaluation`
+(SI units), the unit it is shown in and the factor to it, its words, its key in ``pumplink force
+--format json`` and its column in batch CSV/JSON/Parquet (None where it is not there), and the
+verdict check it feeds.  Every view iterates over :data:`CATALOGUE` instead of keeping a list of
+its own: force's JSON and table, batch's rows, size, the report and docs/json.md (whose tables a
+test holds to it).  A new quantity is a kernel, a stage line and a row here.
+
+Quantities marked ``line`` are printed under the checks of ``pumplink force``, in ``pumplink
+size``'s table and in the report, as "label: value unit" (where the value is known).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+#: Factors from SI to the units shown: radians to degrees, m³/s to l/min and to m³/h.
+DEGREES, L_PER_MIN, M3_PER_H = 180.0 / np.pi, 60_000.0, 3_600.0
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """One reported quantity.
+
+    name : its name in words without spaces (unique);  source : the dotted attribute path of its
+    SI value on an evaluation (``water.flow``);  unit : the unit shown, ``scale`` the factor from
+    SI to it;  label : words for tables;  json : key in force's JSON (None: not there);
+    column : batch column (None: not there);  check : the verdict check it is the value of;
+    line : printed as a line of its own (force's table, size, the report);  fmt : its format there.
+    """
+
+    name: str
+    source: str
+    unit: str
+    label: str
+    json: str | None = None
+    column: str | None = None
+    scale: float = 1.0
+    check: str | None = None
+    line: bool = False
+    fmt: str = "{:.3g}"
+
+
+Q = Quantity
+#: Every reported quantity, in batch-column order.
+CATALOGUE = (
+    Q("frame_length", "synthesis.frame_length", "m", "frame O2O4", column="frame_length"),
+    Q("crank_length", "synthesis.crank_length", "m", "crank O2A", column="crank_length"),
+    Q("coupler_length", "synthesis.coupler_length", "m", "coupler AB", column="coupler_length"),
+    Q("time_ratio", "synthesis.time_ratio", "", "time ratio K", column="time_ratio"),
+    Q("transmission_min", "synthesis.transmission_min", "deg", "smallest transmission angle",
+      column="transmission_min_deg", scale=DEGREES),
+    Q("transmission_max", "synthesis.transmission_max", "deg", "largest transmission angle",
+      column="transmission_max_deg", scale=DEGREES),
+    Q("wheel_torque", "designs.wheel_torque", "N·m", "wheel torque Mw", json="wheel_torque_Nm"),
+    Q("mean_force", "mean_force", "N", "mean force", "mean_force_N", "mean_force_N", check="mean_force"),
+    Q("peak_force", "peak_force", "N", "peak force (the deciding model's)", "peak_force_N",
+      "peak_force_N", check="peak_force"),
+    Q("dead_band_peak_force", "dead_band_peak_force", "N", "quasi-static peak outside the dead bands",
+      "dead_band_peak_force_N", "dead_band_peak_force_N"),
+    Q("dead_band_peak_angle", "dead_band_peak_angle", "deg", "crank angle of the quasi-static peak",
+      "dead_band_peak_crank_deg", scale=DEGREES),
+    Q("sampled_peak", "sampled_peak", "N", "sampled peak", "sampled_peak_force_N", "sampled_peak_force_N"),
+    Q("power", "power", "W", "operator power", "power_W", "power_W", check="power"),
+    Q("flow", "water.flow", "l/min", "flow", "flow_l_min", "flow_l_min", scale=L_PER_MIN),
+    Q("flow_m3_h", "water.flow", "m³/h", "flow", "flow_m3_h", scale=M3_PER_H),
+    Q("water_power", "water.water_power", "W", "water power", "water_power_W", "water_power_W"),
+    Q("pump_efficiency", "water.efficiency", "", "water power / operator power", "pump_efficiency",
+      "pump_efficiency"),
+    Q("power_limited_flow", "water.limit", "l/min", "the flow the operator's sustained power lifts",
+      "power_limited_flow_l_min", scale=L_PER_MIN),
+    Q("flow_share", "water.share", "", "share of that flow", "flow_share", "flow_share"),
+    Q("people_served", "water.people", "", "people served", "people_served", "people_served"),
+    Q("grip_speed", "grip_speed", "m/s", "peak grip speed", column="grip_speed_m_s", check="grip_speed"),
+    Q("stroke", "stroke", "m", "grip stroke", column="stroke_m", check="stroke"),
+    Q("force_limit", "designs.force_limit", "N", "force limit", "force_limit_N", "force_limit_N"),
+    Q("inertia", "inertia", "kg·m²", "inertia J", "inertia_kg_m2", "inertia_kg_m2"),
+    Q("speed_fluctuation", "energy_speed_fluctuation", "", "speed fluctuation δ", "speed_fluctuation",
+      "speed_fluctuation"),
+    Q("energy_band", "energy_band", "J", "energy band W = J ω̄² δ", "energy_band_J"),
+    Q("least_peak_force", "least_peak_force", "N", "least peak force of the energy model",
+      "least_peak_force_N", "least_peak_force_N"),
+    Q("min_passing_speed", "min_passing_speed", "deg/s", "slowest passing mean speed",
+      "min_passing_speed_deg_s", "min_passing_speed_deg_s", scale=DEGREES),
+    Q("link_energy", "energy.link_energy", "J", "links' largest kinetic energy", "link_kinetic_energy_J"),
+    Q("link_weight", "energy.link_weight", "J", "range of the links' potential energy", "link_weight_J"),
+    Q("arm_energy", "energy.arm_energy", "J", "arms' largest kinetic energy", "arm_kinetic_energy_J"),
+    Q("effort_peak_force", "effort_peak_force", "N", "least peak effort, hand + arms", "effort_peak_force_N"),
+)  # fmt: skip
+del Q
+BY_NAME = {q.name: q for q in CATALOGUE}
+
+
+def values(evaluation, quantity: Quantity) -> np.ndarray:
+    """The quantity's values over the evaluation's designs, in the unit shown (NaN where it has no
+    value: a stage that did not run, or a group such as the energy model that is absent)."""
+    n = len(evaluation)
+    x = evaluation
+    for part in quantity.source.split("."):
+        x = getattr(x, part, None)
+        if x is None:
+            return np.full(n, np.nan)
+    return np.broadcast_to(np.asarray(x, float), (n,)) * quantity.scale
+
+
+def json_items(evaluation, i: int = 0) -> dict[str, float]:
+    """Design ``i``'s quantities that force's JSON holds, by key, in the unit shown (NaN kept)."""
+    return {q.json: float(values(evaluation, q)[i]) for q in CATALOGUE if q.json is not None}
+
+
+def columns(evaluation) -> dict[str, np.ndarray]:
+    """The batch's numeric columns of the evaluation's designs, by column, in the units shown."""
+    return {q.column: values(evaluation, q) for q in CATALOGUE if q.column is not None}
+
+
+def lines(evaluation, i: int = 0) -> list[tuple[Quantity, float]]:
+    """Design ``i``'s quantities printed on lines of their own, with their values (the known ones)."""
+    out = []
+    for q in CATALOGUE:
+        if q.line:
+            v = float(values(evaluation, q)[i])
+            if np.isfinite(v):
+                out.append((q, v))
+    return out
