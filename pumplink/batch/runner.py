@@ -15,19 +15,29 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.evaluate import REPORTED, PistonEvaluation, Water, evaluate, piston_designs, pump_designs
+from pumplink.evaluate import (
+    DYNAMICS,
+    FAIL,
+    FLYWHEEL,
+    MODEL_LABELS,
+    ORDER,
+    QUASI_STATIC,
+    REPORTED,
+    WARN,
+    Evaluation,
+    PistonEvaluation,
+    Verdict,
+    evaluate,
+    piston_designs,
+    pump_designs,
+)
 from pumplink.inputs.batch import CRANK_SLIDER, FOUR_BAR, Batch, axis_indices
 from pumplink.mechanisms import crank_slider as cs
 from pumplink.mechanisms.fourbar import infeasibility_reason
-from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
-from pumplink.verdict import FAIL, WARN, Verdict
 
 #: The ``model`` column's words for the models a batch variant can be decided by.
-FLYWHEEL_LABEL = MODELS[FLYWHEEL].label
-QUASI_STATIC_LABEL = MODELS[QUASI_STATIC].label
-DYNAMICS_LABEL = MODELS[DYNAMICS].label
-#: The labels by model index (:data:`pumplink.models.ORDER`).
-MODEL_LABELS = tuple(MODELS[k].label for k in ORDER)
+FLYWHEEL_LABEL, QUASI_STATIC_LABEL, DYNAMICS_LABEL = (MODEL_LABELS[ORDER.index(k)] for k in
+                                                      (FLYWHEEL, QUASI_STATIC, DYNAMICS))  # fmt: skip
 #: Most designs per chunk (rows handed to the writer at once, one task for a worker process).
 CHUNK_DESIGNS = 8192
 
@@ -80,64 +90,82 @@ class _Judged:
         return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Chunk(_Judged):
-    """Results for variants ``start..stop-1`` of one batch (arrays over those variants, SI units).
+    """Results for variants ``start..stop-1`` of one batch: a view of the one evaluation over
+    those variants (``evaluation``, arrays over them, SI units) with what a batch adds: the varied
+    values and the infeasibility sentences (``reason``: None where feasible).
 
-    ``reason`` holds the infeasibility sentence (None when feasible); the checks follow
-    :func:`pumplink.verdict.assess`, as for ``pumplink force``: ``mean_ok`` = mean <= limit,
-    ``peak_ok`` = verdict peak <= limit (False when it is NaN), ``passed`` = feasible and both.
-    The verdict peak (:attr:`verdict_peak_force`) is ``least_peak_force`` where ``flywheel`` (an
-    energy model decides: the flywheel or full dynamics, ``model_index``), else
-    ``dead_band_peak_force``.  The energy-model columns are NaN for quasi-static variants, and
-    ``least_peak_force`` / ``min_passing_speed`` also for infeasible ones; ``min_passing_speed``
-    only for the flywheel (with full dynamics faster is not always easier: ``pumplink speed``).
+    The checks follow :func:`pumplink.verdict.assess`, as for ``pumplink force``: ``mean_ok`` =
+    mean <= limit, ``peak_ok`` = verdict peak <= limit (False when it is NaN), ``passed`` = no check
+    fails.  The numbers per variant are those of ``pumplink force --summary`` on the variant.
     """
 
     batch: int  # index of the batch in the run
     start: int
     stop: int
     values: np.ndarray  # (n, axes) varied values
-    frame_length: np.ndarray
-    crank_length: np.ndarray
-    coupler_length: np.ndarray
-    feasible: np.ndarray
     reason: list
-    time_ratio: np.ndarray
-    transmission_min: np.ndarray  # [rad]
-    transmission_max: np.ndarray  # [rad]
-    mean_force: np.ndarray  # [N]
-    dead_band_peak_force: np.ndarray  # exact windowed peak [N]
-    sampled_peak: np.ndarray  # peak over the uniform --samples sweep outside the dead bands [N]
-    power: np.ndarray  # [W]
-    force_limit: np.ndarray  # [N]
-    mean_ok: np.ndarray
-    peak_ok: np.ndarray
-    passed: np.ndarray
-    flywheel: np.ndarray  # True: an energy model decides (flywheel or full dynamics: model_index)
-    inertia: np.ndarray  # J [kg m^2]
-    speed_fluctuation: np.ndarray  # delta_allow [-]
-    least_peak_force: np.ndarray  # least peak force with the flywheel [N] (inf: no energy band)
-    min_passing_speed: np.ndarray  # [rad/s] (inf: no speed passes)
-    grip_speed: np.ndarray | None = None  # peak grip speed at the wheel's top speed [m/s]
-    stroke: np.ndarray | None = None  # horizontal grip stroke [m]
-    verdict: Verdict | None = None  # every check, per variant (:func:`pumplink.verdict.assess`)
-    model_index: np.ndarray | None = None  # 0 quasi-static, 1 flywheel, 2 full dynamics (models.ORDER)
-    peak_force: np.ndarray | None = None  # the peak force that decides the verdict [N]
-    water: Water | None = None  # the water each variant delivers (pumplink.evaluate.Water)
+    evaluation: Evaluation
 
     mechanism = FOUR_BAR
 
     @property
-    def model(self) -> list[str]:
-        """The words of the model that decided each variant (``model`` column)."""
-        index = np.zeros(len(self), int) if self.model_index is None else self.model_index
-        return [MODEL_LABELS[i] for i in index.tolist()]
+    def feasible(self) -> np.ndarray:
+        return self.evaluation.feasible
+
+    @property
+    def verdict(self) -> Verdict:
+        """Every check, per variant (:func:`pumplink.verdict.assess`)."""
+        return self.evaluation.verdict
+
+    @property
+    def mean_ok(self) -> np.ndarray:
+        return np.asarray(self.verdict["mean_force"].passed)
+
+    @property
+    def peak_ok(self) -> np.ndarray:
+        return np.asarray(self.verdict["peak_force"].passed)
+
+    @property
+    def passed(self) -> np.ndarray:
+        return np.asarray(self.verdict.passed)
+
+    @property
+    def mean_force(self) -> np.ndarray:
+        return self.evaluation.mean_force
 
     @property
     def verdict_peak_force(self) -> np.ndarray:
-        """The peak force that decides the verdict [N] (:attr:`pumplink.evaluate.Evaluation.peak_force`)."""
-        return self.peak_force
+        """The peak force that decides the verdict [N]."""
+        return self.evaluation.peak_force
+
+    @property
+    def least_peak_force(self) -> np.ndarray:
+        return self.evaluation.least_peak_force
+
+    @property
+    def flywheel(self) -> np.ndarray:
+        """True where an energy model (the flywheel or full dynamics) decides."""
+        return self.evaluation.energy_decides
+
+    @property
+    def model(self) -> list[str]:
+        """The words of the model that decided each variant (``model`` column)."""
+        return [MODEL_LABELS[i] for i in self.evaluation.model_index.tolist()]
+
+    @property
+    def force_limit(self) -> np.ndarray:
+        return np.broadcast_to(np.asarray(self.evaluation.designs.force_limit, float), (len(self),))
+
+    @property
+    def inertia(self) -> np.ndarray:
+        return self.evaluation.inertia
+
+    @property
+    def speed_fluctuation(self) -> np.ndarray:
+        """δ where the variant gives the wheel's inertia (NaN elsewhere)."""
+        return self.evaluation.energy_speed_fluctuation
 
 
 @dataclass(frozen=True)
@@ -251,56 +279,19 @@ def evaluate_chunk(
         return _piston_chunk(batch, start, stop, batch_index, values, value)
     designs = pump_designs(value)
     ev = evaluate(designs, (*REPORTED, "sampled_peak"), model=model, samples=samples)
-
-    def column(x):
-        return np.broadcast_to(np.asarray(x, float), (n,))
-
-    syn, verdict, feasible = ev.synthesis, ev.verdict, ev.feasible
-    j = column(designs.inertia)
     reasons: list = [None] * n
-    bad = np.nonzero(~feasible)[0]
+    bad = np.nonzero(~ev.feasible)[0]
     if bad.size:
         cache: dict = {}
-        codes = np.asarray(syn.reason)
-        L1, D1, b, swing = (column(v) for v in (designs.L1, designs.D1, designs.b, designs.swing))
+        codes = np.asarray(ev.synthesis.reason)
+        L1, D1, b, swing = (np.broadcast_to(np.asarray(v, float), (n,)) for v in
+                            (designs.L1, designs.D1, designs.b, designs.swing))  # fmt: skip
         for i in bad.tolist():
             k = (int(codes[i]), float(L1[i]), float(D1[i]), float(b[i]), float(swing[i]))
             if k not in cache:
                 cache[k] = infeasibility_reason(*k)
             reasons[i] = cache[k]
-    return Chunk(
-        batch_index,
-        start,
-        stop,
-        values,
-        np.asarray(syn.frame_length),
-        np.asarray(syn.crank_length),
-        np.asarray(syn.coupler_length),
-        feasible,
-        reasons,
-        np.asarray(syn.time_ratio),
-        np.asarray(syn.transmission_min),
-        np.asarray(syn.transmission_max),
-        ev.mean_force,
-        ev.dead_band_peak_force,
-        ev.sampled_peak,
-        ev.power,
-        column(designs.force_limit),
-        verdict["mean_force"].passed,
-        verdict["peak_force"].passed,
-        verdict.passed,
-        flywheel=ev.energy_decides,
-        inertia=j,
-        speed_fluctuation=np.where(np.isnan(j), np.nan, column(designs.speed_fluctuation)),
-        least_peak_force=ev.least_peak_force,
-        min_passing_speed=ev.min_passing_speed,
-        grip_speed=ev.grip_speed,
-        stroke=ev.stroke,
-        verdict=verdict,
-        model_index=ev.model_index,
-        peak_force=ev.peak_force,
-        water=ev.water,
-    )
+    return Chunk(batch=batch_index, start=start, stop=stop, values=values, reason=reasons, evaluation=ev)
 
 
 #: The piston spec's keys a batch row shows, per variant (spec units).

@@ -27,7 +27,9 @@ from pumplink.constants import MODEL_WORDS
 from pumplink.errors import escape_control
 from pumplink.output.formats import atomic_write
 from pumplink.output.piston import BATCH_COLUMNS, batch_csv, batch_json, batch_rows
-from pumplink.output.words import CHECK_LABELS, L_PER_MIN
+from pumplink.output.words import CHECK_LABELS
+from pumplink.quantities import CATALOGUE
+from pumplink.quantities import columns as quantity_columns
 
 if TYPE_CHECKING:
     from pumplink.batch.runner import Chunk
@@ -38,16 +40,6 @@ FLYWHEEL, QUASI_STATIC = MODEL_WORDS["flywheel"], MODEL_WORDS["quasi-static"]
 #: The words of the energy models, which decide where a variant gives inertia.
 ENERGY_WORDS = (FLYWHEEL, MODEL_WORDS["dynamics"])
 
-#: Per-variant columns after the name, the source and the varied keys (CSV order).  The
-#: flywheel scene's columns are named as in ``pumplink force --format json``
-#: (``pumplink.output.force.force_summary``); empty (null) for quasi-static variants.
-SCENE_COLUMNS = (
-    "model",
-    "inertia_kg_m2",
-    "speed_fluctuation",
-    "least_peak_force_N",
-    "min_passing_speed_deg_s",
-)
 #: The verdict's checks (``pumplink.verdict``), one column each: pass, warn, fail, or empty where
 #: the check does not apply to the variant (``check_<key>``).
 CHECK_KEYS = (
@@ -65,28 +57,14 @@ CHECK_KEYS = (
     "crank_fatigue",
 )
 CHECK_COLUMNS = tuple(f"check_{k}" for k in CHECK_KEYS)
-#: The water each variant delivers (empty where the spec gives a rope force, not a head and a
-#: pipe): as in ``pumplink force --format json`` (``pumplink.output.words.water_row``).
-WATER_COLUMNS = ("flow_l_min", "water_power_W", "pump_efficiency", "flow_share", "people_served")
+#: The numeric columns: the catalogue's batch columns (:data:`pumplink.quantities.CATALOGUE`), named
+#: as in ``pumplink force --format json`` where both hold a quantity.
+NUMBER_COLUMNS = tuple(q.column for q in CATALOGUE if q.column is not None)
+#: The text and boolean columns that follow a numeric one in the CSV (the rest come last).
+_TEXT_AFTER = {"coupler_length": ("feasible", "reason"), "force_limit_N": ("model",)}
+#: Per-variant columns after the name, the source and the varied keys (CSV order).
 FIXED_COLUMNS = (
-    "frame_length",
-    "crank_length",
-    "coupler_length",
-    "feasible",
-    "reason",
-    "time_ratio",
-    "transmission_min_deg",
-    "transmission_max_deg",
-    "mean_force_N",
-    "peak_force_N",
-    "dead_band_peak_force_N",
-    "sampled_peak_force_N",
-    "power_W",
-    *WATER_COLUMNS,
-    "grip_speed_m_s",
-    "stroke_m",
-    "force_limit_N",
-    *SCENE_COLUMNS,
+    *(c for col in NUMBER_COLUMNS for c in (col, *_TEXT_AFTER.get(col, ()))),
     "verdict",
     "pass",
     "failed",
@@ -175,53 +153,15 @@ def _models(c: Chunk) -> list[str]:
     return c.model
 
 
-#: Numeric columns only the energy models fill (empty where the quasi-static model decided).
-ENERGY_COLUMNS = ("inertia_kg_m2", "speed_fluctuation", "least_peak_force_N", "min_passing_speed_deg_s")
-
-
-def _water_columns(c: Chunk) -> dict[str, np.ndarray]:
-    """:data:`WATER_COLUMNS` of a chunk (NaN throughout when it has no water figures)."""
-    w = c.water
-    if w is None:
-        nan = np.full(len(c), np.nan)
-        return dict.fromkeys(WATER_COLUMNS, nan)
-    return dict(
-        zip(WATER_COLUMNS, (w.flow * L_PER_MIN, w.water_power, w.efficiency, w.share, w.people), strict=True)
-    )
-
-
 def _number_columns(c: Chunk) -> dict[str, np.ndarray]:
-    """The chunk's numeric columns by output name [SI units, angles in degrees], in output order
-    up to ``force_limit_N``, then :data:`ENERGY_COLUMNS`: the one table the JSON, CSV and Parquet
-    writers convert."""
-    return {
-        "frame_length": c.frame_length,
-        "crank_length": c.crank_length,
-        "coupler_length": c.coupler_length,
-        "time_ratio": c.time_ratio,
-        "transmission_min_deg": np.degrees(c.transmission_min),
-        "transmission_max_deg": np.degrees(c.transmission_max),
-        "mean_force_N": c.mean_force,
-        "peak_force_N": c.verdict_peak_force,
-        "dead_band_peak_force_N": c.dead_band_peak_force,
-        "sampled_peak_force_N": c.sampled_peak,
-        "power_W": c.power,
-        **_water_columns(c),
-        "grip_speed_m_s": c.grip_speed,
-        "stroke_m": c.stroke,
-        "force_limit_N": c.force_limit,
-        "inertia_kg_m2": c.inertia,
-        "speed_fluctuation": c.speed_fluctuation,
-        "least_peak_force_N": c.least_peak_force,
-        "min_passing_speed_deg_s": np.degrees(c.min_passing_speed),
-    }
+    """The chunk's numeric columns by name (:data:`NUMBER_COLUMNS`), in the units shown: the one
+    table the JSON, CSV and Parquet writers convert."""
+    return quantity_columns(c.evaluation)
 
 
-def chunk_columns(batch: Batch, c: Chunk) -> dict[str, list]:
-    """The chunk's rows as columns of JSON-safe values (NaN -> None; angles in degrees)."""
+def _text_columns(c: Chunk) -> dict[str, list]:
+    """The chunk's text and boolean columns by name (those of :data:`FIXED_COLUMNS` not numeric)."""
     return {
-        "name": batch.names(c.start, c.stop),
-        **{k: _floats(v) for k, v in _number_columns(c).items()},
         "feasible": c.feasible.tolist(),
         "reason": c.reason,
         "model": _models(c),
@@ -230,6 +170,15 @@ def chunk_columns(batch: Batch, c: Chunk) -> dict[str, list]:
         "failed": _failed_text(c),
         "warnings": _listed(c, 1),
         **_check_results(c),
+    }
+
+
+def chunk_columns(batch: Batch, c: Chunk) -> dict[str, list]:
+    """The chunk's rows as columns of JSON-safe values (NaN -> None; angles in degrees)."""
+    return {
+        "name": batch.names(c.start, c.stop),
+        **{k: _floats(v) for k, v in _number_columns(c).items()},
+        **_text_columns(c),
     }
 
 
@@ -283,38 +232,13 @@ def csv_text(batch: Batch, c: Chunk, vkeys: Sequence[str]) -> str:
         cols.append(_csv_floats(c.values[:, batch.keys.index(k)]) if k in batch.keys else [""] * n)
     bools = {True: "True", False: "False"}
     cache: dict = {None: ""}
-    reason = [cache[r] if r in cache else cache.setdefault(r, _csv_cell(r)) for r in c.reason]
-    cols += [
-        _csv_floats(c.frame_length),
-        _csv_floats(c.crank_length),
-        _csv_floats(c.coupler_length),
-        [bools[x] for x in c.feasible.tolist()],
-        reason,
-        _csv_floats(c.time_ratio),
-        _csv_floats(np.degrees(c.transmission_min)),
-        _csv_floats(np.degrees(c.transmission_max)),
-        _csv_floats(c.mean_force),
-        _csv_floats(c.verdict_peak_force),
-        _csv_floats(c.dead_band_peak_force),
-        _csv_floats(c.sampled_peak),
-        _csv_floats(c.power),
-        *(_csv_floats(v) for v in _water_columns(c).values()),
-        _csv_floats(c.grip_speed),
-        _csv_floats(c.stroke),
-        _csv_floats(c.force_limit),
-    ]
-    if c.flywheel.any():
-        cols += [
-            [_csv_cell(m) for m in _models(c)],
-            _csv_floats(c.inertia),
-            _csv_floats(c.speed_fluctuation),
-            _csv_floats(c.least_peak_force),
-            _csv_floats(np.degrees(c.min_passing_speed)),
-        ]
-    else:  # quasi-static only: no scene columns to format
-        cols += [[_csv_cell(QUASI_STATIC)] * n] + [[""] * n] * 4
-    cols += [[_csv_cell(o) for o in _outcomes(c)], [bools[x] for x in c.passed.tolist()], _failed_text(c)]
-    cols += [_listed(c, 1), *_check_results(c).values()]
+    numbers, text = _number_columns(c), _text_columns(c)
+    text["reason"] = [cache[r] if r in cache else cache.setdefault(r, _csv_cell(r)) for r in c.reason]
+    for col in ("feasible", "pass"):
+        text[col] = [bools[x] for x in text[col]]
+    for col in ("model", "verdict"):
+        text[col] = [_csv_cell(x) for x in text[col]]
+    cols += [_csv_floats(numbers[k]) if k in numbers else text[k] for k in FIXED_COLUMNS]
     return "".join(line + "\n" for line in map(",".join, zip(*cols)))
 
 
@@ -400,23 +324,10 @@ def parquet_table(batch: Batch, c: Chunk, vkeys: Sequence[str]):
     }
     for k in vkeys:
         cols[k] = num(c.values[:, batch.keys.index(k)]) if k in batch.keys else pa.nulls(n, pa.float64())
-    fly = c.flywheel.any()
-    none = np.full(n, np.nan)
-    cols.update(
-        {k: num(v if fly or k not in ENERGY_COLUMNS else none) for k, v in _number_columns(c).items()}
-    )
-    cols.update(
-        {
-            "feasible": pa.array(c.feasible, pa.bool_()),
-            "reason": text(c.reason),
-            "model": text(_models(c)),
-            "verdict": text(_outcomes(c)),
-            "pass": pa.array(c.passed, pa.bool_()),
-            "failed": text(_failed_text(c), empty_is_null=False),
-            "warnings": text(_listed(c, 1), empty_is_null=False),
-            **{k: text(v) for k, v in _check_results(c).items()},
-        }
-    )
+    cols.update({k: num(v) for k, v in _number_columns(c).items()})
+    for k, v in _text_columns(c).items():
+        bools, listed = k in PARQUET_BOOLS, k in ("failed", "warnings")
+        cols[k] = pa.array(v, pa.bool_()) if bools else text(v, empty_is_null=not listed)
     schema = parquet_schema(vkeys)
     return pa.Table.from_arrays([cols[f.name] for f in schema], schema=schema)
 
