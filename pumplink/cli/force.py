@@ -194,7 +194,7 @@ def force(
 
         released = release(result)
         extra["release"] = release_row(released)
-    advice = suggest(s, result) if result.design.feasible else []
+    advice = suggest(result) if result.design.feasible else []
     render_force(result, fmt.value, summary=summary, extra=extra, strict=strict, advice=advice)
     if fmt.value != "json":  # the reports follow the table; with CSV on stdout they go to stderr
         from pumplink.output.force import render_explain, render_verify

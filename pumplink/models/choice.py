@@ -34,10 +34,11 @@ class EnergyModel:
     arms_in_verdict: np.ndarray | bool
     peak_force: np.ndarray | float
     forced: bool = False  # the model was asked for (--model), not chosen
+    least: np.ndarray | int | None = None  # the least model that is enough (``index`` when not forced)
 
     def design(self, i: int) -> EnergyModel:
         """The choice for design ``i`` alone (floats), from a choice over designs."""
-        index, band, link, weight, arm, arms, peak = (
+        index, band, link, weight, arm, arms, peak, least = (
             np.asarray(getattr(self, k))[i]
             for k in (
                 "index",
@@ -47,6 +48,7 @@ class EnergyModel:
                 "arm_energy",
                 "arms_in_verdict",
                 "peak_force",
+                "least",
             )
         )
         return EnergyModel(
@@ -58,6 +60,7 @@ class EnergyModel:
             bool(arms),
             float(peak),
             self.forced,
+            int(least),
         )
 
     @property
@@ -110,7 +113,8 @@ def energy_model(
     arms, todo = arms.astype(bool), todo.astype(bool)
     band = _fw.energy_band(j, w, delta)
     link, weight, arm = _dy.effect_sizes(four, _dy.Masses(mc, mh, ma), w, rocker_rate=rocker_rate)
-    index = np.asarray(model_index(j, band, link, weight, arm, arms, forced))
+    least = np.asarray(model_index(j, band, link, weight, arm, arms))
+    index = least if forced is None else np.asarray(model_index(j, band, link, weight, arm, arms, forced))
     peak = np.full(j.shape, np.nan)
     for key in (FLYWHEEL, DYNAMICS):
         r = np.nonzero((index == ORDER.index(key)) & todo)[0]
@@ -121,4 +125,5 @@ def energy_model(
     out = (index, band, link, weight, arm, arms, peak)
     if scalar:
         out = (int(index[0]), *(float(v[0]) for v in out[1:5]), bool(arms[0]), float(peak[0]))
-    return EnergyModel(*out, forced=forced is not None)
+        least = int(least[0])
+    return EnergyModel(*out, forced=forced is not None, least=least)

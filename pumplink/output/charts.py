@@ -223,19 +223,21 @@ def speed_chart(sweep, path) -> Path:
     fig, ax = plt.subplots(figsize=(9, 6.2), layout="constrained")
     limit = sweep.force_limit
     cad = sweep.cadence
-    if cad is not None and np.isfinite(cad.passing[0]):
-        lo, hi = np.degrees(cad.passing[0]), min(np.degrees(cad.passing[1]), v.max())
+    for band in () if cad is None else cad.bands:
+        lo, hi = max(np.degrees(band[0]), v.min()), min(np.degrees(band[1]), v.max())
+        if lo >= hi:
+            continue
         ax.axvspan(lo, hi, color="tab:green", alpha=0.13, lw=0)
         ax.text(
             0.5 * (lo + hi), 0.02, "passes\nevery check", transform=ax.get_xaxis_transform(),
             ha="center", va="bottom", fontsize=9, color="darkgreen",
         )  # fmt: skip
-    w75 = np.degrees(sweep.sustained_speed)
+    w75, p75 = np.degrees(sweep.sustained_speed), sweep.sustained_power
     if v.min() < w75 < v.max():
         ax.axvspan(w75, v.max(), color="0.5", alpha=0.10, lw=0)
         ax.axvline(w75, color="0.35", lw=1.4, ls="--")
         ax.text(
-            w75, 0.14, f" 75 W sustained ({w75:.0f} deg/s)\n more power →", rotation=0,
+            w75, 0.14, f" {p75:g} W sustained ({w75:.0f} deg/s)\n more power →", rotation=0,
             transform=ax.get_xaxis_transform(), ha="left", va="center", fontsize=9.5, color="0.2",
             bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="0.35"),
         )  # fmt: skip

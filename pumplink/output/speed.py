@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import sys
+import textwrap
 from typing import TYPE_CHECKING, Any
 
 from pumplink.output.formats import console, deg, num, render
@@ -68,6 +69,8 @@ def cadence_row(c) -> dict[str, Any]:
     return {
         "speed_deg_s": deg(c.speed),
         "rpm": num(math.degrees(c.speed) / 6.0),
+        "passing_bands_deg_s": [rng(b) for b in c.bands],
+        "passing_without_warnings_deg_s": [rng(b) for b in c.clean_bands],
         "effort_peak_force_N": num(c.effort),
         "hand_peak_force_N": num(c.hand_force),
         "power_W": num(c.power),
@@ -79,28 +82,50 @@ def cadence_row(c) -> dict[str, Any]:
     }
 
 
-def cadence_lines(c, force_limit: float) -> list[str]:
-    """The best cadence and the passing speeds in words (plain text, each under 80 columns)."""
-    rpm = math.degrees(c.speed) / 6.0
-    edge = " (the edge of the speeds searched)" if c.at_edge else ""
-    lines = [
-        f"best cadence: {math.degrees(c.speed):.0f} deg/s ({rpm:.0f} rpm){edge}, where the peak effort",
-        f"  (hand force + the operator's arms) is least, {c.effort:.1f} N (hand force {c.hand_force:.1f} N),",
-        f"  at {c.power:.0f} W",
-    ]
+def passing_words(bands, searched) -> str:
+    """Intervals of mean speed [rad/s] in words ('from 498 to 856 deg/s'), saying where one runs
+    on to the edge of the speeds ``searched``."""
+    lo_s, hi_s = (math.degrees(v) for v in searched)
 
     def span(pair):
         lo, hi = (math.degrees(v) for v in pair)
-        top = "up" if not math.isfinite(hi) or hi >= math.degrees(c.searched[1]) * (1 - 1e-9) else f"{hi:.0f}"
-        return f"from {lo:.0f} deg/s" + (" up" if top == "up" else f" to {top} deg/s")
+        low, high = lo <= lo_s * (1 + 1e-9), hi >= hi_s * (1 - 1e-9)
+        if low and high:
+            return f"every speed searched ({lo:.0f} to {hi:.0f} deg/s)"
+        if low:
+            return f"up to {hi:.0f} deg/s (searched from {lo:.0f})"
+        if high:
+            return f"from {lo:.0f} deg/s up (searched to {hi:.0f})"
+        return f"from {lo:.0f} to {hi:.0f} deg/s"
 
+    return " and ".join(span(b) for b in bands)
+
+
+def cadence_lines(c, force_limit: float) -> list[str]:
+    """The best cadence and the passing speeds in words (plain text, each under 80 columns)."""
+    lines = []
+    if math.isfinite(c.speed):
+        rpm = math.degrees(c.speed) / 6.0
+        edge = " (the edge of the speeds searched)" if c.at_edge else ""
+        how = "pass without a warning" if c.clean_bands else "pass"
+        text = (
+            f"best cadence: {math.degrees(c.speed):.0f} deg/s ({rpm:.0f} rpm){edge} at {c.power:.0f} W: of "
+            f"the speeds that {how}, the one with the least peak effort (hand force + the operator's "
+            f"arms), {c.effort:.1f} N (hand force {c.hand_force:.1f} N)"
+        )
+        lines += textwrap.wrap(text, 79, subsequent_indent="  ", break_on_hyphens=False)
     what = MODEL_WORDS[c.model]
     if math.isfinite(c.force_range[0]):
-        lines.append(f"peak force ({what}) within {force_limit:g} N: {span(c.force_range)}")
+        lines.append(
+            f"peak force ({what}) within {force_limit:g} N: {passing_words([c.force_range], c.searched)}"
+        )
     else:
-        lines.append(f"peak force ({what}) above {force_limit:g} N at every speed")
-    if math.isfinite(c.passing[0]):
-        lines.append(f"no check fails (force, power, grip speed): {span(c.passing)}")
+        lines.append(f"peak force ({what}) above {force_limit:g} N at every speed searched")
+    if c.bands:
+        lines.append(f"every check passes: {passing_words(c.bands, c.searched)}")
+        if c.clean_bands != c.bands:
+            clean = passing_words(c.clean_bands, c.searched) if c.clean_bands else "at no speed"
+            lines.append(f"  without a warning: {clean}")
     else:
         lines.append("no speed passes every check (see the checks that fail)")
     return lines

@@ -1,14 +1,16 @@
-"""Advice after a FAIL: the one or two single changes to a spec that help most, each
-re-evaluated by the same route as ``pumplink force``."""
+"""Advice after a FAIL: the one or two single changes to a spec that help most, all judged in
+one call of the one evaluation at the verdict's own speed, model and operator profile."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from pumplink.errors import InfeasibleDesign, SpecError
-from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict
-from pumplink.studies.force import ForceResult, force_analysis
-from pumplink.verdict import excess
+import numpy as np
+
+from pumplink.errors import SpecError
+from pumplink.evaluate import JUDGED, evaluate, excess, pump_designs
+from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
+from pumplink.studies.force import ForceResult
 
 
 @dataclass(frozen=True)
@@ -42,48 +44,61 @@ KNOBS = (
 )
 
 
-def suggest(spec: PumpSpec, result: ForceResult, count: int = 2) -> list[Suggestion]:
+def _candidates(spec: PumpSpec, speed_deg: float):
+    """Each single change of :data:`KNOBS` that the spec has and that makes a valid spec:
+    (key, unit, old, new, the changed spec), the speed's change from ``speed_deg`` [deg/s]."""
+    out = []
+    for key, unit, (kind, *steps) in KNOBS:
+        table, field = key.split(".")
+        data = spec_to_dict(spec)
+        old = speed_deg if key == "operator.speed" else data.get(table, {}).get(field)
+        if old is None:
+            continue
+        for step in steps:
+            new = float(f"{(old * step if kind == 'x' else old + step):.4g}")
+            data[table][field] = new
+            try:
+                out.append((key, unit, float(old), new, parse_spec(data)))
+            except SpecError:
+                continue
+    return out
+
+
+def suggest(result: ForceResult, count: int = 2) -> list[Suggestion]:
     """The ``count`` single changes to the spec that help a failing design most.
 
-    Each knob of :data:`KNOBS` that the spec has is changed alone, the design is analysed again
-    (the same model and checks as ``pumplink force``), and the changes are ranked by the
+    Each knob of :data:`KNOBS` that the spec has is changed alone, and every change is judged in
+    one call of the one evaluation at the verdict's own speed, model and operator profile (what
+    ``pumplink force --speed --model`` says of the changed spec).  The changes are ranked by the
     verdict they give, then by how far the failing checks remain beyond their limits (the sum of
     relative excesses).  Only changes that improve on the spec are returned, at most one per key.
     Empty for a design that does not fail.
     """
     if result.verdict is None or result.passed:
         return []
+    spec, speed = result.design.spec, result.speed_deg_s
+    found = _candidates(spec, speed)
+    if not found:
+        return []
+    changed = {key for key, *_ in found}
+    values = [spec_values(s) for *_, s in found]
+
+    def value(key: str):
+        return np.array([v(key) for v in values], float) if key in changed else spec_values(spec)(key)
+
+    speeds = np.array([new if key == "operator.speed" else speed for key, _, _, new, _ in found])
+    forced = None if result.effects is None or not result.effects.forced else result.model_key
+    ev = evaluate(pump_designs(value, speeds), JUDGED, model=forced)
     base = (int(result.verdict.level), excess(result.verdict))
-    found: dict[str, Suggestion] = {}
-    for key, unit, (kind, *steps) in KNOBS:
-        table, field = key.split(".")
-        data = spec_to_dict(spec)
-        old = data.get(table, {}).get(field)
-        if old is None:
+    best: dict[str, Suggestion] = {}
+    for i, (key, unit, old, new, _) in enumerate(found):
+        if not ev.feasible[i]:
             continue
-        for step in steps:
-            new = old * step if kind == "x" else old + step
-            new = float(f"{new:.4g}")
-            data[table][field] = new
-            try:
-                r = force_analysis(parse_spec(data), keep_samples=False, samples=0)
-            except (SpecError, InfeasibleDesign):
-                continue
-            if r.verdict is None:
-                continue
-            s = Suggestion(
-                key,
-                float(old),
-                new,
-                unit,
-                r.verdict_peak_force,
-                r.outcome,
-                int(r.verdict.level),
-                excess(r.verdict),
-                tuple(c.key for c in r.verdict.failures),
-            )
-            if (s.level, s.excess) < base and (
-                key not in found or (s.level, s.excess) < (found[key].level, found[key].excess)
-            ):
-                found[key] = s
-    return sorted(found.values(), key=lambda s: (s.level, s.excess))[:count]
+        v = ev.verdict.design(i)
+        s = Suggestion(key, old, new, unit, float(ev.peak_force[i]), v.outcome, int(v.level), excess(v),
+                       tuple(c.key for c in v.failures))  # fmt: skip
+        if (s.level, s.excess) < base and (
+            key not in best or (s.level, s.excess) < (best[key].level, best[key].excess)
+        ):
+            best[key] = s
+    return sorted(best.values(), key=lambda s: (s.level, s.excess))[:count]

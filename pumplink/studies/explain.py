@@ -9,9 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pumplink.constants import LINK_ENERGY_LIMIT, SUSTAINED_POWER_W
-from pumplink.evaluate import motion
-from pumplink.models import FLYWHEEL, ORDER, model_index
+from pumplink.constants import LINK_ENERGY_LIMIT
+from pumplink.evaluate import FLYWHEEL, ORDER, motion
 from pumplink.studies.force import ForceResult
 
 
@@ -26,6 +25,10 @@ class Effect:
     compared_with: str  # what the ratio measures the value against, in words ('of the force limit')
     ratio: float  # value / that reference [-] (NaN when there is none)
     note: str
+
+
+#: The flywheel's index in :data:`pumplink.evaluate.ORDER`.
+FLYWHEEL_INDEX = ORDER.index(FLYWHEEL)
 
 
 def _ratio(a: float, b: float) -> float:
@@ -52,6 +55,10 @@ def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
     else:
         sizes = (em.link_energy, em.link_weight, em.arm_energy)
     link, weight, arm = sizes
+    designs = r.evaluation.designs  # the operator profile's limits, as the verdict's
+    sustained, hour = (
+        float(np.asarray(v, float).ravel()[0]) for v in (designs.sustained_power, designs.hour_power)
+    )
     effects = [
         Effect(
             "load torque Mw = Fw rw (pump efficiency in Fw)",
@@ -132,9 +139,9 @@ def explain(r: ForceResult) -> tuple[tuple[Effect, ...], str]:
             True,
             r.power,
             "W",
-            "of 75 W sustained for hours",
-            r.power / SUSTAINED_POWER_W,
-            "a person gives 50-150 W for an hour (docs/physics.md §5)",
+            f"of the {sustained:g} W {r.profile} sustain for hours",
+            r.power / sustained,
+            f"the {r.profile} profile's limit for about an hour is {hour:g} W (docs/operators.md)",
         ),
     ]
     return tuple(effects), _why(r, link, weight, arm, ref)
@@ -165,7 +172,7 @@ def _why(r: ForceResult, link: float, weight: float, arm: float, band: float) ->
         f"{band:.3g} J and their weight {_share(weight, band)}"
         + (f", the arms (in the verdict) {_share(arm, band)}" if op.arms_in_verdict else "")
     )
-    small = model_index(r.inertia, band, link, weight, arm, bool(op.arms_in_verdict)) == ORDER.index(FLYWHEEL)
+    small = r.effects.least == FLYWHEEL_INDEX  # the least model that is enough is the flywheel
     left_out = "Still left out: joint friction and the operator's posture."
     if r.dynamics:
         effort = (

@@ -1,6 +1,12 @@
 """One design against its wheel speed (``pumplink speed``): the least peak force of each model
-at each mean speed, the verdict at each speed, the best cadence and the speeds that pass
-(docs/models.md §2-3a)."""
+at each mean speed, the verdict at each speed, the speeds at which it passes and the best cadence
+(docs/models.md §2-3a).
+
+The speeds that pass are where the verdict of the one evaluation changes over a grid of mean
+speeds, its edges located to the whole degree per second (the printed edge passes, the next whole
+speed beyond it fails); the best cadence is the passing speed with the least peak effort.  No
+limit is judged here: every check is the evaluation's, with the operator profile's limits.
+"""
 
 from __future__ import annotations
 
@@ -9,31 +15,32 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pumplink.constants import GRIP_SPEED_FAIL_M_S, HOUR_POWER_W, SUSTAINED_POWER_W
 from pumplink.errors import InfeasibleDesign, SpecError
-from pumplink.evaluate import evaluate, motion, pump_designs
+from pumplink.evaluate import DYNAMICS, FLYWHEEL, JUDGED, Evaluation, Verdict, evaluate, motion, pump_designs
 from pumplink.inputs.pump import PumpSpec, spec_values
-from pumplink.models import DYNAMICS, FLYWHEEL, ORDER
-from pumplink.models.load import grip_speed
 from pumplink.studies.force import Design, ForceResult, design, force_analysis
-from pumplink.verdict import Verdict
 
-#: Mean speeds [deg/s] searched for the best cadence and the passing range (10 to 240 rpm).
+#: Mean speeds [deg/s] searched for the best cadence and the passing speeds (10 to 240 rpm), and
+#: the step of the grid on which the verdict's changes are found (each then located to 1 deg/s).
 CADENCE_RANGE_DEG_S = (60.0, 1440.0)
+CADENCE_STEP_DEG_S = 20.0
 
 
 @dataclass(frozen=True)
 class Cadence:
-    """The best cadence of one design and the mean speeds that pass (SI units, radians).
+    """The speeds at which one design passes and its best cadence (SI units, radians).
 
-    ``speed`` is the mean speed with the least peak *effort* (hand force plus accelerating and
-    lifting the operator's own arms, full dynamics, docs/models.md §3a), ``effort`` that least
-    peak effort, ``hand_force`` the hand force there (full dynamics, arms left out) and ``power``
-    Mw w there.  ``force_range`` are the mean speeds where the verdict's peak force (of ``model``,
-    the model that decided at the spec's speed) is within the force limit, ``passing`` those where
-    no check fails (that force, the power, the peak grip speed, and every check that does not
-    depend on speed); (NaN, NaN) when there are none, and an end at the edge of ``searched`` may go on
-    beyond it.
+    ``passing`` are the mean speeds where no check of the verdict fails, ``force_range`` those
+    where its peak-force check passes (each (low, high), (NaN, NaN) when there are none; an end at
+    the edge of ``searched`` may go on beyond it; ``bands``: every passing interval, lowest first;
+    ``clean_bands``: those where it passes without a warning).  Their ends are whole degrees per
+    second at which the verdict passes, the next whole speed outside failing.  ``speed`` is the
+    mean speed with the least peak *effort* (hand force plus accelerating and lifting the
+    operator's own arms, full dynamics, docs/models.md §3a) among those that pass without a
+    warning, else among those that pass (NaN where none passes or the spec gives no inertia),
+    ``effort`` that least peak effort,
+    ``hand_force`` the hand force there and ``power`` Mw ω̄ there.  ``model`` decided at the
+    spec's own speed.
     """
 
     speed: float
@@ -45,108 +52,225 @@ class Cadence:
     model: str
     force_range: tuple[float, float]
     passing: tuple[float, float]
+    bands: tuple[tuple[float, float], ...] = ()
+    clean_bands: tuple[tuple[float, float], ...] = ()
+
+
+def _at_speeds(spec: PumpSpec, speeds_deg, model: str | None):
+    return evaluate(pump_designs(spec_values(spec), np.asarray(speeds_deg, float)), JUDGED, model=model,
+                    screen_parts=True)  # fmt: skip
+
+
+def _tests(ev) -> np.ndarray:
+    """(3, n): where the verdict passes, where it passes without a warning, and where its
+    peak-force check passes."""
+    v = ev.verdict
+    return np.array([np.asarray(v.passed, bool), np.asarray(v.passed_strict(), bool),
+                     np.asarray(v["peak_force"].passed, bool)])  # fmt: skip
+
+
+def _edges(spec: PumpSpec, model, grid: np.ndarray, ok: np.ndarray) -> list[list[int]]:
+    """For each test (a row of ``ok`` on ``grid``), the whole speeds [deg/s] where its result
+    changes: the first whole speed with the new result (bisection between grid points, then the
+    whole speeds of the last bracket, every test and edge in one evaluation a step)."""
+    which, at = np.nonzero(ok[:, :-1] != ok[:, 1:])
+    lo, hi = grid[at].astype(float), grid[at + 1].astype(float)
+    before = ok[which, at]
+    while lo.size and np.max(hi - lo) > 1.0:
+        mid = 0.5 * (lo + hi)
+        same = _tests(_at_speeds(spec, mid, model))[which, np.arange(mid.size)] == before
+        lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
+    span = [np.arange(math.floor(a), math.ceil(b) + 1) for a, b in zip(lo.tolist(), hi.tolist())]
+    out: list[list[int]] = [[] for _ in ok]
+    if span:
+        whole = np.concatenate(span)
+        res = _tests(_at_speeds(spec, whole, model))
+        k = 0
+        for j, (t, s) in enumerate(zip(which.tolist(), span)):
+            r = res[t, k : k + s.size]
+            k += s.size
+            first = int(np.argmax(r != before[j])) if (r != before[j]).any() else s.size - 1
+            out[t].append(int(s[first]))
+    return out
+
+
+def _bands(grid: np.ndarray, ok: np.ndarray, edges: list[int]) -> tuple[tuple[float, float], ...]:
+    """The passing intervals [deg/s] of one test from its result on the grid and its edges."""
+    bands, start = [], grid[0] if ok[0] else None
+    for e in edges:
+        if start is None:
+            start = e
+        else:
+            bands.append((float(start), float(e - 1)))
+            start = None
+    if start is not None:
+        bands.append((float(start), float(grid[-1])))
+    return tuple(bands)
+
+
+def passing_speeds(spec: PumpSpec, model: str | None = None, searched_deg_s=CADENCE_RANGE_DEG_S):
+    """The mean speeds [deg/s] at which the one evaluation's verdict passes, those at which it
+    passes without a warning, and those at which its peak-force check passes: three tuples of
+    (low, high) intervals, each end a whole speed that passes (the next whole speed outside fails,
+    but at the ends of ``searched_deg_s``)."""
+    lo, hi = searched_deg_s
+    grid = np.arange(lo, hi, CADENCE_STEP_DEG_S)
+    grid = np.unique(np.concatenate([grid, [hi], np.clip([spec.operator.speed], lo, hi)]))
+    ok = _tests(_at_speeds(spec, grid, model))
+    edges = _edges(spec, model, grid, ok)
+    # a band narrower than the grid's step is found where another test changes or at the spec's
+    # speed: the whole speeds at every edge found join the grid, and the edges are found again
+    extra = np.setdiff1d(np.clip([e + d for es in edges for e in es for d in (-1, 0)], lo, hi), grid)
+    if extra.size:
+        grid, order = np.unique(np.concatenate([grid, extra]), return_index=True)
+        ok = np.concatenate([ok, _tests(_at_speeds(spec, extra, model))], axis=1)[:, order]
+        edges = _edges(spec, model, grid, ok)
+    return tuple(_bands(grid, ok[t], edges[t]) for t in range(len(ok)))
+
+
+def _widest(bands) -> tuple[float, float]:
+    nan = float("nan")
+    return max(bands, key=lambda b: b[1] - b[0]) if bands else (nan, nan)
 
 
 def cadence(r: ForceResult, searched_deg_s=CADENCE_RANGE_DEG_S) -> Cadence:
-    """The best cadence and the passing mean speeds of the design of ``r`` (a force analysis at the
-    spec's speed, which says which model decides and which checks fail at any speed).
-
-    Raises
-    ------
-    SpecError : the spec gives no inertia (then the force does not depend on speed).
-    """
-    spec = r.design.spec
-    if not spec.gives_inertia:
-        raise SpecError(
-            f"{spec.name}: the best cadence needs the wheel's inertia (the quasi-static force does not "
-            "depend on speed); add wheel.mass [kg] or wheel.inertia [kg m^2] to the spec"
-        )
-    syn, op, mw, j = r.design.synthesis, spec.operator, r.wheel_torque, r.inertia
-    lk, dce, dcf, delta = syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, op.speed_fluctuation
-    lo, hi = (math.radians(v) for v in searched_deg_s)
+    """The speeds at which the design of ``r`` passes and its best cadence (``r``: a force
+    analysis at the spec's speed, with the model asked for, if any)."""
+    spec, ev = r.design.spec, r.evaluation
+    forced = None if r.effects is None or not r.effects.forced else r.model_key
+    passing, clean, force = passing_speeds(spec, forced, searched_deg_s)
     nan = float("nan")
-    ev = r.evaluation
-    with_arms = motion.link_masses_of(ev, arms=True)
-    best, effort = motion.best_speed(lk, dce, dcf, mw, j, with_arms, delta, lo, hi)
-    no_arms = motion.link_masses_of(ev, arms=False)
-    hand = motion.dynamics_peak_force(lk, dce, dcf, mw, j, no_arms, best, delta)
+    best = effort = hand = nan
+    if spec.gives_inertia and passing:  # the least peak effort where it passes (without a warning if it can)
+        syn, lk = motion.at_design(ev)
+        design = (lk, syn.dead_centre_extended, syn.dead_centre_folded, r.wheel_torque, r.inertia)
+        with_arms, no_arms = motion.link_masses_of(ev, arms=True), motion.link_masses_of(ev, arms=False)
+        found = [motion.best_speed(*design, with_arms, r.speed_fluctuation, *np.radians(b))
+                 for b in clean or passing]  # fmt: skip
+        best, effort = min(found, key=lambda f: f[1])
+        hand = motion.dynamics_peak_force(*design, no_arms, best, r.speed_fluctuation)
+    lo, hi = (math.radians(v) for v in searched_deg_s)
     edge = bool(np.isfinite(best) and min(best - lo, hi - best) <= 1e-6 * hi)
-    model = r.model_key
-    if model == DYNAMICS:
-        arms_in = bool(op.arms_in_verdict)
-        judged = motion.link_masses_of(ev)
-        # the verdict's force is least at the best cadence (arms in the verdict) or at its own minimiser
-        at = best if arms_in else motion.best_speed(lk, dce, dcf, mw, j, judged, delta, lo, hi)[0]
-        force = motion.speed_range(lk, dce, dcf, mw, j, judged, delta, r.force_limit, lo, hi, at)
-    elif model == FLYWHEEL:
-        slowest = float(motion.min_passing_speed(lk, dce, dcf, mw, r.force_limit, j, delta))
-        force = (slowest, math.inf) if math.isfinite(slowest) else (nan, nan)
-    else:
-        force = (0.0, math.inf) if r.passed else (nan, nan)
-    # the checks that depend on speed fail above a speed: the power and the peak grip speed
 
-    # the grip speed at a mean speed of 1 rad/s (it grows in proportion)
-    per_speed = grip_speed(
-        float(ev.rocker_rate[0]), 1.0, spec.linkage.handle, delta if model in (FLYWHEEL, DYNAMICS) else None
-    )
-    fastest = min(HOUR_POWER_W / mw, GRIP_SPEED_FAIL_M_S / per_speed)
-    fixed = [c.key for c in r.verdict.failures if c.key not in ("peak_force", "power", "grip_speed")]
-    low, high = force[0], min(force[1], fastest)
-    passing = (float(low), float(high)) if not fixed and low <= high else (nan, nan)
-    return Cadence(best, effort, hand, mw * best, edge, (lo, hi), model, force, passing)
+    def rad(b):
+        return tuple(math.radians(x) for x in b)
+
+    return Cadence(best, effort, hand, r.wheel_torque * best, edge, (lo, hi), r.model_key,
+                   rad(_widest(force)), rad(_widest(passing)), tuple(rad(b) for b in passing),
+                   tuple(rad(b) for b in clean))  # fmt: skip
 
 
 # ----------------------------------------------------------------------------- speed sweep
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class SpeedSweep:
-    """The least peak operator force against mean wheel speed for one design, by model.
+    """The least peak operator force against mean wheel speed for one design, by model: a view of
+    the one evaluation over the given speeds (``evaluation``, arrays over ``speed``) with the
+    chart's curves of each energy model, the force result at the spec's own speed and the cadence.
 
-    Arrays over ``speed`` [rad/s]: ``energy_band`` [J]; ``flywheel_force`` (links neglected),
-    ``dynamics_force`` (full dynamics, the hand force; the arms only where the spec puts them in the
-    verdict) and ``effort_force`` (full dynamics with the arms) [N]; ``model`` the model that decides
-    at each speed (the least that is enough, or the one asked for) and ``least_peak_force`` its
-    force, the verdict's peak [N]; ``power`` [W]; ``passed`` (no check fails at that speed).
-    :meth:`spec_speed_passes`: the verdict at the spec's own speed (what ``pumplink force`` says);
-    ``cadence``: the best cadence and the passing speeds (:func:`cadence`).
+    ``flywheel_force`` (links neglected) and ``dynamics_force`` (full dynamics, the hand force; the
+    arms only where the spec puts them in the verdict) [N] at every speed; the evaluation's
+    ``effort_peak_force`` (full dynamics with the arms), ``model_index`` (the model that decides
+    at each speed: the least that is enough, or the one asked for), ``peak_force`` (its force, the
+    verdict's peak), ``power``, ``grip_speed`` and ``verdict`` at each speed.
     """
 
-    design: Design
-    wheel_torque: float  # Mw [N m]
-    inertia: float
-    speed_fluctuation: float
-    force_limit: float
-    mean_force: float
-    dead_band_peak_force: float  # exact windowed peak outside the dead band (dead-band model) [N]
-    min_passing_speed: float  # the flywheel's slowest passing speed [rad/s]; inf: no speed passes
+    result: ForceResult  # pumplink force at the spec's own speed
+    evaluation: Evaluation  # over the given speeds
     speed_deg_s: np.ndarray  # as given (echoed exactly in reports)
-    speed: np.ndarray
-    energy_band: np.ndarray
-    least_peak_force: np.ndarray
-    power: np.ndarray
-    passed: np.ndarray
-    verdict: Verdict | None = None  # every check at each speed (the spec's own speed last)
-    grip_speed: np.ndarray | None = None  # peak grip speed at each speed [m/s]
-    flywheel_force: np.ndarray | None = None
-    dynamics_force: np.ndarray | None = None
-    effort_force: np.ndarray | None = None
-    model: np.ndarray | None = None  # model key at each speed
+    flywheel_force: np.ndarray
+    dynamics_force: np.ndarray
+    min_passing_speed: float  # the flywheel's slowest passing speed [rad/s]; inf: no speed passes
     cadence: Cadence | None = None
-    result: ForceResult | None = None  # pumplink force at the spec's own speed
-    flow: np.ndarray | None = None  # the water delivered at each speed [m³/s] (NaN without a head)
+
+    @property
+    def design(self) -> Design:
+        return self.result.design
+
+    @property
+    def wheel_torque(self) -> float:
+        return self.result.wheel_torque
+
+    @property
+    def inertia(self) -> float:
+        return self.result.inertia
+
+    @property
+    def speed_fluctuation(self) -> float:
+        return self.result.speed_fluctuation
+
+    @property
+    def force_limit(self) -> float:
+        return self.result.force_limit
+
+    @property
+    def mean_force(self) -> float:
+        return self.result.mean_force
+
+    @property
+    def dead_band_peak_force(self) -> float:
+        return self.result.dead_band_peak_force
+
+    @property
+    def speed(self) -> np.ndarray:
+        return np.broadcast_to(np.asarray(self.evaluation.designs.speed, float), self.speed_deg_s.shape)
+
+    @property
+    def energy_band(self) -> np.ndarray:
+        return self.evaluation.energy_band
+
+    @property
+    def least_peak_force(self) -> np.ndarray:
+        """The verdict's peak force at each speed [N]."""
+        return self.evaluation.peak_force
+
+    @property
+    def effort_force(self) -> np.ndarray:
+        return self.evaluation.effort_peak_force
+
+    @property
+    def power(self) -> np.ndarray:
+        return self.evaluation.power
+
+    @property
+    def grip_speed(self) -> np.ndarray:
+        return self.evaluation.grip_speed
+
+    @property
+    def flow(self) -> np.ndarray:
+        """The water delivered at each speed [m³/s] (NaN without a head)."""
+        return self.evaluation.water.flow
+
+    @property
+    def verdict(self) -> Verdict:
+        return self.evaluation.verdict
+
+    @property
+    def passed(self) -> np.ndarray:
+        return np.asarray(self.verdict.passed)
+
+    @property
+    def model(self) -> np.ndarray:
+        """The model key at each speed."""
+        return self.evaluation.model
 
     @property
     def outcome(self) -> np.ndarray:
         """'PASS', 'PASS with warnings' or 'FAIL' at each speed."""
-        return np.asarray(self.verdict.outcome)[:-1]
+        return np.asarray(self.verdict.outcome)
 
     def spec_speed_passes(self, strict: bool = False) -> bool:
         """The verdict at the spec's own speed (as ``pumplink force``), strict or not."""
-        return bool(np.asarray(self.verdict.passed_strict(strict))[-1])
+        return self.result.passed_strict(strict)
+
+    @property
+    def sustained_power(self) -> float:
+        """The power the operator profile sustains for hours [W]."""
+        return float(np.asarray(self.evaluation.designs.sustained_power, float).ravel()[0])
 
     @property
     def sustained_speed(self) -> float:
-        """The mean speed at which the power Mw w reaches the 75 W a person sustains [rad/s]."""
-        return SUSTAINED_POWER_W / self.wheel_torque
+        """The mean speed at which the power Mw ω̄ reaches the operator's sustained power [rad/s]."""
+        return self.sustained_power / self.wheel_torque
 
 
 def speed_sweep(
@@ -154,14 +278,14 @@ def speed_sweep(
 ) -> SpeedSweep:
     """Least peak force at each mean wheel speed [deg/s] by the flywheel (docs/models.md §2) and
     full dynamics (§3a), and the verdict of the model that decides at each speed (``model``: the
-    one asked for, else the least that is enough), with the best cadence (``with_cadence``).
+    one asked for, else the least that is enough), with the speeds that pass and the best cadence
+    (``with_cadence``).
 
     Raises
     ------
     SpecError : the spec gives no inertia (the quasi-static force does not depend on speed).
     InfeasibleDesign : no crank-rocker for this spec.
     """
-
     if spec.inertia is None:
         raise SpecError(
             f"{spec.name}: the speed study needs the wheel's inertia (the quasi-static force does not "
@@ -170,47 +294,24 @@ def speed_sweep(
     d = design(spec)
     if not d.feasible:
         raise InfeasibleDesign(f"{spec.name}: {d.error}")
-    syn, op = d.synthesis, spec.operator
     given = np.asarray(speeds_deg_s, float)
-    designs = pump_designs(spec_values(spec), np.append(given, op.speed))  # the spec's own speed last
-    w, mw, j = np.asarray(designs.speed), float(designs.wheel_torque), float(designs.inertia)
-    ev = evaluate(designs, ("verdict", "water", "effort", "dead_band_peak"), model=model)
+    designs = pump_designs(spec_values(spec), given)
+    ev = evaluate(designs, (*JUDGED, "effort"), model=model)
     # the least peak force of each energy model at every speed (the chart's curves)
     fly, hand = (evaluate(designs, ("model",), model=key).least_peak_force for key in (FLYWHEEL, DYNAMICS))
-    effort = ev.effort_peak_force
-    lk, dce, dcf, delta = syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, op.speed_fluctuation
-    index = ev.model_index
-    req = ev.peak_force
-    mean, qs = float(ev.mean_force[0]), float(ev.dead_band_peak_force[0])
-    limit = float(ev.designs.force_limit)
-    mps = float(motion.min_passing_speed(lk, dce, dcf, mw, limit, j, delta))
-    grip = ev.grip_speed
-    verdict = ev.verdict
     result = force_analysis(spec, keep_samples=False, samples=0, model=model)
-    passed = np.asarray(verdict.passed)
-    keys = np.asarray(ORDER, dtype=object)[index]
+    syn = d.synthesis
+    mps = float(
+        motion.min_passing_speed(syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded,
+                                 result.wheel_torque, result.force_limit, result.inertia,
+                                 result.speed_fluctuation)
+    )  # fmt: skip
     return SpeedSweep(
-        d,
-        mw,
-        j,
-        delta,
-        limit,
-        mean,
-        float(qs),
-        mps,
-        given,
-        w[:-1],
-        ev.energy_band[:-1],
-        req[:-1],
-        mw * w[:-1],
-        passed[:-1],
-        verdict,
-        grip[:-1],
-        fly[:-1],
-        hand[:-1],
-        effort[:-1],
-        keys[:-1],
-        cadence(result) if with_cadence else None,
-        result,
-        flow=ev.water.flow[:-1],
+        result=result,
+        evaluation=ev,
+        speed_deg_s=given,
+        flywheel_force=fly,
+        dynamics_force=hand,
+        min_passing_speed=mps,
+        cadence=cadence(result) if with_cadence else None,
     )
