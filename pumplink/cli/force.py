@@ -103,8 +103,8 @@ def force(
     """
     import math
 
-    from pumplink.output.force import render_force
-    from pumplink.studies.force import force_analysis
+    from pumplink.output.force import render_study
+    from pumplink.studies.design import study
 
     if at and any(not math.isfinite(a) for a in at):
         raise SpecError(
@@ -136,89 +136,17 @@ def force(
             advance(k - done[0])
             done[0] = k
 
-        result = force_analysis(
-            s,
-            speed,
-            samples,
-            at_deg=at or None,
-            keep_samples=not summary,
-            progress=tick,
-            model=model_key(model),
-        )
-    extra, agrees = {}, True
-    best = None
-    if explain and result.design.feasible:
-        from pumplink.output.force import explain_rows
-        from pumplink.output.speed import cadence_row
-        from pumplink.output.workshop import workshop_row
-        from pumplink.studies.explain import explain as explain_model
-        from pumplink.studies.speed import cadence
-        from pumplink.studies.workshop import workshop
-
-        effects, why = explain_model(result)
-        best = cadence(result) if s.gives_inertia else None
-        shop = workshop(result)
-        extra["explain"] = {
-            "model": result.model,
-            "effects": explain_rows(effects),
-            "why": why,
-            "best_cadence": None if best is None else cadence_row(best),
-            "workshop": workshop_row(shop),
-        }
-    scene_ok = result.scene is not None and math.isfinite(result.scene.least_peak_force)
-    if verify and not result.flywheel and result.design.feasible:  # the quasi-static model decided
-        from pumplink.output.force import static_verify_row
-        from pumplink.studies.verify import verify_quasi_static
-
-        check = verify_quasi_static(result)
-        extra["verify"] = static_verify_row(check)
-        agrees = check.agrees
-    elif verify and scene_ok:
-        from pumplink.output.force import verify_row
-        from pumplink.studies.verify import verify as verify_motion
-
-        check = verify_motion(result)
-        extra["verify"] = verify_row(check)
-        agrees = check.agrees
-    elif verify and result.design.feasible:  # an infinite least peak force: no periodic motion exists
-        sys.stderr.write(
-            f"verify: nothing to integrate; no finite peak force keeps the wheel turning "
-            f"(energy band J·ω̄²·δ = {result.energy_band:.3g} J)\n"
-        )
-    from pumplink.search.suggest import suggest
-
-    released = None
-    if result.design.feasible and "explain" not in extra:  # (the workshop's view has it)
-        from pumplink.output.workshop import release_row
-        from pumplink.studies.workshop import release
-
-        released = release(result)
-        extra["release"] = release_row(released)
-    advice = suggest(result) if result.design.feasible else []
-    render_force(result, fmt.value, summary=summary, extra=extra, strict=strict, advice=advice)
-    if fmt.value != "json":  # the reports follow the table; with CSV on stdout they go to stderr
-        from pumplink.output.force import render_explain, render_verify
-
-        side = sys.stdout if fmt.value == "table" else sys.stderr
-        if "explain" in extra:
-            from pumplink.output.workshop import render_workshop
-
-            render_explain(effects, why, out=side, cadence=best, force_limit=result.force_limit)
-            render_workshop(shop, out=side)
-        if "verify" in extra:
-            render_verify(extra["verify"], out=side)
-        if released is not None:
-            from pumplink.output.formats import console
-            from pumplink.output.workshop import release_line
-
-            console(side).print(release_line(released), markup=False)
+        st = study(s, speed, samples, at_deg=at or None, keep_samples=not summary, progress=tick,
+                   model=model_key(model), explain=explain, verify=verify)  # fmt: skip
+    render_study(st, fmt.value, summary=summary, strict=strict)
+    result = st.result
     if plot is not None and result.design.feasible:
         from pumplink.output.charts import force_curve
         from pumplink.studies.force import force_curve as curve
 
         force_curve(result, curve(result), plot)
         sys.stderr.write(f"wrote {plot}\n")
-    raise typer.Exit(0 if result.passed_strict(strict) and agrees else 1)
+    raise typer.Exit(0 if result.passed_strict(strict) and st.agrees else 1)
 
 
 def _piston(spec: Path, speed, samples: int, at, summary: bool, plot, explain: bool, verify: bool, fmt: str):

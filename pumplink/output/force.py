@@ -169,11 +169,12 @@ def render_force(
     extra: dict | None = None,
     strict: bool = False,
     advice=(),
+    cadence=None,
 ) -> None:
     """`pumplink force`: sweep table (condensed), checks and the verdict.
 
     ``extra`` (JSON only): more top-level keys, e.g. ``explain`` and ``verify``.  ``strict``:
-    warnings fail (``--strict``).  ``advice``: :class:`pumplink.search.suggest.Suggestion` records,
+    warnings fail (``--strict``).  ``advice``: :class:`pumplink.studies.advice.Suggestion` records,
     printed after a FAIL (and in JSON as ``advice``).
     """
     out = out or sys.stdout
@@ -355,7 +356,7 @@ def render_force(
         use = r.design.spec.use
         for line in water_lines(r.water, r.power, r.profile, use.hours_per_day, use.litres_per_person_day):
             c.print(line, markup=False)
-        c.print(verdict_line(r, strict))
+        c.print(verdict_line(r, strict, cadence))
         for ch in r.checks:
             if ch.result == "warn":
                 c.print(f"[yellow]warning:[/] {escape(check_sentence(ch, r))}")
@@ -367,6 +368,45 @@ def render_force(
                 c.print(f"  {escape(advice_sentence(a))}")
 
     render(fmt, out, as_json=as_json, as_csv=as_csv, table=table, stream=stream)
+
+
+def render_study(st, fmt: str, summary: bool = False, strict: bool = False, out=None) -> None:
+    """`pumplink force`: a :class:`pumplink.studies.design.DesignStudy` rendered: the force result
+    (:func:`render_force`), then, in a table, the model-choice report, the workshop's view, the
+    independent check and the released handle (on standard error beside CSV; in JSON as keys)."""
+    from pumplink.output.speed import cadence_row
+    from pumplink.output.workshop import release_line, release_row, render_workshop, workshop_row
+
+    r, extra = st.result, {}
+    if st.why is not None:
+        extra["explain"] = {
+            "model": r.model,
+            "effects": explain_rows(st.effects),
+            "why": st.why,
+            "best_cadence": None if st.cadence is None else cadence_row(st.cadence),
+            "workshop": workshop_row(st.workshop),
+        }
+    if st.check is not None:
+        extra["verify"] = (verify_row if hasattr(st.check, "integration") else static_verify_row)(st.check)
+    if st.nothing_to_verify:
+        sys.stderr.write(
+            f"verify: nothing to integrate; no finite peak force keeps the wheel turning "
+            f"(energy band J·ω̄²·δ = {r.energy_band:.3g} J)\n"
+        )
+    if r.design.feasible and st.why is None:  # (the workshop's view has it)
+        extra["release"] = release_row(st.release)
+    render_force(r, fmt, summary=summary, extra=extra, strict=strict, advice=st.advice,
+                 cadence=st.cadence, out=out)  # fmt: skip
+    if fmt == "json":
+        return
+    side = out or (sys.stdout if fmt == "table" else sys.stderr)  # beside CSV: on standard error
+    if st.why is not None:
+        render_explain(st.effects, st.why, out=side, cadence=st.cadence, force_limit=r.force_limit)
+        render_workshop(st.workshop, out=side)
+    if "verify" in extra:
+        render_verify(extra["verify"], out=side)
+    if "release" in extra and st.release is not None:
+        console(side).print(release_line(st.release), markup=False)
 
 
 def explain_rows(effects) -> list[dict[str, Any]]:

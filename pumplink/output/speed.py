@@ -18,7 +18,7 @@ if TYPE_CHECKING:
     from pumplink.studies.speed import SpeedSweep
 from pumplink.constants import MODEL_WORDS
 from pumplink.output.synth import design_row
-from pumplink.output.words import L_PER_MIN
+from pumplink.output.words import L_PER_MIN, passing_words
 
 
 def speed_rows(sw: SpeedSweep) -> list[dict[str, Any]]:
@@ -80,25 +80,6 @@ def cadence_row(c) -> dict[str, Any]:
         "force_passes_deg_s": rng(c.force_range),
         "verdict_passes_deg_s": rng(c.passing),
     }
-
-
-def passing_words(bands, searched) -> str:
-    """Intervals of mean speed [rad/s] in words ('from 498 to 856 deg/s'), saying where one runs
-    on to the edge of the speeds ``searched``."""
-    lo_s, hi_s = (math.degrees(v) for v in searched)
-
-    def span(pair):
-        lo, hi = (math.degrees(v) for v in pair)
-        low, high = lo <= lo_s * (1 + 1e-9), hi >= hi_s * (1 - 1e-9)
-        if low and high:
-            return f"every speed searched ({lo:.0f} to {hi:.0f} deg/s)"
-        if low:
-            return f"up to {hi:.0f} deg/s (searched from {lo:.0f})"
-        if high:
-            return f"from {lo:.0f} deg/s up (searched to {hi:.0f})"
-        return f"from {lo:.0f} to {hi:.0f} deg/s"
-
-    return " and ".join(span(b) for b in bands)
 
 
 def cadence_lines(c, force_limit: float) -> list[str]:

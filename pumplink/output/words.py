@@ -9,8 +9,6 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
 from pumplink.constants import AXLE_HEIGHT_RANGE_M
 from pumplink.output.formats import fmt as _f
 from pumplink.output.formats import num
@@ -158,7 +156,26 @@ def check_sentence(ch, r: ForceResult | None = None) -> str:
     return f"{check_label(ch, r)} is {val} ({limit}): {advice}".rstrip(": ")
 
 
-def verdict_line(r: ForceResult, strict: bool = False) -> str:
+def passing_words(bands, searched) -> str:
+    """Intervals of mean speed [rad/s] in words ('from 498 to 856 deg/s'), saying where one runs
+    on to the edge of the speeds ``searched``."""
+    lo_s, hi_s = (math.degrees(v) for v in searched)
+
+    def span(pair):
+        lo, hi = (math.degrees(v) for v in pair)
+        low, high = lo <= lo_s * (1 + 1e-9), hi >= hi_s * (1 - 1e-9)
+        if low and high:
+            return f"every speed searched ({lo:.0f} to {hi:.0f} deg/s)"
+        if low:
+            return f"up to {hi:.0f} deg/s (searched from {lo:.0f})"
+        if high:
+            return f"from {lo:.0f} deg/s up (searched to {hi:.0f})"
+        return f"from {lo:.0f} to {hi:.0f} deg/s"
+
+    return " and ".join(span(b) for b in bands)
+
+
+def verdict_line(r: ForceResult, strict: bool = False, cadence=None) -> str:
     """The verdict in words, with Rich markup: PASS, PASS with warnings or FAIL."""
     peak = r.verdict_peak_force
     how = " with full dynamics" if r.dynamics else " with the flywheel" if r.flywheel else ""
@@ -177,16 +194,17 @@ def verdict_line(r: ForceResult, strict: bool = False) -> str:
         f"{check_label(ch, r)} {check_value(ch)} {limit_text(ch, ch.fail_limit)}" for ch in v.failures
     )
     hint = ""
-    force_failed = any(ch.key in ("mean_force", "peak_force") for ch in v.failures)
-    if force_failed and r.flywheel and r.min_passing_speed is not None and math.isfinite(r.min_passing_speed):
-        hint = f"; the force passes from a mean {np.degrees(r.min_passing_speed):.0f} deg/s (pumplink speed)"
-    elif force_failed and r.dynamics:
-        hint = "; pumplink speed gives the speeds at which it passes"
+    if cadence is not None and cadence.bands:  # (:class:`pumplink.studies.speed.Cadence`)
+        speeds = passing_words(cadence.bands, cadence.searched)
+        hint = f"; every check passes at a mean {speeds} (pumplink speed)"
+    elif cadence is not None:
+        lo, hi = (math.degrees(v) for v in cadence.searched)
+        hint = f"; no mean speed from {lo:.0f} to {hi:.0f} deg/s passes every check"
     return f"[bold red]VERDICT: FAIL[/] — {bad}{hint}"
 
 
 def advice_row(a) -> dict[str, Any]:
-    """One suggested change (:class:`pumplink.search.suggest.Suggestion`) as a JSON row."""
+    """One suggested change (:class:`pumplink.studies.advice.Suggestion`) as a JSON row."""
     return {
         "key": a.key,
         "from": a.old,
