@@ -10,8 +10,10 @@ verdict check it feeds.  Every view iterates over :data:`CATALOGUE` instead of k
 its own: force's JSON and table, batch's rows, size, the report and docs/json.md (whose tables a
 test holds to it).  A new quantity is a kernel, a stage line and a row here.
 
-Quantities marked ``line`` are printed under the checks of ``pumplink force``, in ``pumplink
-size``'s table and in the report, as "label: value unit" (where the value is known).
+Headline quantities are a design's main figures: ``pumplink size`` and the report list them.
+Those with a ``line`` are printed on a line of their own under the checks of ``pumplink force``
+and in ``size``'s table (where the value is known); the others are worded in the views'
+sentences (the water's, for one).
 """
 
 from __future__ import annotations
@@ -32,7 +34,8 @@ class Quantity:
     SI value on an evaluation (``water.flow``);  unit : the unit shown, ``scale`` the factor from
     SI to it;  label : words for tables;  json : key in force's JSON (None: not there);
     column : batch column (None: not there);  check : the verdict check it is the value of;
-    line : printed as a line of its own (force's table, size, the report);  fmt : its format there.
+    headline : one of a design's main figures (size's JSON, the report);  line : its line in force's
+    and size's tables, a format string given the value in the unit shown (None: no line).
     """
 
     name: str
@@ -43,8 +46,8 @@ class Quantity:
     column: str | None = None
     scale: float = 1.0
     check: str | None = None
-    line: bool = False
-    fmt: str = "{:.3g}"
+    headline: bool = False
+    line: str | None = None
 
 
 Q = Quantity
@@ -67,16 +70,17 @@ CATALOGUE = (
     Q("dead_band_peak_angle", "dead_band_peak_angle", "deg", "crank angle of the quasi-static peak",
       "dead_band_peak_crank_deg", scale=DEGREES),
     Q("sampled_peak", "sampled_peak", "N", "sampled peak", "sampled_peak_force_N", "sampled_peak_force_N"),
-    Q("power", "power", "W", "operator power", "power_W", "power_W", check="power"),
-    Q("flow", "water.flow", "l/min", "flow", "flow_l_min", "flow_l_min", scale=L_PER_MIN),
-    Q("flow_m3_h", "water.flow", "m³/h", "flow", "flow_m3_h", scale=M3_PER_H),
+    Q("power", "power", "W", "operator power", "power_W", "power_W", check="power", headline=True),
+    Q("flow", "water.flow", "l/min", "flow", "flow_l_min", "flow_l_min", scale=L_PER_MIN, headline=True),
+    Q("flow_m3_h", "water.flow", "m³/h", "flow", "flow_m3_h", scale=M3_PER_H, headline=True),
     Q("water_power", "water.water_power", "W", "water power", "water_power_W", "water_power_W"),
     Q("pump_efficiency", "water.efficiency", "", "water power / operator power", "pump_efficiency",
       "pump_efficiency"),
     Q("power_limited_flow", "water.limit", "l/min", "the flow the operator's sustained power lifts",
-      "power_limited_flow_l_min", scale=L_PER_MIN),
-    Q("flow_share", "water.share", "", "share of that flow", "flow_share", "flow_share"),
-    Q("people_served", "water.people", "", "people served", "people_served", "people_served"),
+      "power_limited_flow_l_min", scale=L_PER_MIN, headline=True),
+    Q("flow_share", "water.share", "", "share of that flow", "flow_share", "flow_share", headline=True),
+    Q("people_served", "water.people", "", "people served", "people_served", "people_served",
+      headline=True),
     Q("grip_speed", "grip_speed", "m/s", "peak grip speed", column="grip_speed_m_s", check="grip_speed"),
     Q("stroke", "stroke", "m", "grip stroke", column="stroke_m", check="stroke"),
     Q("force_limit", "designs.force_limit", "N", "force limit", "force_limit_N", "force_limit_N"),
@@ -119,12 +123,17 @@ def columns(evaluation) -> dict[str, np.ndarray]:
     return {q.column: values(evaluation, q) for q in CATALOGUE if q.column is not None}
 
 
-def lines(evaluation, i: int = 0) -> list[tuple[Quantity, float]]:
-    """Design ``i``'s quantities printed on lines of their own, with their values (the known ones)."""
+def headline_items(evaluation, i: int = 0) -> dict[str, float]:
+    """Design ``i``'s headline quantities by JSON key, in the unit shown (NaN kept)."""
+    return {q.json: float(values(evaluation, q)[i]) for q in CATALOGUE if q.headline}
+
+
+def lines(evaluation, i: int = 0) -> list[str]:
+    """Design ``i``'s quantities printed on lines of their own (those known), as text."""
     out = []
     for q in CATALOGUE:
-        if q.line:
+        if q.line is not None:
             v = float(values(evaluation, q)[i])
             if np.isfinite(v):
-                out.append((q, v))
+                out.append(q.line.format(v))
     return out

@@ -35,6 +35,7 @@ from pumplink.output.words import (
     water_lines,
 )
 from pumplink.quantities import json_items
+from pumplink.quantities import lines as quantity_lines
 
 
 def force_summary(r: ForceResult) -> dict[str, Any]:
@@ -355,6 +356,8 @@ def render_force(
         c.print(model_line(r))
         use = r.design.spec.use
         for line in water_lines(r.water, r.power, r.profile, use.hours_per_day, use.litres_per_person_day):
+            c.print(line, markup=False)
+        for line in quantity_lines(r.evaluation):  # the catalogue's quantities with a line of their own
             c.print(line, markup=False)
         c.print(verdict_line(r, strict, cadence))
         for ch in r.checks:

@@ -11,7 +11,9 @@ from typing import TYPE_CHECKING, Any
 
 from pumplink.output.formats import console, num, render
 from pumplink.output.tolerance import robust_line, robust_row
-from pumplink.output.words import CHECK_ADVICE, CHECK_LABELS, L_PER_MIN, M3_PER_H, OPERATOR_NOUNS, check_row
+from pumplink.output.words import CHECK_ADVICE, CHECK_LABELS, L_PER_MIN, OPERATOR_NOUNS, check_row
+from pumplink.quantities import headline_items
+from pumplink.quantities import lines as quantity_lines
 
 if TYPE_CHECKING:
     from pumplink.search.size import SizeResult
@@ -40,7 +42,6 @@ def size_row(res: SizeResult) -> dict[str, Any]:
     """The JSON contract of ``pumplink size``."""
     b = res.best
     spec, ev = b.spec, b.evaluation
-    w = ev.water.design(0)
     verdict = ev.verdict.design(0)
     return {
         "name": res.problem.spec.name,
@@ -51,12 +52,7 @@ def size_row(res: SizeResult) -> dict[str, Any]:
         "reason": None if res.found else _holding_back(res),
         "design": {k: num(_value(spec, key) * f) for key, k, _, _, f in DESIGN},
         "cycles_per_min": num(_value(spec, "operator.speed") / 6.0),
-        "flow_l_min": num(w.flow * L_PER_MIN),
-        "flow_m3_h": num(w.flow * M3_PER_H),
-        "power_W": num(float(ev.power[0])),
-        "power_limited_flow_l_min": num(w.limit * L_PER_MIN),
-        "flow_share": num(w.share),
-        "people_served": num(w.people),
+        **{k: num(v) for k, v in headline_items(ev).items()},  # the catalogue's headline figures
         "verdict": verdict.outcome,
         "checks": [check_row(c) for c in verdict.checks],
         "binding": list(res.binding),
@@ -145,6 +141,8 @@ def render_size(res: SizeResult, fmt: str, out=None) -> None:
             f"sustained power could lift here; serves about {row['people_served']:,.0f} people",
             markup=False,
         )
+        for line in quantity_lines(res.best.evaluation):  # the catalogue's quantities with a line
+            c.print(line, markup=False)
         c.print(f"verdict: {row['verdict']} (pumplink force on the written spec says the same)", markup=False)
         if row["robust"] is not None:
             c.print(robust_line(row["robust"]), markup=False)
