@@ -40,6 +40,8 @@ from pumplink.evaluate.piston import evaluate_piston
 from pumplink.evaluate.results import Evaluation, PistonEvaluation
 from pumplink.evaluate.water import Water
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
+from pumplink.models.choice import EnergyModel
+from pumplink.models.water import rope_pump_flow
 from pumplink.verdict import FAIL, OUTCOMES, PASS, RESULTS, WARN, Check, Verdict, check, excess
 
 #: The words of each model, by index into :data:`ORDER` (reports, the model column).
@@ -101,6 +103,7 @@ __all__ = [
     "RESULTS",
     "WARN",
     "Check",
+    "EnergyModel",
     "Evaluation",
     "PartSizes",
     "PistonDesigns",
@@ -113,4 +116,5 @@ __all__ = [
     "excess",
     "piston_designs",
     "pump_designs",
+    "rope_pump_flow",
 ]

@@ -14,11 +14,10 @@ import numpy as np
 
 from pumplink.constants import DANGER, DEAD_CENTRE, NEAR_DEAD_CENTRE, UNIFORM
 from pumplink.errors import InfeasibleDesign
-from pumplink.evaluate import PumpDesigns, evaluate, motion, pump_designs
+from pumplink.evaluate import QUASI_STATIC, PumpDesigns, evaluate, motion, pump_designs
 from pumplink.inputs.pump import PumpSpec, spec_values
 from pumplink.mechanisms.angles import crank_grid
 from pumplink.mechanisms.fourbar import FourBar, kinematic_state
-from pumplink.models import QUASI_STATIC
 from pumplink.studies.methods import DANGER_KINDS, METHODS, MethodResult, danger_points
 
 #: Offsets from each dead centre [deg] at which the methods are compared.

@@ -12,19 +12,30 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from pumplink.errors import SpecError
-from pumplink.evaluate import MODEL_LABELS, REPORTED, Evaluation, Water, evaluate, motion, pump_designs
+from pumplink.evaluate import (
+    DYNAMICS,
+    FLYWHEEL,
+    MODEL_LABELS,
+    MODELS,
+    ORDER,
+    QUASI_STATIC,
+    REPORTED,
+    Check,
+    EnergyModel,
+    Evaluation,
+    Verdict,
+    Water,
+    evaluate,
+    motion,
+    pump_designs,
+)
 from pumplink.inputs.pump import PumpSpec, spec_values
 from pumplink.mechanisms.fourbar import State, Synthesis, infeasibility_reason, kinematic_state, synthesize
-from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
-from pumplink.verdict import Check, Verdict
-
-if TYPE_CHECKING:
-    from pumplink.models.choice import EnergyModel
 
 #: Crank angles of the curve a force chart draws (0.05 deg steps, both ends).
 CURVE_POINTS = 7201

@@ -15,12 +15,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from pumplink.constants import PERMISSIBLE_PRESSURE_SLIDING_DEG
-from pumplink.evaluate import Water, evaluate, motion, piston_designs
+from pumplink.evaluate import FLYWHEEL, ORDER, Verdict, Water, evaluate, motion, piston_designs
 from pumplink.inputs.piston import PistonSpec
 from pumplink.inputs.pump import spec_values
 from pumplink.mechanisms import crank_slider as cs
-from pumplink.models import FLYWHEEL, ORDER
-from pumplink.verdict import Verdict
 
 
 @dataclass(frozen=True)

@@ -15,9 +15,8 @@ from typing import Any
 import numpy as np
 
 from pumplink.constants import GRAVITY
-from pumplink.evaluate import PartSizes, motion
+from pumplink.evaluate import ORDER, PartSizes, motion
 from pumplink.evaluate import parts as _parts
-from pumplink.models import ORDER
 from pumplink.studies.force import ForceResult
 
 #: The defaults of a spec's [parts] table, used for information when the spec gives none.
