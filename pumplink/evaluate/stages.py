@@ -222,11 +222,11 @@ def sampled_peak(r: Run) -> dict[str, Any]:
 
 def passing_speed(r: Run) -> dict[str, Any]:
     """The flywheel's slowest passing mean speed where the flywheel decides (docs/models.md §2)."""
-    from pumplink.models import flywheel as _fw  # loaded when first needed (start-up)
-
     out = np.full(r.n, np.nan)
     i = r.rows(r["feasible"] & (r["model_index"] == ORDER.index(FLYWHEEL)))
     if i.size:
+        from pumplink.models import flywheel as _fw  # loaded when first needed (start-up)
+
         syn, c = r["synthesis"], r.c
         out[i] = _fw.min_passing_speed(
             syn.linkage.take(i), syn.dead_centre_extended[i], syn.dead_centre_folded[i],

@@ -179,7 +179,9 @@ def sampling_study(designs: PumpDesigns, counts=SAMPLE_COUNTS) -> list[dict]:
     """
     rows = []
     for n in counts:
-        ev = evaluate(designs, ("sampled_peak", "dead_band_peak"), model=QUASI_STATIC, samples=n)
+        ev = evaluate(
+            designs, ("mean_force", "sampled_peak", "dead_band_peak"), model=QUASI_STATIC, samples=n
+        )
         _, lk = motion.at_design(ev)
         exact_peak, exact_mean, peak = (
             float(v[0]) for v in (ev.dead_band_peak_force, ev.mean_force, ev.sampled_peak)

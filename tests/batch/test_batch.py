@@ -376,25 +376,26 @@ def _assert_equals_force_analysis(b: B.Batch, c: B.Chunk, picks) -> None:
     nan = float("nan")
     for i in picks:
         r = force_analysis(parse_spec(B.variant_spec(b, c.start + i)), samples=360, keep_samples=False)
-        s = r.design.synthesis
+        s, e = r.design.synthesis, c.evaluation
+        cs = e.synthesis
         pairs = {
-            "frame": (s.frame_length, c.frame_length[i]),
-            "crank": (s.crank_length, c.crank_length[i]),
-            "coupler": (s.coupler_length, c.coupler_length[i]),
-            "K": (s.time_ratio, c.time_ratio[i]),
-            "gmin": (s.transmission_min, c.transmission_min[i]),
-            "gmax": (s.transmission_max, c.transmission_max[i]),
+            "frame": (s.frame_length, cs.frame_length[i]),
+            "crank": (s.crank_length, cs.crank_length[i]),
+            "coupler": (s.coupler_length, cs.coupler_length[i]),
+            "K": (s.time_ratio, cs.time_ratio[i]),
+            "gmin": (s.transmission_min, cs.transmission_min[i]),
+            "gmax": (s.transmission_max, cs.transmission_max[i]),
             "mean": (r.mean_force, c.mean_force[i]),
-            "peak": (r.dead_band_peak_force, c.dead_band_peak_force[i]),
-            "sampled": (r.sampled_peak, c.sampled_peak[i]),
-            "power": (r.power, c.power[i]),
+            "peak": (r.dead_band_peak_force, e.dead_band_peak_force[i]),
+            "sampled": (r.sampled_peak, e.sampled_peak[i]),
+            "power": (r.power, e.power[i]),
             # the flywheel scene (None in force_analysis: quasi-static, or not computed)
             "inertia": (nan if r.inertia is None else r.inertia, c.inertia[i]),
             "delta": (nan if r.speed_fluctuation is None else r.speed_fluctuation, c.speed_fluctuation[i]),
             "required": (nan if r.least_peak_force is None else r.least_peak_force, c.least_peak_force[i]),
             "min speed": (
                 nan if r.min_passing_speed is None else r.min_passing_speed,
-                c.min_passing_speed[i],
+                e.min_passing_speed[i],
             ),
         }
         for what, (x, y) in pairs.items():
@@ -430,7 +431,8 @@ def test_flywheel_variants_equal_force_analysis_exactly(fly_files):
         # the verdict's peak is the flywheel one: dead-band peak and verdict disagree somewhere
         ok = c.feasible
         outcomes |= {
-            (bool(p), bool(q)) for p, q in zip(c.dead_band_peak_force[ok] <= c.force_limit[ok], c.peak_ok[ok])
+            (bool(p), bool(q))
+            for p, q in zip(c.evaluation.dead_band_peak_force[ok] <= c.force_limit[ok], c.peak_ok[ok])
         }
     assert outcomes == {(True, True), (True, False), (False, True), (False, False)}
     assert models == {B.FLYWHEEL_LABEL, B.DYNAMICS_LABEL}  # both decide somewhere in these grids

@@ -1048,7 +1048,9 @@ def test_table_names_the_model_that_answered():
     dyn = run("force", FLY, "--summary", cache=True).stdout
     # no speed passes (the grip is too fast where the force passes): the verdict line says so
     nowhere = "no mean speed from 60 to 1440 deg/s passes every check"
-    assert "model: full dynamics, J = " in dyn and "VERDICT: FAIL" in dyn and nowhere in dyn.replace("\n", " ")
+    assert (
+        "model: full dynamics, J = " in dyn and "VERDICT: FAIL" in dyn and nowhere in dyn.replace("\n", " ")
+    )
     fly = run("force", FLY, "--summary", "--model", "flywheel", cache=True).stdout
     assert "model: flywheel, J = " in fly and "VERDICT: FAIL" in fly and nowhere in fly.replace("\n", " ")
     qs = run("force", "--summary", cache=True).stdout
