@@ -11,6 +11,7 @@ import copy
 import math
 import re
 import tomllib
+import typing
 from pathlib import Path
 
 import pytest
@@ -19,6 +20,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from pumplink.errors import PumplinkError, SpecError
+from pumplink.inputs.piston import PistonSpec, parse_piston
 from pumplink.inputs.pump import PumpSpec, default_spec, load_spec, parse_spec, spec_to_dict
 
 ROPE = {
@@ -250,6 +252,45 @@ def test_a_profile_sets_the_limits_and_each_key_given_overrides_it():
         parse_spec({**copy.deepcopy(ROPE), "operator": {"grip_speed_warn": 5.0}})
     with pytest.raises(SpecError, match="operator.profile"):
         parse_spec({**copy.deepcopy(ROPE), "operator": {"profile": "athletes"}})
+
+
+def _spec_keys(model) -> set[str]:
+    """Every dotted key ``section.leaf`` of a spec model (read from its pydantic fields)."""
+    out = set()
+    for section, field in model.model_fields.items():
+        for a in (field.annotation, *typing.get_args(field.annotation)):
+            out |= {f"{section}.{leaf}" for leaf in getattr(a, "model_fields", {})}
+    return out
+
+
+PISTON = {
+    "mechanism": "crank-slider",
+    "piston": {"bore": 0.05, "head": 10.0, "efficiency": 0.6},
+    "crank_slider": {"crank": 0.05, "rod": 0.25},
+    "operator": {"handle": 0.3},
+}
+
+
+@pytest.mark.parametrize(
+    ("base", "low", "high", "value_low", "value_high"),
+    [
+        (ROPE, "grip_height_min", "grip_height_max", 1.2, 1.0),
+        (ROPE, "grip_speed_warn", "grip_speed_fail", 4.0, 3.0),
+        (ROPE, "sustained_power", "hour_power", 200.0, 100.0),
+        (PISTON, "sustained_power", "hour_power", 200.0, 100.0),
+    ],
+)
+def test_a_pair_in_the_wrong_order_is_named_by_its_real_keys(base, low, high, value_low, value_high):
+    d = copy.deepcopy(base)
+    d.setdefault("operator", {}).update({low: value_low, high: value_high})
+    piston = "mechanism" in d
+    with pytest.raises(SpecError) as err:
+        (parse_piston if piston else parse_spec)(d, source="spec")
+    message = str(err.value).removeprefix("spec: ")
+    named = re.findall(r"[a-z_]+(?:\.[a-z_]+)+", message)
+    assert named == [f"operator.{low}", f"operator.{high}"], message
+    assert set(named) <= _spec_keys(PistonSpec if piston else PumpSpec)
+    assert f"{value_low:g} and {value_high:g}" in message
 
 
 def test_load_spec_name_defaults_to_file_stem(tmp_path):

@@ -250,24 +250,25 @@ class Operator(Section):
 
     @model_validator(mode="after")
     def _limits_in_order(self) -> Operator:
-        lim = self.limits
-        lo, hi = lim.grip_height_range
-        for what, a, b in (
-            ("operator.grip_height_min must be below operator.grip_height_max", lo, hi),
-            (
-                "operator.grip_speed_warn must be below operator.grip_speed_fail",
-                lim.grip_speed_warn,
-                lim.grip_speed_fail,
-            ),
-            (
-                "operator.sustained_power must be at most operator.hour_power",
-                lim.sustained_power,
-                lim.hour_power,
-            ),
-        ):
-            if not a <= b:
-                raise ValueError(f"operator.{what} (with the {lim.name} profile: {a:g} and {b:g})")
+        limits_in_order(self.limits)
         return self
+
+
+def limits_in_order(limits: OperatorProfile, grip: bool = True) -> None:
+    """Raise ValueError naming the spec keys of the first pair of the operator's ``limits`` in the
+    wrong order: the grip heights and speeds (``grip``: a piston pump's operator has no grip),
+    and the powers."""
+    speeds = (limits.grip_speed_warn, limits.grip_speed_fail)
+    pairs = [
+        ("operator.grip_height_min must be below operator.grip_height_max", *limits.grip_height_range),
+        ("operator.grip_speed_warn must be below operator.grip_speed_fail", *speeds),
+    ]
+    pairs = pairs if grip else []
+    powers = (limits.sustained_power, limits.hour_power)
+    pairs.append(("operator.sustained_power must be at most operator.hour_power", *powers))
+    for what, a, b in pairs:
+        if not a <= b:
+            raise ValueError(f"{what} (with the {limits.name} profile: {a:g} and {b:g})")
 
 
 class Parts(Section):
