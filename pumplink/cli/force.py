@@ -145,8 +145,14 @@ def force(
             progress=tick,
             model=model_key(model),
         )
+    # every key docs/json.md lists is in the JSON: null where it has no value (an infeasible
+    # design has nothing to explain, verify or release)
     extra, agrees = {}, True
-    best = None
+    best = released = None
+    if explain:
+        extra["explain"] = None
+    if verify:
+        extra["verify"] = None
     if explain and result.design.feasible:
         from pumplink.output.force import explain_rows
         from pumplink.output.speed import cadence_row
@@ -165,6 +171,8 @@ def force(
             "best_cadence": None if best is None else cadence_row(best),
             "workshop": workshop_row(shop),
         }
+        if shop is not None and shop.release is not None:  # the same release as the workshop's
+            released = (shop.release, shop.release_free)
     scene_ok = result.scene is not None and math.isfinite(result.scene.least_peak_force)
     if verify and not result.flywheel and result.design.feasible:  # the quasi-static model decided
         from pumplink.output.force import static_verify_row
@@ -185,29 +193,28 @@ def force(
             f"verify: nothing to integrate; no finite peak force keeps the wheel turning "
             f"(energy band J·ω̄²·δ = {result.energy_band:.3g} J)\n"
         )
+    from pumplink.output.workshop import release_row
     from pumplink.search.suggest import suggest
 
-    released = None
-    if result.design.feasible and "explain" not in extra:  # (the workshop's view has it)
-        from pumplink.output.workshop import release_row
+    if result.design.feasible and extra.get("explain") is None:  # (else the workshop's view has it)
         from pumplink.studies.workshop import release
 
         released = release(result)
-        extra["release"] = release_row(released)
+    extra["release"] = release_row(released)
     advice = suggest(s, result) if result.design.feasible else []
     render_force(result, fmt.value, summary=summary, extra=extra, strict=strict, advice=advice)
     if fmt.value != "json":  # the reports follow the table; with CSV on stdout they go to stderr
         from pumplink.output.force import render_explain, render_verify
 
         side = sys.stdout if fmt.value == "table" else sys.stderr
-        if "explain" in extra:
+        if extra.get("explain") is not None:
             from pumplink.output.workshop import render_workshop
 
             render_explain(effects, why, out=side, cadence=best, force_limit=result.force_limit)
             render_workshop(shop, out=side)
-        if "verify" in extra:
+        if extra.get("verify") is not None:
             render_verify(extra["verify"], out=side)
-        if released is not None:
+        if released is not None and extra.get("explain") is None:  # (else in the workshop's report)
             from pumplink.output.formats import console
             from pumplink.output.workshop import release_line
 

@@ -445,6 +445,19 @@ def render_explain(effects, why: str, out=None, cadence=None, force_limit: float
             c.print(line, markup=False)
 
 
+#: The keys only one model's cross-check fills: null in the other's row (docs/json.md: every key
+#: in every result).
+_MOTION_KEYS = (
+    "cycles",
+    "periodicity",
+    "mean_speed_deg_s",
+    "time_mean_speed_deg_s",
+    "speed_range_deg_s",
+    "fluctuation",
+)
+_STATIC_KEYS = ("angles", "virtual_work", "samples", "sweep_peak_force_N", "peak_force_N")
+
+
 def verify_row(v) -> dict[str, Any]:
     """The solve_ivp cross-check (:class:`pumplink.studies.verify.Verification`) as a row."""
     sim = v.integration
@@ -456,6 +469,7 @@ def verify_row(v) -> dict[str, Any]:
         "time_mean_speed_deg_s": deg(sim.time_mean_speed),
         "speed_range_deg_s": {"min": deg(sim.min_speed), "max": deg(sim.max_speed)},
         "fluctuation": num(sim.fluctuation),
+        **dict.fromkeys(_STATIC_KEYS),
         "tolerance": v.tolerance,
         "agrees": v.agrees,
     }
@@ -470,6 +484,7 @@ def static_verify_row(v) -> dict[str, Any]:
         "samples": v.samples,
         "sweep_peak_force_N": num(v.sweep_peak),
         "peak_force_N": num(v.peak),
+        **dict.fromkeys(_MOTION_KEYS),
         "tolerance": v.tolerance,
         "agrees": v.agrees,
     }
@@ -477,7 +492,7 @@ def static_verify_row(v) -> dict[str, Any]:
 
 def render_verify(row: dict[str, Any], out=None) -> None:
     c = console(out or sys.stdout)
-    if "virtual_work" in row:  # the quasi-static model
+    if row["cycles"] is None:  # the quasi-static model
         ok = "[bold green]agrees[/]" if row["agrees"] else "[bold red]DISAGREES[/]"
         c.print(
             f"verify (quasi-static: {row['method']}): {ok} — F·dPx/dθ2 = Mw to {row['virtual_work']:.1e} "
