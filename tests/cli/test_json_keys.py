@@ -236,6 +236,25 @@ def test_the_shared_force_runs_hold_every_documented_key(force_docs):
         assert absent(doc, design_keys() | DOC["force"], args, optional) == [], args
 
 
+def test_a_released_handle_that_stops_early_says_so(tmp_path):
+    """A 1 mm wheel under 168 m of 1 mm pipe: its column empties only after 168,000 rad of crank
+    run back, past the simulation's turn limit (10,000 rad; with massless links the steps are
+    long, so the turns, not the steps, run out).  The JSON and the line say it stopped early."""
+    spec = {
+        **PROTOTYPE,
+        "wheel": {"radius": 0.001, "mass": 10.0},
+        "linkage": {**PROTOTYPE["linkage"], "coupler_mass": 0.0, "handle_mass": 0.0},
+        "load": {"head": 168.0, "pipe_diameter": 0.001},
+    }
+    path = tmp_path / "spec.toml"
+    path.write_text(tomli_w.dumps(spec), encoding="utf-8")
+    release = emitted("force", path, "--summary")["release"]
+    assert (release["stopped_early"], release["end"]) == (True, "turn limit")
+    text = run("force", path, "--summary")
+    line = text[text.index("released handle:") :].replace("\n", " ")
+    assert "STOPPED EARLY" in line and "10,000 rad of crank" in line
+
+
 def test_the_old_wrong_keys_are_gone_from_the_readme():
     """The keys the README once promised: none is emitted, none is listed."""
     everything = set().union(*DOC.values())

@@ -264,3 +264,63 @@ def test_energy_balance_of_a_whole_release(design, start, speed, loss):
     w_end = -math.sqrt(2 * kinetic / (j + float(tm1.inertia)))
     assert got.end_speed == pytest.approx(w_end, rel=1e-7)
     assert got.end_rope_travel == pytest.approx(head, rel=1e-12)
+
+
+# ----------------------------------------------------------------------------- bounded
+#: The spec of an adversarial run that took 37 s and 561 MB: the prototype on a 1 mm wheel under
+#: 168 m of 1 mm pipe, with a wheel mass so that the released handle is simulated.  Its column
+#: (1.3e-3 N m) and losses barely brake the links, so the wheel coasts forward for more than the
+#: 60 s horizon, and the column would need 168,000 rad of crank to empty: unbounded, it took 26,957
+#: solver steps (both simulations).
+TINY_WHEEL = {
+    "name": "tiny wheel",
+    "wheel": {"radius": 0.001, "mass": 10.0},
+    "linkage": {"L1": 0.40, "D1": 0.20, "b": 0.10, "rocker": 0.20, "handle": 1.00, "swing": 60.0},
+    "load": {"head": 168.0, "pipe_diameter": 0.001},
+    "operator": {"force_limit": 100.0, "speed": 360.0, "dead_band": 20.0},
+}
+
+
+def test_a_tiny_wheel_under_a_tall_column_stops_early_within_the_step_limit(monkeypatch):
+    """Counted here, at scipy's ``solve_ivp`` (independent of the product's own count): both
+    simulations together take at most 2 x MAX_STEPS steps, and each reports that it stopped early,
+    at the step limit, in its result, its JSON row and its line."""
+    import scipy.integrate
+
+    from pumplink.inputs.pump import parse_spec
+    from pumplink.output.workshop import release_line, release_row
+    from pumplink.studies.workshop import release
+
+    counted = {"steps": 0, "evaluations": 0}
+    solve = scipy.integrate.solve_ivp
+
+    def counting(*args, **kw):
+        sol = solve(*args, **kw)
+        counted["steps"] += sol.t.size - 1
+        counted["evaluations"] += sol.nfev
+        return sol
+
+    monkeypatch.setattr(scipy.integrate, "solve_ivp", counting)
+    both = release(force_analysis(parse_spec(TINY_WHEEL), keep_samples=False))
+    assert 0 < counted["steps"] <= 2 * RL.MAX_STEPS
+    assert counted["evaluations"] <= 2 * RL.MAX_STEPS * 30  # DOP853: 12 a step, and retried steps
+    for got in both:
+        assert got.stopped_early and got.end_reason == "step limit" and not got.reverses
+        assert math.isnan(got.stop_time) and 0 < got.end_time < RL.HORIZON
+    row = release_row(both)
+    assert (row["stopped_early"], row["end"], row["needs_ratchet_or_brake"]) == (True, "step limit", None)
+    assert "STOPPED EARLY" in release_line(both) and f"{RL.MAX_STEPS:,} solver steps" in release_line(both)
+
+
+def test_the_turn_limit_stops_a_long_run_back():
+    """Without link masses the motion is smooth and the steps long; the run back to an empty
+    column would take head / rw = 3000 rad.  With a turn limit of 100 rad the simulation stops
+    once the crank has turned 100 rad in all (the coast, J w0^2 / 2 / (Mc + Ml) rad by the closed
+    form of test_closed_form_without_link_masses, then the run back), at the limit exactly."""
+    syn = synthesize(0.4, 0.2, 0.1, 0.2, math.radians(70.0), 1.2)
+    mc_, ml, j, head, rw, w0 = 10.0, 2.0, 0.9, 3.0, 0.001, 5.0
+    got = RL.release(syn.linkage, 1.0, w0, mc_, ml, j, head, rw, max_turned=100.0)
+    coast = 0.5 * j * w0**2 / (mc_ + ml)
+    assert got.reverses and got.stopped_early and got.end_reason == "turn limit"
+    assert got.stop_angle - 1.0 == pytest.approx(coast, rel=1e-9)
+    assert got.end_rope_travel == pytest.approx(rw * (100.0 - coast), rel=1e-9)
