@@ -390,6 +390,29 @@ def test_the_guide_states_every_bound_of_the_spec(model):
                 assert stated == model_bounds(info), (key, allowed)
 
 
+def test_the_init_template_states_every_bound_it_gives():
+    """The commented spec of ``pumplink init``: each key whose comment gives a range ("0.001-5",
+    "-10..10", "2π-180", with "X excluded" for an open end) states the model's bounds."""
+    from pumplink.inputs.pump import SPEC_TEMPLATE
+
+    fields = spec_fields(PumpSpec)
+    section, checked = None, []
+    for line in SPEC_TEMPLATE.splitlines():
+        if re.fullmatch(r"\[([a-z_]+)\]", line):
+            section = line[1:-1]
+            continue
+        m = re.match(r"#? ?([a-z_A-Z0-9]+) += [^#]*#(.*)", line)
+        found = m and re.search(r", (-?\d+(?:\.\d+)?π?)(?:-|\.\.)(\d+(?:\.\d+)?)\b", m.group(2))
+        if not found:
+            continue
+        key = f"{section}.{m.group(1)}"
+        lo, hi = _number(found.group(1)), _number(found.group(2))
+        excluded = {_number(x) for x in re.findall(r"(\d+(?:\.\d+)?) excluded", m.group(2))}
+        assert (lo, lo not in excluded, hi, hi not in excluded) == model_bounds(fields[key]), line
+        checked.append(key)
+    assert len(checked) >= 15, checked  # every range the template gives was read
+
+
 def test_load_spec_name_defaults_to_file_stem(tmp_path):
     d = copy.deepcopy(ROPE)
     del d["name"]
