@@ -4,10 +4,11 @@ they recorded: an API the benchmarks use cannot move without ``make test`` notic
 
 Each script runs as ``make bench`` runs it, ``python benchmarks/bench_X.py`` in a subprocess (the
 scripts change directory, patch scipy and start pumplink commands of their own), once per script
-for the whole module.  The scripts are found by the same glob as the Makefile's, so a new one is
-covered without a change here.  The test extras have no pylinkage (the bench extra): the two
-scripts that compare against it say so and skip its side; bench_grid_baseline.py runs this
-checkout's side only and says so (the pinned old install is built by ``make bench`` alone).
+for the whole module (``-k bench_X`` runs that one alone).  The scripts are found by the same glob
+as the Makefile's, so a new one is covered without a change here.  The test extras have no
+pylinkage (the bench extra): the two scripts that compare against it say so and skip its side;
+bench_grid_baseline.py runs this checkout's side only and says so (the pinned old install is built
+by ``make bench`` alone).
 """
 
 from __future__ import annotations
@@ -28,24 +29,29 @@ TIMEOUT = 300
 
 
 @pytest.fixture(scope="module")
-def smoke_runs(tmp_path_factory) -> dict[str, tuple[subprocess.CompletedProcess, list[dict]]]:
-    """Each script run once with ``--smoke``: its process and the figures it recorded."""
+def smoke_run(tmp_path_factory):
+    """``smoke_run(name)``: script ``name`` run with ``--smoke`` (once for the module, on first
+    use): its process and the figures it recorded."""
     folder = tmp_path_factory.mktemp("bench")
     env = {k: v for k, v in os.environ.items() if k not in ("PUMPLINK_BENCH_OUT", "PUMPLINK_BENCH_SMOKE")}
-    runs = {}
-    for script in SCRIPTS:
-        out = folder / f"{script.stem}.jsonl"
-        p = subprocess.run(
-            [sys.executable, str(script), "--smoke"],
-            cwd=ROOT,
-            env={**env, "PUMPLINK_BENCH_OUT": str(out)},
-            capture_output=True,
-            text=True,
-            timeout=TIMEOUT,
-        )
-        rows = [json.loads(line) for line in out.read_text().splitlines()] if out.exists() else []
-        runs[script.name] = (p, rows)
-    return runs
+    runs: dict[str, tuple[subprocess.CompletedProcess, list[dict]]] = {}
+
+    def run(name: str) -> tuple[subprocess.CompletedProcess, list[dict]]:
+        if name not in runs:
+            out = folder / f"{name}.jsonl"
+            p = subprocess.run(
+                [sys.executable, str(BENCH / name), "--smoke"],
+                cwd=ROOT,
+                env={**env, "PUMPLINK_BENCH_OUT": str(out)},
+                capture_output=True,
+                text=True,
+                timeout=TIMEOUT,
+            )
+            rows = [json.loads(line) for line in out.read_text().splitlines()] if out.exists() else []
+            runs[name] = (p, rows)
+        return runs[name]
+
+    return run
 
 
 def test_the_glob_finds_every_script():
@@ -53,8 +59,8 @@ def test_the_glob_finds_every_script():
 
 
 @pytest.mark.parametrize("name", [s.name for s in SCRIPTS])
-def test_each_script_runs_to_its_end_and_judges_nothing(smoke_runs, name):
-    p, rows = smoke_runs[name]
+def test_each_script_runs_to_its_end_and_judges_nothing(smoke_run, name):
+    p, rows = smoke_run(name)
     assert p.returncode == 0, f"{name} --smoke exited {p.returncode}:\n{p.stderr[-3000:]}"
     assert "Traceback" not in p.stderr, p.stderr[-3000:]
     assert p.stdout.strip(), f"{name} printed nothing"
@@ -64,14 +70,14 @@ def test_each_script_runs_to_its_end_and_judges_nothing(smoke_runs, name):
     assert all(r["script"] == name for r in rows)
 
 
-def test_the_baseline_comparison_runs_this_checkout_and_says_it_skips_the_old_install(smoke_runs):
-    p, _ = smoke_runs["bench_grid_baseline.py"]
+def test_the_baseline_comparison_runs_this_checkout_and_says_it_skips_the_old_install(smoke_run):
+    p, _ = smoke_run("bench_grid_baseline.py")
     assert "smoke run: the pinned install of 2cf593a is not run" in p.stdout
     assert "this checkout: median wall" in p.stdout  # this checkout's batch did run (its CSV counted)
 
 
-def test_the_summary_table_renders_every_recorded_figure(smoke_runs, tmp_path):
-    rows = [r for _, recorded in smoke_runs.values() for r in recorded]
+def test_the_summary_table_renders_every_recorded_figure(smoke_run, tmp_path):
+    rows = [r for s in SCRIPTS for r in smoke_run(s.name)[1]]
     assert len({r["script"] for r in rows}) >= 8  # the scripts that record figures did
     path = tmp_path / "bench.jsonl"
     path.write_text("".join(json.dumps(r) + "\n" for r in rows))
