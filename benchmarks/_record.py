@@ -6,8 +6,10 @@ to that file, and ``benchmarks/summary.py`` renders all of them as one table at 
 Without the variable :func:`record` does nothing, so a script run by hand behaves as before.
 
 Every script also has a smoke mode (``--smoke`` on its command line, or ``PUMPLINK_BENCH_SMOKE=1``
-in the environment): the smallest size, one repeat, every code path of the full run taken once and
-no target judged (its figures are recorded with ``met`` null).  ``make test`` runs each script so
+in the environment): the smallest size, one repeat, each measurement of the full run taken once
+(every spec, command and backend it runs; only the pinned old install of bench_grid_baseline.py is
+left out, and pylinkage where it is not installed) and no target judged (its figures are recorded
+with ``met`` null).  ``make test`` runs each script so
 (tests/test_benchmarks_smoke.py), so a moved API cannot silently break ``make bench``.
 
 A line: ``{"script", "name", "value", "unit", "target", "met", "note", "load"}``; ``target``
