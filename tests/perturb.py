@@ -38,6 +38,8 @@ from __future__ import annotations
 
 import atexit
 import functools
+import importlib.abc
+import importlib.util
 import json
 import os
 import sys
@@ -205,36 +207,65 @@ def _solve_ivp(original):
     return solve_ivp
 
 
+#: What to replace in each module, by the module's name: (attribute, wrapper maker, counted as).
+PATCHES = {
+    "scipy.optimize": [
+        ("minimize", _minimize),
+        ("differential_evolution", _differential_evolution),
+        ("brentq", _brentq),
+        ("fsolve", _fsolve),
+        ("minimize_scalar", _minimize_scalar),
+    ],
+    "scipy.optimize.elementwise": [
+        ("find_root", _find_root),
+        ("find_minimum", lambda f: _find_minimum(f, "find_minimum")),
+    ],
+    "scipy.integrate": [("solve_ivp", _solve_ivp)],
+    "pumplink.mechanisms.bracket": [("find_minimum", lambda f: _find_minimum(f, "bracket.find_minimum"))],
+}
+
+
+def _patch(module) -> None:
+    for name, make in PATCHES[module.__name__]:
+        original = getattr(module, name)
+        ours = make(original)
+        setattr(module, name, ours)
+        for other in list(sys.modules.values()):  # pumplink modules that imported it by name already
+            if (
+                getattr(other, "__name__", "").startswith("pumplink.")
+                and getattr(other, name, None) is original
+            ):
+                setattr(other, name, ours)
+
+
+class _Patcher(importlib.abc.MetaPathFinder):
+    """Patches each module of :data:`PATCHES` as it is imported: nothing is imported early (scipy's
+    optimisers cost a third of a second to import, and most commands never load them)."""
+
+    def find_spec(self, fullname, path, target=None):
+        if fullname not in PATCHES:
+            return None
+        sys.meta_path.remove(self)
+        try:
+            spec = importlib.util.find_spec(fullname)
+        finally:
+            sys.meta_path.insert(0, self)
+        run = spec.loader.exec_module
+
+        def exec_module(module):
+            run(module)
+            _patch(module)
+
+        spec.loader.exec_module = exec_module
+        return spec
+
+
 def install() -> None:
-    """Replace the solvers (before or after pumplink's modules are imported)."""
-    import scipy.integrate
-    import scipy.optimize
-    import scipy.optimize.elementwise
-
-    import pumplink.mechanisms.bracket as bracket
-
-    for module, name, make in (
-        (scipy.optimize, "minimize", _minimize),
-        (scipy.optimize, "differential_evolution", _differential_evolution),
-        (scipy.optimize, "brentq", _brentq),
-        (scipy.optimize, "fsolve", _fsolve),
-        (scipy.optimize, "minimize_scalar", _minimize_scalar),
-        (scipy.optimize.elementwise, "find_root", _find_root),
-        (scipy.integrate, "solve_ivp", _solve_ivp),
-    ):
-        setattr(module, name, make(getattr(module, name)))
-    scipy.optimize.elementwise.find_minimum = _find_minimum(
-        scipy.optimize.elementwise.find_minimum, "find_minimum"
-    )
-    original = bracket.find_minimum
-    ours = _find_minimum(original, "bracket.find_minimum")
-    bracket.find_minimum = ours
-    for module in list(sys.modules.values()):  # modules that imported it by name already
-        if (
-            getattr(module, "__name__", "").startswith("pumplink.")
-            and getattr(module, "find_minimum", None) is original
-        ):
-            module.find_minimum = ours
+    """Replace the solvers: those already imported now, the others as they are imported."""
+    for name in PATCHES:
+        if name in sys.modules:
+            _patch(sys.modules[name])
+    sys.meta_path.insert(0, _Patcher())
     path = os.environ.get("PUMPLINK_PERTURB_COUNTS")
     if path:
         atexit.register(_write_counts, Path(path))

@@ -99,8 +99,8 @@ def optimize_row(res: OptimizationResult) -> dict[str, Any]:
         "improvement_pct": None if gain is None else searched(100 * gain / float(s.objective[0])),
         "tolerance": tol,
         "constraints": [
-            {"name": n, "unit": u, "slack": slack(g, n in res.binding, tol), "binding": n in res.binding}
-            for n, u, g in zip(names, res.constraint_units, b.slack[:, 0])
+            {"name": n, "unit": u, "slack": slack(g, n in res.binding, tol, f), "binding": n in res.binding}
+            for n, u, g, f in zip(names, res.constraint_units, b.slack[:, 0], res.constrained)
         ],
         "binding": list(res.binding) + list(res.at_bounds),
         "evaluations": res.evaluations,
@@ -226,7 +226,7 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
         for h in ("constraint", "slack", "binding"):
             t.add_column(h, justify="right" if h == "slack" else "left")
         for k in row["constraints"]:
-            value = "0" if k["binding"] else optimum_text(k["slack"], tol)
+            value = _f(k["slack"], "{:g}")  # rounded in the row: to the figure's last decimal, 0 if it binds
             t.add_row(k["name"], f"{value} {k['unit']}", "[bold]binds[/]" if k["binding"] else "")
         c.print(t)
         if row["objective"] == "flow":

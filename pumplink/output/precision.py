@@ -19,8 +19,10 @@ solver's path moves (another processor's rounding moves it); every view rounds i
   there (the optimum's forces, heights and angles).  They keep floor(-log10 sqrt(tol)) digits
   (:func:`at_optimum`; 4 for the search's 1e-8): the square root is the worst case, and the
   optimum's coordinates usually sit on the search's limits, held there far more sharply;
-* a constraint that binds at a searched optimum has slack 0: its computed slack is below the
-  search's binding tolerance, the solver's noise (:func:`slack`);
+* a constraint's slack at a searched optimum is the figure it bounds (a grip height, an angle)
+  less its limit: it keeps that figure's last decimal (:func:`difference`), and a constraint that
+  binds has slack 0: its computed slack is below the search's binding tolerance, the solver's
+  noise (:func:`slack`);
 * a residual at or below the tolerance it is checked against is 0, "within" that tolerance
   (:func:`residual`): it says the check holds, and its digits are the integrator's noise.
 
@@ -91,19 +93,33 @@ def at_optimum(x, tol: float) -> float | None:
     return significant(x, optimum_digits(tol))
 
 
+def _decimals(scale, tol: float) -> int | None:
+    """Decimals :func:`at_optimum` gives a figure of size ``scale`` (None: no size to go by)."""
+    scale = num(scale)
+    if not scale:
+        return None
+    return optimum_digits(tol) - 1 - math.floor(math.log10(abs(scale)))
+
+
 def difference(x, scale, tol: float) -> float | None:
-    """A difference ``x`` from a searched optimum's figure of size ``scale`` (the optimum's objective,
-    say): to the last decimal :func:`at_optimum` gives that figure, so a difference below it is 0."""
-    x, scale = num(x), num(scale)
-    if x is None or not scale:
+    """A difference ``x`` from a searched optimum's figure of size ``scale`` (the optimum's
+    objective; the figure a constraint bounds): to the last decimal :func:`at_optimum` gives that
+    figure, so a difference below it is 0.
+
+    >>> difference(0.006041, 1.323959, 1e-8)  # 1.33 m less a grip height known to 1.324 m
+    0.006
+    """
+    x, places = num(x), _decimals(scale, tol)
+    if x is None or places is None:
         return x
-    place = math.floor(math.log10(abs(scale))) - optimum_digits(tol) + 1
-    return float(round(x, -place)) + 0.0  # + 0.0: no -0.0
+    return float(round(x, places)) + 0.0  # + 0.0: no -0.0
 
 
-def slack(x, binds: bool, tol: float) -> float | None:
-    """A constraint's slack at a searched optimum: 0 where it binds, else as :func:`at_optimum`."""
-    return 0.0 if binds else at_optimum(x, tol)
+def slack(x, binds: bool, tol: float, figure) -> float | None:
+    """A constraint's slack at a searched optimum: 0 where it binds, else to the last decimal of
+    the figure the constraint bounds (:func:`difference`; the figure itself for a slack that is
+    one)."""
+    return 0.0 if binds else difference(x, figure, tol)
 
 
 def residual(x, tolerance: float) -> float | None:

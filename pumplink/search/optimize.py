@@ -236,6 +236,20 @@ class OptimizationResult:
         return tuple(self.problem.constraint_units())
 
     @property
+    def constrained(self) -> tuple[float, ...]:
+        """The figure each constraint bounds at the optimum, in :meth:`Problem.constraint_names`
+        order: the transmission angle [deg], the grip heights and the stroke [m], the builds' share
+        passing; the slack itself where the slack is the figure (the crank-rocker's margin, the
+        dead-band window [deg], the verdict's relative excess).  Its size sets the decimal to which
+        the search determines the slack (pumplink.output.precision)."""
+        b = self.at_best
+        figures = [float(g) for g in b.slack[:, 0]]
+        figures[1:6] = [b.transmission[0], b.grip_low[0], b.grip_high[0], b.stroke[0], b.stroke[0]]
+        if self.problem.robust is not None:
+            figures[-1] += self.problem.robust.target
+        return tuple(float(f) for f in figures)
+
+    @property
     def spec_violates(self) -> tuple[str, ...]:
         """The constraints the spec's own design misses (empty: it meets them all)."""
         names = self.problem.constraint_names()

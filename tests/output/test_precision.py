@@ -17,10 +17,19 @@ from pumplink.output.optimize import improvement_line
 
 def test_a_binding_slack_is_zero_whatever_noise_the_solver_left():
     for noise in (4.223e-11, 7.961e-11, 7.853e-10, 5.294e-13, 0.0):
-        assert p.slack(noise, True, 1e-8) == 0.0
-    # a slack that does not bind is a figure of the optimum: 4 significant digits at tol 1e-8
-    assert p.slack(0.2960254037294491, False, 1e-8) == 0.296
-    assert p.slack(48.166240100932306, False, 1e-8) == 48.17
+        assert p.slack(noise, True, 1e-8, 1.33 - noise) == 0.0
+
+
+def test_a_slack_keeps_the_last_decimal_of_the_figure_it_bounds():
+    # the lowest grip height 1.196 m (4 significant digits at tol 1e-8) above 0.9 m: 0.296 m
+    assert p.slack(0.2960254037294491, False, 1e-8, 1.196025403729449) == 0.296
+    # a slack that is its own figure (the crank-rocker's margin [deg]): 4 significant digits
+    assert p.slack(48.166240100932306, False, 1e-8, 48.166240100932306) == 48.17
+    # the village well's highest grip height, 1.33 m less 1.3239585 m here, 1.3239659 m with
+    # OPENBLAS_CORETYPE=Haswell (0.006041 and 0.006034 m at 4 significant digits): the grip height
+    # is known to 1.324 m, so the slack to the millimetre
+    for grip in (1.3239585437748773, 1.3239659):
+        assert p.slack(1.33 - grip, False, 1e-8, grip) == 0.006
 
 
 def test_an_optimum_keeps_the_digits_the_square_root_of_its_tolerance_leaves():
