@@ -47,7 +47,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pumplink.constants import GRAVITY
+from pumplink.constants import GRAVITY, RELEASE_RTOL
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.fourbar import FourBar, kinematic_state
 from pumplink.models import Masses
@@ -56,7 +56,7 @@ from pumplink.models import Masses
 #: empties in about 4 s).
 HORIZON = 60.0
 #: Relative tolerance of the integration.
-RTOL = 1e-10
+RTOL = RELEASE_RTOL
 #: Dense-output samples per crank radian turned on which the grip's peak speed is searched before
 #: it is refined (the grip speed has two humps per crank turn: about 40 samples per hump).
 PEAK_SAMPLES_PER_RAD = 12

@@ -15,6 +15,7 @@ import numpy as np
 
 from pumplink.output.formats import console, deg, num, render
 from pumplink.output.formats import fmt as _f
+from pumplink.output.precision import EXTREMUM_ARGUMENT, known_text, known_to, residual
 
 if TYPE_CHECKING:
     from pumplink.studies.force import ForceResult
@@ -65,7 +66,7 @@ def force_summary(r: ForceResult) -> dict[str, Any]:
             "peak_force_N": num(r.verdict_peak_force),
             "peak_force_infinite": bool(r.verdict_peak_force == math.inf),
             "dead_band_peak_force_N": num(r.dead_band_peak_force),
-            "dead_band_peak_crank_deg": deg(r.dead_band_peak_angle),
+            "dead_band_peak_crank_deg": known_to(deg(r.dead_band_peak_angle), EXTREMUM_ARGUMENT),
             "sampled_peak_force_N": num(r.sampled_peak),
             "samples_n": r.samples_n,
             "verdict": r.outcome,
@@ -460,17 +461,21 @@ _STATIC_KEYS = ("angles", "virtual_work", "samples", "sweep_peak_force_N", "peak
 
 def verify_row(v) -> dict[str, Any]:
     """The solve_ivp cross-check (:class:`pumplink.studies.verify.Verification`) as a row."""
-    sim = v.integration
+    sim, tol = v.integration, v.tolerance
+
+    def known(x):  # an integration in time from the reported motion: settled to the check's tolerance
+        return known_to(x, tol)
+
     return {
         "method": "scipy solve_ivp (DOP853, rtol 1e-11), open-loop force profile F(θ2)",
         "cycles": sim.cycles,
-        "periodicity": num(sim.periodicity),
-        "mean_speed_deg_s": deg(sim.mean_speed),
-        "time_mean_speed_deg_s": deg(sim.time_mean_speed),
-        "speed_range_deg_s": {"min": deg(sim.min_speed), "max": deg(sim.max_speed)},
-        "fluctuation": num(sim.fluctuation),
+        "periodicity": residual(sim.periodicity, tol),
+        "mean_speed_deg_s": known(deg(sim.mean_speed)),
+        "time_mean_speed_deg_s": known(deg(sim.time_mean_speed)),
+        "speed_range_deg_s": {"min": known(deg(sim.min_speed)), "max": known(deg(sim.max_speed))},
+        "fluctuation": known(sim.fluctuation),
         **dict.fromkeys(_STATIC_KEYS),
-        "tolerance": v.tolerance,
+        "tolerance": tol,
         "agrees": v.agrees,
     }
 
@@ -480,7 +485,7 @@ def static_verify_row(v) -> dict[str, Any]:
     return {
         "method": "virtual work from positions (central differences) and a dense sweep",
         "angles": v.angles,
-        "virtual_work": num(v.virtual_work),
+        "virtual_work": residual(v.virtual_work, v.tolerance),
         "samples": v.samples,
         "sweep_peak_force_N": num(v.sweep_peak),
         "peak_force_N": num(v.peak),
@@ -495,7 +500,8 @@ def render_verify(row: dict[str, Any], out=None) -> None:
     if row["cycles"] is None:  # the quasi-static model
         ok = "[bold green]agrees[/]" if row["agrees"] else "[bold red]DISAGREES[/]"
         c.print(
-            f"verify (quasi-static: {row['method']}): {ok} — F·dPx/dθ2 = Mw to {row['virtual_work']:.1e} "
+            f"verify (quasi-static: {row['method']}): {ok} — F·dPx/dθ2 = Mw "
+            f"{_within(row['virtual_work'], row['tolerance'])} "
             f"at {row['angles']} crank angles; {row['samples']:,} samples outside the dead bands peak at "
             f"{row['sweep_peak_force_N']:.3f} N, the exact peak {row['peak_force_N']:.3f} N"
         )
@@ -503,9 +509,15 @@ def render_verify(row: dict[str, Any], out=None) -> None:
     ok = "[bold green]agrees[/]" if row["agrees"] else "[bold red]DISAGREES[/]"
     c.print(
         f"verify ({row['method']}, {row['cycles']} revolutions): {ok} — "
-        f"periodic to {row['periodicity']:.1e}, "
-        f"mean speed (max+min)/2 = {row['mean_speed_deg_s']:.4f} deg/s, "
-        f"fluctuation δ = {row['fluctuation']:.6f}, "
+        f"periodic {_within(row['periodicity'], row['tolerance'])}, "
+        f"mean speed (max+min)/2 = {known_text(row['mean_speed_deg_s'], row['tolerance'])} deg/s, "
+        f"fluctuation δ = {known_text(row['fluctuation'], row['tolerance'])}, "
         f"wheel {row['speed_range_deg_s']['min']:.1f}–{row['speed_range_deg_s']['max']:.1f} deg/s "
         f"(time-averaged {row['time_mean_speed_deg_s']:.1f} deg/s)"
     )
+
+
+def _within(value: float, tolerance: float) -> str:
+    """A checked residual in words: 'to within 1e-06' where it is 0 (at or below the tolerance,
+    :func:`pumplink.output.precision.residual`), else 'to 3.2e-05'."""
+    return f"to within {tolerance:g}" if value == 0 else f"to {value:.1e}"

@@ -12,10 +12,11 @@ from typing import TYPE_CHECKING, Any
 
 from pumplink.output.formats import console, deg, num, render
 from pumplink.output.formats import fmt as _f
+from pumplink.output.precision import known_to, to_bracket
 
 if TYPE_CHECKING:
     from pumplink.studies.speed import SpeedSweep
-from pumplink.constants import MODEL_WORDS
+from pumplink.constants import CADENCE_RTOL, MODEL_WORDS, PASSING_SPEED_RTOL
 from pumplink.output.synth import design_row
 from pumplink.output.words import L_PER_MIN
 
@@ -59,18 +60,28 @@ def speed_rows(sw: SpeedSweep) -> list[dict[str, Any]]:
 def cadence_row(c) -> dict[str, Any]:
     """The best cadence and the passing speeds (:class:`pumplink.studies.speed.Cadence`) as JSON."""
 
+    # the best speed and what is read there to its search's tolerance, the ends of the passing
+    # speeds to their roots' brackets (pumplink.output.precision)
+    width = PASSING_SPEED_RTOL * math.degrees(c.speed)
+
     def rng(pair):
         lo, hi = pair
         if not math.isfinite(lo):
             return None
-        return {"min": deg(lo), "max": deg(hi) if math.isfinite(hi) else None}
+        return {
+            "min": to_bracket(deg(lo), width),
+            "max": to_bracket(deg(hi), width) if math.isfinite(hi) else None,
+        }
+
+    def known(x):
+        return known_to(x, CADENCE_RTOL)
 
     return {
-        "speed_deg_s": deg(c.speed),
-        "rpm": num(math.degrees(c.speed) / 6.0),
-        "effort_peak_force_N": num(c.effort),
-        "hand_peak_force_N": num(c.hand_force),
-        "power_W": num(c.power),
+        "speed_deg_s": known(deg(c.speed)),
+        "rpm": known(math.degrees(c.speed) / 6.0),
+        "effort_peak_force_N": known(c.effort),
+        "hand_peak_force_N": known(c.hand_force),
+        "power_W": known(c.power),
         "at_edge_of_search": c.at_edge,
         "searched_deg_s": {"min": deg(c.searched[0]), "max": deg(c.searched[1])},
         "model": MODEL_WORDS[c.model],

@@ -10,8 +10,9 @@ import math
 import sys
 from typing import TYPE_CHECKING, Any
 
-from pumplink.constants import MODEL_WORDS
+from pumplink.constants import MODEL_WORDS, RELEASE_SETTLED
 from pumplink.output.formats import console, deg, num
+from pumplink.output.precision import known_to
 
 if TYPE_CHECKING:
     from pumplink.studies.workshop import Workshop
@@ -64,18 +65,22 @@ def release_row(both) -> dict[str, Any] | None:
     if both is None:
         return None
     r, f = both
-    known = r.reverses or not r.stopped_early  # (stopped early still turning forward: not known)
+
+    def known(x):  # an integration in time: to its global error (pumplink.output.precision)
+        return known_to(x, RELEASE_SETTLED)
+
+    stopped = r.reverses or not r.stopped_early  # (stopped early still turning forward: not known)
     return {
-        "needs_ratchet_or_brake": bool(r.reverses) if known else None,
-        "stop_time_s": num(r.stop_time),
-        "reverses": r.reverses if known else None,
-        "grip_speed_1s_m_s": num(r.grip_speed_1s),
-        "peak_grip_speed_m_s": num(r.peak_grip_speed),
-        "peak_time_s": num(r.peak_time),
+        "needs_ratchet_or_brake": bool(r.reverses) if stopped else None,
+        "stop_time_s": known(r.stop_time),
+        "reverses": r.reverses if stopped else None,
+        "grip_speed_1s_m_s": known(r.grip_speed_1s),
+        "peak_grip_speed_m_s": known(r.peak_grip_speed),
+        "peak_time_s": known(r.peak_time),
         "end": r.end_reason,
-        "end_time_s": num(r.end_time),
+        "end_time_s": known(r.end_time),
         "stopped_early": r.stopped_early or f.stopped_early,
-        "peak_grip_speed_without_losses_m_s": num(f.peak_grip_speed),
+        "peak_grip_speed_without_losses_m_s": known(f.peak_grip_speed),
     }
 
 
