@@ -9,7 +9,8 @@ run after the first finds it (unless PYTHONDONTWRITEBYTECODE is set).
 
 Targets: >= 30 M crank positions/s for kinematics + force; `pumplink synth SPEC`,
 `pumplink force SPEC --summary` and `pumplink force SPEC` (360 samples) <= 0.25 s wall;
-`pumplink --help` < 0.5 s.  Run with `make bench` (figures also go to its summary table).
+`pumplink --help` < 0.5 s.  Run with `make bench` (figures also go to its summary table);
+``--smoke``: one round, sweeps of a few thousand positions, no target judged (benchmarks/_record.py).
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from _record import machine, record
+from _record import machine, record, repeats, smoke
 
 from pumplink.inputs.pump import default_spec
 from pumplink.mechanisms.angles import offset_table, shifted_directions
@@ -59,9 +60,15 @@ assert np.nanmax(np.abs(np.hypot(xy[:, 0] - px, xy[:, 1] - py) - rocker)) < 1e-9
 """
 
 
+def positions(n: int) -> str:
+    """A count of crank positions as the figures' names say it: "5 M", or "24,576" below a million."""
+    return f"{n / 1e6:g} M" if n >= 1_000_000 else f"{n:,}"
+
+
 def median_time(fn, repeat=7):
+    """Median wall time [s] of ``repeat`` calls (one in a smoke run)."""
     ts = []
-    for _ in range(repeat):
+    for _ in range(repeats(repeat)):
         t0 = time.perf_counter()
         fn()
         ts.append(time.perf_counter() - t0)
@@ -102,7 +109,7 @@ def kernels(lk, mw) -> None:
     )
     record("full state (evaluate) of a 3600-angle sweep", t * 1e3, "ms")
 
-    n, chunk = 5_000_000, 8192
+    n, chunk = (3 * 8192 if smoke() else 5_000_000), 8192  # a smoke run: three chunks, the last one full
     step = 2 * np.pi / n
     table, work = offset_table(step, chunk), kernel_work((chunk,))
 
@@ -115,10 +122,16 @@ def kernels(lk, mw) -> None:
     t = median_time(stream)
     rate = n / t / 1e6
     print(
-        f"kinematics + force, 5 M positions streamed (one design):  {t * 1e3:8.1f} ms  "
+        f"kinematics + force, {positions(n)} positions streamed (one design):  {t * 1e3:8.1f} ms  "
         f"({rate:6.1f} M positions/s; target >= 30)"
     )
-    record("kinematics + force, 5 M positions streamed, one design", rate, "M/s", ">= 30 M/s", rate >= 30)
+    record(
+        f"kinematics + force, {positions(n)} positions streamed, one design",
+        rate,
+        "M/s",
+        ">= 30 M/s",
+        rate >= 30,
+    )
 
 
 def startup() -> None:
@@ -132,9 +145,10 @@ def startup() -> None:
         f"pumplink force {cfg}": [EXE, "force", cfg],
     }
     os.chdir(ROOT)
-    t = interleaved(cases, STARTUP_ROUNDS)
+    rounds = repeats(STARTUP_ROUNDS)
+    t = interleaved(cases, rounds)
     numpy_s, numpy_cpu = t['python -c "import numpy"']
-    print(f"start-up, median of {STARTUP_ROUNDS} interleaved rounds (cwd: the repository); wall, CPU,")
+    print(f"start-up, median of {rounds} interleaved rounds (cwd: the repository); wall, CPU,")
     print("and both as multiples of python -c 'import numpy' measured in the same rounds:")
     for label, (s, cpu) in t.items():
         if label.startswith("python"):
@@ -152,8 +166,9 @@ def startup() -> None:
 
 
 def end_to_end(lk) -> None:
-    """The 5-million-position sweep as a user runs it (start-up included) against pylinkage's."""
-    n = 5_000_000
+    """The 5-million-position sweep as a user runs it (start-up included) against pylinkage's (a
+    smoke run: 1,000 positions)."""
+    n = 1_000 if smoke() else 5_000_000
     cases = {"pumplink": [EXE, "force", "--samples", str(n), "--summary"]}
     try:
         import pylinkage  # noqa: F401
@@ -162,8 +177,9 @@ def end_to_end(lk) -> None:
     else:
         geometry = [repr(float(v)) for v in (lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker)]
         cases["pylinkage"] = [sys.executable, "-c", PYLINKAGE, *geometry, str(n)]
-    t = {k: wall for k, (wall, _) in interleaved(cases, 5).items()}
-    print("5 M crank positions end to end, wall, median of 5 interleaved rounds:")
+    rounds = repeats(5)
+    t = {k: wall for k, (wall, _) in interleaved(cases, rounds).items()}
+    print(f"{positions(n)} crank positions end to end, wall, median of {rounds} interleaved rounds:")
     print(f"  pumplink force --samples {n} --summary                 {t['pumplink']:6.3f} s (B + force)")
     record(f"pumplink force --samples {n} --summary, end to end", t["pumplink"], "s")
     if "pylinkage" in t:
@@ -171,7 +187,7 @@ def end_to_end(lk) -> None:
         print(f"  pylinkage step_fast process (numba; positions only)      {t['pylinkage']:6.3f} s")
         print(f"  pylinkage / pumplink:                                    {ratio:6.1f}x")
         record(
-            "pylinkage step_fast process / pumplink, 5 M positions",
+            f"pylinkage step_fast process / pumplink, {positions(n)} positions",
             ratio,
             "x",
             note=f"pylinkage {t['pylinkage']:.2f} s (positions only, numba); kernels alone: bench_methods",

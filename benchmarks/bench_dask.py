@@ -16,7 +16,10 @@ extrapolation to 10 million variants; the quasi-static grid is also written as P
 size against the CSV.  The driver renders every row (the workers send arrays), so its rendering
 time per variant, timed in this process, bounds how many workers one run can feed.
 
-    .venv/bin/python benchmarks/bench_dask.py [--repeat 3] [--quick]
+    .venv/bin/python benchmarks/bench_dask.py [--repeat 3] [--quick] [--smoke]
+
+``--smoke``: every run once on a thousandth of each grid (``--chunk 1/1000``, 27 variants), Dask
+with one worker (``local:1``, the cheapest cluster to start), no target judged (benchmarks/_record.py).
 
 Target: Dask costs no more CPU per variant than the local pool on the same grid (ratio <= 1.05:
 the spread of repeated runs on this machine), beyond the fixed cost of starting each backend,
@@ -41,11 +44,13 @@ from pathlib import Path
 import tomli_w
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _record import machine, record  # noqa: E402
+from _record import SMOKE_HELP, judged, machine, record, repeats, smoke  # noqa: E402
 from bench_batch import WRAPPER, free_cores  # noqa: E402  (one measuring wrapper: wall, CPU)
 from bench_core import ROOT  # noqa: E402
 
 GRID = ROOT / "configs" / "grids" / "design-space.toml"
+#: The Dask cluster measured: two workers as the local pool has, one in a smoke run.
+DASK = "local:1" if smoke() else "local:2"
 #: Measurement spread allowed by the target (repeated runs here differ by a few per cent).
 TOLERANCE = 1.05
 
@@ -83,7 +88,7 @@ def grid_copies(folder: Path) -> tuple[Path, Path]:
 
 def render_costs(grid: Path) -> dict[str, float]:
     """Seconds per variant the driver spends turning chunks into rows, by format (a twelfth of the
-    inertia grid, evaluated here first)."""
+    inertia grid, evaluated here first; a smoke run: a thousandth)."""
     import time
 
     from pumplink import batch as B
@@ -91,7 +96,7 @@ def render_costs(grid: Path) -> dict[str, float]:
 
     batches = B.load_inputs([grid])
     vkeys = rb.varied_keys(batches)
-    chunks = [c for c, _ in B.run(batches, 360, (1, 12))]
+    chunks = [c for c, _ in B.run(batches, 360, (1, 1000 if smoke() else 12))]
     n = sum(len(c) for c in chunks)
     out = {}
     for fmt, render in (
@@ -111,9 +116,10 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--quick", action="store_true", help="a third of each grid (--chunk 1/3), one run")
+    ap.add_argument("--smoke", action="store_true", help=SMOKE_HELP)
     args = ap.parse_args()
-    repeat = 1 if args.quick else args.repeat
-    chunk = ["--chunk", "1/3"] if args.quick else []
+    repeat = 1 if args.quick else repeats(args.repeat)
+    chunk = ["--chunk", "1/1000"] if smoke() else ["--chunk", "1/3"] if args.quick else []
     print(f"machine: {machine()}; shared with other jobs, cores free for us: {free_cores():.1f}")
     verdicts, verdicts_per = [], []
     with tempfile.TemporaryDirectory() as tmp:
@@ -121,14 +127,14 @@ def main() -> None:
         two = [str(ROOT / "configs" / "prototype.toml"), str(ROOT / "configs" / "women-operators-6m.toml")]
         fixed: dict[str, list[dict]] = {}
         for _ in range(repeat):
-            for name, opts in (("pool", ["--workers", "2"]), ("dask", ["--scheduler", "local:2"])):
+            for name, opts in (("pool", ["--workers", "2"]), ("dask", ["--scheduler", DASK])):
                 cmd = [sys.executable, "-m", "pumplink", "batch", *two, "--format", "csv", *opts]
                 fixed.setdefault(name, []).append(measure([*cmd, "--out", str(tmp / "two.csv")]))
         start = {k: statistics.median(r["cpu"] for r in v) for k, v in fixed.items()}
         walls = {k: statistics.median(r["wall"] for r in v) for k, v in fixed.items()}
         print(
             f"fixed cost (2 variants, 2 tasks): pool --workers 2 wall {walls['pool']:.2f} s CPU "
-            f"{start['pool']:.2f} s; Dask local:2 wall {walls['dask']:.2f} s CPU {start['dask']:.2f} s"
+            f"{start['pool']:.2f} s; Dask {DASK} wall {walls['dask']:.2f} s CPU {start['dask']:.2f} s"
         )
         inertia_grid, quasi_static_grid = grid_copies(tmp)
         for label, grid in (("quasi-static", quasi_static_grid), ("inertia", inertia_grid)):
@@ -138,7 +144,7 @@ def main() -> None:
                     [sys.executable, "-m", "pumplink", "batch", *b, "--workers", "2"] + ["--out", out]
                 ),
                 "dask": lambda out, b=base: (
-                    [sys.executable, "-m", "pumplink", "batch", *b] + ["--scheduler", "local:2", "--out", out]
+                    [sys.executable, "-m", "pumplink", "batch", *b] + ["--scheduler", DASK, "--out", out]
                 ),
             }
             if label == "inertia":
@@ -146,7 +152,7 @@ def main() -> None:
                     [sys.executable, "-c", UNTUNED, "batch", *b]
                     + [
                         "--scheduler",
-                        "local:2",
+                        DASK,
                         "--out",
                         out,
                     ]
@@ -165,13 +171,13 @@ def main() -> None:
             (pw, pc), (dw, dc) = med["pool"], med["dask"]
             print(
                 f"{label} grid, {n:,} variants, CSV identical: pool --workers 2 wall {pw:.2f} s CPU "
-                f"{pc:.2f} s; Dask local:2 wall {dw:.2f} s CPU {dc:.2f} s; Dask/pool CPU {dc / pc:.2f}x, "
+                f"{pc:.2f} s; Dask {DASK} wall {dw:.2f} s CPU {dc:.2f} s; Dask/pool CPU {dc / pc:.2f}x, "
                 f"wall {dw / pw:.2f}x (medians of {repeat})"
             )
             if "untuned" in med:
                 uw, uc = med["untuned"]
                 print(
-                    f"{label} grid, Dask local:2 without the workers' malloc tuning: wall {uw:.2f} s CPU "
+                    f"{label} grid, Dask {DASK} without the workers' malloc tuning: wall {uw:.2f} s CPU "
                     f"{uc:.2f} s; the tuning saves {100 * (1 - dc / uc):.0f} % of Dask's CPU time"
                 )
                 record(
@@ -181,7 +187,7 @@ def main() -> None:
                     note="Dask's MALLOC_TRIM_THRESHOLD_=65536 pins glibc's mmap threshold at 128 kB",
                 )
             record(
-                f"Dask local:2 / pool --workers 2, CPU of the whole run, {label} grid ({n:,} variants)",
+                f"Dask {DASK} / pool --workers 2, CPU of the whole run, {label} grid ({n:,} variants)",
                 dc / pc,
                 "x",
                 note=f"CPU {dc:.1f} s against {pc:.1f} s; wall {dw:.1f} s against {pw:.1f} s; start-up "
@@ -229,10 +235,10 @@ def main() -> None:
         f"writing Parquet, {per_variant / (cost['CSV'] + cost['JUnit']):.0f} writing CSV and JUnit"
     )
     for label, ratio in verdicts:
-        met = "yes" if ratio <= TOLERANCE else "no"
+        met = judged(ratio <= TOLERANCE)
         print(
             f'target "Dask costs no more CPU per variant than the local pool" ({label} grid, beyond '
-            f"the start-up, ratio {ratio:.2f} <= {TOLERANCE}): met {met}"
+            f"the start-up, ratio {ratio:.2f} <= {TOLERANCE}): met: {met}"
         )
     print(
         "(the fixed cost of starting Dask's scheduler and worker processes is the difference on a short "

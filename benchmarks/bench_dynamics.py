@@ -4,7 +4,8 @@ Medians over repeated runs in one process.  Targets: one design's Fp* in <= 5 ms
 >= 10,000 designs/s per core.  The figure judged is the CPU time of this (single-threaded) process,
 i.e. per core: on a shared machine the wall clock, printed beside it, also counts the time other
 processes hold the core (on an idle machine the two agree).  Each line says the figure, the
-target and whether it is met.  Run with `make bench`.
+target and whether it is met.  Run with `make bench`; ``--smoke``: 20 designs, one run each, no
+target judged (benchmarks/_record.py).
 """
 
 from __future__ import annotations
@@ -17,13 +18,14 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _record import machine, record  # noqa: E402
+from _record import judged, machine, record, smoke  # noqa: E402
 from bench_core import ROOT  # noqa: E402
 
+from pumplink.evaluate import motion  # noqa: E402
 from pumplink.inputs.pump import load_spec  # noqa: E402
 from pumplink.mechanisms.fourbar import synthesize  # noqa: E402
 from pumplink.models import dynamics as dy  # noqa: E402
-from pumplink.studies.force import design, force_analysis, link_masses
+from pumplink.studies.force import force_analysis  # noqa: E402
 from pumplink.studies.speed import cadence  # noqa: E402
 
 EXAMPLE = ROOT / "examples" / "well-12m-flywheel.toml"
@@ -31,8 +33,12 @@ BATCH = 10_000
 
 
 def timed(fn, repeat):
-    """Median wall and CPU time [s] of ``repeat`` calls (after one warm-up call)."""
-    fn()
+    """Median wall and CPU time [s] of ``repeat`` calls (after one warm-up call; a smoke run: one
+    call)."""
+    if smoke():
+        repeat = 1
+    else:
+        fn()
     wall, cpu = [], []
     for _ in range(repeat):
         t0, c0 = time.perf_counter(), time.process_time()
@@ -44,7 +50,7 @@ def timed(fn, repeat):
 
 def line(label, figure, target, met, value=float("nan"), unit=""):
     """One line per target, and its figure for `make bench`'s summary table (benchmarks/_record.py)."""
-    print(f"{label}: {figure}; target {target}; met: {'yes' if met else 'NO'}")
+    print(f"{label}: {figure}; target {target}; met: {judged(met)}")
     record(label, value, unit, target, met, figure)
 
 
@@ -80,10 +86,11 @@ def batch_designs(spec, n, seed=12):
 def main() -> None:
     print(f"machine: {machine()}")
     spec = load_spec(EXAMPLE)
-    syn = design(spec).synthesis
-    lk, mw, j = syn.linkage, spec.wheel_torque, spec.inertia
+    r = force_analysis(spec, keep_samples=False)
+    syn, lk = motion.at_design(r.evaluation)
+    mw, j = spec.wheel_torque, spec.inertia
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
-    ms = link_masses(spec, float(syn.coupler_length), arms=False)
+    ms = motion.link_masses_of(r.evaluation, arms=False)  # the hand force: no arms at the grip
     w = np.radians(spec.operator.speed)
     wall, cpu = timed(lambda: dy.least_peak_force(lk, dce, dcf, mw, j, ms, w, 0.2), 51)
     line(
@@ -94,7 +101,7 @@ def main() -> None:
         cpu * 1e3,
         "ms CPU",
     )
-    args = batch_designs(spec, BATCH)
+    args = batch_designs(spec, 20 if smoke() else BATCH)
     n = args[0].crank.size
     wall, cpu = timed(lambda: dy.least_peak_force(*args), 5)
     line(
@@ -105,7 +112,6 @@ def main() -> None:
         n / cpu,
         "designs/s per core",
     )
-    r = force_analysis(spec, keep_samples=False)
     wall, cpu = timed(lambda: cadence(r), 5)
     print(
         f"best cadence and passing speeds (12 m example): cpu {cpu * 1e3:.0f} ms (wall {wall * 1e3:.0f} ms)"

@@ -6,7 +6,9 @@ previous kernel, kept in pumplink.models.flywheel) and the quasi-static windowed
 Targets: one design <= 2 ms (wall); >= 20,000 designs/s per core vectorised (designs per second of
 this process's CPU time, so that other jobs on the machine do not count; the wall figure is
 printed beside it); the answers of the reference route to 1e-9 relative.  Each target gives one
-line starting with ``RESULT``: figure, target, met yes/no.  Run with `make bench`.
+line starting with ``RESULT``: figure, target, met yes/no.  Run with `make bench`; ``--smoke``:
+a few dozen designs, one run each, one revolution integrated, every command once, no target judged
+(benchmarks/_record.py).
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _record import machine, result
+from _record import machine, repeats, result, smoke  # noqa: E402
 from bench_core import EXE, ROOT, median_time  # noqa: E402
 
 from pumplink.inputs.pump import load_spec  # noqa: E402
@@ -37,12 +39,20 @@ DEAD_BAND = np.radians(20)
 def wall_and_cpu(fn, repeat):
     """Medians of the wall time and of this process's CPU time over ``repeat`` runs [s]."""
     wall, cpu = [], []
-    for _ in range(repeat):
+    for _ in range(repeats(repeat)):
         w0, c0 = time.perf_counter(), time.process_time()
         fn()
         wall.append(time.perf_counter() - w0)
         cpu.append(time.process_time() - c0)
     return statistics.median(wall), statistics.median(cpu)
+
+
+def run_command(args: list[str]) -> None:
+    """One run of a pumplink command, its output discarded; exit 0 or 1 (the verdict), anything
+    else (bad input: a command line out of date) stops the benchmark."""
+    p = subprocess.run(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, check=False)
+    if p.returncode not in (0, 1):
+        raise SystemExit(f"{' '.join(args)} failed ({p.returncode}):\n{p.stderr}")
 
 
 def random_designs(n: int, seed: int = 0):
@@ -77,7 +87,7 @@ def main() -> None:
     tq = median_time(lambda: dead_band_peak_force(lk, dce, dcf, DEAD_BAND, mw), 41)
     result(
         "flywheel least peak force, one design",
-        f"{t1 * 1e3:.2f} ms wall (CPU {c1 * 1e3:.2f} ms; medians of 41)",
+        f"{t1 * 1e3:.2f} ms wall (CPU {c1 * 1e3:.2f} ms; medians of {repeats(41)})",
         "<= 2 ms",
         t1 <= 2e-3,
         f"reference route {r1 * 1e3:.1f} ms: {r1 / t1:.0f}x faster; quasi-static peak {tq * 1e3:.2f} ms: "
@@ -87,17 +97,17 @@ def main() -> None:
     )
 
     # 10,000 designs in one vectorised call: the example over 10,000 bands, and 10,000 random designs
-    n = 10_000
+    n = 40 if smoke() else 10_000
     rep = FourBar(*(np.full(n, float(v)) for v in lk.parameters))
     bands = np.linspace(0.5, 15.0, n)
     wn, tn = wall_and_cpu(lambda: fw.least_peak_force(rep, dce, dcf, mw, bands), 5)
     _, tqn = wall_and_cpu(lambda: dead_band_peak_force(rep, dce, dcf, DEAD_BAND, mw), 5)
-    k = 2_000  # the reference route on a fifth of them (its rate)
+    k = n // 5  # the reference route on a fifth of them (its rate)
     part = rep.take(slice(0, k))
     _, rn = wall_and_cpu(lambda: fw._reference_least_peak_force(part, dce, dcf, mw, bands[:k]), 1)
     result(
-        "flywheel least peak force, 10,000 bands of the example vectorised",
-        f"{n / tn:,.0f} designs/s per core (CPU; wall {n / wn:,.0f}/s; medians of 5)",
+        f"flywheel least peak force, {n:,} bands of the example vectorised",
+        f"{n / tn:,.0f} designs/s per core (CPU; wall {n / wn:,.0f}/s; medians of {repeats(5)})",
         ">= 20,000/s",
         n / tn >= 20_000,
         f"reference route {k / rn:,.0f}/s: {(n / tn) / (k / rn):.0f}x faster; "
@@ -105,13 +115,13 @@ def main() -> None:
         value=n / tn,
         unit="designs/s",
     )
-    (rlk, rdce, rdcf), rmw, rband = random_designs(14_000)
+    (rlk, rdce, rdcf), rmw, rband = random_designs(56 if smoke() else 14_000)
     m = rdce.size
     wr, tr = wall_and_cpu(lambda: fw.least_peak_force(rlk, rdce, rdcf, rmw, rband), 5)
     _, trq = wall_and_cpu(lambda: dead_band_peak_force(rlk, rdce, rdcf, DEAD_BAND, rmw), 5)
     result(
         f"flywheel least peak force, {m:,} random designs vectorised",
-        f"{m / tr:,.0f} designs/s per core (CPU; wall {m / wr:,.0f}/s; medians of 5)",
+        f"{m / tr:,.0f} designs/s per core (CPU; wall {m / wr:,.0f}/s; medians of {repeats(5)})",
         ">= 20,000/s",
         m / tr >= 20_000,
         f"quasi-static peak {m / trq:,.0f}/s: flywheel / quasi-static {tr / trq:.1f}x",
@@ -137,15 +147,16 @@ def main() -> None:
     _, te = wall_and_cpu(lambda: fw.min_passing_speed(rlk, rdce, rdcf, rmw, limit, 1.0, 0.2), 5)
     print(f"slowest passing speed (energy deficit), {m:,} random designs: {m / te:,.0f} designs/s per core")
 
-    ts = median_time(lambda: fw.integrate_motion(fw.scene(lk, dce, dcf, mw, j, 2 * np.pi, 0.2)), 3)
-    print(f"scene + solve_ivp cross-check (4 revolutions): {ts:.3f} s")
+    cycles = 1 if smoke() else 4
+    ts = median_time(lambda: fw.integrate_motion(fw.scene(lk, dce, dcf, mw, j, 2 * np.pi, 0.2), cycles), 3)
+    print(f"scene + solve_ivp cross-check ({cycles} revolution{'s' * (cycles > 1)}): {ts:.3f} s")
     for label, args in (
         ("pumplink force EXAMPLE --summary", [EXE, "force", str(EXAMPLE), "--summary"]),
         ("pumplink force EXAMPLE --summary --verify", [EXE, "force", str(EXAMPLE), "--summary", "--verify"]),
         ("pumplink speed EXAMPLE (21 speeds)", [EXE, "speed", str(EXAMPLE)]),
     ):
-        t = median_time(lambda args=args: subprocess.run(args, stdout=subprocess.DEVNULL, check=False), 5)
-        print(f"{label:<44} {t:6.3f} s wall (median of 5)")
+        t = median_time(lambda args=args: run_command(args), 5)
+        print(f"{label:<44} {t:6.3f} s wall (median of {repeats(5)})")
 
 
 if __name__ == "__main__":

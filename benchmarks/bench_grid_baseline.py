@@ -6,7 +6,10 @@ commit 2cf593a (main before the restructure that made batch slower; ``make bench
 build/base-2cf593a from this repository's own history), interleaved, so load from other
 processes hits both alike; medians of ``--repeat`` runs of wall time, CPU time and peak memory.
 
-    .venv/bin/python benchmarks/bench_grid_baseline.py [--repeat 5] [--base build/base-2cf593a]
+    .venv/bin/python benchmarks/bench_grid_baseline.py [--repeat 5] [--base build/base-2cf593a] [--smoke]
+
+``--smoke``: one run of this checkout on a 2 x 2 x 2 grid, the pinned install's side skipped (it
+need not exist), no target judged (benchmarks/_record.py).
 
 Target: this checkout's median wall time at most the baseline's (ratio <= 1.0).  The baseline's
 CSV has fewer columns (it predates the verdict's checks); the figure compared is the whole run.
@@ -22,7 +25,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from _record import machine, record
+from _record import SMOKE_HELP, machine, record, repeats, smoke
 
 ROOT = Path(__file__).resolve().parents[1]
 BASE_COMMIT = "2cf593a"
@@ -30,9 +33,9 @@ BASE_COMMIT = "2cf593a"
 GRID = """\
 base = "{base}"
 [vary]
-"linkage.rocker" = {{ start = 0.15, stop = 0.30, num = 50 }}
-"linkage.swing" = {{ start = 40, stop = 80, num = 40 }}
-"load.rope_force" = {{ start = 20, stop = 65, num = 50 }}
+"linkage.rocker" = {{ start = 0.15, stop = 0.30, num = {rockers} }}
+"linkage.swing" = {{ start = 40, stop = 80, num = {swings} }}
+"load.rope_force" = {{ start = 20, stop = 65, num = {forces} }}
 """
 
 WRAPPER = r"""
@@ -55,26 +58,39 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--base", type=Path, default=ROOT / "build" / f"base-{BASE_COMMIT}")
+    ap.add_argument("--smoke", action="store_true", help=SMOKE_HELP)
     args = ap.parse_args()
     base_python = args.base / ".venv" / "bin" / "python"
-    if not base_python.exists():
+    pythons = {"this checkout": sys.executable}
+    if smoke():
+        print(
+            f"smoke run: the pinned install of {BASE_COMMIT} is not run (its side of the comparison is "
+            "skipped)"
+        )
+    elif not base_python.exists():
         raise SystemExit(
             f"no pinned install at {args.base}: run `make bench` (it builds one from {BASE_COMMIT})"
         )
+    else:
+        pythons[BASE_COMMIT] = str(base_python)
+    sizes = (
+        {"rockers": 2, "swings": 2, "forces": 2} if smoke() else {"rockers": 50, "swings": 40, "forces": 50}
+    )
+    n = sizes["rockers"] * sizes["swings"] * sizes["forces"]
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         grid = tmp / "grid.toml"
-        grid.write_text(GRID.format(base=(ROOT / "configs" / "prototype.toml").as_posix()))
-        runs: dict[str, list[dict]] = {"this checkout": [], BASE_COMMIT: []}
-        for _ in range(args.repeat):
-            for name, python in (("this checkout", sys.executable), (BASE_COMMIT, str(base_python))):
+        grid.write_text(GRID.format(base=(ROOT / "configs" / "prototype.toml").as_posix(), **sizes))
+        runs: dict[str, list[dict]] = {name: [] for name in pythons}
+        for _ in range(repeats(args.repeat)):
+            for name, python in pythons.items():
                 out = tmp / f"{name.replace(' ', '-')}.csv"
                 cmd = [python, "-m", "pumplink", "batch", str(grid), "--samples", "360", "--fail-on", "none"]
                 r = measure([*cmd, "--format", "csv", "--out", str(out), "--workers", "1"])
                 assert r["rc"] == 0, (name, r)
-                assert sum(1 for _ in out.open()) == 100_001
+                assert sum(1 for _ in out.open()) == n + 1
                 runs[name].append(r)
-    print(f"100,000-variant grid (rocker x swing x rope force), 360 samples, one process; {machine()}")
+    print(f"{n:,}-variant grid (rocker x swing x rope force), 360 samples, one process; {machine()}")
     med = {}
     for name, rs in runs.items():
         med[name] = {k: statistics.median(r[k] for r in rs) for k in ("wall", "cpu", "sys")}
@@ -85,13 +101,15 @@ def main() -> None:
             f"  {name:>13}: median wall {m['wall']:.2f} s, CPU {m['cpu']:.2f} s (system {m['sys']:.2f} s), "
             f"peak RSS {m['rss']:.0f} MiB   [walls: {walls}]"
         )
+    if BASE_COMMIT not in med:
+        return
     ratio = med["this checkout"]["wall"] / med[BASE_COMMIT]["wall"]
     print(
         f"  ratio, this checkout / {BASE_COMMIT}: {ratio:.2f}x wall, "
         f"{med['this checkout']['rss'] / med[BASE_COMMIT]['rss']:.2f}x memory"
     )
     record(
-        f"100,000-variant grid, wall time against {BASE_COMMIT} (same run, interleaved)",
+        f"{n:,}-variant grid, wall time against {BASE_COMMIT} (same run, interleaved)",
         ratio,
         "x",
         "<= 1.0x",

@@ -5,7 +5,10 @@ Each answer runs the real command in a subprocess (start-up included), once: the
 seeded, so its answer does not change between runs; the time is one run's wall time.  Where a
 design is found, `pumplink force` on the written spec must pass (exit 0) and give the same flow.
 
-    .venv/bin/python benchmarks/bench_size.py [--heads 5,10,20,35] [--profiles men,women,...]
+    .venv/bin/python benchmarks/bench_size.py [--heads 5,10,20,35] [--profiles men,women,...] [--smoke]
+
+``--smoke``: head 5 m, the men's profile, one pipe bore (``--pipes 20mm``), no target judged
+(benchmarks/_record.py).
 
 Target: each answer in <= 30 s on this 2-core machine; aim for >= 80 % of Q*, and where an answer
 falls below, its output names the limit that holds it back.
@@ -21,7 +24,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from _record import machine, record
+from _record import SMOKE_HELP, machine, record, smoke
 
 ROOT = Path(__file__).resolve().parents[1]
 PUMPLINK = [sys.executable, "-m", "pumplink"]
@@ -32,9 +35,11 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--heads", default="5,10,20,35")
     ap.add_argument("--profiles", default=",".join(PROFILES))
+    ap.add_argument("--smoke", action="store_true", help=SMOKE_HELP)
     args = ap.parse_args()
-    heads = [float(h) for h in args.heads.split(",")]
-    profiles = args.profiles.split(",")
+    heads = [5.0] if smoke() else [float(h) for h in args.heads.split(",")]
+    profiles = ["men"] if smoke() else args.profiles.split(",")
+    pipes = ["--pipes", "20mm"] if smoke() else []  # the smallest search: one bore
     print(f"pumplink size --head H --profile P ({machine()})")
     head = f"  {'head':>5} {'profile':<11} {'time':>7} {'flow':>12} {'share of Q*':>12}"
     print(head + "  what binds / holds it back")
@@ -54,6 +59,7 @@ def main() -> None:
                     "json",
                     "--write",
                     str(out),
+                    *pipes,
                 ]
                 t0 = time.perf_counter()
                 r = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)

@@ -5,7 +5,10 @@ both give the same numbers (they must: the builds are drawn per fixed chunk from
 Each run is the real command in a subprocess (start-up included), once: the builds are seeded,
 so the numbers do not change between runs; the time is one run's wall time.
 
-    .venv/bin/python benchmarks/bench_tolerance.py [--samples 100000] [--hole 1mm]
+    .venv/bin/python benchmarks/bench_tolerance.py [--samples 100000] [--hole 1mm] [--smoke]
+
+``--smoke``: the least the command takes, 100 builds, of configs/prototype.toml (no ``[parts]``: the
+cheapest builds), Dask with one worker (``local:1``), no target judged (benchmarks/_record.py).
 
 Targets: local:2 faster than one process, and both outputs identical byte for byte.  The one
 process's time is recorded without a target: the village well carries ``[parts]``, so every build
@@ -22,7 +25,7 @@ import sys
 import time
 from pathlib import Path
 
-from _record import machine, record, result
+from _record import SMOKE_HELP, machine, record, result, smoke
 
 ROOT = Path(__file__).resolve().parents[1]
 PUMPLINK = [sys.executable, "-m", "pumplink"]
@@ -42,11 +45,16 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--samples", type=int, default=100_000)
     ap.add_argument("--hole", default="1mm")
+    ap.add_argument("--smoke", action="store_true", help=SMOKE_HELP)
     args = ap.parse_args()
-    cmd = ["tolerance", SPEC, "--hole", args.hole, "--samples", str(args.samples), "--format", "json"]
+    spec = "configs/prototype.toml" if smoke() else SPEC
+    dask = "local:1" if smoke() else "local:2"
+    if smoke():
+        args.samples = 100
+    cmd = ["tolerance", spec, "--hole", args.hole, "--samples", str(args.samples), "--format", "json"]
     print(f"pumplink {' '.join(cmd)} ({machine()})")
     one_s, one = run(*cmd)
-    two_s, two = run(*cmd, "--scheduler", "local:2")
+    two_s, two = run(*cmd, "--scheduler", dask)
     row = json.loads(one.stdout)
     share = row["builds_pass"]
     clean = row["builds_pass_without_warnings"]
@@ -62,9 +70,9 @@ def main() -> None:
     )
     print(f"  allocation for {row['allocation']['target']:.0%}: {row['allocation']['words']}")
     same = one.stdout == two.stdout
-    print(f"  one process {one_s:.1f} s; --scheduler local:2 {two_s:.1f} s; identical output: {same}")
+    print(f"  one process {one_s:.1f} s; --scheduler {dask} {two_s:.1f} s; identical output: {same}")
     record(
-        f"tolerance {SPEC} ±{args.hole}, {args.samples:,} builds: share that pass",
+        f"tolerance {spec} ±{args.hole}, {args.samples:,} builds: share that pass",
         share["share"],
         "",
         None,
@@ -79,7 +87,7 @@ def main() -> None:
         note=f"{one_s / args.samples * 1e3:.1f} ms a build, start-up included",
     )
     result(
-        f"tolerance, {args.samples:,} builds, --scheduler local:2",
+        f"tolerance, {args.samples:,} builds, --scheduler {dask}",
         f"{two_s:.1f} s",
         "< one process",
         two_s < one_s,
@@ -88,7 +96,7 @@ def main() -> None:
         "s",
     )
     result(
-        "tolerance, local:2 output identical to one process",
+        f"tolerance, {dask} output identical to one process",
         "yes" if same else "no",
         "identical",
         same,

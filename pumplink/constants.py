@@ -108,3 +108,21 @@ CRANK_PARALLEL_ROCKER = "crank_parallel_rocker"
 CRANK_ALONG_FRAME = "crank_along_frame"
 #: Every danger point together (and 1e-9 rad either side), a sample set of the comparison.
 DANGER = "danger_points"
+
+# The tolerances of the iterative methods whose figures are printed: the method stops at them, and
+# the output layer rounds what it prints to the digits they determine (pumplink/output/precision.py).
+#: The best cadence is located to this share of the speed (a bounded Brent search,
+#: pumplink.models.dynamics.best_speed); what is read there carries the same digits.
+CADENCE_RTOL = 1e-7
+#: The ends of the passing mean speeds are located to this share of the best speed (brentq,
+#: pumplink.models.dynamics.speed_range).
+PASSING_SPEED_RTOL = 1e-9
+#: Relative precision of a refined extremum's argument (a peak force's crank angle): the function is
+#: flat to first order there, so its values (known to eps) settle the argument to about sqrt(eps).
+EXTREMUM_ARGUMENT = 2.0**-26
+#: Relative tolerance of the released handle's integration in time (pumplink.models.release).
+RELEASE_RTOL = 1e-10
+#: The released handle's figures are settled to this share (its integration's global error;
+#: measured against RELEASE_RTOL / 1000 on the shipped energy-model specs: at most 7e-9, for the
+#: time of the grip's peak speed, the argument of a maximum).
+RELEASE_SETTLED = 100 * RELEASE_RTOL

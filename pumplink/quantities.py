@@ -22,6 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pumplink.constants import EXTREMUM_ARGUMENT
+
 #: Factors from SI to the units shown: radians to degrees, m³/s to l/min and to m³/h.
 DEGREES, L_PER_MIN, M3_PER_H = 180.0 / np.pi, 60_000.0, 3_600.0
 
@@ -36,6 +38,8 @@ class Quantity:
     column : batch column (None: not there);  check : the verdict check it is the value of;
     headline : one of a design's main figures (size's JSON, the report);  line : its line in force's
     and size's tables, a format string given the value in the unit shown (None: no line).
+    rtol : the relative share to which an iterative method settles it (None: to rounding); the
+    views keep the digits it determines (pumplink/output/precision.py).
     """
 
     name: str
@@ -48,6 +52,7 @@ class Quantity:
     check: str | None = None
     headline: bool = False
     line: str | None = None
+    rtol: float | None = None
 
 
 Q = Quantity
@@ -68,7 +73,7 @@ CATALOGUE = (
     Q("dead_band_peak_force", "dead_band_peak_force", "N", "quasi-static peak outside the dead bands",
       "dead_band_peak_force_N", "dead_band_peak_force_N"),
     Q("dead_band_peak_angle", "dead_band_peak_angle", "deg", "crank angle of the quasi-static peak",
-      "dead_band_peak_crank_deg", scale=DEGREES),
+      "dead_band_peak_crank_deg", scale=DEGREES, rtol=EXTREMUM_ARGUMENT),
     Q("sampled_peak", "sampled_peak", "N", "sampled peak", "sampled_peak_force_N", "sampled_peak_force_N"),
     Q("power", "power", "W", "operator power", "power_W", "power_W", check="power", headline=True),
     Q("flow", "water.flow", "l/min", "flow", "flow_l_min", "flow_l_min", scale=L_PER_MIN, headline=True),
@@ -113,9 +118,10 @@ def values(evaluation, quantity: Quantity) -> np.ndarray:
     return np.broadcast_to(np.asarray(x, float), (n,)) * quantity.scale
 
 
-def json_items(evaluation, i: int = 0) -> dict[str, float]:
-    """Design ``i``'s quantities that force's JSON holds, by key, in the unit shown (NaN kept)."""
-    return {q.json: float(values(evaluation, q)[i]) for q in CATALOGUE if q.json is not None}
+def json_items(evaluation, i: int = 0) -> dict[str, tuple[Quantity, float]]:
+    """Design ``i``'s quantities that force's JSON holds, by key, with their values in the unit
+    shown (NaN kept)."""
+    return {q.json: (q, float(values(evaluation, q)[i])) for q in CATALOGUE if q.json is not None}
 
 
 def columns(evaluation) -> dict[str, np.ndarray]:

@@ -197,3 +197,78 @@ def test_profiles_module_imports_only_pumplink_constants():
             names.add(node.module)
     assert {n for n in names if n.startswith("pumplink")} <= {"pumplink.constants"}
     assert names <= {"__future__", "dataclasses", "types", "typing", "pumplink.constants"}
+
+
+# ----------------------------------------------------------------------------- through the verdict
+#: docs/operators.md §1, each profile's limits as that table prints them: force [N], sustained and
+#: hour power [W], grip heights [m], grip speed warn and fail [m/s].
+TABLE = {
+    "men": (100.0, 75.0, 150.0, (0.90, 1.33), 2.5, 4.0),
+    "women": (70.0, 60.0, 125.0, (0.83, 1.23), 2.1, 3.3),
+    "children": (38.0, 33.0, 69.0, (0.86, 1.04), 2.1, 3.3),
+    "accessible": (22.2, 25.0, 50.0, (0.71, 1.02), 1.1, 1.8),
+}
+
+#: A quasi-static rope pump (no wheel mass): 10 m through a 23 mm main, 0.25 m wheel, a 1 m handle
+#: swung 60 deg (grip stroke 2 x 1.0 x sin 30 deg = 1.0 m).  By hand (docs/physics.md §5): rope
+#: force rho g H (pi d^2/4) / eta_f = 1000 x 9.81 x 10 x 4.15476e-4 / 0.75 = 54.344 N, wheel torque
+#: M = 0.25 x 54.344 = 13.586 N m, operator power M w, mean grip force over a turn 2 pi M / (2 x
+#: 1.0 m) = 42.68 N (the work of a turn over the grip's travel out and back).
+HAND_SPEC = {
+    "name": "profile check",
+    "wheel": {"radius": 0.25, "axle_height": 0.55},
+    "linkage": {"L1": 0.40, "D1": 0.20, "b": 0.10, "rocker": 0.20, "handle": 1.00, "swing": 60.0},
+    "load": {"head": 10.0, "pipe_diameter": 0.023},
+    "operator": {"speed": 270.0},
+}
+TORQUE = 0.25 * 1000.0 * 9.81 * 10.0 * (math.pi * 0.023**2 / 4) / 0.75  # [N m]
+MEAN_FORCE = 2 * math.pi * TORQUE / (2 * 1.0)  # [N]
+
+
+def _judged(profile: str, speed_deg_s: float) -> dict:
+    import pumplink
+
+    spec = {**HAND_SPEC, "operator": {"speed": speed_deg_s, "profile": profile}}
+    row = pumplink.to_dict(pumplink.analyse(pumplink.load(spec)))
+    assert row["model"].startswith("quasi-static") and row["operator_profile"] == profile
+    return {c["key"]: c for c in row["checks"]}
+
+
+@pytest.mark.parametrize("profile", list(TABLE))
+def test_each_profiles_limits_are_the_ones_the_verdict_judges_by(profile):
+    """Every limit of docs/operators.md's table reaches the verdict of a design judged for that
+    profile: the check's own limits, and its result on either side of each power and grip-speed
+    limit (the speed put 3 % below and above each).  The power is the hand formula M w; the grip
+    speed is the product's (H times the rocker's peak rate times w: linear in the speed, checked),
+    judged here against the table's limits; the mean force is the hand formula against the force
+    limit (42.7 N: men and women pass, children and accessible fail)."""
+    force, sustained, hour, (low, high), warn, fail = TABLE[profile]
+    base = _judged(profile, 270.0)
+    rate = base["grip_speed"]["value"] / math.radians(270.0)  # grip speed per wheel speed [m/rad]
+    assert (base["mean_force"]["fail_limit"], base["peak_force"]["fail_limit"]) == (force, force)
+    assert base["mean_force"]["value"] == pytest.approx(MEAN_FORCE, rel=1e-9)
+    assert base["mean_force"]["result"] == ("pass" if MEAN_FORCE <= force else "fail")
+    assert (base["power"]["warn_limit"], base["power"]["fail_limit"]) == (sustained, hour)
+    assert (base["grip_speed"]["warn_limit"], base["grip_speed"]["fail_limit"]) == (warn, fail)
+    assert base["grip_height"]["warn_limit"] == high  # the grip rises to 1.35 m, above every band
+    assert base["grip_height"]["result"] == "warn" and low < high
+    speeds = [
+        *(v / rate * k for v in (warn, fail) for k in (0.97, 1.03)),  # [rad/s]
+        *(p / TORQUE * k for p in (sustained, hour) for k in (0.97, 1.03)),
+    ]
+    for w in speeds:
+        checks = _judged(profile, math.degrees(w))
+        power, grip = TORQUE * w, rate * w
+        assert checks["power"]["value"] == pytest.approx(power, rel=1e-9)
+        assert checks["grip_speed"]["value"] == pytest.approx(grip, rel=1e-9)
+        expected_power = "fail" if power > hour else "warn" if power > sustained else "pass"
+        expected_grip = "fail" if grip > fail else "warn" if grip > warn else "pass"
+        assert (checks["power"]["result"], checks["grip_speed"]["result"]) == (
+            expected_power,
+            expected_grip,
+        ), (
+            profile,
+            math.degrees(w),
+            power,
+            grip,
+        )

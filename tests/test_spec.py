@@ -11,7 +11,10 @@ import copy
 import math
 import re
 import tomllib
+import types
+import typing
 from pathlib import Path
+from typing import Any
 
 import pytest
 import tomli_w
@@ -19,6 +22,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from pumplink.errors import PumplinkError, SpecError
+from pumplink.inputs.piston import PistonSpec, parse_piston
 from pumplink.inputs.pump import PumpSpec, default_spec, load_spec, parse_spec, spec_to_dict
 
 ROPE = {
@@ -250,6 +254,163 @@ def test_a_profile_sets_the_limits_and_each_key_given_overrides_it():
         parse_spec({**copy.deepcopy(ROPE), "operator": {"grip_speed_warn": 5.0}})
     with pytest.raises(SpecError, match="operator.profile"):
         parse_spec({**copy.deepcopy(ROPE), "operator": {"profile": "athletes"}})
+
+
+def _spec_keys(model) -> set[str]:
+    """Every dotted key ``section.leaf`` of a spec model (read from its pydantic fields)."""
+    out = set()
+    for section, field in model.model_fields.items():
+        for a in (field.annotation, *typing.get_args(field.annotation)):
+            out |= {f"{section}.{leaf}" for leaf in getattr(a, "model_fields", {})}
+    return out
+
+
+PISTON = {
+    "mechanism": "crank-slider",
+    "piston": {"bore": 0.05, "head": 10.0, "efficiency": 0.6},
+    "crank_slider": {"crank": 0.05, "rod": 0.25},
+    "operator": {"handle": 0.3},
+}
+
+
+@pytest.mark.parametrize(
+    ("base", "low", "high", "value_low", "value_high"),
+    [
+        (ROPE, "grip_height_min", "grip_height_max", 1.2, 1.0),
+        (ROPE, "grip_speed_warn", "grip_speed_fail", 4.0, 3.0),
+        (ROPE, "sustained_power", "hour_power", 200.0, 100.0),
+        (PISTON, "sustained_power", "hour_power", 200.0, 100.0),
+    ],
+)
+def test_a_pair_in_the_wrong_order_is_named_by_its_real_keys(base, low, high, value_low, value_high):
+    d = copy.deepcopy(base)
+    d.setdefault("operator", {}).update({low: value_low, high: value_high})
+    piston = "mechanism" in d
+    with pytest.raises(SpecError) as err:
+        (parse_piston if piston else parse_spec)(d, source="spec")
+    message = str(err.value).removeprefix("spec: ")
+    named = re.findall(r"[a-z_]+(?:\.[a-z_]+)+", message)
+    assert named == [f"operator.{low}", f"operator.{high}"], message
+    assert set(named) <= _spec_keys(PistonSpec if piston else PumpSpec)
+    assert f"{value_low:g} and {value_high:g}" in message
+
+
+# ----------------------------------------------------------------------------- the guide's tables
+GUIDE = Path(__file__).resolve().parents[1] / "docs" / "guide.md"
+#: A bound as the guide writes it: "0.001 ≤ r ≤ 5", "0 < h ≤ 24", "2π ≤ Δθ < 180", "1 ≤ F ≤ 10 000".
+_NUMBER = r"[−-]?\d+(?: \d{3})*(?:\.\d+)?π?"
+_BOUND = re.compile(rf"({_NUMBER}) (≤|<) \S+ (≤|<) ({_NUMBER})")
+
+
+def _number(text: str) -> float:
+    text = text.replace(" ", "").replace("−", "-")
+    return float(text[:-1]) * math.pi if text.endswith("π") else float(text)
+
+
+def guide_tables() -> list[dict[str, str]]:
+    """The guide's spec tables (``| key | meaning | allowed |``), in order: the rope pump's, then
+    the piston pump's; each maps a dotted key (``wheel.radius``; ``name``) to its allowed cell,
+    one entry per key a row names (``[load] head``, ``pipe_diameter``: ``load.head`` and
+    ``load.pipe_diameter``)."""
+    tables: list[dict[str, str]] = []
+    rows = None
+    for line in GUIDE.read_text(encoding="utf-8").splitlines():
+        if line.startswith("| key | meaning | allowed |"):
+            rows = {}
+            tables.append(rows)
+        elif rows is not None and line.startswith("| `"):
+            cell, _, allowed = (c.strip() for c in line.strip("|").split(" | "))
+            section = re.match(r"`\[([a-z_]+)\] ", cell)
+            names = re.findall(r"`(?:\[[a-z_]+\] )?([A-Za-z_0-9]+)`", cell)
+            for name in names:
+                rows[f"{section.group(1)}.{name}" if section else name] = allowed
+        elif not line.startswith("|"):
+            rows = None
+    return tables
+
+
+def model_bounds(info) -> tuple[float | None, bool, float | None, bool]:
+    """(lower, lower included, upper, upper included) of a pydantic field."""
+    lo = hi = None
+    lo_in = hi_in = True
+    for m in info.metadata:
+        for attr, inclusive in (("ge", True), ("gt", False)):
+            if getattr(m, attr, None) is not None:
+                lo, lo_in = float(getattr(m, attr)), inclusive
+        for attr, inclusive in (("le", True), ("lt", False)):
+            if getattr(m, attr, None) is not None:
+                hi, hi_in = float(getattr(m, attr)), inclusive
+    return lo, lo_in, hi, hi_in
+
+
+def spec_fields(model) -> dict[str, Any]:
+    """Every key of a spec model with its pydantic field: ``name``, ``mechanism``, ``wheel.radius``..."""
+    out = {}
+    for section, field in model.model_fields.items():
+        kinds = (field.annotation, *typing.get_args(field.annotation))
+        tables = [a for a in kinds if hasattr(a, "model_fields")]
+        if not tables:
+            out[section] = field
+        for t in tables:
+            out |= {f"{section}.{leaf}": info for leaf, info in t.model_fields.items()}
+    return out
+
+
+def _kind(annotation):
+    """The type of a field, without the None of an optional one (``float | None``: float)."""
+    if isinstance(annotation, types.UnionType) or typing.get_origin(annotation) is typing.Union:
+        (annotation,) = (a for a in typing.get_args(annotation) if a is not type(None))
+    return annotation
+
+
+@pytest.mark.parametrize("model", [PumpSpec, PistonSpec], ids=["rope", "piston"])
+def test_the_guide_states_every_bound_of_the_spec(model):
+    table = guide_tables()[0 if model is PumpSpec else 1]
+    fields = spec_fields(model)
+    assert set(table) == set(fields)  # every key, and no key the spec does not have
+    cells: dict[str, list[str]] = {}
+    for key, allowed in table.items():
+        cells.setdefault(allowed, []).append(key)
+    for allowed, keys in cells.items():
+        bounds = _BOUND.findall(allowed)
+        for i, key in enumerate(keys):
+            info = fields[key]
+            kind = _kind(info.annotation)
+            if typing.get_origin(kind) is typing.Literal:  # a word from a list
+                assert allowed == ", ".join(typing.get_args(kind)), key
+            elif kind is bool:
+                assert allowed == "true, false", key
+            elif kind is str:  # a name: its length
+                lengths = f"{info.metadata[0].min_length}–{info.metadata[1].max_length} "
+                assert allowed.startswith(lengths), key
+            else:  # one bound per key, or one for all the keys of the row
+                assert len(bounds) in (1, len(keys)), (key, allowed)
+                lo, op_lo, op_hi, hi = bounds[i if len(bounds) > 1 else 0]
+                stated = (_number(lo), op_lo == "≤", _number(hi), op_hi == "≤")
+                assert stated == model_bounds(info), (key, allowed)
+
+
+def test_the_init_template_states_every_bound_it_gives():
+    """The commented spec of ``pumplink init``: each key whose comment gives a range ("0.001-5",
+    "-10..10", "2π-180", with "X excluded" for an open end) states the model's bounds."""
+    from pumplink.inputs.pump import SPEC_TEMPLATE
+
+    fields = spec_fields(PumpSpec)
+    section, checked = None, []
+    for line in SPEC_TEMPLATE.splitlines():
+        if re.fullmatch(r"\[([a-z_]+)\]", line):
+            section = line[1:-1]
+            continue
+        m = re.match(r"#? ?([a-z_A-Z0-9]+) += [^#]*#(.*)", line)
+        found = m and re.search(r", (-?\d+(?:\.\d+)?π?)(?:-|\.\.)(\d+(?:\.\d+)?)\b", m.group(2))
+        if not found:
+            continue
+        key = f"{section}.{m.group(1)}"
+        lo, hi = _number(found.group(1)), _number(found.group(2))
+        excluded = {_number(x) for x in re.findall(r"(\d+(?:\.\d+)?) excluded", m.group(2))}
+        assert (lo, lo not in excluded, hi, hi not in excluded) == model_bounds(fields[key]), line
+        checked.append(key)
+    assert len(checked) >= 15, checked  # every range the template gives was read
 
 
 def test_load_spec_name_defaults_to_file_stem(tmp_path):

@@ -152,3 +152,60 @@ def test_size_says_in_one_sentence_what_holds_every_design_back():
 def test_size_needs_a_head():
     r = pumplink("size", "configs/prototype.toml")
     assert r.returncode == 2 and "head" in r.stderr and r.stderr.count("\n") == 1
+
+
+#: The operators' sustained power [W], docs/operators.md §1 (Q* is the flow it lifts, docs/water.md §4).
+SUSTAINED_W = {"men": 75.0, "women": 60.0, "children": 33.0, "accessible": 25.0}
+
+
+def _water(spec_text: str, **tables) -> dict:
+    """``force --summary --format json``'s row of a spec, in process (the entry point is tested
+    above): ``tables`` add or replace keys of the spec's tables."""
+    import tomllib
+
+    import pumplink
+
+    spec = tomllib.loads(spec_text)
+    for table, keys in tables.items():
+        spec.setdefault(table, {}).update(keys)
+    return pumplink.to_dict(pumplink.analyse(pumplink.load(spec)))
+
+
+@pytest.mark.parametrize("profile", list(SUSTAINED_W))
+def test_q_star_is_each_profiles_own_sustained_power_over_the_lift(profile):
+    """Q* = eta_f eta_v P_sustained / (rho g H) with the profile's own sustained power (Eq. W.5):
+    the hand check's 10 m through the default efficiencies 0.75 and 0.87, so Q* = 0.6525 P / 98,100
+    m^3/s (men 29.93 l/min, women 23.94, children 13.17, accessible 9.98), and the share Q / Q*."""
+    row = _water(ROPE, operator={"profile": profile})
+    q = 0.87 * math.pi * 0.023**2 / 4 * math.radians(270.0) * 0.25
+    q_star = 0.75 * 0.87 * SUSTAINED_W[profile] / (1000 * 9.81 * 10.0)
+    assert row["operator_profile"] == profile
+    assert row["power_limited_flow_l_min"] == pytest.approx(q_star * 60_000, rel=1e-12)
+    assert row["flow_share"] == pytest.approx(q / q_star, rel=1e-12)
+
+
+def test_the_specs_volumetric_efficiency_sets_the_flow_and_q_star():
+    """load.volumetric_efficiency = 0.6 instead of the default 0.87: Q = 0.6 (pi d^2/4) w r_w =
+    0.6 x 4.15476e-4 x 1.178097 = 2.93683e-4 m^3/s = 17.621 l/min, the pump's efficiency 0.75 x 0.6,
+    Q* = 0.75 x 0.6 x 75 W / (rho g H) = 20.642 l/min, the water power rho g H Q; the rope force, so
+    the operator's power, does not change (64.02 W: eta_v is leakage, not friction)."""
+    row = _water(ROPE, load={"volumetric_efficiency": 0.6})
+    q = 0.6 * math.pi * 0.023**2 / 4 * math.radians(270.0) * 0.25
+    assert row["flow_l_min"] == pytest.approx(17.621, abs=5e-4)
+    assert row["flow_l_min"] == pytest.approx(q * 60_000, rel=1e-12)
+    assert row["water_power_W"] == pytest.approx(1000 * 9.81 * 10.0 * q, rel=1e-12)
+    assert row["pump_efficiency"] == pytest.approx(0.75 * 0.6, rel=1e-12)
+    assert row["power_limited_flow_l_min"] == pytest.approx(0.75 * 0.6 * 75.0 / 98_100 * 60_000, rel=1e-12)
+    assert row["power_W"] == pytest.approx(13.586053 * math.radians(270.0), rel=1e-7)
+
+
+def test_the_specs_use_table_sets_the_people_served():
+    """use.hours_per_day = 5 and use.litres_per_person_day = 15 (defaults 8 and 20): people = Q x
+    5 h x 3600 s / 0.015 m^3 with the hand check's Q = 4.25840e-4 m^3/s, 511.0 people (613.2 with
+    the defaults)."""
+    q = 0.87 * math.pi * 0.023**2 / 4 * math.radians(270.0) * 0.25
+    row = _water(ROPE, use={"hours_per_day": 5.0, "litres_per_person_day": 15.0})
+    assert row["people_served"] == pytest.approx(q * 5 * 3600 / 0.015, rel=1e-12)
+    assert row["people_served"] == pytest.approx(511.0, abs=0.05)
+    hours_only = _water(ROPE, use={"hours_per_day": 5.0})
+    assert hours_only["people_served"] == pytest.approx(q * 5 * 3600 / 0.020, rel=1e-12)

@@ -237,15 +237,23 @@ class PistonChunk(_Judged):
         return [MODEL_LABELS[i] for i in self.evaluation.model_index.tolist()]
 
 
-def batch_values(batch: Batch, cols: dict[str, np.ndarray]):
+def batch_values(batch: Batch, cols: dict[str, np.ndarray], n: int | None = None):
     """``value(key)`` for :func:`pumplink.evaluate.pump_designs`: the varied values of a key (an
-    array over the chunk's variants), else the base spec's value (None where it gives none)."""
+    array over the chunk's variants), else the base spec's value (None where it gives none).
+
+    With ``n`` (the chunk's variants) a base value that is a number is given as ``n`` copies, so
+    the evaluation has one design per variant whichever keys vary: also a key the evaluation
+    reads apart from the others (``wheel.axle_height``, the ``[parts]``) or not at all
+    (``linkage.hole_diameter``; ``wheel.radius`` beside a piston pump's ``wheel.inertia``)."""
 
     def value(key: str):
         if key in cols:
             return cols[key]
         section, name = key.split(".")
-        return getattr(getattr(batch.spec, section), name, None)
+        v = getattr(getattr(batch.spec, section), name, None)
+        if n is not None and isinstance(v, (int, float)) and not isinstance(v, bool):
+            return np.full(n, float(v))
+        return v
 
     return value
 
@@ -274,11 +282,11 @@ def evaluate_chunk(
     else:
         values = np.empty((n, 0))
     cols = {a.key: values[:, j] for j, a in enumerate(batch.axes)}
-    value = batch_values(batch, cols)
+    value = batch_values(batch, cols, n)
     if batch.mechanism == CRANK_SLIDER:
         return _piston_chunk(batch, start, stop, batch_index, values, value)
     designs = pump_designs(value)
-    ev = evaluate(designs, (*REPORTED, "sampled_peak"), model=model, samples=samples)
+    ev = _one_per_variant(evaluate(designs, (*REPORTED, "sampled_peak"), model=model, samples=samples), n)
     reasons: list = [None] * n
     bad = np.nonzero(~ev.feasible)[0]
     if bad.size:
@@ -292,6 +300,14 @@ def evaluate_chunk(
                 cache[k] = infeasibility_reason(*k)
             reasons[i] = cache[k]
     return Chunk(batch=batch_index, start=start, stop=stop, values=values, reason=reasons, evaluation=ev)
+
+
+def _one_per_variant(ev, n: int):
+    """The evaluation of a chunk's ``n`` variants, checked to hold ``n`` designs: a row per
+    variant, or the run stops here (before a row of the chunk is written) rather than lose rows."""
+    if len(ev) != n:
+        raise RuntimeError(f"a batch chunk of {n} variants was evaluated as {len(ev)} designs")
+    return ev
 
 
 #: The piston spec's keys a batch row shows, per variant (spec units).
@@ -311,7 +327,7 @@ PISTON_KEYS = (
 def _piston_chunk(batch: Batch, start: int, stop: int, batch_index: int, values, value) -> PistonChunk:
     """:func:`evaluate_chunk` for a piston-pump batch (one evaluation over its variants)."""
     n = stop - start
-    ev = evaluate(piston_designs(value))
+    ev = _one_per_variant(evaluate(piston_designs(value)), n)
     spec = {
         k: np.broadcast_to(np.asarray(value(k) if value(k) is not None else 0.0, float), (n,))
         for k in PISTON_KEYS

@@ -98,16 +98,35 @@ def _unraisable(hook):
     """``sys.unraisablehook`` for the program: a KeyboardInterrupt the handler raised while Python
     ran a callback whose exceptions it cannot propagate (a weak reference's, as the import system's
     module locks use) is not printed as "Exception ignored ... Traceback" and lost: the signal is
-    delivered again, to be raised in the command's own code (:class:`Interrupt`)."""
+    delivered again once this hook has returned, to be raised in the command's own code
+    (:class:`Interrupt`).  Not from inside the hook: ``signal.raise_signal`` runs the handler at
+    once, and its KeyboardInterrupt, raised in the hook, was printed and lost in turn."""
 
     def unraisable(args) -> None:
         if issubclass(args.exc_type, KeyboardInterrupt) and INTERRUPT.running and not INTERRUPT.held:
             INTERRUPT.interrupted = False
-            signal.raise_signal(signal.SIGINT)
+            _deliver_after_return().set()  # the last statement: the hook returns before it lands
             return
         hook(args)
 
     return unraisable
+
+
+def _deliver_after_return():
+    """An event that, once set, has a helper thread raise SIGINT: Python's C-level handler marks it
+    for the main thread, which runs the handler at its next check, after the caller has returned
+    (the helper needs the interpreter lock, which the main thread hands over only after its switch
+    interval, 5 ms; from the main thread itself ``signal.raise_signal`` runs the handler at once)."""
+    import threading
+
+    ready = threading.Event()
+
+    def deliver() -> None:
+        ready.wait()
+        signal.raise_signal(signal.SIGINT)
+
+    threading.Thread(target=deliver, name="pumplink-interrupt", daemon=True).start()
+    return ready
 
 
 #: The run's interrupt handler (one per process).
@@ -222,6 +241,10 @@ def main(argv: list[str] | None = None) -> None:
             INTERRUPT.hold()  # the command has returned or is unwinding: nothing left to interrupt
     except KeyboardInterrupt:
         code = 130
+    except Exception as exc:
+        if not (INTERRUPT.interrupted and _wraps_an_interrupt(exc)):
+            raise
+        code = 130  # the interrupt, re-raised by Python as another exception
     if code == 130:  # said here, unless the command said why itself (a killed batch worker)
         _interrupted(say=INTERRUPT.interrupted)
     if argv is None:
@@ -233,6 +256,20 @@ def main(argv: list[str] | None = None) -> None:
             if handler is not None:
                 signal.signal(sig, handler)
     sys.exit(code)
+
+
+def _wraps_an_interrupt(exc: BaseException) -> bool:
+    """True when a KeyboardInterrupt is the cause or context of ``exc`` (at any depth): Python
+    re-raises an exception of some callbacks as another one, e.g. as ``RuntimeError: Error
+    calling __set_name__`` while a class is created (3.11), so the handler's interrupt can reach
+    :func:`main` in disguise."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
 
 
 def _run(args: list[str]) -> int:

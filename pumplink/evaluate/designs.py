@@ -186,9 +186,14 @@ class PartSizes:
     crank_notch: Any
 
     def design(self, i: int) -> PartSizes:
-        return PartSizes(
-            *(float(np.broadcast_to(np.asarray(getattr(self, k), float), (i + 1,))[i]) for k in PART_KEYS)
-        )
+        """The sizes of design ``i`` (a size given once holds for every design)."""
+        return PartSizes(*(float(_of_design(getattr(self, k), i)) for k in PART_KEYS))
+
+
+def _of_design(x, i: int):
+    """Design ``i``'s value of a column: an array over designs, or one value for all of them."""
+    a = np.ravel(np.asarray(x, float))
+    return a[i] if a.size > 1 else a[0]
 
 
 def _part_sizes(value) -> PartSizes | None:
@@ -256,9 +261,19 @@ def piston_designs(value: Callable[[str], Any], speed=None) -> PistonDesigns:
 
 
 def columns(designs) -> tuple[int, dict[str, np.ndarray]]:
-    """The designs' numeric fields as 1-D float arrays of one length (the number of designs)."""
+    """The designs' numeric fields as 1-D float arrays of one length (the number of designs).
+
+    The number of designs is that of every input that can vary, the axle height and the parts'
+    sizes included (not broadcast here: they are read where their checks are), so a design that
+    differs from the others only there is still one design of its own."""
     skip = ("arms_in_verdict", "axle_height", "linkage", "parts")
     names = [f.name for f in fields(designs) if f.name not in skip]
-    arrays = np.broadcast_arrays(*(np.asarray(getattr(designs, k), float) for k in names))
-    cols = {k: np.atleast_1d(a).ravel() for k, a in zip(names, arrays)}
+    others = [getattr(designs, "axle_height", None)]
+    parts = getattr(designs, "parts", None)
+    if parts is not None:
+        others += [getattr(parts, f.name) for f in fields(parts)]
+    shape = np.broadcast_shapes(
+        *(np.shape(getattr(designs, k)) for k in names), *(np.shape(v) for v in others if v is not None)
+    )
+    cols = {k: np.broadcast_to(np.asarray(getattr(designs, k), float), shape).ravel() for k in names}
     return next(iter(cols.values())).size, cols

@@ -22,9 +22,10 @@ from typing import Any, Literal
 from pydantic import Field, model_validator
 
 from pumplink.constants import DEFAULT_SPEED_FLUCTUATION
-from pumplink.inputs.pump import Use
+from pumplink.inputs.pump import Use, limits_in_order
 from pumplink.inputs.toml import Section, read_toml, spec_name, validate
 from pumplink.models import load as _load
+from pumplink.profiles import operator_limits
 
 #: The mechanism kinds a spec may name (the rope pump's four-bar has no key).
 MECHANISMS = ("crank-slider",)
@@ -73,6 +74,11 @@ class PistonOperator(Section):
     speed_fluctuation: float = Field(
         default=DEFAULT_SPEED_FLUCTUATION, gt=0, le=1, description="largest (w_max - w_min)/w_mean [-]"
     )
+
+    @model_validator(mode="after")
+    def _limits_in_order(self) -> PistonOperator:
+        limits_in_order(operator_limits(lambda key: getattr(self, key.split(".")[1], None)), grip=False)
+        return self
 
 
 class Flywheel(Section):

@@ -250,24 +250,25 @@ class Operator(Section):
 
     @model_validator(mode="after")
     def _limits_in_order(self) -> Operator:
-        lim = self.limits
-        lo, hi = lim.grip_height_range
-        for what, a, b in (
-            ("operator.grip_height_min must be below operator.grip_height_max", lo, hi),
-            (
-                "operator.grip_speed_warn must be below operator.grip_speed_fail",
-                lim.grip_speed_warn,
-                lim.grip_speed_fail,
-            ),
-            (
-                "operator.sustained_power must be at most operator.hour_power",
-                lim.sustained_power,
-                lim.hour_power,
-            ),
-        ):
-            if not a <= b:
-                raise ValueError(f"operator.{what} (with the {lim.name} profile: {a:g} and {b:g})")
+        limits_in_order(self.limits)
         return self
+
+
+def limits_in_order(limits: OperatorProfile, grip: bool = True) -> None:
+    """Raise ValueError naming the spec keys of the first pair of the operator's ``limits`` in the
+    wrong order: the grip heights and speeds (``grip``: a piston pump's operator has no grip),
+    and the powers."""
+    speeds = (limits.grip_speed_warn, limits.grip_speed_fail)
+    pairs = [
+        ("operator.grip_height_min must be below operator.grip_height_max", *limits.grip_height_range),
+        ("operator.grip_speed_warn must be below operator.grip_speed_fail", *speeds),
+    ]
+    pairs = pairs if grip else []
+    powers = (limits.sustained_power, limits.hour_power)
+    pairs.append(("operator.sustained_power must be at most operator.hour_power", *powers))
+    for what, a, b in pairs:
+        if not a <= b:
+            raise ValueError(f"{what} (with the {limits.name} profile: {a:g} and {b:g})")
 
 
 class Parts(Section):
@@ -457,7 +458,7 @@ name = "{name}"
 
 [wheel]
 radius = 0.25          # wheel radius rw [m], 0.001-5 (a 20" tyre rim: about 0.25)
-# axle_height = 0.55   # axle height above the ground [m], 0-5: adds grip-height checks
+# axle_height = 0.55   # axle height above the ground [m], 0-5 (0 excluded): adds grip-height checks
 # mass = 4.0           # wheel mass [kg] as a rim, J = mass rw^2: turns on the flywheel model,
 #                      # where the wheel speed decides the verdict (docs/models.md §2)
 # inertia = 0.25       # or the wheel's moment of inertia [kg m^2] instead of mass
@@ -473,17 +474,17 @@ swing = 60.0           # total handle swing [deg], 2π-180 (degrees, not radians
 # mass_per_length = 1.56  # handle and coupler tube [kg/m] (default: 3/4" steel tube)
 
 [load]
-rope_force = 45.0      # rope force at the wheel rim Fw [N], 0-10000; or instead:
-# head = 10.0          # pumping head [m], 0-200
+rope_force = 45.0      # rope force at the wheel rim Fw [N], 0.001-10000; or instead:
+# head = 10.0          # pumping head [m], 0.001-200
 # pipe_diameter = 0.023  # rising-main bore [m], 0.001-0.5
 # efficiency = 0.75    # rope-pump efficiency [-], 0.05-1 (with head and pipe_diameter)
 # moving_mass = 4.0    # rope and water moving with the rim [kg] (flywheel model)
 
 [operator]
 force_limit = 100.0    # largest acceptable push/pull [N], 1-10000 (women: 70; UK HSE guidance)
-speed = 360.0          # wheel speed [deg/s], 0-7200 (360 deg/s = 60 rpm)
-dead_band = 20.0       # crank angle each side of a dead centre left to the wheel [deg], 0-89
-# speed_fluctuation = 0.2  # largest (w_max - w_min) / w_mean [-], 0-1 (flywheel model)
+speed = 360.0          # wheel speed [deg/s], 0-7200 (0 excluded; 360 deg/s = 60 rpm)
+dead_band = 20.0       # crank angle each side of a dead centre left to the wheel [deg], 0-90 (90 excluded)
+# speed_fluctuation = 0.2  # largest (w_max - w_min) / w_mean [-], 0-1 (0 excluded; flywheel model)
 """
 
 

@@ -50,7 +50,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pumplink.constants import GRAVITY
+from pumplink.constants import CADENCE_RTOL, GRAVITY, PASSING_SPEED_RTOL
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.fourbar import FourBar, per_design
 from pumplink.models import flywheel as _fw
@@ -1006,7 +1006,7 @@ def best_speed(
     Every pair's N of (C1)-(C2) is affine in w_bar^2 (the band's edges are V + I w^2 / 2) and its K
     does not depend on w_bar, so Fp* = max(F_mean, max over pairs of N/K) is convex in w_bar^2
     (docs/models.md §3a): the least value on ``points`` speeds brackets the minimum, which scipy's
-    bounded scalar minimiser then locates (to 1e-7 of the speed).
+    bounded scalar minimiser then locates (to ``CADENCE_RTOL``, 1e-7, of the speed).
     """
     from scipy.optimize import minimize_scalar
 
@@ -1019,7 +1019,9 @@ def best_speed(
         return float("nan"), float("inf")
     k = int(np.nanargmin(np.where(np.isfinite(f), f, np.inf)))
     a, b = w[max(k - 1, 0)], w[min(k + 1, points - 1)]
-    res = minimize_scalar(lambda x: fp(x), bounds=(a, b), method="bounded", options=dict(xatol=1e-7 * w[k]))
+    res = minimize_scalar(
+        lambda x: fp(x), bounds=(a, b), method="bounded", options=dict(xatol=CADENCE_RTOL * w[k])
+    )
     if np.isfinite(res.fun) and res.fun <= f[k]:
         return float(res.x), float(res.fun)
     return float(w[k]), float(f[k])
@@ -1059,7 +1061,8 @@ def speed_range(
         if excess(edge) <= 0:
             ends.append(float(edge))
         else:
-            ends.append(float(brentq(excess, *sorted((edge, best)), xtol=1e-9 * best, rtol=1e-12)))
+            root = brentq(excess, *sorted((edge, best)), xtol=PASSING_SPEED_RTOL * best, rtol=1e-12)
+            ends.append(float(root))
     return ends[0], ends[1]
 
 

@@ -47,7 +47,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pumplink.constants import GRAVITY
+from pumplink.constants import GRAVITY, RELEASE_RTOL
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.fourbar import FourBar, kinematic_state
 from pumplink.models import Masses
@@ -56,12 +56,26 @@ from pumplink.models import Masses
 #: empties in about 4 s).
 HORIZON = 60.0
 #: Relative tolerance of the integration.
-RTOL = 1e-10
+RTOL = RELEASE_RTOL
 #: Dense-output samples per crank radian turned on which the grip's peak speed is searched before
 #: it is refined (the grip speed has two humps per crank turn: about 40 samples per hump).
 PEAK_SAMPLES_PER_RAD = 12
 #: Most phases (changes of the turning direction) integrated before giving up.
 MAX_PHASES = 50
+#: Most solver steps of one release, all phases together: the dense output the peak search reads
+#: is kept for every step, and a step costs about half a millisecond (some 20 evaluations of the
+#: equation of motion).  The shipped specs take 121 to 376, deep wells on small, light, fast wheels
+#: up to about 4,700 (40 m of head on a 0.1 m, 2 kg wheel at 540 deg/s); a wheel that a tiny column
+#: and tiny losses leave turning takes far more (a 1 mm wheel under 168 m of 1 mm pipe: about
+#: 13,500 a minute of coasting, and 168,000 rad of crank to empty its column).
+MAX_STEPS = 5_000
+#: Most crank angle one release turns, all phases together [rad]: the bound on the samples of the
+#: peak search (:data:`PEAK_SAMPLES_PER_RAD` per radian) where the steps are long (light links).
+#: A column empties after head / rw radians run back: this covers 200 m of head on a 2 cm wheel.
+MAX_TURNED = 10_000.0
+#: The ``end_reason`` of a motion that had not ended when the integration stopped: neither the
+#: column empty nor the wheel held (:attr:`Release.stopped_early`).
+EARLY_ENDS = ("horizon", "step limit", "turn limit")
 
 
 @dataclass(frozen=True)
@@ -78,9 +92,12 @@ class Release:
     peak_grip_speed : the largest grip speed from the release to the end [m/s];
     peak_time [s], peak_angle [rad, in [0, 2 pi)], peak_rope_travel : the rope run back by then [m].
     peak_wheel_speed : largest |w| [rad/s] and its time [s] (a tuple).
-    end_time [s], end_reason : "column empty", "held" (the losses hold the wheel at rest) or
-        "horizon";  end_rope_travel : the rope run back at the end [m];
+    end_time [s], end_reason : "column empty", "held" (the losses hold the wheel at rest), or, with
+        the wheel still turning, "horizon" (the time given), "step limit" (:data:`MAX_STEPS`) or
+        "turn limit" (:data:`MAX_TURNED`);  end_rope_travel : the rope run back at the end [m];
     end_speed : the wheel's speed w at the end [rad/s] (negative: turning backwards).
+    steps : the solver's steps, all phases together;  max_steps, max_turned [rad] : the limits it
+        ran under (the step and turn limits of ``end_reason``).
     """
 
     start_angle: float
@@ -99,6 +116,35 @@ class Release:
     end_reason: str
     end_rope_travel: float
     end_speed: float
+    steps: int = 0
+    max_steps: int = MAX_STEPS
+    max_turned: float = MAX_TURNED
+
+    @property
+    def stopped_early(self) -> bool:
+        """True when the integration stopped with the wheel still turning (:data:`EARLY_ENDS`):
+        the times and speeds are those up to then; the peak grip speed is the peak so far."""
+        return self.end_reason in EARLY_ENDS
+
+
+class _StepLimit:
+    """A terminal event for ``solve_ivp`` that ends the integration at the end of its
+    ``steps``-th step.  ``solve_ivp`` evaluates every event once at the start and once at the end
+    of each step, so the calls count the steps; at the last one the event's value (``at - t``)
+    falls to 0 at that step's end, where the event is then located."""
+
+    terminal = True
+    direction = -1.0
+
+    def __init__(self, steps: int):
+        self.calls_left = steps + 1  # the first call is at the start
+        self.at = np.inf
+
+    def __call__(self, t, _y):
+        self.calls_left -= 1
+        if self.calls_left == 0:
+            self.at = t
+        return self.at - t
 
 
 def _grip_speed(lk, th, w):
@@ -120,6 +166,8 @@ def release(
     gravity: float = GRAVITY,
     horizon: float = HORIZON,
     rtol: float = RTOL,
+    max_steps: int = MAX_STEPS,
+    max_turned: float = MAX_TURNED,
 ) -> Release:
     """Integrate the released handle's motion (the equation of motion of the module docstring).
 
@@ -135,6 +183,8 @@ def release(
     masses : the links' masses [kg] (the hand is gone: no grip mass unless something else is there).
     column_inertia : Jc = rho head A rw^2, the water's part of J [kg m^2] (0: J constant).
     gravity : [m/s^2];  horizon : longest time integrated [s];  rtol : of ``solve_ivp``.
+    max_steps, max_turned : the most solver steps and crank angle [rad] of the whole motion
+        (:data:`MAX_STEPS`, :data:`MAX_TURNED`); past either it stops early.
 
     Returns
     -------
@@ -177,6 +227,7 @@ def release(
     reverse_time = np.nan
     reverses = False
     end_reason = "horizon"
+    steps, turned = 0, 0.0
     sign = 1.0 if y[1] > 0 else 0.0
     for _ in range(MAX_PHASES):
         if sign == 0.0:  # at rest: does anything move it?
@@ -192,7 +243,12 @@ def release(
             return yy[1]
 
         stopped.terminal, stopped.direction = True, -sign  # the speed returns to 0 (not leaves it)
-        events = [stopped]
+
+        def turn_limit(_t, yy, start=float(y[0]), left=max_turned - turned):
+            return left - abs(yy[0] - start)
+
+        turn_limit.terminal, turn_limit.direction = True, -1.0
+        events = [stopped, turn_limit, _StepLimit(max_steps - steps)]
         if sign < 0:
 
             def empty(_t, yy, top=top):
@@ -212,10 +268,15 @@ def release(
         )
         t1 = float(sol.t[-1])
         pieces.append((sol.sol, t0, t1))
+        steps += sol.t.size - 1
+        turned += abs(float(sol.y[0, -1]) - float(y[0]))
         y = sol.y[:, -1].copy()
         t0 = t1
-        if sign < 0 and sol.t_events[1].size:
+        if sign < 0 and sol.t_events[3].size:
             end_reason = "column empty"
+            break
+        if sol.t_events[1].size or sol.t_events[2].size:  # still turning: stopped early
+            end_reason = "turn limit" if sol.t_events[1].size else "step limit"
             break
         if sol.t_events[0].size:  # the wheel stopped
             y[1] = 0.0
@@ -259,6 +320,9 @@ def release(
         end_reason,
         float(min(end_travel, head)),
         float(y[1]),
+        steps,
+        int(max_steps),
+        float(max_turned),
     )
 
 

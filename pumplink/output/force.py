@@ -15,6 +15,7 @@ import numpy as np
 
 from pumplink.output.formats import console, deg, num, render
 from pumplink.output.formats import fmt as _f
+from pumplink.output.precision import known_text, known_to, residual, shown
 
 if TYPE_CHECKING:
     from pumplink.studies.force import ForceResult
@@ -49,7 +50,7 @@ def force_summary(r: ForceResult) -> dict[str, Any]:
             "operator_profile": r.profile,
             "dead_band_deg": r.design.spec.operator.dead_band,
             "model": r.model,
-            **{k: num(v) for k, v in json_items(r.evaluation).items()},
+            **{k: shown(q, v) for k, (q, v) in json_items(r.evaluation).items()},
             # the sampled peak of the angles this study kept (--at), else the evaluation's sweep
             "sampled_peak_force_N": num(r.sampled_peak),
             "samples_n": r.samples_n,
@@ -380,7 +381,10 @@ def render_study(st, fmt: str, summary: bool = False, strict: bool = False, out=
     from pumplink.output.speed import cadence_row
     from pumplink.output.workshop import release_line, release_row, render_workshop, workshop_row
 
-    r, extra = st.result, {}
+    r = st.result
+    # every key docs/json.md lists is in the JSON: null where it has no value (an infeasible design
+    # has nothing to explain, verify or release)
+    extra = {**({"explain": None} if st.explained else {}), **({"verify": None} if st.verified else {})}
     if st.why is not None:
         extra["explain"] = {
             "model": r.model,
@@ -396,8 +400,7 @@ def render_study(st, fmt: str, summary: bool = False, strict: bool = False, out=
             f"verify: nothing to integrate; no finite peak force keeps the wheel turning "
             f"(energy band J·ω̄²·δ = {r.energy_band:.3g} J)\n"
         )
-    if r.design.feasible and st.why is None:  # (the workshop's view has it)
-        extra["release"] = release_row(st.release)
+    extra["release"] = release_row(st.release)
     render_force(r, fmt, summary=summary, extra=extra, strict=strict, advice=st.advice,
                  cadence=st.cadence, out=out)  # fmt: skip
     if fmt == "json":
@@ -406,9 +409,9 @@ def render_study(st, fmt: str, summary: bool = False, strict: bool = False, out=
     if st.why is not None:
         render_explain(st.effects, st.why, out=side, cadence=st.cadence, force_limit=r.force_limit)
         render_workshop(st.workshop, out=side)
-    if "verify" in extra:
+    if extra.get("verify") is not None:
         render_verify(extra["verify"], out=side)
-    if "release" in extra and st.release is not None:
+    if st.release is not None and st.why is None:  # (else in the workshop's report)
         console(side).print(release_line(st.release), markup=False)
 
 
@@ -474,18 +477,36 @@ def render_explain(effects, why: str, out=None, cadence=None, force_limit: float
             c.print(line, markup=False)
 
 
+#: The keys only one model's cross-check fills: null in the other's row (docs/json.md: every key
+#: in every result).
+_MOTION_KEYS = (
+    "cycles",
+    "periodicity",
+    "mean_speed_deg_s",
+    "time_mean_speed_deg_s",
+    "speed_range_deg_s",
+    "fluctuation",
+)
+_STATIC_KEYS = ("angles", "virtual_work", "samples", "sweep_peak_force_N", "peak_force_N")
+
+
 def verify_row(v) -> dict[str, Any]:
     """The solve_ivp cross-check (:class:`pumplink.studies.verify.Verification`) as a row."""
-    sim = v.integration
+    sim, tol = v.integration, v.tolerance
+
+    def known(x):  # an integration in time from the reported motion: settled to the check's tolerance
+        return known_to(x, tol)
+
     return {
         "method": "scipy solve_ivp (DOP853, rtol 1e-11), open-loop force profile F(θ2)",
         "cycles": sim.cycles,
-        "periodicity": num(sim.periodicity),
-        "mean_speed_deg_s": deg(sim.mean_speed),
-        "time_mean_speed_deg_s": deg(sim.time_mean_speed),
-        "speed_range_deg_s": {"min": deg(sim.min_speed), "max": deg(sim.max_speed)},
-        "fluctuation": num(sim.fluctuation),
-        "tolerance": v.tolerance,
+        "periodicity": residual(sim.periodicity, tol),
+        "mean_speed_deg_s": known(deg(sim.mean_speed)),
+        "time_mean_speed_deg_s": known(deg(sim.time_mean_speed)),
+        "speed_range_deg_s": {"min": known(deg(sim.min_speed)), "max": known(deg(sim.max_speed))},
+        "fluctuation": known(sim.fluctuation),
+        **dict.fromkeys(_STATIC_KEYS),
+        "tolerance": tol,
         "agrees": v.agrees,
     }
 
@@ -495,10 +516,11 @@ def static_verify_row(v) -> dict[str, Any]:
     return {
         "method": "virtual work from positions (central differences) and a dense sweep",
         "angles": v.angles,
-        "virtual_work": num(v.virtual_work),
+        "virtual_work": residual(v.virtual_work, v.tolerance),
         "samples": v.samples,
         "sweep_peak_force_N": num(v.sweep_peak),
         "peak_force_N": num(v.peak),
+        **dict.fromkeys(_MOTION_KEYS),
         "tolerance": v.tolerance,
         "agrees": v.agrees,
     }
@@ -506,10 +528,11 @@ def static_verify_row(v) -> dict[str, Any]:
 
 def render_verify(row: dict[str, Any], out=None) -> None:
     c = console(out or sys.stdout)
-    if "virtual_work" in row:  # the quasi-static model
+    if row["cycles"] is None:  # the quasi-static model
         ok = "[bold green]agrees[/]" if row["agrees"] else "[bold red]DISAGREES[/]"
         c.print(
-            f"verify (quasi-static: {row['method']}): {ok} — F·dPx/dθ2 = Mw to {row['virtual_work']:.1e} "
+            f"verify (quasi-static: {row['method']}): {ok} — F·dPx/dθ2 = Mw "
+            f"{_within(row['virtual_work'], row['tolerance'])} "
             f"at {row['angles']} crank angles; {row['samples']:,} samples outside the dead bands peak at "
             f"{row['sweep_peak_force_N']:.3f} N, the exact peak {row['peak_force_N']:.3f} N"
         )
@@ -517,9 +540,15 @@ def render_verify(row: dict[str, Any], out=None) -> None:
     ok = "[bold green]agrees[/]" if row["agrees"] else "[bold red]DISAGREES[/]"
     c.print(
         f"verify ({row['method']}, {row['cycles']} revolutions): {ok} — "
-        f"periodic to {row['periodicity']:.1e}, "
-        f"mean speed (max+min)/2 = {row['mean_speed_deg_s']:.4f} deg/s, "
-        f"fluctuation δ = {row['fluctuation']:.6f}, "
+        f"periodic {_within(row['periodicity'], row['tolerance'])}, "
+        f"mean speed (max+min)/2 = {known_text(row['mean_speed_deg_s'], row['tolerance'])} deg/s, "
+        f"fluctuation δ = {known_text(row['fluctuation'], row['tolerance'])}, "
         f"wheel {row['speed_range_deg_s']['min']:.1f}–{row['speed_range_deg_s']['max']:.1f} deg/s "
         f"(time-averaged {row['time_mean_speed_deg_s']:.1f} deg/s)"
     )
+
+
+def _within(value: float, tolerance: float) -> str:
+    """A checked residual in words: 'to within 1e-06' where it is 0 (at or below the tolerance,
+    :func:`pumplink.output.precision.residual`), else 'to 3.2e-05'."""
+    return f"to within {tolerance:g}" if value == 0 else f"to {value:.1e}"

@@ -10,14 +10,15 @@ from typing import TYPE_CHECKING, Any
 
 from pumplink.output.formats import console, num, render
 from pumplink.output.formats import fmt as _f
+from pumplink.output.precision import at_optimum, difference, optimum_text, slack
 from pumplink.output.tolerance import robust_line, robust_row
-
-if TYPE_CHECKING:
-    pass
 from pumplink.output.words import OUTCOME_MARKUP, check_row, water_row
 
+if TYPE_CHECKING:
+    from pumplink.search.optimize import OptimizationResult
 
-def optimize_row(res) -> dict[str, Any]:
+
+def optimize_row(res: OptimizationResult) -> dict[str, Any]:
     """JSON contract of ``pumplink optimize`` (spec units: m, deg, N).
 
     ``optimum`` and ``spec_design`` each carry the verdict of ``pumplink force`` on that design
@@ -25,23 +26,36 @@ def optimize_row(res) -> dict[str, Any]:
     peak force when the spec gives inertia) and ``dead_band_peak_force_N`` the quasi-static peak
     outside the dead bands.  ``meets_constraints`` is about the search's own constraints
     (--grip-height, --stroke, transmission angle), which the optimum always meets.
+
+    Every figure of the optimum (its coordinates, what is read there, the constraints' slack and
+    the improvement) carries the digits the search determines (:mod:`pumplink.output.precision`):
+    ``tolerance`` is the search's relative tolerance, and a binding constraint's slack is 0.  The
+    spec's own design is not searched: its figures are given in full.  ``evaluations``,
+    ``generations`` and ``polished`` say how this run went; they follow the search's path, which
+    the processor's rounding moves.
     """
     p = res.problem
     b, s = res.at_best, res.at_spec
     names = p.constraint_names()
     op = p.spec.operator
-    gain = res.improvement
+    tol = res.tolerance
+    # the spec's objective less the optimum's, to the last decimal the optimum's objective carries
+    gain = None if res.improvement is None else difference(res.improvement, b.objective[0], tol)
 
-    def judged(r) -> dict[str, Any]:
+    def searched(x):
+        return at_optimum(x, tol)
+
+    def judged(r, at=num) -> dict[str, Any]:
+        checks = [check_row(c, r) for c in r.checks]
         return {
             "model": r.model,
-            "peak_force_N": num(r.verdict_peak_force),
-            "dead_band_peak_force_N": num(r.dead_band_peak_force),
-            "mean_force_N": num(r.mean_force),
-            "flow_l_min": water_row(r.water)["flow_l_min"],
+            "peak_force_N": at(r.verdict_peak_force),
+            "dead_band_peak_force_N": at(r.dead_band_peak_force),
+            "mean_force_N": at(r.mean_force),
+            "flow_l_min": at(water_row(r.water)["flow_l_min"]),
             "verdict": r.outcome,
             "pass": r.passed,
-            "checks": [check_row(c, r) for c in r.checks],
+            "checks": [{**c, "value": at(c["value"])} for c in checks],
         }
 
     return {
@@ -63,16 +77,16 @@ def optimize_row(res) -> dict[str, Any]:
                 "lower": float(lo),
                 "upper": float(hi),
                 "spec": num(p.spec_value(k)),
-                "optimum": float(v),
+                "optimum": searched(v),
             }
             for k, u, lo, hi, v in zip(p.names, res.variable_units, p.lower, p.upper, res.x)
         ],
         "optimum": {
-            **judged(res.best_result),
-            "transmission_deg": num(b.transmission[0]),
-            "grip_height_m": [num(b.grip_low[0]), num(b.grip_high[0])],
-            "stroke_m": num(b.stroke[0]),
-            "rocker_pivot_height_m": num(p.axle_height - res.best.linkage.D1),
+            **judged(res.best_result, searched),
+            "transmission_deg": searched(b.transmission[0]),
+            "grip_height_m": [searched(b.grip_low[0]), searched(b.grip_high[0])],
+            "stroke_m": searched(b.stroke[0]),
+            "rocker_pivot_height_m": searched(p.axle_height - res.best.linkage.D1),
             "meets_constraints": True,
         },
         "spec_design": {
@@ -81,11 +95,12 @@ def optimize_row(res) -> dict[str, Any]:
             "meets_constraints": not res.spec_violates,
             "violated": list(res.spec_violates),
         },
-        "improvement_N": None if gain is None else num(gain),
-        "improvement_pct": None if gain is None else num(100 * gain / float(s.objective[0])),
+        "improvement_N": gain,
+        "improvement_pct": None if gain is None else searched(100 * gain / float(s.objective[0])),
+        "tolerance": tol,
         "constraints": [
-            {"name": n, "unit": u, "slack": num(g), "binding": n in res.binding}
-            for n, u, g in zip(names, res.constraint_units, b.slack[:, 0])
+            {"name": n, "unit": u, "slack": slack(g, n in res.binding, tol, f), "binding": n in res.binding}
+            for n, u, g, f in zip(names, res.constraint_units, b.slack[:, 0], res.constrained)
         ],
         "binding": list(res.binding) + list(res.at_bounds),
         "evaluations": res.evaluations,
@@ -150,12 +165,13 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
         t = Table(title="Variables", title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
         for h in ("key", "bounds", "spec", "optimum"):
             t.add_column(h, justify="left" if h == "key" else "right")
+        tol = row["tolerance"]
         for v in row["variables"]:
             t.add_row(
                 f"{v['key']} \\[{v['unit']}]",
                 f"{v['lower']:g} … {v['upper']:g}",
                 f"{v['spec']:.4f}",
-                f"{v['optimum']:.6f}",
+                optimum_text(v["optimum"], tol),
             )
         c.print(t)
         o, s = row["optimum"], row["spec_design"]
@@ -170,14 +186,20 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
         )
         for h in ("design", "peak [N]", "mean [N]", "γ [°]", "verdict"):
             t.add_column(escape(h), justify="left" if h in ("design", "verdict") else "right")
-        for label, d in (("spec's own design", s), ("[bold]optimum[/]", o)):
-            t.add_row(
-                label,
-                _f(d["peak_force_N"], "{:.2f}", none="∞"),
-                _f(d["mean_force_N"], "{:.2f}"),
-                _f(d["transmission_deg"], "{:.2f}"),
-                OUTCOME_MARKUP[d["verdict"]],
-            )
+        t.add_row(
+            "spec's own design",
+            _f(s["peak_force_N"], "{:.2f}", none="∞"),
+            _f(s["mean_force_N"], "{:.2f}"),
+            _f(s["transmission_deg"], "{:.2f}"),
+            OUTCOME_MARKUP[s["verdict"]],
+        )
+        t.add_row(
+            "[bold]optimum[/]",
+            optimum_text(o["peak_force_N"], tol, none="∞"),
+            optimum_text(o["mean_force_N"], tol),
+            optimum_text(o["transmission_deg"], tol),
+            OUTCOME_MARKUP[o["verdict"]],
+        )
         c.print(t)
         for label, d in (("spec's own design", s), ("optimum", o)):
             bad = [ch for ch in d["checks"] if ch["result"] != "pass"]
@@ -204,9 +226,9 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
         for h in ("constraint", "slack", "binding"):
             t.add_column(h, justify="right" if h == "slack" else "left")
         for k in row["constraints"]:
-            t.add_row(k["name"], f"{k['slack']:.4g} {k['unit']}", "[bold]binds[/]" if k["binding"] else "")
+            value = _f(k["slack"], "{:g}")  # rounded in the row: to the figure's last decimal, 0 if it binds
+            t.add_row(k["name"], f"{value} {k['unit']}", "[bold]binds[/]" if k["binding"] else "")
         c.print(t)
-        key = "peak_force_N" if row["objective"] == "peak" else "mean_force_N"
         if row["objective"] == "flow":
             c.print(
                 f"flow {_f(s['flow_l_min'], '{:.1f}')} l/min → {_f(o['flow_l_min'], '{:.1f}')} l/min "
@@ -214,14 +236,7 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
                 markup=False,
             )
         elif row["improvement_N"] is not None:
-            c.print(
-                f"{row['objective']} force {_f(s[key], '{:.2f}')} N → {_f(o[key], '{:.2f}')} N "
-                f"({row['improvement_pct']:+.1f} % lower than the spec's own design)"
-                if row["improvement_pct"] >= 0
-                else f"the optimum needs {-row['improvement_N']:.2f} N more than the spec's own design, "
-                f"which breaks: {'; '.join(s['violated'])}",
-                markup=False,
-            )
+            c.print(improvement_line(row), markup=False)
         c.print(f"binding: {', '.join(row['binding']) or 'none (interior optimum)'}", markup=False)
         c.print(
             f"grip {o['grip_height_m'][0]:.3f}–{o['grip_height_m'][1]:.3f} m, stroke {o['stroke_m']:.3f} m, "
@@ -242,12 +257,28 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
         how = f" ({o['model']})" if fly else ""
         c.print(
             f"VERDICT: {OUTCOME_MARKUP[o['verdict']]} for the optimum: peak{how} "
-            f"{_f(o['peak_force_N'], '{:.2f}', none='∞')} N vs limit {row['force_limit_N']:g} N "
-            f"({row['evaluations']} designs evaluated, {row['generations']} generations"
-            f"{', polished' if row['polished'] else ''}){tail}"
+            f"{optimum_text(o['peak_force_N'], tol, none='∞')} N vs limit {row['force_limit_N']:g} N{tail}"
         )
 
     render(fmt, out, as_json=as_json, as_csv=as_csv, table=table)
+
+
+def improvement_line(row: dict[str, Any]) -> str:
+    """The objective force of the spec's own design against the optimum's, in words: how much
+    lower, the same (to the digits the search determines), or how much more it needs and which
+    of the search's limits the spec's design breaks to do better."""
+    key = "peak_force_N" if row["objective"] == "peak" else "mean_force_N"
+    s, o, tol = row["spec_design"], row["optimum"], row["tolerance"]
+    gain, pct = row["improvement_N"], row["improvement_pct"]
+    forces = f"{row['objective']} force {_f(s[key], '{:.2f}')} N → {optimum_text(o[key], tol)} N"
+    if gain > 0:
+        return f"{forces} ({pct:.1f} % lower than the spec's own design)"
+    if gain == 0:
+        return f"{forces} (the spec's own design needs the same)"
+    return (
+        f"the optimum needs {optimum_text(-gain, tol)} N more than the spec's own design, which breaks: "
+        f"{'; '.join(s['violated'])}"
+    )
 
 
 def pivot_height(height: float) -> str:

@@ -15,6 +15,7 @@ import numpy as np
 
 from pumplink.output.formats import console, deg, num, render
 from pumplink.output.formats import fmt as _f
+from pumplink.output.precision import EXTREMUM_ARGUMENT, known_to
 from pumplink.output.words import check_row as verdict_check_row
 from pumplink.output.words import water_lines, water_row
 
@@ -60,7 +61,7 @@ def summary_row(r) -> dict[str, Any]:
         **water_row(r.water),
         "mean_force_N": num(r.mean_force),
         "quasi_static_peak_N": num(r.quasi_static_peak),
-        "quasi_static_peak_angle_deg": deg(r.quasi_static_peak_angle),
+        "quasi_static_peak_angle_deg": known_to(deg(r.quasi_static_peak_angle), EXTREMUM_ARGUMENT),
         "model": r.model,
         "inertia_kg_m2": None if r.inertia is None else num(r.inertia),
         "energy_band_J": None if r.energy_band is None else num(r.energy_band),
@@ -326,7 +327,9 @@ def batch_rows(names: list[str], c) -> list[dict[str, Any]]:
                 **water_row(ev.water.design(i)),
                 "mean_force_N": num(ev.mean_force[i]),
                 "quasi_static_peak_N": num(ev.quasi_static_peak[i]),
-                "quasi_static_peak_angle_deg": deg(ev.quasi_static_peak_angle[i]),
+                "quasi_static_peak_angle_deg": known_to(
+                    deg(ev.quasi_static_peak_angle[i]), EXTREMUM_ARGUMENT
+                ),
                 "model": str(ev.model[i]),
                 "inertia_kg_m2": num(inertia[i]) if fly else None,
                 "energy_band_J": num(ev.energy_band[i]) if fly and ok else None,

@@ -13,10 +13,11 @@ from typing import TYPE_CHECKING, Any
 
 from pumplink.output.formats import console, deg, num, render
 from pumplink.output.formats import fmt as _f
+from pumplink.output.precision import known_to
 
 if TYPE_CHECKING:
     from pumplink.studies.speed import SpeedSweep
-from pumplink.constants import MODEL_WORDS
+from pumplink.constants import CADENCE_RTOL, MODEL_WORDS
 from pumplink.output.synth import design_row
 from pumplink.output.words import L_PER_MIN, passing_words
 
@@ -60,20 +61,26 @@ def speed_rows(sw: SpeedSweep) -> list[dict[str, Any]]:
 def cadence_row(c) -> dict[str, Any]:
     """The best cadence and the passing speeds (:class:`pumplink.studies.speed.Cadence`) as JSON."""
 
+    # the best speed and what is read there to its search's tolerance (pumplink.output.precision);
+    # the ends of the passing speeds are whole deg/s (pumplink.studies.speed.passing_speeds)
+
     def rng(pair):
         lo, hi = pair
         if not math.isfinite(lo):
             return None
-        return {"min": deg(lo), "max": deg(hi) if math.isfinite(hi) else None}
+        return {"min": float(round(math.degrees(lo))), "max": float(round(math.degrees(hi)))}
+
+    def known(x):
+        return known_to(x, CADENCE_RTOL)
 
     return {
-        "speed_deg_s": deg(c.speed),
-        "rpm": num(math.degrees(c.speed) / 6.0),
+        "speed_deg_s": known(deg(c.speed)),
+        "rpm": known(math.degrees(c.speed) / 6.0),
         "passing_bands_deg_s": [rng(b) for b in c.bands],
         "passing_without_warnings_deg_s": [rng(b) for b in c.clean_bands],
-        "effort_peak_force_N": num(c.effort),
-        "hand_peak_force_N": num(c.hand_force),
-        "power_W": num(c.power),
+        "effort_peak_force_N": known(c.effort),
+        "hand_peak_force_N": known(c.hand_force),
+        "power_W": known(c.power),
         "at_edge_of_search": c.at_edge,
         "searched_deg_s": {"min": deg(c.searched[0]), "max": deg(c.searched[1])},
         "model": MODEL_WORDS[c.model],

@@ -10,8 +10,9 @@ import math
 import sys
 from typing import TYPE_CHECKING, Any
 
-from pumplink.constants import MODEL_WORDS
+from pumplink.constants import MODEL_WORDS, RELEASE_SETTLED
 from pumplink.output.formats import console, deg, num
+from pumplink.output.precision import known_to
 
 if TYPE_CHECKING:
     from pumplink.studies.workshop import Workshop
@@ -64,25 +65,50 @@ def release_row(both) -> dict[str, Any] | None:
     if both is None:
         return None
     r, f = both
+
+    def known(x):  # an integration in time: to its global error (pumplink.output.precision)
+        return known_to(x, RELEASE_SETTLED)
+
+    stopped = r.reverses or not r.stopped_early  # (stopped early still turning forward: not known)
     return {
-        "needs_ratchet_or_brake": bool(r.reverses),
-        "stop_time_s": num(r.stop_time),
-        "reverses": r.reverses,
-        "grip_speed_1s_m_s": num(r.grip_speed_1s),
-        "peak_grip_speed_m_s": num(r.peak_grip_speed),
-        "peak_time_s": num(r.peak_time),
+        "needs_ratchet_or_brake": bool(r.reverses) if stopped else None,
+        "stop_time_s": known(r.stop_time),
+        "reverses": r.reverses if stopped else None,
+        "grip_speed_1s_m_s": known(r.grip_speed_1s),
+        "peak_grip_speed_m_s": known(r.peak_grip_speed),
+        "peak_time_s": known(r.peak_time),
         "end": r.end_reason,
-        "end_time_s": num(r.end_time),
-        "peak_grip_speed_without_losses_m_s": num(f.peak_grip_speed),
+        "end_time_s": known(r.end_time),
+        "stopped_early": r.stopped_early or f.stopped_early,
+        "peak_grip_speed_without_losses_m_s": known(f.peak_grip_speed),
     }
+
+
+def _early(r) -> str:
+    """Why the released handle's simulation stopped with the wheel still turning, in words."""
+    return {
+        "horizon": f"its horizon of {r.end_time:g} s",
+        "step limit": f"its limit of {r.max_steps:,} solver steps",
+        "turn limit": f"its limit of {r.max_turned:,.0f} rad of crank",
+    }[r.end_reason]
 
 
 def release_line(both) -> str | None:
     """The released handle in one line: 'needs a ratchet or brake' with its numbers, or None
-    (``both``: with and without losses, as :func:`pumplink.studies.workshop.release` gives them)."""
+    (``both``: with and without losses, as :func:`pumplink.studies.workshop.release` gives them).
+    A simulation that stopped with the wheel still turning says so (STOPPED EARLY) and why."""
     if both is None:
         return None
     r, free = both
+    bound = f"({free.peak_grip_speed:.1f} m/s if the pump had no losses)"
+    if free.stopped_early and not r.stopped_early:  # (the other way round, r's words say it)
+        bound = bound[:-1] + f", so far: that simulation STOPPED EARLY at {_early(free)})"
+    if r.stopped_early and not r.reverses:
+        return (
+            f"released handle: STOPPED EARLY — the simulation stopped at {_early(r)} with the wheel still "
+            f"turning forward {r.end_time:.2f} s after the operator lets go, so whether the column drives it "
+            f"back is not known; the grip's peak speed so far {r.peak_grip_speed:.1f} m/s {bound}"
+        )
     if not r.reverses:
         return (
             f"released handle: the wheel stops {r.stop_time:.2f} s after the operator lets go and the pump's "
@@ -94,11 +120,12 @@ def release_line(both) -> str | None:
         else f"1 s after letting go the grip moves at {r.grip_speed_1s:.1f} m/s, "
     )
     end = "empties" if r.end_reason == "column empty" else "stops"
+    if r.stopped_early:
+        end = f"empties: the simulation STOPPED EARLY at {_early(r)}, {r.end_time:.2f} s after letting go"
     return (
         f"released handle: NEEDS A RATCHET OR BRAKE — let go at full speed, the wheel stops in "
         f"{r.stop_time:.2f} s and the water column drives it back; {one}and the grip reaches "
-        f"{r.peak_grip_speed:.1f} m/s after {r.peak_time:.1f} s "
-        f"({free.peak_grip_speed:.1f} m/s if the pump had no losses) before the column {end}"
+        f"{r.peak_grip_speed:.1f} m/s after {r.peak_time:.1f} s {bound} before the column {end}"
     )
 
 

@@ -82,6 +82,10 @@ DEFAULT_AXLE_HEIGHT_M = 0.55
 INFEASIBLE_OBJECTIVE = 1e6
 #: A constraint counts as binding when its slack is below this (in its unit: deg or m).
 BINDING_TOL = 1e-4
+#: Relative tolerance of the search (differential evolution's ``tol``: it stops when the spread of
+#: its population's objective values is below this share of their mean).  The optimum's
+#: coordinates are settled to about its square root (pumplink.output.precision).
+SEARCH_TOL = 1e-8
 
 CONSTRAINTS = (
     ("crank-rocker exists (swing clear of the frame line)", "deg"),
@@ -219,6 +223,7 @@ class OptimizationResult:
     best_result: Any = None  # ... and of the optimum (its verdict decides the exit code)
     force_evaluations: int = 0  # designs whose force was computed: those meeting every constraint
     robust: RobustCheck | None = None  # a robust search's optimum at its tolerances
+    tolerance: float = SEARCH_TOL  # the relative tolerance the search stopped at (its objective's)
 
     @property
     def variable_units(self) -> tuple[str, ...]:
@@ -229,6 +234,20 @@ class OptimizationResult:
     def constraint_units(self) -> tuple[str, ...]:
         """The unit of each constraint's slack, in :meth:`Problem.constraint_names` order."""
         return tuple(self.problem.constraint_units())
+
+    @property
+    def constrained(self) -> tuple[float, ...]:
+        """The figure each constraint bounds at the optimum, in :meth:`Problem.constraint_names`
+        order: the transmission angle [deg], the grip heights and the stroke [m], the builds' share
+        passing; the slack itself where the slack is the figure (the crank-rocker's margin, the
+        dead-band window [deg], the verdict's relative excess).  Its size sets the decimal to which
+        the search determines the slack (pumplink.output.precision)."""
+        b = self.at_best
+        figures = [float(g) for g in b.slack[:, 0]]
+        figures[1:6] = [b.transmission[0], b.grip_low[0], b.grip_high[0], b.stroke[0], b.stroke[0]]
+        if self.problem.robust is not None:
+            figures[-1] += self.problem.robust.target
+        return tuple(float(f) for f in figures)
 
     @property
     def spec_violates(self) -> tuple[str, ...]:
@@ -567,7 +586,7 @@ def optimize(
     seed: int | None = 0,
     popsize: int = 20,
     maxiter: int = 300,
-    tol: float = 1e-8,
+    tol: float = SEARCH_TOL,
     polish: bool = True,
     progress=None,
 ) -> OptimizationResult:
@@ -594,7 +613,7 @@ def optimize(
         if _feasible(e):
             return _result(
                 problem, plain.x, e, plain.evaluations, plain.iterations, plain.polished, seed,
-                plain.message, plain.force_evaluations,
+                plain.message, plain.force_evaluations, tol,
             )  # fmt: skip
         count = [plain.evaluations, plain.force_evaluations]  # the search goes on: both count
 
@@ -698,11 +717,11 @@ def optimize(
             ec = evaluate_designs(problem, cand[:, None])
             if _feasible(ec) and ec.objective[0] < e.objective[0]:
                 x, e, polished = cand, ec, True
-    return _result(problem, x, e, count[0], int(res.nit), polished, seed, str(res.message), count[1])
+    return _result(problem, x, e, count[0], int(res.nit), polished, seed, str(res.message), count[1], tol)
 
 
 def _result(
-    problem: Problem, x, e: Evaluation, looked_at, nit, polished, seed, message, forced
+    problem: Problem, x, e: Evaluation, looked_at, nit, polished, seed, message, forced, tol
 ) -> OptimizationResult:
     """The result at the optimum ``x`` (its evaluation ``e``): the spec's own design beside it,
     what binds, both verdicts as pumplink force gives them and a robust search's check."""
@@ -738,6 +757,7 @@ def _result(
         force_analysis(best, keep_samples=False, samples=0, model=problem.forced),
         forced,
         check,
+        tol,
     )
 
 

@@ -32,7 +32,8 @@ class DesignStudy:
         with ``explain`` where the spec gives the wheel's inertia, and after a FAIL of a check that
         depends on speed.
     workshop : the loads on the parts and the released handle (``explain``).
-    release : the released handle (friction, free) without ``explain`` (its view has it).
+    release : the released handle (with the pump's losses as friction, with none), the workshop's
+        with ``explain``; None without a head or the wheel's inertia.
     check : the independent check (``verify``): :class:`pumplink.studies.verify.Verification` or
         :class:`~pumplink.studies.verify.StaticCheck`; None when there is nothing to integrate.
     nothing_to_verify : ``verify`` asked, and no finite peak force keeps the wheel turning.
@@ -40,6 +41,8 @@ class DesignStudy:
     """
 
     result: ForceResult
+    explained: bool = False  # --explain was asked for
+    verified: bool = False  # --verify was asked for
     effects: tuple = ()
     why: str | None = None
     cadence: Cadence | None = None
@@ -75,11 +78,13 @@ def study(
     r = force_analysis(spec, speed_deg_s, samples, at_deg=at_deg, keep_samples=keep_samples,
                        progress=progress, model=model)  # fmt: skip
     if not r.design.feasible:
-        return DesignStudy(result=r)
-    out: dict[str, Any] = {}
+        return DesignStudy(result=r, explained=explain, verified=verify)
+    out: dict[str, Any] = dict(explained=explain, verified=verify)
     if explain:
         out["effects"], out["why"] = _explain.explain(r)
-        out["workshop"] = _workshop.workshop(r)
+        shop = out["workshop"] = _workshop.workshop(r)
+        if shop is not None and shop.release is not None:  # the same release as the workshop's
+            out["release"] = (shop.release, shop.release_free)
     else:
         out["release"] = _workshop.release(r)
     failed_on_speed = any(c.key in SPEED_CHECKS for c in r.verdict.failures)

@@ -16,9 +16,11 @@ import io
 import json
 import re
 import signal
+import tomllib
 from pathlib import Path
 
 import pytest
+import tomli_w
 
 import pumplink.cli as cli
 
@@ -68,12 +70,9 @@ def paths(node, prefix: str = "", skip: tuple[str, ...] = ()) -> set[str]:
     return out
 
 
-def documented() -> dict[str, set[str]]:
-    """The README's key paths per command: ``{"force": {"checks", "checks.key", ...}, ...}``.
-
-    Read from the bullets after the marker line (in README.md, or in the docs/ page the list
-    moves to): a backticked identifier is a key; ``{`` opens the keys of the last key, ``}``
-    closes them.  Other backticked text (options, values, JSON samples) is skipped."""
+def bullets() -> dict[str, str]:
+    """The text of each command's bullet after the marker line (in README.md, or in the docs/
+    page the list moves to), by command."""
     for page in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]:
         text = page.read_text(encoding="utf-8")
         if MARKER in text:
@@ -83,9 +82,20 @@ def documented() -> dict[str, set[str]]:
     section = text.split(MARKER, 1)[1]
     section = section[section.index("\n- **") :]
     section = section[: re.search(r"\n(?!\s|- )", section[1:]).start() + 1]  # the list ends
-    out: dict[str, set[str]] = {}
+    out = {}
     for bullet in re.split(r"\n- \*\*", section)[1:]:
         command, body = bullet.split("**", 1)
+        out[command] = body
+    return out
+
+
+def documented() -> dict[str, set[str]]:
+    """The README's key paths per command: ``{"force": {"checks", "checks.key", ...}, ...}``.
+
+    A backticked identifier is a key; ``{`` opens the keys of the last key, ``}`` closes them.
+    Other backticked text (options, values, JSON samples) is skipped."""
+    out: dict[str, set[str]] = {}
+    for command, body in bullets().items():
         keys: set[str] = set()
         stack: list[str] = []
         last = None
@@ -129,21 +139,120 @@ def test_synth_keys():
     assert_same("synth", DOC["synth"], paths(doc))
 
 
-def test_force_keys():
-    runs = [
-        # quasi-static: the samples, --explain, the quasi-static --verify
-        ("force", "configs/prototype.toml", "--explain", "--verify"),
-        # full dynamics decides: the best cadence and the speeds that pass
-        ("force", "configs/village-10m.toml", "--explain", "--summary"),
-        # the flywheel, a FAIL: advice, the energy models' --verify
-        ("force", "examples/well-12m-flywheel.toml", "--model", "flywheel", "--verify", "--summary"),
-    ]
-    docs = [emitted(*r) for r in runs]
+#: Runs of ``pumplink force`` that between them reach every optional part of its JSON.
+FORCE_RUNS = [
+    # quasi-static: the samples, --explain, the quasi-static --verify
+    ("force", "configs/prototype.toml", "--explain", "--verify"),
+    # full dynamics decides: the best cadence and the speeds that pass
+    ("force", "configs/village-10m.toml", "--explain", "--summary"),
+    # the flywheel, a FAIL: advice, the energy models' --verify
+    ("force", "examples/well-12m-flywheel.toml", "--model", "flywheel", "--verify", "--summary"),
+]
+
+
+@pytest.fixture(scope="module")
+def force_docs() -> list[dict]:
+    return [emitted(*r) for r in FORCE_RUNS]
+
+
+def test_force_keys(force_docs):
+    docs = force_docs
     assert any(d["advice"] for d in docs) and any(d["samples"] for d in docs if "samples" in d)
     assert len({d["verify"]["method"] for d in docs if "verify" in d}) == 2
     assert len({d["model"] for d in docs}) == 3
     keys = set().union(*(paths(d) for d in docs))
     assert_same("force", design_keys() | DOC["force"], keys)
+
+
+def optional_keys(command: str) -> dict[str, tuple[str, str]]:
+    """The top-level keys the list gives only with or without an option, read from its
+    sub-bullets ("with `--explain`: `explain` ..."): key -> ("with" or "without", option)."""
+    found = re.findall(r"\n\s+- (with|without) `(--[a-z-]+)`: `([A-Za-z_]+)`", bullets()[command])
+    return {key: (word, option) for word, option, key in found}
+
+
+def absent(doc: dict, documented_keys: set[str], args: tuple, optional: dict) -> list[str]:
+    """The documented key paths a result leaves out.  A key must be in every object that holds
+    its parent (each object of a list; nothing below a null); a top-level key the list gives
+    only with (without) an option, only when the run has (has not) it."""
+    out = []
+    for path in sorted(documented_keys):
+        *parents, leaf = path.split(".")
+        if not parents and leaf in optional:
+            word, option = optional[leaf]
+            if (option in args) != (word == "with"):
+                continue
+        nodes = [doc]
+        for k in parents:
+            values = [n.get(k) for n in nodes]
+            nodes = [v for v in values if isinstance(v, dict)]
+            nodes += [x for v in values if isinstance(v, list) for x in v if isinstance(x, dict)]
+        if any(leaf not in n for n in nodes):
+            out.append(path)
+    return out
+
+
+#: A spec that gives a head and a pipe (the released handle has a water column), and ones with no
+#: linkage (L1 = 0: the frame line rises above the handle's forward extreme, test_batch.SMALL),
+#: or with no finite force that keeps the wheel turning (J = 0 by the flywheel: nothing to
+#: integrate, no workshop view).
+PROTOTYPE = tomllib.loads((ROOT / "configs" / "prototype.toml").read_text(encoding="utf-8"))
+WITH_HEAD = {**PROTOTYPE, "load": {"head": 8.0, "pipe_diameter": 0.023}}
+NO_LINKAGE = {**WITH_HEAD, "linkage": {**PROTOTYPE["linkage"], "L1": 0.0}}
+NO_LINKAGE_FLYWHEEL = {**NO_LINKAGE, "wheel": {"radius": 0.25, "mass": 4.0}}
+NO_MOTION = {**PROTOTYPE, "load": {"rope_force": 45.0, "moving_mass": 0.0}}
+OPTIONS = [(), ("--explain",), ("--verify",), ("--explain", "--verify")]
+SPECS = {"with-head": WITH_HEAD, "no-linkage": NO_LINKAGE, "no-linkage-flywheel": NO_LINKAGE_FLYWHEEL}
+CASES = [(name, options) for name in SPECS for options in OPTIONS]
+# (no finite force: ~1 s a run, for the advice's search; one run has both options)
+CASES.append(("no-motion", ("--model", "flywheel", "--explain", "--verify")))
+
+
+@pytest.mark.parametrize(("name", "options"), CASES, ids=[f"{n} {' '.join(o)}".strip() for n, o in CASES])
+def test_every_documented_force_key_is_in_every_result(tmp_path, name, options):
+    spec = {**SPECS, "no-motion": NO_MOTION}[name]
+    path = tmp_path / "spec.toml"
+    path.write_text(tomli_w.dumps(spec), encoding="utf-8")
+    args = ("force", path, "--summary", *options)
+    doc = emitted(*args)
+    keys = design_keys() | DOC["force"]
+    assert absent(doc, keys, args, optional_keys("force")) == []
+    if spec is not WITH_HEAD:  # nothing to release or verify: null, not left out
+        assert doc["release"] is None and doc.get("verify", None) is None
+    if spec in (NO_LINKAGE, NO_LINKAGE_FLYWHEEL) and "--explain" in options:  # nor to explain
+        assert doc["explain"] is None
+    if spec is NO_MOTION and "--explain" in options:  # the model's choice, but no workshop view
+        assert doc["explain"]["model"] == "flywheel" and doc["explain"]["workshop"] is None
+
+
+def test_the_shared_force_runs_hold_every_documented_key(force_docs):
+    optional = optional_keys("force")
+    assert optional == {
+        "explain": ("with", "--explain"),
+        "verify": ("with", "--verify"),
+        "samples": ("without", "--summary"),
+    }
+    for args, doc in zip(FORCE_RUNS, force_docs):
+        assert absent(doc, design_keys() | DOC["force"], args, optional) == [], args
+
+
+def test_a_released_handle_that_stops_early_says_so(tmp_path):
+    """A 1 mm wheel under 168 m of 1 mm pipe: its column empties only after 168,000 rad of crank
+    run back, past the simulation's turn limit (10,000 rad; with massless links the steps are
+    long, so the turns, not the steps, run out).  The JSON and the line say it stopped early."""
+    spec = {
+        **PROTOTYPE,
+        "wheel": {"radius": 0.001, "mass": 10.0},
+        "linkage": {**PROTOTYPE["linkage"], "coupler_mass": 0.0, "handle_mass": 0.0},
+        "load": {"head": 168.0, "pipe_diameter": 0.001},
+    }
+    path = tmp_path / "spec.toml"
+    path.write_text(tomli_w.dumps(spec), encoding="utf-8")
+    release = emitted("force", path, "--summary")["release"]
+    assert (release["stopped_early"], release["end"]) == (True, "turn limit")
+    text = run("force", path, "--summary")
+    line = text[text.index("released handle:") :].replace("\n", " ")
+    assert "STOPPED EARLY" in line and "10,000 rad of crank" in line
 
 
 def test_the_old_wrong_keys_are_gone_from_the_readme():

@@ -24,13 +24,12 @@ from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 from scipy.interpolate import CubicSpline
 
-from pumplink.constants import GRAVITY, LINK_MASS_PER_METRE
+from pumplink.constants import GRAVITY
 from pumplink.inputs.pump import load_spec
 from pumplink.mechanisms.fourbar import synthesize
 from pumplink.models import Masses
 from pumplink.models import dynamics as dy
 from pumplink.models import release as RL
-from pumplink.models.load import link_masses
 from pumplink.studies.force import force_analysis
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -157,43 +156,53 @@ def _grip(ref, tables, pieces, n=400_000):
     return np.concatenate(t_all), np.concatenate(v_all)
 
 
+#: configs/village-10m.toml's inputs, restated: head 10 m, a 23 mm main, force efficiency 0.75, a
+#: 0.25 m wheel with 10 kg at the rim, a 0.899 m handle, 1" tube at 2.407 kg/m.
+HEAD, PIPE, EFFICIENCY, RIM, WHEEL_MASS, HANDLE, TUBE = 10.0, 0.023, 0.75, 0.25, 10.0, 0.899, 2.407
+#: The water column, by hand (docs/physics.md §5, docs/models.md §2, docs/workshop.md §3): its mass
+#: rho H (pi d^2/4) = 4.15476 kg moves with the rim; its weight on the rope times rw is the
+#: column's torque M_col = 9.81 x 4.15476 x 0.25 = 10.18954 N m; its inertia J_c = 4.15476 x 0.25^2
+#: = 0.259673 kg m^2; J = 10 x 0.25^2 + J_c = 0.884673 kg m^2 (rim and water); the wheel torque
+#: M_col / 0.75, so the losses' torque, all of the inefficiency as friction, M_col (1/0.75 - 1).
+WATER = 1000.0 * HEAD * math.pi * PIPE**2 / 4
+COLUMN_TORQUE = 9.81 * WATER * RIM
+COLUMN_INERTIA = WATER * RIM**2
+INERTIA = WHEEL_MASS * RIM**2 + COLUMN_INERTIA
+LOSS_TORQUE = COLUMN_TORQUE * (1 / EFFICIENCY - 1)
+
+
+def test_the_hand_column_is_the_village_spec_s():
+    """The numbers above, checked: 4.15476 kg of water, 10.18954 N m, 0.884673 kg m^2."""
+    assert (WATER, COLUMN_TORQUE, INERTIA) == pytest.approx((4.15476, 10.18954, 0.884673), abs=5e-6)
+    spec = load_spec(VILLAGE)
+    assert (spec.load.head, spec.load.pipe_diameter, spec.load.efficiency) == (HEAD, PIPE, EFFICIENCY)
+    assert (spec.wheel.radius, spec.wheel.mass) == (RIM, WHEEL_MASS)
+    assert (spec.linkage.handle, spec.linkage.mass_per_length) == (HANDLE, TUBE)
+
+
 @pytest.fixture(scope="module")
 def village():
+    """The village well's force result, the links' masses by hand (the tube's mass per metre times
+    the coupler's length and the handle's, docs/models.md §3a), its reference linkage and tables."""
     spec = load_spec(VILLAGE)
     r = force_analysis(spec, keep_samples=False)
     syn = r.design.synthesis
-    lk = spec.linkage
-    masses = link_masses(
-        syn.coupler_length,
-        lk.handle,
-        lk.rocker,
-        lk.mass_per_length or LINK_MASS_PER_METRE,
-        lk.coupler_mass,
-        lk.handle_mass,
-    )
+    masses = Masses(TUBE * float(syn.coupler_length), TUBE * max(HANDLE, float(syn.rocker_length)), 0.0)
     ref = R.from_synthesis(syn)
     return spec, r, syn, masses, ref, _scene_tables(ref, masses)
 
 
-@pytest.mark.parametrize("loss_share", [1.0, 0.0])
-@pytest.mark.parametrize("start_deg", [247.0, 30.0])
-def test_village_release_agrees_with_an_independent_integration(village, loss_share, start_deg):
-    spec, r, syn, masses, ref, tables = village
-    head, d, rw = spec.load.head, spec.load.pipe_diameter, spec.wheel.radius
-    mcol = float(RL.column_torque(head, d, rw))
-    jc = float(RL.column_inertia(head, d, rw))
-    mloss = loss_share * (spec.wheel_torque - mcol)
-    t0 = math.radians(start_deg)
-    w0 = float(dy.wheel_speed(r.scene, t0))
-    got = RL.release(syn.linkage, t0, w0, mcol, mloss, spec.inertia, head, rw, masses, jc)
+def _agrees(got, ref, tables, t0, w0, mloss):
+    """``got`` (a :class:`pumplink.models.release.Release` from t0, w0) against the independent
+    integration with the hand column, inertia and ``mloss``."""
     t_stop, t_end, reason, pieces = _independent_release(
-        ref, tables, t0, w0, mcol, mloss, spec.inertia, head, rw, jc
+        ref, tables, t0, w0, COLUMN_TORQUE, mloss, INERTIA, HEAD, RIM, COLUMN_INERTIA
     )
     assert got.reverses and reason == got.end_reason == "column empty"
     assert got.stop_time == pytest.approx(t_stop, rel=1e-7)
     assert got.reverse_time == pytest.approx(t_stop, rel=1e-7)
     assert got.end_time == pytest.approx(t_end, rel=1e-7)
-    assert got.end_rope_travel == pytest.approx(head, rel=1e-12)
+    assert got.end_rope_travel == pytest.approx(HEAD, rel=1e-12)
     ts, vs = _grip(ref, tables, pieces)
     j = int(np.argmax(vs))
     assert got.peak_grip_speed == pytest.approx(vs[j], rel=1e-6)  # a sweep step of ~1e-5 s: 1e-7 of it
@@ -203,6 +212,32 @@ def test_village_release_agrees_with_an_independent_integration(village, loss_sh
     one = float(ref.handle) * abs(tables[3](np.mod(th1, 2 * math.pi)) * w1)
     assert got.grip_speed_1s == pytest.approx(one, rel=1e-6)
     assert got.peak_grip_speed > 5.0  # the village well's column does throw the handle
+
+
+@pytest.mark.parametrize("friction", [True, False], ids=["with friction", "free"])
+def test_the_reported_release_agrees_with_an_independent_integration(village, friction):
+    """What ``force --explain`` reports (studies.workshop.release: let go at the grip's fastest
+    point, with the pump's losses as friction and with none) is the independent integration's
+    motion from the same state with the column's torque, its inertia, J and the losses computed by
+    hand from the spec: the product's own column torque, column inertia and J are what is checked."""
+    from pumplink.studies import workshop
+
+    _spec, r, _syn, _masses, ref, tables = village
+    with_friction, free = workshop.release(r)
+    got = with_friction if friction else free
+    assert got.start_angle == with_friction.start_angle == free.start_angle
+    _agrees(got, ref, tables, got.start_angle, got.start_speed, LOSS_TORQUE if friction else 0.0)
+
+
+@pytest.mark.parametrize(("start_deg", "loss_share"), [(30.0, 1.0), (247.0, 0.0)])
+def test_village_release_agrees_with_an_independent_integration(village, start_deg, loss_share):
+    """The release model itself from two other moments of the turn, the hand column and J given."""
+    _spec, r, syn, masses, ref, tables = village
+    t0 = math.radians(start_deg)
+    w0 = float(dy.wheel_speed(r.scene, t0))
+    mloss = loss_share * LOSS_TORQUE
+    got = RL.release(syn.linkage, t0, w0, COLUMN_TORQUE, mloss, INERTIA, HEAD, RIM, masses, COLUMN_INERTIA)
+    _agrees(got, ref, tables, t0, w0, mloss)
 
 
 def test_closed_form_without_link_masses():
@@ -264,3 +299,63 @@ def test_energy_balance_of_a_whole_release(design, start, speed, loss):
     w_end = -math.sqrt(2 * kinetic / (j + float(tm1.inertia)))
     assert got.end_speed == pytest.approx(w_end, rel=1e-7)
     assert got.end_rope_travel == pytest.approx(head, rel=1e-12)
+
+
+# ----------------------------------------------------------------------------- bounded
+#: The spec of an adversarial run that took 37 s and 561 MB: the prototype on a 1 mm wheel under
+#: 168 m of 1 mm pipe, with a wheel mass so that the released handle is simulated.  Its column
+#: (1.3e-3 N m) and losses barely brake the links, so the wheel coasts forward for more than the
+#: 60 s horizon, and the column would need 168,000 rad of crank to empty: unbounded, it took 26,957
+#: solver steps (both simulations).
+TINY_WHEEL = {
+    "name": "tiny wheel",
+    "wheel": {"radius": 0.001, "mass": 10.0},
+    "linkage": {"L1": 0.40, "D1": 0.20, "b": 0.10, "rocker": 0.20, "handle": 1.00, "swing": 60.0},
+    "load": {"head": 168.0, "pipe_diameter": 0.001},
+    "operator": {"force_limit": 100.0, "speed": 360.0, "dead_band": 20.0},
+}
+
+
+def test_a_tiny_wheel_under_a_tall_column_stops_early_within_the_step_limit(monkeypatch):
+    """Counted here, at scipy's ``solve_ivp`` (independent of the product's own count): both
+    simulations together take at most 2 x MAX_STEPS steps, and each reports that it stopped early,
+    at the step limit, in its result, its JSON row and its line."""
+    import scipy.integrate
+
+    from pumplink.inputs.pump import parse_spec
+    from pumplink.output.workshop import release_line, release_row
+    from pumplink.studies.workshop import release
+
+    counted = {"steps": 0, "evaluations": 0}
+    solve = scipy.integrate.solve_ivp
+
+    def counting(*args, **kw):
+        sol = solve(*args, **kw)
+        counted["steps"] += sol.t.size - 1
+        counted["evaluations"] += sol.nfev
+        return sol
+
+    monkeypatch.setattr(scipy.integrate, "solve_ivp", counting)
+    both = release(force_analysis(parse_spec(TINY_WHEEL), keep_samples=False))
+    assert 0 < counted["steps"] <= 2 * RL.MAX_STEPS
+    assert counted["evaluations"] <= 2 * RL.MAX_STEPS * 30  # DOP853: 12 a step, and retried steps
+    for got in both:
+        assert got.stopped_early and got.end_reason == "step limit" and not got.reverses
+        assert math.isnan(got.stop_time) and 0 < got.end_time < RL.HORIZON
+    row = release_row(both)
+    assert (row["stopped_early"], row["end"], row["needs_ratchet_or_brake"]) == (True, "step limit", None)
+    assert "STOPPED EARLY" in release_line(both) and f"{RL.MAX_STEPS:,} solver steps" in release_line(both)
+
+
+def test_the_turn_limit_stops_a_long_run_back():
+    """Without link masses the motion is smooth and the steps long; the run back to an empty
+    column would take head / rw = 3000 rad.  With a turn limit of 100 rad the simulation stops
+    once the crank has turned 100 rad in all (the coast, J w0^2 / 2 / (Mc + Ml) rad by the closed
+    form of test_closed_form_without_link_masses, then the run back), at the limit exactly."""
+    syn = synthesize(0.4, 0.2, 0.1, 0.2, math.radians(70.0), 1.2)
+    mc_, ml, j, head, rw, w0 = 10.0, 2.0, 0.9, 3.0, 0.001, 5.0
+    got = RL.release(syn.linkage, 1.0, w0, mc_, ml, j, head, rw, max_turned=100.0)
+    coast = 0.5 * j * w0**2 / (mc_ + ml)
+    assert got.reverses and got.stopped_early and got.end_reason == "turn limit"
+    assert got.stop_angle - 1.0 == pytest.approx(coast, rel=1e-9)
+    assert got.end_rope_travel == pytest.approx(rw * (100.0 - coast), rel=1e-9)
