@@ -13,9 +13,10 @@ from typing import Any
 
 import numpy as np
 
+from pumplink.constants import EXTREMUM_ARGUMENT
 from pumplink.output.formats import console, deg, num, render
 from pumplink.output.formats import fmt as _f
-from pumplink.output.precision import EXTREMUM_ARGUMENT, known_to
+from pumplink.output.precision import known_to
 from pumplink.output.words import check_row as verdict_check_row
 from pumplink.output.words import water_lines, water_row
 
