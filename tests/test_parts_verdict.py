@@ -300,3 +300,30 @@ def test_fatigue_is_that_of_the_reported_peak_moment(parts, operator, level):
     for got in (r.verdict["crank_fatigue"].value, shop.strength.crank.safety):
         assert got == pytest.approx(crank, rel=1e-5)
     assert r.verdict["handle_fatigue"].level == level
+
+
+@pytest.mark.parametrize(
+    ("joints", "handle_words", "crank_words"),
+    [
+        ({"handle_joint": "hole", "crank_joint": "welded"}, "at its pin hole at B", "where it is welded on"),
+        (
+            {"handle_joint": "lug", "crank_joint": "hole"},
+            "at the weld toe of its lug at B",
+            "at its hole for the axle",
+        ),
+    ],
+)
+def test_the_fatigue_advice_says_how_parts_joins_them(joints, handle_words, crank_words):
+    """The sentence under a fatigue warning names the detail [parts] describes: no "pin hole" for
+    a handle with a welded lug (docs/workshop.md: "do not drill the handle at B").  The small
+    dead band's handle warns (1.470) and an 8 mm crank bar does (1.12); the notch factors are
+    given (1), so only the words change."""
+    from pumplink.output.words import check_sentence
+
+    parts = {**SMALL_BAND_PARTS, "crank_diameter": 0.008, **joints}
+    r = force_analysis(_spec(parts, **SMALL_BAND), keep_samples=False)
+    handle, crank = r.verdict["handle_fatigue"], r.verdict["crank_fatigue"]
+    assert (handle.level, crank.level) == (WARN, WARN)
+    assert handle_words in check_sentence(handle, r) and crank_words in check_sentence(crank, r)
+    if joints["handle_joint"] == "lug":
+        assert "pin hole" not in check_sentence(handle, r)

@@ -398,3 +398,41 @@ def test_speed_fluctuation_range(key, value):
     with pytest.raises(SpecError) as e:
         parse_spec(d)
     assert f"operator.{key}" in str(e.value) and "allowed" in str(e.value)
+
+
+# ----------------------------------------------------------------------------- how the parts are joined
+@pytest.mark.parametrize(
+    ("joints", "notches"),
+    [
+        ({}, (3.0, 2.0)),  # the defaults: the handle drilled at B, the crank welded to the axle
+        ({"handle_joint": "lug"}, (2.0, 2.0)),
+        ({"crank_joint": "hole"}, (3.0, 3.0)),
+        ({"handle_joint": "lug", "handle_notch": 1.2, "crank_notch": 4.0}, (1.2, 4.0)),  # given: kept
+    ],
+)
+def test_a_notch_factor_not_given_follows_from_the_joint(joints, notches):
+    """docs/workshop.md §2: about 3 at a drilled hole (Peterson's transverse hole), about 2 at a
+    weld toe; a notch factor the spec gives is its own."""
+    spec = parse_spec({**ROPE, "parts": joints})
+    assert (spec.parts.handle_notch, spec.parts.crank_notch) == notches
+    assert spec.parts.handle_joint == joints.get("handle_joint", "hole")
+    assert spec.parts.crank_joint == joints.get("crank_joint", "welded")
+
+
+def test_a_joint_is_one_of_its_words():
+    with pytest.raises(SpecError, match=r"'parts.handle_joint' = 'weld' must be hole or lug"):
+        parse_spec({**ROPE, "parts": {"handle_joint": "weld"}})
+
+
+def test_the_pins_diameter_is_given_once():
+    """linkage.hole_diameter is the older name of parts.pin_diameter: alone it is the default parts'
+    pin (and the template's holes); beside a [parts] that says otherwise it is one sentence."""
+    old = {**ROPE, "linkage": {**ROPE["linkage"], "hole_diameter": 0.0125}}
+    assert parse_spec(old).parts is None and parse_spec(old).parts_or_defaults.pin_diameter == 0.0125
+    assert parse_spec({**old, "parts": {"pin_diameter": 0.0125}}).parts.pin_diameter == 0.0125
+    with pytest.raises(SpecError) as e:
+        parse_spec({**old, "parts": {"pin_width": 0.04}})  # and the default 12 mm pin
+    msg = str(e.value)
+    assert "linkage.hole_diameter = 0.0125" in msg and "parts.pin_diameter = 0.012" in msg
+    assert "parts.pin_diameter = 0.0125" in msg.split("give it once")[1]
+    assert parse_spec(ROPE).parts_or_defaults.pin_diameter == 0.012

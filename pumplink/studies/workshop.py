@@ -15,13 +15,10 @@ from typing import Any
 import numpy as np
 
 from pumplink.constants import GRAVITY
-from pumplink.evaluate import PartSizes, motion
+from pumplink.evaluate import PART_KEYS, PartSizes, motion
 from pumplink.evaluate import parts as _parts
 from pumplink.models import ORDER
 from pumplink.studies.force import ForceResult
-
-#: The defaults of a spec's [parts] table, used for information when the spec gives none.
-DEFAULT_PARTS = PartSizes(0.012, 0.0052, 0.0269, 0.0026, 1.0, 0.0127, 1.0)
 
 
 @dataclass(frozen=True)
@@ -99,7 +96,11 @@ def workshop(r: ForceResult) -> Workshop | None:
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
     loads = _parts.part_loads(lk, dce, dcf, r.dead_band, r.wheel_torque, key, part_scene, rope, weight)
     given = ev.designs.parts is not None
-    sizes = ev.designs.parts.design(0) if given else DEFAULT_PARTS
+    if given:
+        sizes = ev.designs.parts.design(0)
+    else:  # the defaults of [parts], for information
+        shop = r.design.spec.parts_or_defaults
+        sizes = PartSizes(*(getattr(shop, k) for k in PART_KEYS))
     strength = _parts.strength(loads, sizes)
     both = release(r, found)
     return Workshop(loads, strength, sizes, given, *(both or (None, None)))
