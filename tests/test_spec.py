@@ -17,6 +17,7 @@ import pytest
 import tomli_w
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from shipped import PROFILE_NAMES
 
 from pumplink.errors import PumplinkError, SpecError
 from pumplink.inputs.pump import PumpSpec, default_spec, load_spec, parse_spec, spec_to_dict
@@ -436,3 +437,40 @@ def test_the_pins_diameter_is_given_once():
     assert "linkage.hole_diameter = 0.0125" in msg and "parts.pin_diameter = 0.012" in msg
     assert "parts.pin_diameter = 0.0125" in msg.split("give it once")[1]
     assert parse_spec(ROPE).parts_or_defaults.pin_diameter == 0.012
+
+
+# ----------------------------------------------------------------------------- the spec init writes
+@pytest.mark.parametrize("profile", PROFILE_NAMES)
+def test_the_init_spec_names_its_profile_and_lists_what_each_sets(profile):
+    """``pumplink init`` writes ``profile = "men"`` and no limit of its own, so changing the word
+    changes every limit (a force_limit alone would leave the men's power and grip limits: the
+    reason the profile is named); the line listing each profile states its limits, read here from
+    pumplink.profiles' data."""
+    from pumplink.inputs.pump import spec_template
+    from pumplink.profiles import PROFILES
+
+    text = spec_template("p")
+    assert re.search(r'^profile = "men" ', text, re.M)
+    spec = parse_spec(tomllib.loads(text.replace('profile = "men"', f'profile = "{profile}"', 1)))
+    assert spec.operator.profile == profile and spec.operator.limits == PROFILES[profile]
+    p = PROFILES[profile]
+    line = next(ln for ln in text.splitlines() if re.match(rf"\s+#\s+{profile}\s", ln))
+    lo, hi = p.grip_height_range
+    numbers = [float(x) for x in re.findall(r"\d+(?:\.\d+)?", line)]
+    assert numbers == [p.force_limit, p.sustained_power, p.hour_power, lo, hi, p.grip_speed_warn,
+                       p.grip_speed_fail], line  # fmt: skip
+
+
+def test_the_init_spec_shows_parts_and_use_with_their_defaults():
+    """Uncommented, the [parts] and [use] tables and the profile's limits of the init spec are the
+    defaults each stands for: the men's limits, Parts() and Use() as the models declare them."""
+    from pumplink.inputs.pump import Parts, Use, spec_template
+    from pumplink.profiles import PROFILES
+
+    text = spec_template("p")
+    assert "\n# [parts]\n" in text and "\n# [use]\n" in text
+    uncommented = re.sub(r"^# (\w+ = |\[)", r"\1", text, flags=re.M)
+    uncommented = uncommented.replace("rope_force = 45.0", "").replace("inertia = 0.25", "")
+    spec = parse_spec(tomllib.loads(uncommented))
+    assert spec.parts == Parts() and spec.use == Use() and spec.operator.limits == PROFILES["men"]
+    assert (spec.parts.handle_joint, spec.parts.crank_joint) == ("hole", "welded")

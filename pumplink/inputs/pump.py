@@ -22,7 +22,7 @@ from pumplink.constants import (
 from pumplink.errors import SpecError
 from pumplink.inputs.toml import MAX_NAME_CHARS, Section, read_toml, spec_name, validate
 from pumplink.models import load as _load
-from pumplink.profiles import OperatorProfile, operator_limits
+from pumplink.profiles import DEFAULT_PROFILE, PROFILES, OperatorProfile, operator_limits
 
 
 class Wheel(Section):
@@ -443,7 +443,7 @@ DEFAULT_SPEC: dict[str, Any] = {
     "wheel": {"radius": 0.25},
     "linkage": {"L1": 0.40, "D1": 0.20, "b": 0.10, "rocker": 0.20, "handle": 1.00, "swing": 60.0},
     "load": {"rope_force": 45.0},
-    "operator": {"force_limit": 100.0, "speed": 360.0, "dead_band": 20.0},
+    "operator": {"profile": "men", "speed": 360.0, "dead_band": 20.0},
 }
 
 
@@ -544,16 +544,70 @@ rope_force = 45.0      # rope force at the wheel rim Fw [N], 0-10000; or instead
 # moving_mass = 4.0    # rope and water moving with the rim [kg] (flywheel model)
 
 [operator]
-force_limit = 100.0    # largest acceptable push/pull [N], 1-10000 (women: 70; UK HSE guidance)
+profile = "men"        # who pumps: "men", "women", "children" or "accessible" (docs/operators.md).
+                       # Each sets the verdict's limits: the push/pull force, the power kept up
+                       # for hours / for about an hour, the grip's height range over the swing
+                       # (with wheel.axle_height) and the grip speeds at which it warns / fails:
+{profiles}
+                       # A key below overrides one of the profile's limits (the men's shown):
+# force_limit = {force_limit}        # the largest push/pull [N], 1-10000
+# sustained_power = {sustained_power}     # the power kept up for hours [W]
+# hour_power = {hour_power}         # the power given for about an hour [W]
+# grip_height_min = {grip_height_min}     # the grip's lowest and highest point over the swing [m]
+# grip_height_max = {grip_height_max}    # (checked with wheel.axle_height)
+# grip_speed_warn = {grip_speed_warn}     # the grip speeds at which the verdict warns and fails [m/s]
+# grip_speed_fail = {grip_speed_fail}
 speed = 360.0          # wheel speed [deg/s], 0-7200 (360 deg/s = 60 rpm)
 dead_band = 20.0       # crank angle each side of a dead centre left to the wheel [deg], 0-89
 # speed_fluctuation = 0.2  # largest (w_max - w_min) / w_mean [-], 0-1 (flywheel model)
+
+# The pins, the handle tube and the crank bar (docs/workshop.md): given, the verdict checks the
+# pins' bearing pressure and the fatigue of the handle and the crank, and `pumplink template`
+# drills the pins' holes.  Uncomment the table and the keys to change; these are the defaults.
+# [parts]
+# pin_diameter = {pin_diameter}    # pins [m], and the template's holes, 0.001-0.1
+# pin_width = {pin_width}     # bore each pin bears on [m]: both walls of the tube, or a bush's length
+# handle_diameter = {handle_diameter}  # handle tube, outer diameter and wall [m] (3/4" medium tube)
+# handle_wall = {handle_wall}
+# handle_joint = "{handle_joint}"  # the coupler's pin at B: "hole" drilled through the handle, or
+#                        # "lug" welded on (then the template does not drill the handle at B)
+# handle_notch = {handle_notch}    # fatigue notch factor at B, 1-5 (default: 3 at a hole, 2 at a lug)
+# crank_diameter = {crank_diameter}  # crank, a round bar [m] (1/2")
+# crank_joint = "{crank_joint}"  # the crank at the axle: "welded", or "hole" (drilled and pinned)
+# crank_notch = {crank_notch}     # fatigue notch factor at the axle, 1-5 (default: 2 welded, 3 at a hole)
+
+# How the water is used, for the people a pump serves (docs/water.md); these are the defaults.
+# [use]
+# hours_per_day = {hours_per_day}     # hours a day the pump is worked [h], 0-24
+# litres_per_person_day = {litres_per_person_day}  # water each person needs a day [l] (WHO basic access)
 """
 
 
+def _profile_lines() -> str:
+    """The operator profiles' limits, one commented line each, under the spec's ``profile`` key."""
+    lines = []
+    for p in PROFILES.values():
+        lo, hi = p.grip_height_range
+        force = f"{p.force_limit:g} N"
+        power = f"{p.sustained_power:g} / {p.hour_power:g} W"
+        speed = f"{p.grip_speed_warn:.1f} / {p.grip_speed_fail:.1f} m/s"
+        lines.append(f"{' ' * 23}#   {p.name:<10} {force:>6}   {power:>10}   {lo:.2f}-{hi:.2f} m   {speed}")
+    return "\n".join(lines)
+
+
 def spec_template(name: str, path: str = "pump.toml") -> str:
-    """The commented spec of :data:`SPEC_TEMPLATE` with this design ``name`` (TOML-quoted)."""
+    """The commented spec of :data:`SPEC_TEMPLATE` with this design ``name`` (TOML-quoted): the
+    operator profiles' limits from :mod:`pumplink.profiles`, the defaults of ``[parts]`` and
+    ``[use]`` from their models."""
     import json
 
     quoted = json.dumps(name, ensure_ascii=False)[1:-1]  # a TOML basic string is JSON-compatible
-    return SPEC_TEMPLATE.replace("{name}", quoted).replace("{path}", path)
+    men = DEFAULT_PROFILE
+    limits = {k: getattr(men, k) for k in ("force_limit", "sustained_power", "hour_power")}
+    limits.update(grip_speed_warn=men.grip_speed_warn, grip_speed_fail=men.grip_speed_fail)
+    limits.update(grip_height_min=men.grip_height_range[0], grip_height_max=men.grip_height_range[1])
+    values = {**Parts().model_dump(), **Use().model_dump(), **limits, "profiles": _profile_lines()}
+    text = SPEC_TEMPLATE.replace("{name}", quoted).replace("{path}", path)
+    for key, value in values.items():
+        text = text.replace(f"{{{key}}}", value if isinstance(value, str) else repr(value))
+    return text
