@@ -31,6 +31,8 @@ class Workshop:
         in the verdict too), False for the defaults, shown for information.
     release, release_free : the released handle with the pump's losses as friction and with none
         (:class:`pumplink.models.release.Release`), None without the wheel's inertia or a head.
+    pin_pressure_limits : (warn, fail) [Pa], fatigue_limits : (warn, fail) [-]: the levels of the
+        verdict's part checks (:mod:`pumplink.evaluate.parts`).
     """
 
     loads: Any
@@ -39,6 +41,8 @@ class Workshop:
     parts_given: bool
     release: Any = None
     release_free: Any = None
+    pin_pressure_limits: tuple[float, float] = (_parts.PIN_PRESSURE_WARN, _parts.PIN_PRESSURE_FAIL)
+    fatigue_limits: tuple[float, float] = (_parts.FATIGUE_WARN, _parts.FATIGUE_FAIL)
 
     @property
     def needs_brake(self) -> bool:
