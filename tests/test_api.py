@@ -72,7 +72,7 @@ def test_the_init_template_is_the_default_design_with_the_file_name():
     # every optional key commented out in the template is a valid key with a valid example value
     text = spec_template('a "quoted" name')
     assert tomllib.loads(text)["name"] == 'a "quoted" name'
-    uncommented = re.sub(r"^# (\w+ = )", r"\1", text, flags=re.M)
+    uncommented = re.sub(r"^# (\w+ = |\[)", r"\1", text, flags=re.M)  # keys, [parts] and [use]
     uncommented = uncommented.replace("rope_force = 45.0", "")  # head/pipe instead of rope_force
     uncommented = uncommented.replace("inertia = 0.25", "")  # mass instead of inertia
     spec = parse_spec(tomllib.loads(uncommented))

@@ -20,6 +20,7 @@ import pytest
 import tomli_w
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from shipped import PROFILE_NAMES
 
 from pumplink.errors import PumplinkError, SpecError
 from pumplink.inputs.piston import PistonSpec, parse_piston
@@ -559,3 +560,78 @@ def test_speed_fluctuation_range(key, value):
     with pytest.raises(SpecError) as e:
         parse_spec(d)
     assert f"operator.{key}" in str(e.value) and "allowed" in str(e.value)
+
+
+# ----------------------------------------------------------------------------- how the parts are joined
+@pytest.mark.parametrize(
+    ("joints", "notches"),
+    [
+        ({}, (3.0, 2.0)),  # the defaults: the handle drilled at B, the crank welded to the axle
+        ({"handle_joint": "lug"}, (2.0, 2.0)),
+        ({"crank_joint": "hole"}, (3.0, 3.0)),
+        ({"handle_joint": "lug", "handle_notch": 1.2, "crank_notch": 4.0}, (1.2, 4.0)),  # given: kept
+    ],
+)
+def test_a_notch_factor_not_given_follows_from_the_joint(joints, notches):
+    """docs/workshop.md §2: about 3 at a drilled hole (Peterson's transverse hole), about 2 at a
+    weld toe; a notch factor the spec gives is its own."""
+    spec = parse_spec({**ROPE, "parts": joints})
+    assert (spec.parts.handle_notch, spec.parts.crank_notch) == notches
+    assert spec.parts.handle_joint == joints.get("handle_joint", "hole")
+    assert spec.parts.crank_joint == joints.get("crank_joint", "welded")
+
+
+def test_a_joint_is_one_of_its_words():
+    with pytest.raises(SpecError, match=r"'parts.handle_joint' = 'weld' must be hole or lug"):
+        parse_spec({**ROPE, "parts": {"handle_joint": "weld"}})
+
+
+def test_the_pins_diameter_is_given_once():
+    """linkage.hole_diameter is the older name of parts.pin_diameter: alone it is the default parts'
+    pin (and the template's holes); beside a [parts] that says otherwise it is one sentence."""
+    old = {**ROPE, "linkage": {**ROPE["linkage"], "hole_diameter": 0.0125}}
+    assert parse_spec(old).parts is None and parse_spec(old).parts_or_defaults.pin_diameter == 0.0125
+    assert parse_spec({**old, "parts": {"pin_diameter": 0.0125}}).parts.pin_diameter == 0.0125
+    with pytest.raises(SpecError) as e:
+        parse_spec({**old, "parts": {"pin_width": 0.04}})  # and the default 12 mm pin
+    msg = str(e.value)
+    assert "linkage.hole_diameter = 0.0125" in msg and "parts.pin_diameter = 0.012" in msg
+    assert "parts.pin_diameter = 0.0125" in msg.split("give it once")[1]
+    assert parse_spec(ROPE).parts_or_defaults.pin_diameter == 0.012
+
+
+# ----------------------------------------------------------------------------- the spec init writes
+@pytest.mark.parametrize("profile", PROFILE_NAMES)
+def test_the_init_spec_names_its_profile_and_lists_what_each_sets(profile):
+    """``pumplink init`` writes ``profile = "men"`` and no limit of its own, so changing the word
+    changes every limit (a force_limit alone would leave the men's power and grip limits: the
+    reason the profile is named); the line listing each profile states its limits, read here from
+    pumplink.profiles' data."""
+    from pumplink.inputs.pump import spec_template
+    from pumplink.profiles import PROFILES
+
+    text = spec_template("p")
+    assert re.search(r'^profile = "men" ', text, re.M)
+    spec = parse_spec(tomllib.loads(text.replace('profile = "men"', f'profile = "{profile}"', 1)))
+    assert spec.operator.profile == profile and spec.operator.limits == PROFILES[profile]
+    p = PROFILES[profile]
+    line = next(ln for ln in text.splitlines() if re.match(rf"\s+#\s+{profile}\s", ln))
+    lo, hi = p.grip_height_range
+    numbers = [float(x) for x in re.findall(r"\d+(?:\.\d+)?", line)]
+    assert numbers == [p.force_limit, p.sustained_power, p.hour_power, lo, hi, p.grip_speed_warn,
+                       p.grip_speed_fail], line  # fmt: skip
+
+
+def test_the_init_spec_shows_parts_and_use_with_their_defaults():
+    """Uncommented, the [parts] and [use] tables and the profile's limits of the init spec are the
+    defaults each stands for: the men's limits, Parts() and Use() as the models declare them."""
+    from pumplink.inputs.pump import Parts, Use, spec_template
+    from pumplink.profiles import PROFILES
+
+    text = spec_template("p")
+    assert "\n# [parts]\n" in text and "\n# [use]\n" in text
+    uncommented = re.sub(r"^# (\w+ = |\[)", r"\1", text, flags=re.M)
+    uncommented = uncommented.replace("rope_force = 45.0", "").replace("inertia = 0.25", "")
+    spec = parse_spec(tomllib.loads(uncommented))
+    assert spec.parts == Parts() and spec.use == Use() and spec.operator.limits == PROFILES["men"]
+    assert (spec.parts.handle_joint, spec.parts.crank_joint) == ("hole", "welded")

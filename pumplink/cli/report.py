@@ -18,9 +18,10 @@ def report(
 ) -> None:
     """One self-contained HTML design report to send to a client.
 
-    The spec, the synthesis table, the verdict with its model and checks, the
-    force chart, the drawing, the loads on the parts with the released handle
-    and the cut list (images embedded; needs pumplink\\[plot]).
+    The spec, the synthesis table, the verdict with its model and checks
+    against the operator profile's limits, the water it delivers and the people
+    it serves, the force chart, the drawing, the loads on the parts with the
+    released handle and the cut list (images embedded; needs pumplink\\[plot]).
 
     Exit 0 if the design passes, 1 if it fails (the report is written
     either way) or no crank-rocker exists, 2 for bad input.

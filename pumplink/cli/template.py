@@ -38,10 +38,11 @@ def template(
 ) -> None:
     """A 1:1 drilling template of each link (PDF, SVG or DXF).
 
-    Hole centres, the distance between them in mm, hole diameter
-    (linkage.hole_diameter, default 10 mm), link name, and each hole's
-    tolerance for --yield of the builds to pass (the critical holes, which
-    need more care than a hand-drilled hole gets, ringed in red;
+    Hole centres, the distance between them in mm, hole diameter (the pins'
+    of [parts], default 12 mm; a cross and no hole where [parts] welds the
+    joint: the crank to the axle, a lug to the handle), link name, and each
+    hole's tolerance for --yield of the builds to pass (the critical holes,
+    which need more care than a hand-drilled hole gets, ringed in red;
     docs/tolerance.md).
 
     PDF: links longer than the paper are tiled over several pages with

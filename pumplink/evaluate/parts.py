@@ -21,8 +21,10 @@ from pumplink.models import joints as _joints
 from pumplink.models import strength as _strength
 
 #: Crank angles per turn on which the fatigue cycle (the moments' amplitude and mean) is sampled
-#: (0.25 deg; the village design's crank safety 2.848 here, 2.846 on 11,520), also the energy
-#: models' peak search's starting grid (at least PEAK_GRID_PER_RAD).
+#: (0.25 deg), also the energy models' peak search's starting grid (at least PEAK_GRID_PER_RAD).
+#: The cycle adds the crank angles of the reported peak moments (and, quasi-static, the dead
+#: bands' edges): the village design's crank safety 2.8456 with them, 2.8480 on this grid alone,
+#: 2.846 on 11,520 angles.
 CYCLE_SAMPLES = 1440
 #: The verdict's levels of the part checks (docs/workshop.md §2): pin bearing pressure warns above
 #: the allowable of an alternating moving joint (12 MPa) and fails above the static one (30 MPa);
@@ -73,27 +75,54 @@ def part_loads(
         )
         cycle = _joints.motion_forces(scene.linkage, motion_of(scene, th), GRAVITY, rope_pull, wheel_weight)
         peaks = _joints.scene_peaks(scene, motion_of, GRAVITY, rope_pull, wheel_weight, cycle=(th, cycle))
+        # the fatigue cycle holds the reported peak moments' crank angles too
+        at = np.array([peaks.crank_moment[1], peaks.handle_moment[1]], float)
+        more = _joints.motion_forces(scene.linkage, motion_of(scene, at), GRAVITY, rope_pull, wheel_weight)
+        pairs = zip(vars(cycle).values(), vars(more).values())
+        cycle = type(cycle)(*(np.concatenate([a, b], axis=-1) for a, b in pairs))
         return PartLoads(peaks, cycle, model)
     peaks = _joints.quasi_static_peaks(
         lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull, wheel_weight
     )
+    at = np.array([peaks.crank_moment[1], peaks.handle_moment[1]], float)
     cycle = quasi_static_cycle(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque,
-                               rope_pull, wheel_weight)  # fmt: skip
+                               rope_pull, wheel_weight, at)  # fmt: skip
     return PartLoads(peaks, cycle, model)
 
 
 def quasi_static_cycle(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull=0.0,
-                       wheel_weight=0.0):  # fmt: skip
-    """The quasi-static loads (:class:`pumplink.models.joints.JointForces`) on :data:`CYCLE_SAMPLES`
-    crank angles a turn, NaN within ±``dead_band`` of the dead centres (the model carries no load
-    there).  Broadcasts over designs: with parameters and values of shape (n, 1) the loads have
-    shape (n, CYCLE_SAMPLES)."""
+                       wheel_weight=0.0, peak_angles=()):  # fmt: skip
+    """The quasi-static loads (:class:`pumplink.models.joints.JointForces`) over a turn: on
+    :data:`CYCLE_SAMPLES` crank angles, NaN within ±``dead_band`` of the dead centres (the model
+    carries no load there), then at the four edges of the dead bands (the ends of the arcs the
+    model judges, where its loads are largest next to a dead centre) and at ``peak_angles`` [rad]
+    (the crank angles of the reported peak moments), so that the fatigue read from the cycle is
+    that of the reported peaks.  Broadcasts over designs: with parameters and values of shape
+    (n, 1) and ``peak_angles`` of shape (n, k) the loads have shape (n, CYCLE_SAMPLES + 4 + k)."""
     th = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
     off = np.minimum(
         np.abs(np.mod(th - dead_centre_extended + np.pi, TWO_PI) - np.pi),
         np.abs(np.mod(th - dead_centre_folded + np.pi, TWO_PI) - np.pi),
     )
     th = np.where(off > dead_band, th, np.nan)
+    # the arcs' ends, as pumplink.models.joints.quasi_static_peak_loads judges them (an arc the
+    # dead bands overlap has none)
+    plus = np.mod(dead_centre_folded - dead_centre_extended, TWO_PI)
+    first, second = plus - 2 * dead_band >= 0, TWO_PI - plus - 2 * dead_band >= 0
+    edges = np.stack(
+        np.broadcast_arrays(
+            np.where(first, dead_centre_extended + dead_band, np.nan),
+            np.where(first, dead_centre_extended + plus - dead_band, np.nan),
+            np.where(second, dead_centre_folded + dead_band, np.nan),
+            np.where(second, dead_centre_folded + TWO_PI - plus - dead_band, np.nan),
+        ),
+        axis=-1,
+    )
+    lead = th.shape[:-1]
+    peaks = np.asarray(peak_angles, float)
+    th = np.concatenate(
+        [th, edges.reshape(lead + (4,)), np.broadcast_to(peaks, lead + peaks.shape[-1:])], axis=-1
+    )
     motion = _joints.quasi_static_motion(lk, th, wheel_torque)
     return _joints.motion_forces(lk, motion, GRAVITY, rope_pull, wheel_weight)
 
@@ -104,7 +133,7 @@ def quasi_static_strength(lk, dead_centre_extended, dead_centre_folded, dead_ban
     parameters of shape (n,), the other values of shape (n,) and ``parts`` columns
     (:class:`pumplink.evaluate.PartSizes`); the peaks by
     :func:`pumplink.models.joints.quasi_static_peak_loads`."""
-    value, _ = _joints.quasi_static_peak_loads(
+    value, angle = _joints.quasi_static_peak_loads(
         lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull, wheel_weight
     )
     n = value.shape[1]
@@ -116,6 +145,7 @@ def quasi_static_strength(lk, dead_centre_extended, dead_centre_folded, dead_ban
         FourBar(*(column(v) for v in lk.parameters)),
         *(column(v) for v in (dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull,
                               wheel_weight)),
+        angle[4:6].T,  # the crank's and the handle's peak moments, as the report gives them
     )  # fmt: skip
     return _strength_of(value[:4], cycle, parts, n)
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from types import MappingProxyType
 from typing import Any, Literal
 
 from pydantic import Field, model_validator
@@ -21,7 +22,7 @@ from pumplink.constants import (
 from pumplink.errors import SpecError
 from pumplink.inputs.toml import MAX_NAME_CHARS, Section, read_toml, spec_name, validate
 from pumplink.models import load as _load
-from pumplink.profiles import OperatorProfile, operator_limits
+from pumplink.profiles import DEFAULT_PROFILE, PROFILES, OperatorProfile, operator_limits
 
 
 class Wheel(Section):
@@ -95,7 +96,8 @@ class Linkage(Section):
         default=None,
         ge=0.001,
         le=0.1,
-        description="diameter of the pin holes on the workshop template [m] (default 0.010)",
+        description="diameter of the pins and of their holes on the workshop template [m], in a spec "
+        "without [parts] (an older name of parts.pin_diameter; default 0.012)",
     )
 
     @model_validator(mode="before")
@@ -271,8 +273,23 @@ def limits_in_order(limits: OperatorProfile, grip: bool = True) -> None:
             raise ValueError(f"{what} (with the {limits.name} profile: {a:g} and {b:g})")
 
 
+#: The fatigue notch factor each way of joining a part gives when ``[parts]`` states none
+#: (docs/workshop.md §2): a hole drilled through the tube or bar about 3 (Peterson's transverse
+#: hole, Kf close to Kt for mild steel), the toe of a weld about 2.
+JOINT_NOTCH = MappingProxyType({"hole": 3.0, "lug": 2.0, "welded": 2.0})
+#: How the handle and the crank are joined when ``[parts]`` does not say: the coupler's pin
+#: through a hole drilled in the handle tube (as the default pin_width, both walls of the tube),
+#: the crank welded to the axle.
+DEFAULT_JOINTS = MappingProxyType({"handle": "hole", "crank": "welded"})
+
+
 class Parts(Section):
-    pin_diameter: float = Field(default=0.012, ge=0.002, le=0.1, description="diameter of the joint pins [m]")
+    pin_diameter: float = Field(
+        default=0.012,
+        ge=0.001,  # as linkage.hole_diameter, its older name
+        le=0.1,
+        description="diameter of the joint pins [m], and of the holes the workshop template drills for them",
+    )
     pin_width: float = Field(
         default=0.0052,
         ge=0.0005,
@@ -284,11 +301,18 @@ class Parts(Section):
         default=0.0269, ge=0.005, le=0.2, description="handle tube's outer diameter [m]"
     )
     handle_wall: float = Field(default=0.0026, ge=0.0005, le=0.1, description="handle tube's wall [m]")
+    handle_joint: Literal["hole", "lug"] = Field(
+        default=DEFAULT_JOINTS["handle"],
+        description='how the handle carries the coupler\'s pin at B: "hole", drilled through the tube '
+        '(the default), or "lug", a lug welded on that holds the pin (the tube is not drilled there; '
+        "docs/workshop.md §2)",
+    )
     handle_notch: float = Field(
-        default=1.0,
+        default=JOINT_NOTCH[DEFAULT_JOINTS["handle"]],
         ge=1.0,
         le=5.0,
-        description="fatigue notch factor at the handle's pin hole [-] (1: plain)",
+        description="fatigue notch factor of the handle at B [-] (default from handle_joint: 3 at a "
+        "drilled hole, 2 at a lug's weld toe; 1: plain)",
     )
     crank_diameter: float = Field(
         default=0.0127,
@@ -296,12 +320,31 @@ class Parts(Section):
         le=0.2,
         description="crank's diameter [m], a solid round bar (½\" by default)",
     )
+    crank_joint: Literal["welded", "hole"] = Field(
+        default=DEFAULT_JOINTS["crank"],
+        description='how the crank is fixed to the axle O2: "welded" (the default; the crank is not '
+        'drilled there) or "hole", drilled for the axle and pinned to it',
+    )
     crank_notch: float = Field(
-        default=1.0,
+        default=JOINT_NOTCH[DEFAULT_JOINTS["crank"]],
         ge=1.0,
         le=5.0,
-        description="fatigue notch factor where the crank is welded on [-] (1: plain)",
+        description="fatigue notch factor of the crank at the axle [-] (default from crank_joint: 2 at "
+        "a weld toe, 3 at a drilled hole; 1: plain)",
     )
+
+    @model_validator(mode="before")
+    @classmethod
+    def _notch_from_joint(cls, data: Any) -> Any:
+        # a notch factor not given follows from how the part is joined (JOINT_NOTCH)
+        if not isinstance(data, dict):
+            return data
+        data = dict(data)
+        for part, joint in DEFAULT_JOINTS.items():
+            joint = data.get(f"{part}_joint", joint)
+            if f"{part}_notch" not in data and isinstance(joint, str) and joint in JOINT_NOTCH:
+                data[f"{part}_notch"] = JOINT_NOTCH[joint]
+        return data
 
     @model_validator(mode="after")
     def _wall_inside(self) -> Parts:
@@ -349,6 +392,27 @@ class PumpSpec(Section):
         description="the [use] table: hours_per_day, litres_per_person_day (the people a pump serves)",
     )
 
+    @model_validator(mode="after")
+    def _pins_once(self) -> PumpSpec:
+        hole = self.linkage.hole_diameter
+        if hole is not None and self.parts is not None and hole != self.parts.pin_diameter:
+            raise ValueError(
+                f"linkage.hole_diameter = {hole:g} m and parts.pin_diameter = {self.parts.pin_diameter:g} m "
+                "both give the pins' diameter (the template drills the holes for the pins of [parts]); "
+                f"give it once, as parts.pin_diameter = {hole:g}"
+            )
+        return self
+
+    @property
+    def parts_or_defaults(self) -> Parts:
+        """The parts the workshop builds: the spec's ``[parts]``, or their defaults (the pins' diameter
+        linkage.hole_diameter where the spec gives it), which the verdict does not judge
+        (docs/workshop.md)."""
+        if self.parts is not None:
+            return self.parts
+        hole = self.linkage.hole_diameter
+        return Parts() if hole is None else Parts(pin_diameter=hole)
+
     @property
     def wheel_torque(self) -> float:
         """Load torque Mw = Fw * rw on the wheel axle [N m] (Eq. 3 of the pump paper)."""
@@ -380,7 +444,7 @@ DEFAULT_SPEC: dict[str, Any] = {
     "wheel": {"radius": 0.25},
     "linkage": {"L1": 0.40, "D1": 0.20, "b": 0.10, "rocker": 0.20, "handle": 1.00, "swing": 60.0},
     "load": {"rope_force": 45.0},
-    "operator": {"force_limit": 100.0, "speed": 360.0, "dead_band": 20.0},
+    "operator": {"profile": "men", "speed": 360.0, "dead_band": 20.0},
 }
 
 
@@ -481,16 +545,70 @@ rope_force = 45.0      # rope force at the wheel rim Fw [N], 0.001-10000; or ins
 # moving_mass = 4.0    # rope and water moving with the rim [kg] (flywheel model)
 
 [operator]
-force_limit = 100.0    # largest acceptable push/pull [N], 1-10000 (women: 70; UK HSE guidance)
+profile = "men"        # who pumps: "men", "women", "children" or "accessible" (docs/operators.md).
+                       # Each sets the verdict's limits: the push/pull force, the power kept up
+                       # for hours / for about an hour, the grip's height range over the swing
+                       # (with wheel.axle_height) and the grip speeds at which it warns / fails:
+{profiles}
+                       # A key below overrides one of the profile's limits (the men's shown):
+# force_limit = {force_limit}        # the largest push/pull [N], 1-10000
+# sustained_power = {sustained_power}     # the power kept up for hours [W]
+# hour_power = {hour_power}         # the power given for about an hour [W]
+# grip_height_min = {grip_height_min}     # the grip's lowest and highest point over the swing [m]
+# grip_height_max = {grip_height_max}    # (checked with wheel.axle_height)
+# grip_speed_warn = {grip_speed_warn}     # the grip speeds at which the verdict warns and fails [m/s]
+# grip_speed_fail = {grip_speed_fail}
 speed = 360.0          # wheel speed [deg/s], 0-7200 (0 excluded; 360 deg/s = 60 rpm)
 dead_band = 20.0       # crank angle each side of a dead centre left to the wheel [deg], 0-90 (90 excluded)
 # speed_fluctuation = 0.2  # largest (w_max - w_min) / w_mean [-], 0-1 (0 excluded; flywheel model)
+
+# The pins, the handle tube and the crank bar (docs/workshop.md): given, the verdict checks the
+# pins' bearing pressure and the fatigue of the handle and the crank, and `pumplink template`
+# drills the pins' holes.  Uncomment the table and the keys to change; these are the defaults.
+# [parts]
+# pin_diameter = {pin_diameter}    # pins [m], and the template's holes, 0.001-0.1
+# pin_width = {pin_width}     # bore each pin bears on [m]: both walls of the tube, or a bush's length
+# handle_diameter = {handle_diameter}  # handle tube, outer diameter and wall [m] (3/4" medium tube)
+# handle_wall = {handle_wall}
+# handle_joint = "{handle_joint}"  # the coupler's pin at B: "hole" drilled through the handle, or
+#                        # "lug" welded on (then the template does not drill the handle at B)
+# handle_notch = {handle_notch}    # fatigue notch factor at B, 1-5 (default: 3 at a hole, 2 at a lug)
+# crank_diameter = {crank_diameter}  # crank, a round bar [m] (1/2")
+# crank_joint = "{crank_joint}"  # the crank at the axle: "welded", or "hole" (drilled and pinned)
+# crank_notch = {crank_notch}     # fatigue notch factor at the axle, 1-5 (default: 2 welded, 3 at a hole)
+
+# How the water is used, for the people a pump serves (docs/water.md); these are the defaults.
+# [use]
+# hours_per_day = {hours_per_day}     # hours a day the pump is worked [h], 0-24 (0 excluded)
+# litres_per_person_day = {litres_per_person_day}  # water each person needs a day [l] (WHO basic access)
 """
 
 
+def _profile_lines() -> str:
+    """The operator profiles' limits, one commented line each, under the spec's ``profile`` key."""
+    lines = []
+    for p in PROFILES.values():
+        lo, hi = p.grip_height_range
+        force = f"{p.force_limit:g} N"
+        power = f"{p.sustained_power:g} / {p.hour_power:g} W"
+        speed = f"{p.grip_speed_warn:.1f} / {p.grip_speed_fail:.1f} m/s"
+        lines.append(f"{' ' * 23}#   {p.name:<10} {force:>6}   {power:>10}   {lo:.2f}-{hi:.2f} m   {speed}")
+    return "\n".join(lines)
+
+
 def spec_template(name: str, path: str = "pump.toml") -> str:
-    """The commented spec of :data:`SPEC_TEMPLATE` with this design ``name`` (TOML-quoted)."""
+    """The commented spec of :data:`SPEC_TEMPLATE` with this design ``name`` (TOML-quoted): the
+    operator profiles' limits from :mod:`pumplink.profiles`, the defaults of ``[parts]`` and
+    ``[use]`` from their models."""
     import json
 
     quoted = json.dumps(name, ensure_ascii=False)[1:-1]  # a TOML basic string is JSON-compatible
-    return SPEC_TEMPLATE.replace("{name}", quoted).replace("{path}", path)
+    men = DEFAULT_PROFILE
+    limits = {k: getattr(men, k) for k in ("force_limit", "sustained_power", "hour_power")}
+    limits.update(grip_speed_warn=men.grip_speed_warn, grip_speed_fail=men.grip_speed_fail)
+    limits.update(grip_height_min=men.grip_height_range[0], grip_height_max=men.grip_height_range[1])
+    values = {**Parts().model_dump(), **Use().model_dump(), **limits, "profiles": _profile_lines()}
+    text = SPEC_TEMPLATE.replace("{name}", quoted).replace("{path}", path)
+    for key, value in values.items():
+        text = text.replace(f"{{{key}}}", value if isinstance(value, str) else repr(value))
+    return text

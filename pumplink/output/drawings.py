@@ -263,7 +263,7 @@ def linkage_drawing(dr, path) -> tuple[Path, float]:
             "normal",
         ),
         ("", 6, "normal"),
-        ("links (hole centres):", 8, "bold"),
+        ("links (joint centres):", 8, "bold"),
     ]
     for p in dr.parts:
         lines.append((f"{p.name}: {p.centre_distance * 1000:.1f} mm", 7.5, "normal"))

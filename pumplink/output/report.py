@@ -1,7 +1,8 @@
 """The design report: one self-contained HTML file (images embedded as base64 PNG).
 
-Spec, synthesis table, verdict with its model and checks, the force chart, the linkage drawing,
-the loads on the parts with the released handle, and the cut list.  Renderers only: every number
+Spec, synthesis table, verdict with its model and checks, the water it delivers and the people it
+serves, the force chart, the linkage drawing, the loads on the parts with the released handle, and
+the cut list.  Renderers only: every number
 comes from the library's results (:class:`pumplink.studies.force.ForceResult`,
 :class:`pumplink.studies.drawing.Drawing`, :class:`pumplink.studies.workshop.Workshop`).
 """
@@ -21,7 +22,7 @@ from pumplink.output.charts import force_curve
 from pumplink.output.drawings import linkage_drawing
 from pumplink.output.formats import atomic_write, check_output, fmt
 from pumplink.output.template import cut_list_rows
-from pumplink.output.words import check_label, model_line
+from pumplink.output.words import check_label, model_line, water_lines
 from pumplink.output.workshop import load_rows, loads_title, parts_sentence, workshop_release_line
 
 REPORT_SUFFIXES = (".html", ".htm")
@@ -103,9 +104,8 @@ def verdict_html(r) -> str:
     failing = ", ".join(check_label(c, r) for c in r.verdict.failures) if r.verdict is not None else ""
     head = (
         f'<p><span class="{css}">{html.escape(r.outcome)}</span>: mean {r.mean_force:.1f} N, peak '
-        f"{fmt(peak, '{:.1f}', '∞')} N against the {r.force_limit:g} N limit"
-        + (f"; fails on {html.escape(failing)}" if failing else "")
-        + ".</p>"
+        f"{fmt(peak, '{:.1f}', '∞')} N against the {r.force_limit:g} N limit (operator profile: "
+        f"{html.escape(r.profile)})" + (f"; fails on {html.escape(failing)}" if failing else "") + ".</p>"
     )
     rows = [("check", "value", "warn if", "fail if", "result")]
     for c in r.checks:
@@ -116,6 +116,15 @@ def verdict_html(r) -> str:
         result = {"pass": "pass", "warn": "warning", "fail": "FAIL"}[c.result]
         rows.append((check_label(c, r), f"{value} {c.unit}", warn, fail, result))
     return head + f"<p>{html.escape(model_line(r))}</p>" + _table(rows, numeric=(1, 2, 3))
+
+
+def water_html(r) -> str:
+    """The water it delivers (l/min), its share of what the operator profile's sustained power
+    could lift at this head, and the people it serves: the evaluation's water figures, in the
+    words ``pumplink force`` prints them."""
+    use = r.design.spec.use
+    lines = water_lines(r.water, r.power, r.profile, use.hours_per_day, use.litres_per_person_day)
+    return "".join(f'<p class="water">{html.escape(line)}</p>' for line in lines)
 
 
 def workshop_html(w) -> str:
@@ -151,6 +160,8 @@ def report_html(r, curve, dr, spec_toml: str, path, shop=None) -> Path:
         "synthesis, operator force over the crank cycle, verdict, drawing and cut list.</p>",
         "<h2>Verdict</h2>",
         verdict_html(r),
+        "<h2>Water</h2>",
+        water_html(r),
         "<h2>Spec</h2>",
         f"<pre>{html.escape(spec_toml)}</pre>",
         "<h2>Synthesis</h2>",

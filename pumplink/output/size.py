@@ -11,7 +11,14 @@ from typing import TYPE_CHECKING, Any
 
 from pumplink.output.formats import console, num, render
 from pumplink.output.tolerance import robust_line, robust_row
-from pumplink.output.words import CHECK_ADVICE, CHECK_LABELS, L_PER_MIN, OPERATOR_NOUNS, check_row
+from pumplink.output.words import (
+    CHECK_ADVICE,
+    CHECK_LABELS,
+    L_PER_MIN,
+    OPERATOR_NOUNS,
+    check_advice,
+    check_row,
+)
 from pumplink.quantities import headline_items
 from pumplink.quantities import lines as quantity_lines
 
@@ -87,7 +94,9 @@ def _holding_back(res: SizeResult) -> str:
         parts.append(
             f"{CHECK_LABELS.get(c.key, c.key)} {float(c.value):.3g} {c.unit} {side} {float(lim):g} {c.unit}"
         )
-    advice = "; ".join(dict.fromkeys(CHECK_ADVICE.get(c.key, "") for c in bad if CHECK_ADVICE.get(c.key)))
+    advice = "; ".join(
+        dict.fromkeys(check_advice(c.key, parts=b.spec.parts) for c in bad if c.key in CHECK_ADVICE)
+    )
     bores = ", ".join(f"{s.pipe * 1000:g}" for s in res.tried)
     if not bad and b.shortfall > 0:
         r = res.problem.robust

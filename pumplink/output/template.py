@@ -41,6 +41,30 @@ CUT_LIST_HEIGHT = 34.0
 DEFAULT_TUBE = "3/4-inch medium steel tube, 26.9 x 2.6 mm"
 #: The colour of the critical holes' rings and words.
 CRITICAL = "C3"
+#: A joint that is welded, not drilled (:data:`pumplink.studies.drawing.HOLE_KINDS`): the word at
+#: its centre mark and in the cut list, and what to do there, in the link's title.
+WELDED = {"lug": "lug", "welded": "welded"}
+WELDED_NOTE = {
+    "lug": "weld a lug on for the Ø{d:g} pin, centred on the mark; do not drill the tube",
+    "welded": "weld it to the axle, centred on the mark; do not drill",
+}
+
+
+def link_title(p, sep: str = ": ") -> str:
+    """A link's title on the template: its name, ``sep`` and the distance between its joints'
+    centres (of its holes where every joint is drilled)."""
+    between = "hole centres" if all(p.drilled) else "centres"
+    return f"{p.name}{sep}{p.centre_distance * 1000:.1f} mm between {between}"
+
+
+def welded_note(p, lo: float = -math.inf, hi: float = math.inf) -> str:
+    """What to do at the welded joints of link ``p`` between ``lo`` and ``hi`` [mm along the bar],
+    or "" where there are none."""
+    return "; ".join(
+        f"{label}: {WELDED_NOTE[kind].format(d=p.hole_diameter * 1000)}"
+        for h, label, kind in zip(p.holes, p.hole_labels, p.hole_kinds or ("hole",) * len(p.holes))
+        if kind in WELDED and lo - 1e-6 <= h * 1000 <= hi + 1e-6
+    )
 
 
 def tolerance_text(t: float) -> str:
@@ -122,7 +146,10 @@ def cut_list_rows(parts, tube_given: bool) -> list[tuple[str, ...]]:
         tube = f"{p.mass_per_length:.2f} kg/m " + (
             "(linkage.mass_per_length)" if tube_given else DEFAULT_TUBE
         )
-        holes = f"{len(p.holes)} x Ø{p.hole_diameter * 1000:g} mm"
+        welded = [(WELDED[k], label) for k, label in zip(p.hole_kinds, p.hole_labels) if k in WELDED]
+        holes = f"{sum(p.drilled)} x Ø{p.hole_diameter * 1000:g} mm" + "".join(
+            f", {word} at {label}" for word, label in welded
+        )
         rows.append(
             (
                 p.name,
@@ -178,13 +205,18 @@ def _bar(ax, p, x0, yc, lo_clip, hi_clip, clip):
     artists.append(ax.add_patch(Rectangle((x0 + lo, yc - w / 2), hi - lo, w, fill=False, ec="k", lw=0.6)))
     (cl,) = ax.plot([x0 + lo - 3, x0 + hi + 3], [yc, yc], color="0.4", lw=0.3, ls=(0, (8, 2, 1, 2)))
     artists.append(cl)
-    for i, (h, label) in enumerate(zip(p.holes, p.hole_labels)):
+    for i, (h, label, drilled) in enumerate(zip(p.holes, p.hole_labels, p.drilled)):
         x = x0 + h * 1000
         if not lo_clip - 1e-6 <= h * 1000 <= hi_clip + 1e-6:
             continue
-        artists.append(ax.add_patch(Circle((x, yc), d / 2, fill=False, ec="k", lw=0.6)))
-        _cross(ax, x, yc, size=d / 2 + 3, lw=0.3, gid=f"hole-{p.key}-{i}")
-        ax.text(x + d / 2 + 1.5, yc + 1.5, f"{label}  Ø{d:g}", fontsize=6.5, va="bottom")
+        if drilled:
+            artists.append(ax.add_patch(Circle((x, yc), d / 2, fill=False, ec="k", lw=0.6)))
+            _cross(ax, x, yc, size=d / 2 + 3, lw=0.3, gid=f"hole-{p.key}-{i}")
+            ax.text(x + d / 2 + 1.5, yc + 1.5, f"{label}  Ø{d:g}", fontsize=6.5, va="bottom")
+        else:  # a welded joint: its centre marked, no hole (what to do: in the link's title)
+            _cross(ax, x, yc, size=d / 2 + 3, lw=0.6, gid=f"weld-{p.key}-{i}")
+            words = f"{label}  {WELDED[p.hole_kinds[i]]}, no hole"
+            ax.text(x + d / 2 + 1.5, yc + 1.5, words, fontsize=6.5, va="bottom", weight="bold")
         if p.hole_tolerances:
             critical = p.hole_critical[i]
             words = tolerance_text(p.hole_tolerances[i]) + ("  critical" if critical else "")
@@ -249,7 +281,7 @@ def _page(plt, parts, page, k, n, paper, name, cut_rows, marks=None):
     top = H - MARGIN - HEADER
     if cut_rows:
         ax.text(MARGIN + 5, top, "cut list", fontsize=8, weight="bold", va="top")
-        widths = (45, 28, 26, 24, 95, 20)
+        widths = (45, 38, 26, 24, 95, 20)
         for r, row in enumerate(cut_rows):
             x = MARGIN + 5
             for cell, w in zip(row, widths):
@@ -267,11 +299,13 @@ def _page(plt, parts, page, k, n, paper, name, cut_rows, marks=None):
         w = 2 * p.edge * 1000
         clip = Rectangle((x_left - 0.01, yc - ROW / 2), t.stop - t.start + 0.02, ROW, transform=ax.transData)
         _bar(ax, p, x0, yc, t.start, t.stop, clip)
-        title = f"{p.name}: {p.centre_distance * 1000:.1f} mm between hole centres"
+        title = link_title(p)
         if p.end_label:
             title += f", {p.end_label} at {p.end * 1000:.1f} mm"
         if t.count > 1:
             title += f"  (piece {t.index + 1} of {t.count})"
+        note = welded_note(p, t.start, t.stop)
+        title += f"  — {note}" if note else ""
         tx = x_left + (OVERLAP + 2 if t.index else 0)  # clear of the alignment mark J
         ax.text(tx, yc + ROW / 2 - 3, title, fontsize=7.5, weight="bold", va="top")
         if len(p.holes) == 2 and t.count == 1:
@@ -363,7 +397,7 @@ def template_svg(parts, path, name: str, marks=None) -> None:
         ax.text(
             MARGIN + 5,
             yc + ROW / 2 - 3,
-            f"{p.name}: {p.centre_distance * 1000:.1f} mm between hole centres",
+            link_title(p) + (f"  — {welded_note(p)}" if welded_note(p) else ""),
             fontsize=7.5,
             weight="bold",
             va="top",
@@ -397,8 +431,16 @@ def template_dxf(parts, path, name: str, marks=None) -> None:
             [(lo, yc - w), (hi, yc - w), (hi, yc + w), (lo, yc + w)], close=True, dxfattribs=attr
         )
         msp.add_line((lo - 3, yc), (hi + 3, yc), dxfattribs=attr)
-        for i, h in enumerate(p.holes):
-            msp.add_circle((h * 1000, yc), p.hole_diameter * 500, dxfattribs=attr)
+        for i, (h, drilled) in enumerate(zip(p.holes, p.drilled)):
+            if drilled:
+                msp.add_circle((h * 1000, yc), p.hole_diameter * 500, dxfattribs=attr)
+            else:  # a welded joint: a cross at its centre and what to do there, no hole to cut
+                size = p.hole_diameter * 500 + 3
+                msp.add_line((h * 1000 - size, yc), (h * 1000 + size, yc), dxfattribs=attr)
+                msp.add_line((h * 1000, yc - size), (h * 1000, yc + size), dxfattribs=attr)
+                words = f"{p.hole_labels[i]} {WELDED[p.hole_kinds[i]]}, no hole"
+                at = (h * 1000 + size + 1.5, yc + 1)
+                msp.add_text(words, height=2.5, dxfattribs=attr).set_placement(at)
             if p.hole_tolerances:
                 words = tolerance_text(p.hole_tolerances[i]) + (" critical" if p.hole_critical[i] else "")
                 msp.add_text(words, height=2.5, dxfattribs=attr).set_placement(
@@ -407,7 +449,7 @@ def template_dxf(parts, path, name: str, marks=None) -> None:
                 if p.hole_critical[i]:  # a ring round the hole, as on the paper template
                     msp.add_circle((h * 1000, yc), p.hole_diameter * 500 + 2.5, dxfattribs=attr)
         msp.add_text(
-            f"{name}: {p.name}, {p.centre_distance * 1000:.1f} mm between hole centres",
+            f"{name}: {link_title(p, ', ')}" + (f"; {welded_note(p)}" if welded_note(p) else ""),
             height=4.0,
             dxfattribs=attr,
         ).set_placement((lo, yc + w + 3))

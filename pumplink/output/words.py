@@ -137,11 +137,32 @@ CHECK_ADVICE = {
     "axle_height": "outside the pump paper's 0.40-0.70 m",
     "pin_pressure": "the pin wears its bore out: a thicker pin, a longer bushing, or hardened pins and "
     "bushings",
-    "handle_fatigue": "the handle may crack at its pin hole after years of strokes: a thicker tube or a "
-    "reinforcing sleeve there",
-    "crank_fatigue": "the crank may crack where it is welded on: a thicker bar (rope-pump manuals report "
+    "handle_fatigue": "the handle may crack at the coupler's pin B after years of strokes: a thicker tube "
+    "or a reinforcing sleeve there",
+    "crank_fatigue": "the crank may crack at the axle: a thicker bar (rope-pump manuals report "
     '1/2" cranks failing after several years)',
 }
+#: The advice of the fatigue checks for how ``[parts]`` says the handle is joined at B
+#: (``handle_joint``) and the crank at the axle (``crank_joint``): docs/workshop.md §2.
+JOINT_ADVICE = {
+    ("handle_fatigue", "hole"): "the handle may crack at its pin hole at B after years of strokes: weld a "
+    'lug on for the pin instead of drilling the tube (parts.handle_joint = "lug"), or a thicker tube',
+    ("handle_fatigue", "lug"): "the handle may crack at the weld toe of its lug at B after years of "
+    "strokes: a thicker tube or a reinforcing sleeve there",
+    ("crank_fatigue", "welded"): "the crank may crack where it is welded on: a thicker bar (rope-pump "
+    'manuals report 1/2" cranks failing after several years)',
+    ("crank_fatigue", "hole"): "the crank may crack at its hole for the axle: a thicker bar, or weld it "
+    'to the axle (parts.crank_joint = "welded")',
+}
+
+
+def check_advice(key: str, result: str = "warn", parts=None) -> str:
+    """What to do about a check that warns or fails ("" where there is no advice); for the fatigue
+    checks, by how ``parts`` (the spec's ``[parts]``) joins the handle and the crank."""
+    joint = {"handle_fatigue": "handle_joint", "crank_fatigue": "crank_joint"}.get(key)
+    if joint is not None and parts is not None:
+        return JOINT_ADVICE[(key, getattr(parts, joint))]
+    return CHECK_ADVICE.get(f"{key} {result}", CHECK_ADVICE.get(key, ""))
 
 
 def check_sentence(ch, r: ForceResult | None = None) -> str:
@@ -151,7 +172,7 @@ def check_sentence(ch, r: ForceResult | None = None) -> str:
         lim = ch.limit
     side = ">" if ch.relation == "<=" else "<"
     val = check_value(ch)
-    advice = CHECK_ADVICE.get(f"{ch.key} {ch.result}", CHECK_ADVICE.get(ch.key, ""))
+    advice = check_advice(ch.key, ch.result, r.design.spec.parts if r is not None else None)
     limit = f"{side} {lim:g} {ch.unit}".rstrip()
     return f"{check_label(ch, r)} is {val} ({limit}): {advice}".rstrip(": ")
 

@@ -151,14 +151,16 @@ def loads_title(w: Workshop) -> str:
 def parts_sentence(w: Workshop) -> str:
     """What the loads mean for the parts, in one sentence."""
     st, p = w.strength, w.parts
+    (pin_warn, pin_fail), (fatigue_warn, fatigue_fail) = w.pin_pressure_limits, w.fatigue_limits
     which = "the spec's [parts]" if w.parts_given else "the default parts (give [parts] to judge them)"
     return (
         f"with {which}: {p.pin_diameter * 1000:g} mm pins on {p.pin_width * 1000:g} mm of bore bear "
-        f"{st.pin_pressure / 1e6:.1f} MPa at the {JOINT_WORDS[st.pin]} (12 MPa allowed for a moving "
-        f"joint, 30 MPa static); fatigue safety of the {p.handle_diameter * 1000:g} x "
-        f"{p.handle_wall * 1000:g} mm handle tube {st.handle.safety:.2f} (notch factor {p.handle_notch:g}), "
-        f"of the {p.crank_diameter * 1000:g} mm crank bar {st.crank.safety:.2f} (notch factor "
-        f"{p.crank_notch:g}); below 1.5 warns, below 1 fails (docs/workshop.md)"
+        f"{st.pin_pressure / 1e6:.1f} MPa at the {JOINT_WORDS[st.pin]} ({pin_warn / 1e6:g} MPa "
+        f"allowed for a moving joint, {pin_fail / 1e6:g} MPa static); fatigue safety of the "
+        f"{p.handle_diameter * 1000:g} x {p.handle_wall * 1000:g} mm handle tube {st.handle.safety:.2f} "
+        f"(notch factor {p.handle_notch:g}), of the {p.crank_diameter * 1000:g} mm crank bar "
+        f"{st.crank.safety:.2f} (notch factor {p.crank_notch:g}); below {fatigue_warn:g} warns, below "
+        f"{fatigue_fail:g} fails (docs/workshop.md)"
     )
 
 

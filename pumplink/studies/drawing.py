@@ -25,9 +25,10 @@ from pumplink.studies.force import Design, design, force_analysis
 
 #: Names of the joints, in the order of :attr:`Pose.joints`.
 JOINTS = ("O2", "A", "B", "O4", "P")
-#: Hole diameter of the templates when the spec gives no ``linkage.hole_diameter`` [m]
-#: (a 10 mm pin or bolt).
-DEFAULT_HOLE_DIAMETER = 0.010
+#: How a link holds each of its joints (:attr:`Part.hole_kinds`): "hole", drilled for the pin;
+#: "lug", a lug welded on holds the pin (the handle at B); "welded", welded to the axle (the crank
+#: at O2).  Only a "hole" is drilled.
+HOLE_KINDS = ("hole", "lug", "welded")
 #: Material beyond an outer hole centre, as a multiple of the hole diameter (edge distance of a
 #: pinned joint, 1.5 d); the template's bar is twice that wide.
 EDGE_FACTOR = 1.5
@@ -82,9 +83,10 @@ class Part:
     ----------
     key : short name (a DXF layer name).
     name : the link's name in words.
-    holes : hole centres along the bar [m] (the first is 0).
-    hole_labels : the joint each hole makes.
-    hole_diameter : [m].
+    holes : the joints' centres along the bar [m] (the first is 0): a hole drilled there, or the
+        centre of a welded joint (``hole_kinds``).
+    hole_labels : the joint each makes.
+    hole_diameter : of the drilled holes, the pins' diameter [m] (``parts.pin_diameter``).
     end : the far end of the bar's useful length [m] (the grip for the handle, else the last hole).
     end_label : what is at ``end`` when it is not a hole (the grip), else None.
     edge : material beyond the outer hole centres [m] (:data:`EDGE_FACTOR` × hole diameter).
@@ -93,6 +95,7 @@ class Part:
         of builds that pass to stay at the target (:func:`tolerance_marks`; empty / None: not
         allocated, NaN: tighter than a workshop holds).
     hole_critical, end_critical : the hole needs more care than a hand-drilled one gets.
+    hole_kinds : how each joint is made, one of :data:`HOLE_KINDS` (all drilled when empty).
     """
 
     key: str
@@ -108,6 +111,12 @@ class Part:
     hole_critical: tuple[bool, ...] = ()
     end_tolerance: float | None = None
     end_critical: bool = False
+    hole_kinds: tuple[str, ...] = ()
+
+    @property
+    def drilled(self) -> tuple[bool, ...]:
+        """For each of ``holes``: True where a hole is drilled (not a welded joint)."""
+        return tuple(k == "hole" for k in self.hole_kinds) if self.hole_kinds else (True,) * len(self.holes)
 
     @property
     def centre_distance(self) -> float:
@@ -206,21 +215,46 @@ def _feasible(spec: PumpSpec) -> Design:
 def parts(spec: PumpSpec, d: Design | None = None) -> tuple[Part, ...]:
     """The three moving links as bars with holes: crank, coupler, rocker with its handle.
 
-    Hole centre distances are the synthesised link lengths; the hole diameter is
-    ``linkage.hole_diameter`` or :data:`DEFAULT_HOLE_DIAMETER`.
+    Hole centre distances are the synthesised link lengths; the holes are the pins of the spec's
+    ``[parts]`` (or of their defaults: :attr:`pumplink.inputs.pump.PumpSpec.parts_or_defaults`),
+    drilled to their diameter, and none where ``[parts]`` says the joint is welded (the crank to
+    the axle at O2, a lug to the handle at B: ``crank_joint``, ``handle_joint``).
     """
     d = d or _feasible(spec)
     syn, lk = d.synthesis, spec.linkage
-    hole = lk.hole_diameter or DEFAULT_HOLE_DIAMETER
+    shop = spec.parts_or_defaults
+    hole = shop.pin_diameter
     mpl = lk.mass_per_length or LINK_MASS_PER_METRE
     edge = EDGE_FACTOR * hole
     crank, coupler, rocker = float(syn.crank_length), float(syn.coupler_length), float(syn.rocker_length)
     handle = float(syn.handle_length)
+    crank_o2 = "hole" if shop.crank_joint == "hole" else "welded"
+    handle_b = "hole" if shop.handle_joint == "hole" else "lug"
     return (
         Part(
-            "crank", "crank (on the wheel)", np.array([0.0, crank]), ("O2", "A"), hole, crank, None, edge, mpl
-        ),
-        Part("coupler", "coupler", np.array([0.0, coupler]), ("A", "B"), hole, coupler, None, edge, mpl),
+            "crank",
+            "crank (on the wheel)",
+            np.array([0.0, crank]),
+            ("O2", "A"),
+            hole,
+            crank,
+            None,
+            edge,
+            mpl,
+            hole_kinds=(crank_o2, "hole"),
+        ),  # fmt: skip
+        Part(
+            "coupler",
+            "coupler",
+            np.array([0.0, coupler]),
+            ("A", "B"),
+            hole,
+            coupler,
+            None,
+            edge,
+            mpl,
+            hole_kinds=("hole", "hole"),
+        ),  # fmt: skip
         Part(
             "rocker-handle",
             "rocker and handle",
@@ -231,6 +265,7 @@ def parts(spec: PumpSpec, d: Design | None = None) -> tuple[Part, ...]:
             "grip",
             edge,
             mpl,
+            hole_kinds=("hole", handle_b),
         ),
     )
 

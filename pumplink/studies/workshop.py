@@ -15,12 +15,9 @@ from typing import Any
 import numpy as np
 
 from pumplink.constants import GRAVITY
-from pumplink.evaluate import ORDER, PartSizes, motion
+from pumplink.evaluate import ORDER, PART_KEYS, PartSizes, motion
 from pumplink.evaluate import parts as _parts
 from pumplink.studies.force import ForceResult
-
-#: The defaults of a spec's [parts] table, used for information when the spec gives none.
-DEFAULT_PARTS = PartSizes(0.012, 0.0052, 0.0269, 0.0026, 1.0, 0.0127, 1.0)
 
 
 @dataclass(frozen=True)
@@ -33,6 +30,8 @@ class Workshop:
         in the verdict too), False for the defaults, shown for information.
     release, release_free : the released handle with the pump's losses as friction and with none
         (:class:`pumplink.models.release.Release`), None without the wheel's inertia or a head.
+    pin_pressure_limits : (warn, fail) [Pa], fatigue_limits : (warn, fail) [-]: the levels of the
+        verdict's part checks (:mod:`pumplink.evaluate.parts`).
     """
 
     loads: Any
@@ -41,6 +40,8 @@ class Workshop:
     parts_given: bool
     release: Any = None
     release_free: Any = None
+    pin_pressure_limits: tuple[float, float] = (_parts.PIN_PRESSURE_WARN, _parts.PIN_PRESSURE_FAIL)
+    fatigue_limits: tuple[float, float] = (_parts.FATIGUE_WARN, _parts.FATIGUE_FAIL)
 
     @property
     def needs_brake(self) -> bool:
@@ -98,7 +99,11 @@ def workshop(r: ForceResult) -> Workshop | None:
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
     loads = _parts.part_loads(lk, dce, dcf, r.dead_band, r.wheel_torque, key, part_scene, rope, weight)
     given = ev.designs.parts is not None
-    sizes = ev.designs.parts.design(0) if given else DEFAULT_PARTS
+    if given:
+        sizes = ev.designs.parts.design(0)
+    else:  # the defaults of [parts], for information
+        shop = r.design.spec.parts_or_defaults
+        sizes = PartSizes(*(getattr(shop, k) for k in PART_KEYS))
     strength = _parts.strength(loads, sizes)
     both = release(r, found)
     return Workshop(loads, strength, sizes, given, *(both or (None, None)))

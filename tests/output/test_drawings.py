@@ -62,7 +62,10 @@ def test_template_svg_hole_centres_are_the_link_lengths(tmp_path):
     svg = out.read_text()
     assert 'width="' in svg and "pt" in svg[:1000]  # user units are points
     for key, length in reference_lengths_mm().items():
-        (x0, y0), (x1, y1) = svg_point(svg, f"hole-{key}-0"), svg_point(svg, f"hole-{key}-1")
+        # the crank is welded to the axle at O2 (the default parts): its centre is marked, not drilled
+        first = "weld" if key == "crank" else "hole"
+        assert f'<g id="{"hole" if first == "weld" else "weld"}-{key}-0">' not in svg
+        (x0, y0), (x1, y1) = svg_point(svg, f"{first}-{key}-0"), svg_point(svg, f"hole-{key}-1")
         assert math.hypot(x1 - x0, y1 - y0) / PT_PER_MM == pytest.approx(length, abs=0.01), key
 
 
@@ -77,10 +80,14 @@ def test_template_dxf_one_layer_per_link_and_hole_centres_are_the_link_lengths(t
     assert set(lengths) <= {layer.dxf.name for layer in doc.layers}
     for key, length in lengths.items():
         circles = doc.modelspace().query(f'CIRCLE[layer=="{key}"]')
-        assert len(circles) == 2, key
-        c0, c1 = (c.dxf.center for c in circles)
-        assert math.dist((c0.x, c0.y), (c1.x, c1.y)) == pytest.approx(length, abs=0.01), key
-        assert all(c.dxf.radius == pytest.approx(5.0) for c in circles)  # default 10 mm hole
+        # the default parts' 12 mm pins; the crank is welded to the axle at O2: a cross, no circle
+        assert all(c.dxf.radius == pytest.approx(6.0) for c in circles)
+        centres = [(c.dxf.center.x, c.dxf.center.y) for c in circles]
+        lines = doc.modelspace().query(f'LINE[layer=="{key}"]')
+        upright = [ln for ln in lines if ln.dxf.start.x == ln.dxf.end.x]  # a welded joint's cross
+        assert len(circles) == (1 if key == "crank" else 2) and len(upright) == 2 - len(circles), key
+        centres += [(ln.dxf.start.x, (ln.dxf.start.y + ln.dxf.end.y) / 2) for ln in upright]
+        assert math.dist(*centres) == pytest.approx(length, abs=0.01), key
 
 
 def test_template_hole_diameter_comes_from_the_spec(tmp_path):

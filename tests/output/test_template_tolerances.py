@@ -61,10 +61,11 @@ def test_the_page_rings_the_critical_holes_in_red(marked):
     try:
         ax = fig.axes[0]
         by_gid = {a.get_gid(): a for a in ax.get_children() if a.get_gid()}
-        hole = {g: a for g, a in by_gid.items() if g.startswith("hole-")}
-        for i in (0, 1):
+        # the crank is welded to the axle at O2 (the default parts): its centre is marked, not drilled
+        assert "weld-crank-0" in by_gid and "hole-crank-0" not in by_gid
+        for i, kind in ((0, "weld"), (1, "hole")):
             ring = by_gid[f"critical-crank-{i}"]
-            centre = hole[f"hole-crank-{i}"].get_data()
+            centre = by_gid[f"{kind}-crank-{i}"].get_data()
             assert ring.center == pytest.approx((centre[0][0], centre[1][0]))  # round the hole's centre
             assert ring.get_edgecolor() == pytest.approx(to_rgba(CRITICAL))
             assert ring.radius > parts[0].hole_diameter * 500  # outside the hole
