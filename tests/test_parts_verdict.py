@@ -128,7 +128,7 @@ def hand_cycle():
     """The prototype's handle and crank loads over the quasi-static cycle, by hand: (handle moment
     at B [N m], handle axial force [N], crank moment at the axle [N m], crank axial force [N]) on
     the crank angles k 2 pi / 1440 outside the +-20 deg dead bands (the model carries no load in
-    them).  Kinematics from the reference's float64 twin (``R.sweep_rocker``: the loop closure in
+    them) and on the bands' four edges.  Kinematics from the reference's float64 twin (``R.sweep_rocker``: the loop closure in
     Freudenstein form, not the product's); dead centres at 50 digits; statics as in the module
     docstring: the coupler is a two-force member (force t u on it at A), the handle's pivot
     carries R_O4 = -(t u + F ex).  On the handle's pivot side of B only R_O4 acts: the moment there
@@ -143,6 +143,8 @@ def hand_cycle():
     band = math.radians(spec.operator.dead_band)
     th = np.arange(CYCLE) * (2 * math.pi / CYCLE)
     th = th[np.minimum(R.angle_gap(th, dce), R.angle_gap(th, dcf)) > band]
+    # and the dead bands' edges, where the model's load is largest (the reported peak moment)
+    th = np.concatenate([th, np.mod([dce - band, dce + band, dcf - band, dcf + band], 2 * math.pi)])
     t4, rate, _ = R.sweep_rocker(lk, th)
     mw = spec.load.rope_force * spec.wheel.radius
     force = mw / (-f["handle"] * np.sin(t4) * rate)  # Fh = Mw / (dPx/dt2)
