@@ -23,6 +23,7 @@ from pumplink.output.drawings import linkage_drawing
 from pumplink.output.formats import atomic_write, check_output, fmt
 from pumplink.output.template import cut_list_rows
 from pumplink.output.words import check_label, model_line, water_lines
+from pumplink.quantities import lines as quantity_lines
 from pumplink.output.workshop import load_rows, loads_title, parts_sentence, workshop_release_line
 
 REPORT_SUFFIXES = (".html", ".htm")
@@ -124,6 +125,7 @@ def water_html(r) -> str:
     words ``pumplink force`` prints them."""
     use = r.design.spec.use
     lines = water_lines(r.water, r.power, r.profile, use.hours_per_day, use.litres_per_person_day)
+    lines += quantity_lines(r.evaluation)  # the catalogue's quantities with a line of their own
     return "".join(f'<p class="water">{html.escape(line)}</p>' for line in lines)
 
 
