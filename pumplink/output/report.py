@@ -23,8 +23,8 @@ from pumplink.output.drawings import linkage_drawing
 from pumplink.output.formats import atomic_write, check_output, fmt
 from pumplink.output.template import cut_list_rows
 from pumplink.output.words import check_label, model_line, water_lines
-from pumplink.quantities import lines as quantity_lines
 from pumplink.output.workshop import load_rows, loads_title, parts_sentence, workshop_release_line
+from pumplink.quantities import lines as quantity_lines
 
 REPORT_SUFFIXES = (".html", ".htm")
 
