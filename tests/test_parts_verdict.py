@@ -128,12 +128,13 @@ def hand_cycle():
     """The prototype's handle and crank loads over the quasi-static cycle, by hand: (handle moment
     at B [N m], handle axial force [N], crank moment at the axle [N m], crank axial force [N]) on
     the crank angles k 2 pi / 1440 outside the +-20 deg dead bands (the model carries no load in
-    them) and on the bands' four edges.  Kinematics from the reference's float64 twin
+    them) and on the bands' four edges. Kinematics from the reference's float64 twin
     (``R.sweep_rocker``: the loop closure in Freudenstein form, not the product's); dead centres at
-    50 digits; statics as in the module docstring: the coupler is a two-force member (force t u on it at A), the handle's pivot
-    carries R_O4 = -(t u + F ex).  On the handle's pivot side of B only R_O4 acts: the moment there
-    is (O4 - B) x R_O4 and the tension -R_O4 . e (e along O4 -> B); the crank carries the coupler's
-    pull -t u at A: the moment A x (-t u) at the axle and the tension -t u . e_crank."""
+    50 digits; statics as in the module docstring: the coupler is a two-force member (force t u on
+    it at A), the handle's pivot carries R_O4 = -(t u + F ex). On the handle's pivot side of B only
+    R_O4 acts: the moment there is (O4 - B) x R_O4 and the tension -R_O4 . e (e along O4 -> B); the
+    crank carries the coupler's pull -t u at A: the moment A x (-t u) at the axle and the tension -t
+    u . e_crank."""
     spec = _spec(None)
     lin = spec.linkage
     syn = R.synthesis(lin.L1, lin.D1, lin.b, lin.rocker, math.radians(lin.swing))
