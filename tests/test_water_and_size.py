@@ -107,6 +107,14 @@ def test_size_finds_a_pump_that_force_passes_with_the_same_water(tmp_path):
     checked = json.loads(force.stdout)
     assert checked["verdict"] == "PASS"
     assert checked["flow_l_min"] == pytest.approx(row["flow_l_min"], rel=1e-12)
+    # the time and the turns to fill a 20-litre container (Eq. W.7, by hand from the written spec)
+    t = 20.0 / checked["flow_l_min"] * 60.0
+    assert row["fill_time_20l_s"] == pytest.approx(t, rel=1e-12)
+    assert row["fill_turns_20l"] == pytest.approx(t * checked["speed_deg_s"] / 360.0, rel=1e-12)
+    assert (
+        f"time to fill a 20-litre container: {t:.0f} s"
+        in pumplink("size", "--head", "8", "--pipes", "19mm").stdout
+    )
     # the operator's power is the limit that binds: the flow is Q*, to the cadence's 1 deg/s rounding
     assert "power" in row["binding"]
     assert 0.99 <= row["flow_share"] <= 1.0

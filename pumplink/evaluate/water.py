@@ -26,6 +26,7 @@ class Water:
         this head with this pump's efficiencies [m³/s];  share : Q / Q* [-].
     people : the people it serves, Q x hours a day / litres per person a day [-].
     head [m], sustained_power [W]: what ``limit`` was computed for.
+    fill_time [s], fill_turns [-]: to fill a 20-litre container, and the wheel's turns meanwhile.
     """
 
     flow: np.ndarray
@@ -36,6 +37,8 @@ class Water:
     people: np.ndarray
     head: np.ndarray
     sustained_power: np.ndarray
+    fill_time: np.ndarray
+    fill_turns: np.ndarray
 
     def design(self, i: int) -> Water:
         """The water of design ``i`` alone (floats)."""
@@ -56,6 +59,7 @@ def water(flow, columns: dict, operator_power) -> Water:
     limit = _kernels.power_limited_flow(
         c["sustained_power"], c["head"], c["force_efficiency"], c["volumetric_efficiency"]
     )  # Eq. (W.5)
+    fill_time, fill_turns = _kernels.fill(_kernels.CONTAINER_VOLUME, flow, c["speed"])  # Eq. (W.7)
     return Water(
         flow=flow,
         water_power=water_power,
@@ -65,4 +69,6 @@ def water(flow, columns: dict, operator_power) -> Water:
         people=_kernels.people_served(flow, c["hours_per_day"], c["litres_per_person_day"]),  # Eq. (W.6)
         head=c["head"],
         sustained_power=c["sustained_power"],
+        fill_time=fill_time,
+        fill_turns=fill_turns,
     )

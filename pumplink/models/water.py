@@ -9,6 +9,7 @@ The physics (docs/water.md §1-§5):
     eta      = P_water / P_operator                                               (W.4)
     Q*       = eta_force eta_v P_sustained / (rho g H)                            (W.5)
     people   = Q t_day / (litres per person per day)                              (W.6)
+    t_fill   = V / Q,  turns = t_fill w / (2 pi)   (a container of V)             (W.7)
 
 w is the mean wheel (crank) speed [rad/s]; the rope moves with the wheel rim, so the rope speed
 is w r_w.  eta_v is the volumetric efficiency (leakage past the pistons), eta_force the force
@@ -37,6 +38,9 @@ from pumplink.constants import (
 )
 
 _RHO_G = WATER_DENSITY * GRAVITY
+#: The field's container: a 20-litre jerrycan, what a bucket test at a pump fills [m^3]
+#: (docs/water.md §5).
+CONTAINER_VOLUME = 0.020
 
 
 def _nonnegative(x):
@@ -147,3 +151,15 @@ def people_served(flow, daily_hours=None, litres_per_person_day=None):
     with np.errstate(divide="ignore", invalid="ignore"):
         people = daily_volume / per_person  # Eq. (W.6)
     return np.where(per_person > 0.0, people, np.nan)
+
+
+def fill(volume, flow, wheel_speed):
+    """The time [s] and the wheel (crank) turns [-] to fill ``volume`` [m^3] at the flow ``flow``
+    [m^3/s] and the mean speed ``wheel_speed`` [rad/s] (Eq. W.7, docs/water.md §5):
+    t = V / Q and turns = t w / (2 pi).  Infinite where no water flows, NaN where the flow is not
+    known."""
+    q = _nonnegative(flow)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        time = _nonnegative(volume) / q  # Eq. (W.7)
+    time = np.where(q > 0.0, time, np.where(q == 0.0, np.inf, np.nan))
+    return time, time * _nonnegative(wheel_speed) / (2.0 * math.pi)  # Eq. (W.7)
