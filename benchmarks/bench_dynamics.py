@@ -22,7 +22,8 @@ from bench_core import ROOT  # noqa: E402
 
 from pumplink.inputs.pump import load_spec  # noqa: E402
 from pumplink.mechanisms.fourbar import synthesize  # noqa: E402
-from pumplink.models import dynamics as dy  # noqa: E402
+from pumplink.models import dynamics_solver as ds  # noqa: E402
+from pumplink.models import dynamics_terms as dt  # noqa: E402
 from pumplink.studies.force import design, force_analysis, link_masses
 from pumplink.studies.speed import cadence  # noqa: E402
 
@@ -64,7 +65,7 @@ def batch_designs(spec, n, seed=12):
     )
     ok = np.nonzero(syn.reason == 0)[0][:n]
     four = syn.linkage.take(ok)
-    masses = dy.bar_masses(four, rng.uniform(0.5, 3.0, ok.size), rng.uniform(0.0, 6.0, ok.size))
+    masses = dt.bar_masses(four, rng.uniform(0.5, 3.0, ok.size), rng.uniform(0.0, 6.0, ok.size))
     return (
         four,
         syn.dead_centre_extended[ok],
@@ -85,7 +86,7 @@ def main() -> None:
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
     ms = link_masses(spec, float(syn.coupler_length), arms=False)
     w = np.radians(spec.operator.speed)
-    wall, cpu = timed(lambda: dy.least_peak_force(lk, dce, dcf, mw, j, ms, w, 0.2), 51)
+    wall, cpu = timed(lambda: ds.least_peak_force(lk, dce, dcf, mw, j, ms, w, 0.2), 51)
     line(
         "Fp*, one design (12 m example)",
         f"cpu {cpu * 1e3:.2f} ms (wall {wall * 1e3:.2f})",
@@ -96,7 +97,7 @@ def main() -> None:
     )
     args = batch_designs(spec, BATCH)
     n = args[0].crank.size
-    wall, cpu = timed(lambda: dy.least_peak_force(*args), 5)
+    wall, cpu = timed(lambda: ds.least_peak_force(*args), 5)
     line(
         f"Fp*, {n:,} designs in one call",
         f"cpu {n / cpu:,.0f}/s (wall {n / wall:,.0f}/s)",

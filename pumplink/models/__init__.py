@@ -56,9 +56,9 @@ def _flywheel_peak(fourbar, dead_centre_extended, dead_centre_folded, wheel_torq
 
 def _dynamics_peak(fourbar, dead_centre_extended, dead_centre_folded, wheel_torque, conditions: Conditions):
     """Least peak force with link masses, weight and arms [N] (docs/models.md §3, (C1)-(C2))."""
-    from pumplink.models import dynamics  # loaded when first needed: a start-up cost otherwise
+    from pumplink.models import dynamics_solver  # loaded when first needed: a start-up cost otherwise
 
-    return dynamics.least_peak_force(
+    return dynamics_solver.least_peak_force(
         fourbar,
         dead_centre_extended,
         dead_centre_folded,

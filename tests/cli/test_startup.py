@@ -37,6 +37,8 @@ HEAVY = [
     "pumplink.studies.piston",
     "pumplink.models.flywheel",  # the inertia models: a spec without inertia never needs them
     "pumplink.models.dynamics",
+    "pumplink.models.dynamics_solver",
+    "pumplink.models.dynamics_terms",
 ]
 
 PROBE = """
@@ -90,6 +92,8 @@ def test_a_spec_with_inertia_loads_the_inertia_models():
     assert "VERDICT" in res["out"] and "released handle" in res["out"], res["out"]
     assert sorted(res["loaded"]) == [
         "pumplink.models.dynamics",
+        "pumplink.models.dynamics_solver",
+        "pumplink.models.dynamics_terms",
         "pumplink.models.flywheel",
         "scipy.integrate",
         "scipy.optimize",
