@@ -26,6 +26,13 @@ from pumplink.models import quasi_static as _qs
 from pumplink.models.conditions import Masses
 from pumplink.models.dynamics_solver import least_peak_force, problem, refined_points, solve
 from pumplink.models.dynamics_terms import coefficients, point_terms, terms, terms_from
+from pumplink.models.grip_travel import (
+    GAUSS_LEGENDRE_NODES,
+    GAUSS_LEGENDRE_WEIGHTS,
+    TRAVEL_INTEGRATION_ARC,
+    grip_rate,
+    travel_parts,
+)
 
 # ----------------------------------------------------------------------------- model choice, cadence
 #: Crank angles per revolution on which the links' largest kinetic energy and the range of their
@@ -190,7 +197,7 @@ class Scene:
     max_speed: float
     points: tuple  # refined extrema (x, base, local, up, lo) of the four functions at Fp, each (K,)
     stroke: float  # grip stroke S [m]
-    travel: tuple  # the grip-travel arguments of pumplink.models.flywheel for this design
+    travel: tuple  # the grip-travel arguments of pumplink.models.grip_travel for this design
 
 
 def scene(
@@ -251,7 +258,7 @@ def _profile(sc: Scene, crank_angle):
     th = np.atleast_1d(np.asarray(crank_angle, float))
     fp, mw = sc.least_peak_force, sc.wheel_torque
     phi = np.mod(th - sc.dead_centre_extended, TWO_PI)
-    base, local = _fw.travel_parts(phi, *sc.travel)
+    base, local = travel_parts(phi, *sc.travel)
     g_phi = base + local
     tm = terms(sc.linkage, th, sc.masses, sc.gravity)
     i = sc.inertia + tm.inertia
@@ -276,9 +283,9 @@ def _profile_at(sc: Scene):
     The per-scene parts are computed once: the points' upper - Q and upper - P (and their shifts by
     a revolution) sorted by angle with their running minima from both ends, so the past and future
     minima are two look-ups (:func:`bisect.bisect_left`) instead of a pass over the points.  The
-    links' terms and the grip position (Px at dce + phi, :func:`pumplink.models.flywheel.grip_position`)
+    links' terms and the grip position (Px at dce + phi, :func:`pumplink.models.grip_travel.grip_position`)
     come from :func:`point_terms`, the grip travel near a dead centre from the same Gauss-Legendre
-    sum as :func:`pumplink.models.flywheel.travel_parts`.  Beyond the first turn (phi rounded up
+    sum as :func:`pumplink.models.grip_travel.travel_parts`.  Beyond the first turn (phi rounded up
     to 2 pi) or where a value is not finite, the call takes :func:`_profile` itself.
     """
     import bisect
@@ -307,7 +314,7 @@ def _profile_at(sc: Scene):
     geom = tuple(float(v) for v in tr[:7])
     grip_at = point_terms(FourBar(*geom), Masses(), 0.0)
     j0, w2 = sc.inertia, sc.max_speed**2
-    arc = _fw.TRAVEL_INTEGRATION_ARC
+    arc = TRAVEL_INTEGRATION_ARC
 
     def vector(th):
         e, reg, dup, v, i, g, tm = _profile(sc, th)
@@ -321,15 +328,15 @@ def _profile_at(sc: Scene):
         phi = (th - dce) % TWO_PI  # np.mod's floor remainder
         if math.floor(phi / TWO_PI) != 0:  # rounded up to a full turn: travel_parts counts a turn
             return vector(th)
-        # flywheel.travel_parts at one angle in its first turn (p = phi), away from the dead centres
+        # grip_travel.travel_parts at one angle in its first turn (p = phi), away from the dead centres
         to_fold = phi - plus
         at_fold = abs(to_fold) <= min(phi, TWO_PI - phi)
         sd = to_fold if at_fold else (phi if phi <= TWO_PI - phi else phi - TWO_PI)
         base = (stroke if at_fold else (0.0 if sd >= 0 else 2.0 * stroke)) + 0.0
         if abs(sd) < arc:  # integrated from the rate on the 12 Gauss-Legendre nodes, as there
-            nodes = 0.5 * sd * (1.0 + _fw.GAUSS_LEGENDRE_NODES)
-            rate = _fw.grip_rate((geom_dce + plus if at_fold else geom_dce) + nodes, *geom)
-            local = float(0.5 * sd * (np.abs(rate) * _fw.GAUSS_LEGENDRE_WEIGHTS).sum(axis=-1))
+            nodes = 0.5 * sd * (1.0 + GAUSS_LEGENDRE_NODES)
+            rate = grip_rate((geom_dce + plus if at_fold else geom_dce) + nodes, *geom)
+            local = float(0.5 * sd * (np.abs(rate) * GAUSS_LEGENDRE_WEIGHTS).sum(axis=-1))
         else:
             px_grip = grip_at(geom_dce + phi, rates=False, values=False, fly_x=True)[6]
             local = (1.0 if sd > 0 else -1.0) * abs(px_grip - (xf if at_fold else xe))

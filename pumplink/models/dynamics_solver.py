@@ -29,10 +29,11 @@ import numpy as np
 from pumplink.constants import GRAVITY
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.fourbar import FourBar, per_design
-from pumplink.models import flywheel as _fw
+from pumplink.models import flywheel_solver as _fs
 from pumplink.models import quasi_static as _qs
 from pumplink.models.conditions import Masses
 from pumplink.models.dynamics_terms import COEFFICIENT_COUNT, coefficients, speed_limits, terms_from
+from pumplink.models.grip_travel import Prepared, crank_nodes, grip_position, node_travel, travel_parts
 
 #: Uniform grid nodes per revolution that bracket the extrema before refinement (the refinement
 #: makes the answer exact; features of the four functions narrower than a cell, 3.75 deg, are merged).
@@ -54,7 +55,7 @@ QUARTER_FROM = 48
 #: found (the passes converge quadratically; the last pass always looks at the whole grid).
 TRACK_RTOL = 1e-9
 #: Peak forces above this multiple of F_mean are reported as infinite (as in the flywheel scene).
-FORCE_CAP_RATIO = _fw.FORCE_CAP_RATIO
+FORCE_CAP_RATIO = _fs.FORCE_CAP_RATIO
 #: A Newton step [rad] below which the extremum refinement stops (its error is then of second
 #: order, below 1e-14 rad; the value of the function, flat at an extremum, is exact to rounding).
 REFINE_XTOL = 1e-8
@@ -77,7 +78,7 @@ _SMALL = 4096
 class Problem:
     """Per-design data (1-D arrays over D designs) and the band's edges at the grid nodes (D, M)."""
 
-    prep: object  # flywheel.Prepared: geometry, dead centres, stroke, grip travel at the nodes
+    prep: object  # grip_travel.Prepared: geometry, dead centres, stroke, grip travel at the nodes
     lk: FourBar  # (D,) arrays
     inertia: np.ndarray
     masses: Masses  # (D,) arrays
@@ -90,7 +91,7 @@ class Problem:
     lo: np.ndarray | None  # lower edge [J]
     design: np.ndarray  # per design (columns): the constants of coefficients, then Mw, dce,
     # w_hi^2 / 2, w_lo^2 / 2 and J (rows COEFFICIENT_COUNT ... COEFFICIENT_COUNT + 4)
-    travel: list  # the grip-travel arguments of pumplink.models.flywheel as columns (D, 1)
+    travel: list  # the grip-travel arguments of pumplink.models.grip_travel as columns (D, 1)
 
     def points(self, rows=None):
         """The grid nodes of designs ``rows`` (all: None) as points (x, base, local, up, lo)."""
@@ -102,7 +103,7 @@ class Problem:
     def edges(self, phi, rows=None, fly_x: bool = False):
         """upper and lower edge of the band [J] at points phi [rad from the extended dead centre],
         shape (R, K), of the designs ``rows`` (R,) (all: None).  ``fly_x``: also the grip's Px [m]
-        as :func:`pumplink.models.flywheel.grip_position` computes it."""
+        as :func:`pumplink.models.grip_travel.grip_position` computes it."""
         every = rows is None or rows.size == self.mw.size  # rows are sorted and distinct: all
         dm = self.design if every else self.design.take(rows, axis=1)
         if phi.size <= _SMALL:
@@ -115,19 +116,6 @@ class Problem:
             i = j + tm[0]
             out = tm[2] + i * hi, tm[2] + i * lo  # Eq. (8) of pumplink.models.dynamics_terms
         return (*out, tm[6]) if fly_x else out
-
-
-def _node_travel(nodes, plus, grip_x, xe, xf, stroke):
-    """Grip travel G = base + local [m] at the grid nodes from their positions: the split at the
-    nearest dead centre of :func:`pumplink.models.flywheel.travel_parts`, without its integration
-    next to a dead centre.  The grid only brackets the extrema and starts the iteration (every
-    reported force comes from refined points, whose travel is integrated there), so position
-    differences, exact to ~1e-16 m, are enough."""
-    to_fold = nodes - plus
-    at_fold = np.abs(to_fold) <= np.minimum(nodes, TWO_PI - nodes)
-    s = np.where(at_fold, to_fold, np.where(nodes <= TWO_PI - nodes, nodes, nodes - TWO_PI))
-    base = np.where(at_fold, stroke, np.where(s >= 0, 0.0, 2.0 * stroke))
-    return base, np.sign(s) * np.abs(grip_x - np.where(at_fold, xf, xe))
 
 
 def problem(lk, dce, dcf, wheel_torque, inertia, masses, mean_speed, speed_fluctuation, gravity):
@@ -155,16 +143,16 @@ def problem_of(arrays, gravity) -> Problem:
     with np.errstate(all="ignore"):
         co = coefficients(lk1, ms)
         kin = (0.5 * w_hi**2, 0.5 * w_lo**2)
-        xe, xf = _fw.grip_position(np.stack([dce, dcf]), *geom)  # both dead centres in one call
+        xe, xf = grip_position(np.stack([dce, dcf]), *geom)  # both dead centres in one call
         stroke = np.abs(xf - xe)
-        nodes, plus = _fw.crank_nodes(dce, dcf, GRID, CLUSTER)
+        nodes, plus = crank_nodes(dce, dcf, GRID, CLUSTER)
         tm = terms_from([v[:, None] for v in co], dce[:, None] + nodes, gravity, rates=False)
         i = j[:, None] + tm[0]
         up = tm[2] + i * kin[0][:, None]  # Eq. (8) of pumplink.models.dynamics_terms
         lo = tm[2] + i * kin[1][:, None]
         dm = np.stack(np.broadcast_arrays(*co, mw, dce, *kin, j))
-        base, local = _node_travel(nodes, plus[:, None], tm[5], xe[:, None], xf[:, None], stroke[:, None])
-    prep = _fw.Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
+        base, local = node_travel(nodes, plus[:, None], tm[5], xe[:, None], xf[:, None], stroke[:, None])
+    prep = Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
     travel = [v[:, None] for v in prep.args()]
     return Problem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, dm, travel)
 
@@ -550,7 +538,7 @@ def refined_points(pb: Problem, lam, rows, track: _Track | None = None, detect: 
         every = rows.size == pb.mw.size  # rows are sorted and distinct: all designs
         args = pb.travel if every else [v[rows][:, None] for v in pb.prep.args()]
         up, low, grip_x = pb.edges(x, None if every else rows, fly_x=True)
-        base, local = _fw.travel_parts(x, *args, grip_x=grip_x)
+        base, local = travel_parts(x, *args, grip_x=grip_x)
     return (x, base, local, up, low), _Track(dd, fam, lo, hi, node, root)
 
 

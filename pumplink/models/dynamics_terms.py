@@ -122,7 +122,7 @@ def terms_from(
     Returns (inertia, inertia_rate, potential, potential_rate, grip_rate, grip_x, crank_x): the
     first six as :class:`Terms` (the rates None unless ``rates``, I, V and Px None unless
     ``values``: the band's edges need no second derivatives; Px None unless ``grip`` too);
-    ``crank_x`` (``fly_x``, else None) the grip's Px as :func:`pumplink.models.flywheel.grip_position`
+    ``crank_x`` (``fly_x``, else None) the grip's Px as :func:`pumplink.models.grip_travel.grip_position`
     computes it (its rounding), from the same loop closure.  ``lib``: the module whose cos, sin and
     sqrt are used; ``math`` on floats (``co`` and ``th`` floats) is the one-point route of
     :func:`point_terms`, the same operations in the same order, without numpy's per-call cost.

@@ -39,6 +39,8 @@ HEAVY = [
     "pumplink.models.dynamics",
     "pumplink.models.dynamics_solver",
     "pumplink.models.dynamics_terms",
+    "pumplink.models.flywheel_solver",
+    "pumplink.models.grip_travel",
 ]
 
 PROBE = """
@@ -95,6 +97,8 @@ def test_a_spec_with_inertia_loads_the_inertia_models():
         "pumplink.models.dynamics_solver",
         "pumplink.models.dynamics_terms",
         "pumplink.models.flywheel",
+        "pumplink.models.flywheel_solver",
+        "pumplink.models.grip_travel",
         "scipy.integrate",
         "scipy.optimize",
     ], res["loaded"]

@@ -27,6 +27,8 @@ from pumplink.models import dynamics as dy
 from pumplink.models import dynamics_solver as ds
 from pumplink.models import dynamics_terms as dt
 from pumplink.models import flywheel as fw
+from pumplink.models import flywheel_solver as fs
+from pumplink.models import grip_travel as gt
 from pumplink.models.quasi_static import mean_force
 from pumplink.studies.force import design
 
@@ -55,7 +57,7 @@ def case(request):
 def test_flywheel_is_the_special_case_without_link_masses(case, speed_deg):
     spec, syn, lk, dce, dcf = case
     w = math.radians(speed_deg)
-    ref = fw.least_peak_force(lk, dce, dcf, spec.wheel_torque, fw.energy_band(spec.inertia, w, 0.2))
+    ref = fs.least_peak_force(lk, dce, dcf, spec.wheel_torque, fw.energy_band(spec.inertia, w, 0.2))
     got = ds.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, dy.Masses(), w, 0.2)
     assert got == pytest.approx(ref, rel=1e-11)
 
@@ -179,7 +181,7 @@ def _brute_lower_bound(lk, dce, dcf, mw, j, ms, w, delta, n=200_000):
     """Dinkelbach over the pairs of n uniform angles plus the grid nodes: a lower bound of Fp*."""
     pb, _ = ds.problem(lk, dce, dcf, mw, j, ms, w, delta, GRAVITY)
     x = np.sort(np.concatenate([np.linspace(0, 2 * np.pi, n, endpoint=False), pb.prep.nodes[0]]))[None, :]
-    base, local = fw.travel_parts(x, *(v[:, None] for v in pb.prep.args()))
+    base, local = gt.travel_parts(x, *(v[:, None] for v in pb.prep.args()))
     up, lo = pb.edges(x)
     cap = np.array([np.inf])
     f_mean = mean_force(pb.mw, pb.stroke)
