@@ -314,7 +314,7 @@ YieldOpt = Annotated[
 
 
 def robust_ask(tolerance: str | None, target: float | None, strict: bool = False):
-    """The search's :class:`pumplink.studies.tolerance.Robust` for ``--tolerance``/``--yield`` (None
+    """The search's :class:`pumplink.studies.tolerance_study.Robust` for ``--tolerance``/``--yield`` (None
     without --tolerance); --yield alone is a SpecError."""
     from pumplink.errors import SpecError
 
@@ -322,7 +322,8 @@ def robust_ask(tolerance: str | None, target: float | None, strict: bool = False
         if target is not None:
             raise SpecError("--yield is the share of builds at --tolerance that pass: give --tolerance too")
         return None
-    from pumplink.studies.tolerance import Robust, tolerances
+    from pumplink.studies.tolerance import tolerances
+    from pumplink.studies.tolerance_study import Robust
 
     return Robust(
         tolerances(parse_length(tolerance, "--tolerance")), 0.95 if target is None else target, strict

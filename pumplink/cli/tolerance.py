@@ -170,6 +170,7 @@ def tolerance(
     from pumplink.output.formats import progress
     from pumplink.output.tolerance import render_tolerance
     from pumplink.studies import tolerance as tl
+    from pumplink.studies import tolerance_study as ts
 
     tols = tl.tolerances(
         parse_length(hole, "--hole"),
@@ -188,7 +189,7 @@ def tolerance(
             mapper = functools.partial(run_module.map_ordered, workers=n)
         try:
             with progress(samples, "tolerance (builds)") as advance:
-                result = tl.summarize(prob, tl.run_chunks(prob, mapper), target, advance, fmt.value == "csv")
+                result = ts.summarize(prob, ts.run_chunks(prob, mapper), target, advance, fmt.value == "csv")
         except BrokenProcessPool as exc:
             what = str(exc) if client is not None else "a worker process was killed (out of memory?)"
             sys.stderr.write(f"interrupted: {what}\n")

@@ -46,7 +46,8 @@ from pumplink.evaluate import JUDGED, PumpDesigns, evaluate, pump_designs
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
 from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_heights, grip_stroke, synthesize
 from pumplink.models import FLYWHEEL, MODELS, QUASI_STATIC
-from pumplink.studies.tolerance import Robust, RobustCheck, first_order_shares, robust_check
+from pumplink.studies.tolerance import first_order_shares
+from pumplink.studies.tolerance_study import Robust, RobustCheck, robust_check
 from pumplink.verdict import excess
 
 #: Keys that may vary (the [linkage] table of the spec), with their units.

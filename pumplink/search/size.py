@@ -33,7 +33,7 @@ from pumplink.errors import SpecError
 from pumplink.evaluate import JUDGED, Evaluation, evaluate, pump_designs
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
 from pumplink.models.water import rope_pump_flow
-from pumplink.studies.tolerance import Robust, RobustCheck, robust_check, shortfall
+from pumplink.studies.tolerance_study import Robust, RobustCheck, robust_check, shortfall
 from pumplink.verdict import WARN, excess
 
 #: Nominal pipe bores searched by default [m]: ½", ¾", 1", 1¼" and 1½" (12.7-38.1 mm), the sizes
