@@ -138,6 +138,7 @@ def batch(
 
     from pumplink import batch as _batch
     from pumplink.output import batchfiles as rb
+    from pumplink.output import batchtable
     from pumplink.output.formats import check_output, duration, progress
 
     t0 = time.perf_counter()
@@ -208,8 +209,8 @@ def batch(
             sys.stderr.write(f"interrupted: {what}; no output file written\n")
             raise typer.Exit(130) from None
     if fmt.value == "table":
-        rb.render_table(summary, rows)
+        batchtable.render_table(summary, rows)
     else:
         wrote = [p for p in (out, junit) if p is not None]
-        sys.stderr.write(rb.summary_line(summary, time.perf_counter() - t0, wrote) + "\n")
+        sys.stderr.write(batchtable.summary_line(summary, time.perf_counter() - t0, wrote) + "\n")
     raise typer.Exit(1 if summary["failed_selected"] else 0)
