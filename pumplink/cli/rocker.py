@@ -62,7 +62,7 @@ def rocker(
     import math
 
     from pumplink.output.mechanisms import render_synthesis, synthesis_labels, synthesis_row
-    from pumplink.studies.textbook import rocker as synthesise
+    from pumplink.studies.textbook_rocker import rocker as synthesise
 
     if not math.isfinite(swing):
         raise SpecError(f"--swing {swing!r} is not a finite number")

@@ -69,7 +69,7 @@ def transmission(
         return
 
     from pumplink.output.transmission import render_transmission, transmission_rows
-    from pumplink.studies.textbook import optimum_check
+    from pumplink.studies.textbook_rocker import optimum_check
 
     for name, v in (("--time-ratio", time_ratio), ("--swing", swing), ("--rocker", rocker)):
         if not math.isfinite(v):

@@ -33,7 +33,8 @@ def transmission_rows(opt, sim, comparisons=(), printed_gamma_min=None, check=No
     sim : :class:`pumplink.mechanisms.crank_rocker.MeasuredMotion` of the optimum.
     comparisons : :class:`pumplink.mechanisms.crank_rocker.Comparison` of published designs.
     printed_gamma_min : the transmission angle the paper prints for its diagram design [deg].
-    check : :class:`pumplink.studies.textbook.OptimumCheck` (simulation agreement and verdict), or None.
+    check : :class:`pumplink.studies.textbook_rocker.OptimumCheck` (simulation agreement and
+        verdict), or None.
     """
     from pumplink.output.mechanisms import verdict_fields
 
