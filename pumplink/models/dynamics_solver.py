@@ -75,7 +75,7 @@ _SMALL = 4096
 
 # ----------------------------------------------------------------------------- the solver
 @dataclass(frozen=True)
-class Problem:
+class DynamicsProblem:
     """Per-design data (1-D arrays over D designs) and the band's edges at the grid nodes (D, M)."""
 
     prep: object  # grip_travel.Prepared: geometry, dead centres, stroke, grip travel at the nodes
@@ -131,10 +131,10 @@ def problem(lk, dce, dcf, wheel_torque, inertia, masses, mean_speed, speed_fluct
         mean_speed,
         speed_fluctuation,
     )
-    return problem_of(arrays, gravity), scalar
+    return _problem_of(arrays, gravity), scalar
 
 
-def problem_of(arrays, gravity) -> Problem:
+def _problem_of(arrays, gravity) -> DynamicsProblem:
     """:func:`problem` of the 1-D arrays of :func:`pumplink.mechanisms.fourbar.per_design`."""
     geom, (dce, dcf, mw, j, mc, mh, ma, w, delta) = arrays[:7], arrays[7:]
     lk1 = FourBar(*geom)
@@ -154,7 +154,7 @@ def problem_of(arrays, gravity) -> Problem:
         base, local = node_travel(nodes, plus[:, None], tm[5], xe[:, None], xf[:, None], stroke[:, None])
     prep = Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
     travel = [v[:, None] for v in prep.args()]
-    return Problem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, dm, travel)
+    return DynamicsProblem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, dm, travel)
 
 
 # The pairs of (C1)-(C2) in the form the sweeps use (docs/models.md §3a).  At the points x of a row
@@ -300,7 +300,7 @@ _EDGE = np.array([f[0] for f in _FAMILIES])
 _SIGN = np.array([f[1] for f in _FAMILIES])
 
 
-def _extrema(pb: Problem, lam, rows):
+def _extrema(pb: DynamicsProblem, lam, rows):
     """The local extrema of :data:`_FAMILIES` on the grid nodes of designs ``rows`` at Fp = lam (per
     row): (design, node, lo, hi, family) with the neighbouring nodes (lo, hi) as the bracket."""
     every = rows.size == pb.mw.size  # rows are sorted and distinct: all designs
@@ -336,7 +336,7 @@ class _Slope:
     """The derivative of one family's function at the extrema being refined (1-D arrays, one per
     extremum): f' = V' + I' w^2/2 + sign lam |g| + Mw, with w the band's top or bottom speed."""
 
-    def __init__(self, pb: Problem, dd, fam, lam_e):
+    def __init__(self, pb: DynamicsProblem, dd, fam, lam_e):
         e = dd.size
         n = COEFFICIENT_COUNT
         m = np.empty((n + 4, e))  # the constants of the terms, Mw, dce, w^2 / 2, sign lam
@@ -487,7 +487,7 @@ def _warm_start(track: _Track | None, dd, fam, node, lo, hi):
     return start
 
 
-def refined_points(pb: Problem, lam, rows, track: _Track | None = None, detect: bool = True):
+def refined_points(pb: DynamicsProblem, lam, rows, track: _Track | None = None, detect: bool = True):
     """Every local extremum of :data:`_FAMILIES` at Fp = lam, located by a root search on its
     analytic derivative (bracketed by the neighbouring grid nodes), as the points
     (x, base, local, up, lo), each (len(rows), K) sorted per row, and the extrema as a
@@ -542,7 +542,7 @@ def refined_points(pb: Problem, lam, rows, track: _Track | None = None, detect: 
     return (x, base, local, up, low), _Track(dd, fam, lo, hi, node, root)
 
 
-def solve(pb: Problem, max_passes: int = 24):
+def solve(pb: DynamicsProblem, max_passes: int = 24):
     n = pb.mw.size
     out = np.full(n, np.nan)
     with np.errstate(all="ignore"):
@@ -646,7 +646,7 @@ def least_peak_force(
     out = np.empty(n)
     for start in range(0, n, CHUNK):  # chunks whose (designs, nodes) arrays stay in the cache
         part = arrays if n <= CHUNK else [v[start : start + CHUNK] for v in arrays]
-        pb = problem_of(part, gravity)  # held until the next chunk's is made: freeing it first
+        pb = _problem_of(part, gravity)  # held until the next chunk's is made: freeing it first
         out[start : start + CHUNK] = solve(pb)  # costs ~10 % on 10,000 designs (the allocator)
     return float(out[0]) if scalar else out
 
