@@ -18,7 +18,8 @@ from scipy.optimize import minimize_scalar
 from pumplink.constants import MIN_TRANSMISSION_DEG
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.inputs.pump import default_spec, parse_spec, spec_to_dict
-from pumplink.search.optimize import DEFAULT_BOUNDS, evaluate_designs, make_problem, optimize, parse_bounds
+from pumplink.search.optimize import optimize
+from pumplink.search.problem import DEFAULT_BOUNDS, evaluate_designs, make_problem, parse_bounds
 from pumplink.studies.force import force_analysis
 
 RELAXED = dict(grip_height=(0.0, 5.0), stroke=(0.0, 5.0))

@@ -21,6 +21,7 @@ import pytest
 from pumplink.evaluate import evaluate, pump_designs
 from pumplink.inputs.pump import load_spec, spec_values
 from pumplink.search import optimize as opt
+from pumplink.search import problem as search_problem
 from pumplink.search import size as sizing
 from pumplink.studies import tolerance as tl
 from pumplink.studies import tolerance_study as ts
@@ -42,8 +43,8 @@ def cadence():
     """The most water from the village pump by its cadence alone: the grip speed's 4 m/s limit binds."""
     spec = load_spec(VILLAGE)
     bounds = {"operator.speed": (100.0, 700.0)}
-    plain = opt.optimize(opt.make_problem(spec, bounds, "flow"))
-    robust = opt.optimize(opt.make_problem(spec, bounds, "flow", robust=ONE_MM))
+    plain = opt.optimize(search_problem.make_problem(spec, bounds, "flow"))
+    robust = opt.optimize(search_problem.make_problem(spec, bounds, "flow", robust=ONE_MM))
     return plain, robust
 
 
@@ -86,8 +87,8 @@ def test_a_constraint_the_plain_optimum_meets_changes_nothing():
     at ±1 mm passes, and the robust search returns the plain optimum."""
     spec = load_spec(VILLAGE)
     bounds = {"rocker": (0.1, 0.4), "swing": (30.0, 100.0)}
-    plain = opt.optimize(opt.make_problem(spec, bounds), maxiter=30)
-    robust = opt.optimize(opt.make_problem(spec, bounds, robust=ONE_MM), maxiter=30)
+    plain = opt.optimize(search_problem.make_problem(spec, bounds), maxiter=30)
+    robust = opt.optimize(search_problem.make_problem(spec, bounds, robust=ONE_MM), maxiter=30)
     assert np.array_equal(plain.x, robust.x)
     assert robust.robust.monte_carlo.value == 1.0 and robust.robust.first_order > 0.999
 

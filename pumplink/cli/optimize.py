@@ -106,8 +106,8 @@ def optimize(
     Example: [bold]pumplink optimize configs/prototype.toml --write best.toml[/]
     """  # noqa: E501 -- typer prints this docstring as the --help text, keeping its line breaks
     from pumplink.output.optimize import optimize_row, render_optimize
-    from pumplink.search.optimize import STROKE_M, make_problem, parse_bounds, parse_range
     from pumplink.search.optimize import optimize as run
+    from pumplink.search.problem import STROKE_M, make_problem, parse_bounds, parse_range
 
     bounds = parse_bounds(vary)
     gh = None if grip_height is None else parse_range("grip-height", grip_height, (0.9, 1.33))

@@ -31,6 +31,7 @@ HEAVY = [
     "numba",
     # pumplink's own modules for other commands and mechanisms
     "pumplink.search.optimize",
+    "pumplink.search.problem",
     "pumplink.batch",
     "pumplink.studies.methods",
     "pumplink.studies.accuracy",
