@@ -73,7 +73,7 @@ def coefficients(lk: FourBar, masses: Masses) -> tuple:
     times on a few points each): the same expressions as written out in :func:`terms`, so the same
     rounding.  Order: px, py, crank, |O4|^2 + crank^2, 2 crank, (coupler^2 - rocker^2) / 2,
     coupler^2, coupler, rocker^2, branch (the loop closure of
-    :func:`pumplink.mechanisms.fourbar.loop_closure`); the coupler's mass, its moment of inertia
+    :func:`pumplink.mechanisms.fourbar_kernel.loop_closure`); the coupler's mass, its moment of inertia
     about its centre, the handle's and the arms' about O4, their first moment about O4 per metre
     of the rocker, (mh + ma) py (their weight's term at the pivot's height), H / rocker and its
     negative.
@@ -129,7 +129,7 @@ def terms_from(
     """
     px, py, c, o2, c2, hkr, kk, k, rr, branch, mc, ic, i4, lever, mpy, hr, nhr = co
     cs, sn = lib.cos(th), lib.sin(th)
-    # the loop closure of pumplink.mechanisms.fourbar.loop_closure (t, q), written out
+    # the loop closure of pumplink.mechanisms.fourbar_kernel.loop_closure (t, q), written out
     p1 = cs * px + sn * py
     e2 = o2 - c2 * p1
     t = 0.5 + hkr / e2

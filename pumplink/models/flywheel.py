@@ -42,7 +42,8 @@ import numpy as np
 
 from pumplink.constants import DEFAULT_SPEED_FLUCTUATION, LINK_ENERGY_LIMIT, LINK_MASS_PER_METRE  # noqa: F401  (re-exported)
 from pumplink.mechanisms.angles import TWO_PI
-from pumplink.mechanisms.fourbar import FourBar, kinematic_state, loop_closure
+from pumplink.mechanisms.fourbar import FourBar, kinematic_state
+from pumplink.mechanisms.fourbar_kernel import loop_closure
 from pumplink.models import quasi_static as _qs
 from pumplink.models.flywheel_solver import (
     drawdown,

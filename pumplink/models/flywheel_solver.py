@@ -318,7 +318,7 @@ def _rate_table_into(geom, dce, out, work):
     e2 += px * px + py * py + c * c  # e^2
     np.divide(0.5 * (k * k - r * r), e2, out=t)
     t += 0.5
-    np.sqrt(e2, out=a)  # e; q by Heron's formula as fourbar._height
+    np.sqrt(e2, out=a)  # e; q by Heron's formula as fourbar_kernel.coupler_height
     np.add(a, k, out=b)  # e + k
     np.subtract(e2, k * k, out=q)
     q /= b  # e - k

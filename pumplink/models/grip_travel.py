@@ -16,7 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from pumplink.mechanisms.angles import TWO_PI
-from pumplink.mechanisms.fourbar import FourBar, loop_closure
+from pumplink.mechanisms.fourbar import FourBar
+from pumplink.mechanisms.fourbar_kernel import loop_closure
 
 
 # ----------------------------------------------------------------------------- grip travel G

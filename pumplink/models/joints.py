@@ -62,7 +62,8 @@ import numpy as np
 
 from pumplink.constants import GRAVITY
 from pumplink.mechanisms.angles import TWO_PI
-from pumplink.mechanisms.fourbar import FourBar, kinematic_state, loop_closure
+from pumplink.mechanisms.fourbar import FourBar, kinematic_state
+from pumplink.mechanisms.fourbar_kernel import loop_closure
 from pumplink.models import Masses
 
 #: The joints in the order of :attr:`JointForces.magnitudes` and :class:`PeakLoads`.

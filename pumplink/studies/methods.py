@@ -36,7 +36,8 @@ from pumplink.constants import (
     ROCKER_PERPENDICULAR,
     UNIFORM,
 )
-from pumplink.mechanisms.fourbar import SINGULAR_SIN, FourBar, kinematic_state
+from pumplink.mechanisms.fourbar import FourBar, kinematic_state
+from pumplink.mechanisms.fourbar_kernel import SINGULAR_SIN
 
 #: The kinds of position where a textbook formula breaks down (identifiers in
 #: :mod:`pumplink.constants`; their words are the output layer's).
