@@ -17,6 +17,7 @@ from hypothesis import strategies as st
 
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.mechanisms import crank_rocker as cr
+from pumplink.mechanisms import crank_rocker_synthesis as crs
 from pumplink.studies import textbook as S
 from pumplink.studies import textbook_rocker as SR
 
@@ -161,7 +162,7 @@ def test_rocker_optimum_reproduces_the_published_example():
 @pytest.mark.parametrize("K", [1.0, 1.25, 1.6])
 def test_rocker_at_frame_resimulated(K):
     swing = math.radians(50)
-    lo, hi = cr.frame_range(K, swing, 0.3)
+    lo, hi = crs.frame_range(K, swing, 0.3)
     frame = 0.5 * (lo + hi)
     rep = SR.rocker(swing, 0.3, K, frame=frame)
     assert rep.agrees
@@ -179,7 +180,7 @@ def test_rocker_k1_dead_centres_half_a_turn_apart():
 
 def test_rocker_frame_outside_range_is_infeasible():
     swing = math.radians(50)
-    lo, hi = cr.frame_range(1.25, swing, 0.3)
+    lo, hi = crs.frame_range(1.25, swing, 0.3)
     assert SR.rocker(swing, 0.3, 1.25, frame=hi * 0.999).agrees
     with pytest.raises(InfeasibleDesign, match="frame lengths from"):
         SR.rocker(swing, 0.3, 1.25, frame=hi * 1.01)
@@ -211,7 +212,7 @@ def test_rocker_at_frame_property(K, swing_deg, frac):
     """Any frame length inside the admissible range gives a crank-rocker that really swings
     through the asked swing with the asked K (checked by measure_motion)."""
     swing = math.radians(swing_deg)
-    lo, hi = cr.frame_range(K, swing, 1.0)
+    lo, hi = crs.frame_range(K, swing, 1.0)
     rep = SR.rocker(swing, 1.0, K, frame=lo + frac * (hi - lo))
     assert rep.agrees
 

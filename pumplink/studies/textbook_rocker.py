@@ -17,6 +17,7 @@ import numpy as np
 
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.mechanisms import crank_rocker as cr
+from pumplink.mechanisms import crank_rocker_synthesis as crs
 from pumplink.mechanisms.fourbar import FourBar
 from pumplink.studies.textbook import (
     ANGLE,
@@ -98,14 +99,14 @@ def fourbar_extremes(lk: FourBar, samples: int = 4096) -> FourBarExtremes:
     return FourBarExtremes(gmin, gmax, wrap_angle(extended), wrap_angle(folded))
 
 
-def rocker_dead_centres(c: cr.CrankRocker) -> tuple[float, float]:
+def rocker_dead_centres(c: crs.CrankRocker) -> tuple[float, float]:
     """Crank angles (CCW from +x, [0, 2 pi)) of a crank-rocker's dead centres, by construction.
 
     At the extended dead centre the crank points from A to the farther extreme position (|A C| =
     coupler + crank), at the folded one away from the nearer (|A C| = coupler - crank)
     (docs/crank-rocker.md §7).
     """
-    (x1, y1), (x2, y2) = cr.extreme_positions(c.swing, c.rocker)
+    (x1, y1), (x2, y2) = crs.extreme_positions(c.swing, c.rocker)
     ax, ay = c.crank_pivot_x, c.crank_pivot_y
     near, far = ((x1, y1), (x2, y2))
     if math.hypot(x1 - ax, y1 - ay) > math.hypot(x2 - ax, y2 - ay):
@@ -147,7 +148,7 @@ def rocker(
                 "--pivot fixes the time ratio and the frame; give it without --time-ratio and --frame"
             )
         require_finite(pivot_x=pivot[0], pivot_y=pivot[1])
-        c = cr.crank_rocker_at_pivot(pivot[0], pivot[1], swing, rocker_length)
+        c = crs.crank_rocker_at_pivot(pivot[0], pivot[1], swing, rocker_length)
         if not c.admissible:
             raise InfeasibleDesign(
                 f"the crank pivot ({pivot[0]:g}, {pivot[1]:g}) does not see both extreme positions "
@@ -167,9 +168,9 @@ def rocker(
         given.insert(0, ("time_ratio", "time ratio K", RATIO, time_ratio))
         k_asked = time_ratio
         if frame is not None:
-            found = cr.crank_rockers_at_frame(time_ratio, swing, rocker_length, frame)
+            found = crs.crank_rockers_at_frame(time_ratio, swing, rocker_length, frame)
             if not found:
-                lo, hi = cr.frame_range(time_ratio, swing, rocker_length)
+                lo, hi = crs.frame_range(time_ratio, swing, rocker_length)
                 raise InfeasibleDesign(
                     f"no crank pivot on the design circle for K = {time_ratio:g} lies at frame "
                     f"length {frame:g} with both extreme positions on one side of the frame line; "
@@ -191,9 +192,9 @@ def rocker(
                     f"{90.0 - math.degrees(swing) / 2:.6g}° as the frame grows without bound); give "
                     "--frame, or K > 1"
                 )
-            c = cr.from_optimum(cr.optimal_crank_rocker(time_ratio, swing, rocker_length))
+            c = crs.from_optimum(cr.optimal_crank_rocker(time_ratio, swing, rocker_length))
             task = "from K and the two extreme rocker positions, best minimum transmission angle"
-    lk = cr.linkage(c)
+    lk = crs.linkage(c)
     m = cr.measure_motion(lk)
     x = fourbar_extremes(lk)
     extended, folded = rocker_dead_centres(c)
