@@ -5,11 +5,11 @@ from __future__ import annotations
 import sys
 from enum import Enum
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
-from pumplink.cli.common import ModelOpt, StrictOpt, app, dask_cluster, model_key, need_extra
+from pumplink.cli.common import ModelOpt, StrictOpt, app, dask_cluster, model_key, need_extra, optional
 from pumplink.errors import SpecError
 
 
@@ -51,21 +51,8 @@ def batch(
             "of a large run).",
         ),
     ] = BatchFormat.table,
-    out: Annotated[
-        Optional[Path],
-        typer.Option(
-            "--out",
-            "-o",
-            help="Write the rows to this file (atomically) instead of stdout.",
-            show_default=False,
-        ),
-    ] = None,
-    junit: Annotated[
-        Optional[Path],
-        typer.Option(
-            "--junit", help="Also write JUnit XML, one testcase per variant (atomically).", show_default=False
-        ),
-    ] = None,
+    out: optional(Path, "Write the rows to this file (atomically) instead of stdout.", "--out", "-o") = None,
+    junit: optional(Path, "Also write JUnit XML, one testcase per variant (atomically).", "--junit") = None,
     workers: Annotated[
         int,
         typer.Option(
@@ -86,25 +73,20 @@ def batch(
     ] = "all",
     strict: StrictOpt = False,
     model: ModelOpt = None,
-    chunk: Annotated[
-        Optional[str],
-        typer.Option(
-            "--chunk",
-            help="Evaluate only slice K of N (1-based) of all "
-            "variants, e.g. 3/8; names stay those of the full run.",
-            show_default=False,
-        ),
-    ] = None,
-    scheduler: Annotated[
-        Optional[str],
-        typer.Option(
-            "--scheduler",
-            help="Run on Dask instead of the local pool: local:N (a local cluster of N worker "
+    chunk: optional(
+        str,
+        "Evaluate only slice K of N (1-based) of all variants, e.g. 3/8; names stay those of the full run.",
+        "--chunk",
+    ) = None,
+    scheduler: optional(
+        str,
+        (
+            "Run on Dask instead of the local pool: local:N (a local cluster of N worker "
             "processes) or the address of a running scheduler, tcp://host:8786 (needs pip "
-            "install 'pumplink\\[dask]'). Same rows, same order.",
-            show_default=False,
+            "install 'pumplink\\[dask]'). Same rows, same order."
         ),
-    ] = None,
+        "--scheduler",
+    ) = None,
 ) -> None:
     """Evaluate many variants at once: a base spec plus axes to vary (Cartesian product).
 

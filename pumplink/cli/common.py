@@ -115,6 +115,18 @@ class Format(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics u
 FormatOpt = Annotated[Format, typer.Option("--format", "-f", help="Output: table (Rich), json or csv.")]
 
 
+def optional(kind, help: str, *names: str, argument: bool = False, **settings):
+    """The type of an option (``argument``: a positional argument) that may be left out: None when
+    it is, and no default in ``--help`` (its help says what leaving it out means).
+
+    ``names``: its flags (none: from the parameter's name); ``settings``: typer's other settings
+    (``metavar``, ``min``, ...).  ``x: optional(float, "...") = None`` stands for
+    ``x: Annotated[Optional[float], typer.Option(help="...", show_default=False)] = None``.
+    """
+    make = typer.Argument if argument else typer.Option
+    return Annotated[Optional[kind], make(*names, help=help, show_default=False, **settings)]
+
+
 SAMPLE_LIMIT_KEPT = 1_000_000
 
 
@@ -290,27 +302,21 @@ def dask_cluster():
 
 
 #: ``--tolerance`` and ``--yield`` of the searches (size, optimize): a robust design.
-ToleranceOpt = Annotated[
-    Optional[str],
-    typer.Option(
-        "--tolerance",
-        metavar="LENGTH",
-        help="Ask for a robust design: every hole and pivot built within ±LENGTH (e.g. 1mm) and at least "
-        "--yield of such builds passing, to first order in the search and checked on the answer by a "
-        "Monte Carlo of 2,000 builds (docs/tolerance.md).",
-        show_default=False,
-    ),
-]
-YieldOpt = Annotated[
-    Optional[float],
-    typer.Option(
-        "--yield",
-        help="With --tolerance: the share of builds that must pass (default 0.95).",
-        min=0.5,
-        max=0.9999,
-        show_default=False,
-    ),
-]
+ToleranceOpt = optional(
+    str,
+    "Ask for a robust design: every hole and pivot built within ±LENGTH (e.g. 1mm) and at least "
+    "--yield of such builds passing, to first order in the search and checked on the answer by a "
+    "Monte Carlo of 2,000 builds (docs/tolerance.md).",
+    "--tolerance",
+    metavar="LENGTH",
+)
+YieldOpt = optional(
+    float,
+    "With --tolerance: the share of builds that must pass (default 0.95).",
+    "--yield",
+    min=0.5,
+    max=0.9999,
+)
 
 
 def robust_ask(tolerance: str | None, target: float | None, strict: bool = False):

@@ -17,6 +17,7 @@ from pumplink.cli.common import (
     app,
     dask_cluster,
     model_key,
+    optional,
     parse_length,
     spec_or_default,
 )
@@ -54,29 +55,26 @@ def _length(option: str):
 
 @app.command()
 def tolerance(
-    spec: Annotated[
-        Optional[Path],
-        typer.Argument(
-            help="TOML rope-pump spec; omit it to use ./pump.toml if present, else the built-in design.",
-            show_default=False,
-        ),
-    ] = None,
+    spec: optional(
+        Path,
+        "TOML rope-pump spec; omit it to use ./pump.toml if present, else the built-in design.",
+        argument=True,
+    ) = None,
     hole: Annotated[str, _length("--hole")] = "1mm",
     pivot: Annotated[Optional[str], _length("--pivot")] = None,
     crank_hole: Annotated[Optional[str], _length("--crank-hole")] = None,
     coupler_hole: Annotated[Optional[str], _length("--coupler-hole")] = None,
     rocker_hole: Annotated[Optional[str], _length("--rocker-hole")] = None,
     grip: Annotated[Optional[str], _length("--grip")] = None,
-    tol: Annotated[
-        Optional[list[str]],
-        typer.Option(
-            "--tol",
-            metavar="HOLE=LENGTH",
-            help="One hole's tolerance (repeatable): crank.O2, crank.A, coupler.A, coupler.B, rocker.O4, "
-            "rocker.B, rocker.grip, stand.O2, stand.O4; e.g. --tol crank.A=0.5mm.",
-            show_default=False,
+    tol: optional(
+        list[str],
+        (
+            "One hole's tolerance (repeatable): crank.O2, crank.A, coupler.A, coupler.B, rocker.O4, "
+            "rocker.B, rocker.grip, stand.O2, stand.O4; e.g. --tol crank.A=0.5mm."
         ),
-    ] = None,
+        "--tol",
+        metavar="HOLE=LENGTH",
+    ) = None,
     distribution: Annotated[
         Distribution,
         typer.Option(
@@ -108,15 +106,14 @@ def tolerance(
         int,
         typer.Option(help="Worker processes (0: one per CPU; never more than the chunks).", min=0, max=256),
     ] = 1,
-    scheduler: Annotated[
-        Optional[str],
-        typer.Option(
-            "--scheduler",
-            help="Run on Dask instead of the local pool: local:N or tcp://host:8786 (needs pip install "
-            "'pumplink\\[dask]'). The same numbers as one process.",
-            show_default=False,
+    scheduler: optional(
+        str,
+        (
+            "Run on Dask instead of the local pool: local:N or tcp://host:8786 (needs pip install "
+            "'pumplink\\[dask]'). The same numbers as one process."
         ),
-    ] = None,
+        "--scheduler",
+    ) = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """The pumps a workshop builds from a design: every hole off by a little.

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, app
+from pumplink.cli.common import Format, FormatOpt, app, optional
 from pumplink.errors import InfeasibleDesign, SpecError
 
 #: Rocker lengths the command accepts (any unit): beyond them the lengths' squares overflow.
@@ -32,14 +32,13 @@ def transmission(
             "--compare/--no-compare", help="Compare with the paper's published designs (its example only)."
         ),
     ] = True,
-    chart: Annotated[
-        Optional[Path],
-        typer.Option(
-            help="Write the paper's design diagram (contours over θ and φ) "
-            "to this image file instead (needs pumplink\\[plot]).",
-            show_default=False,
+    chart: optional(
+        Path,
+        (
+            "Write the paper's design diagram (contours over θ and φ) "
+            "to this image file instead (needs pumplink\\[plot])."
         ),
-    ] = None,
+    ) = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Crank-rocker with the best minimum transmission angle for K and φ (exact).
