@@ -431,6 +431,25 @@ def optimum_linkage(opt: OptimalCrankRocker) -> FourBar:
     )
 
 
+def rocker_stops(lk: FourBar, grid, rate):
+    """The crank angles [rad] where the rocker stops (its dead centres): each sign change of the
+    rocker rate d(theta4)/d(theta2), ``rate`` on the crank angles ``grid``, located by a bracketing
+    root finder (~1e-15 rad) on :func:`pumplink.mechanisms.fourbar.kinematic_state`'s rate; None
+    unless the rate changes sign exactly twice."""
+    from scipy.optimize.elementwise import find_root
+
+    from pumplink.mechanisms.fourbar import kinematic_state
+
+    flips = np.nonzero(np.sign(rate[:-1]) != np.sign(rate[1:]))[0]
+    if flips.size != 2:
+        return None
+    return find_root(
+        lambda x: kinematic_state(lk, x).rocker_rate,
+        (grid[flips], grid[flips + 1]),
+        tolerances=dict(xatol=1e-15, xrtol=1e-16),
+    ).x
+
+
 def measure_motion(lk: FourBar, samples: int = 4096) -> MeasuredMotion:
     """Run a crank-rocker through a full crank turn and measure its swing, K and transmission.
 
@@ -444,7 +463,7 @@ def measure_motion(lk: FourBar, samples: int = 4096) -> MeasuredMotion:
     lk : scalar linkage (crank pivot at the origin).
     samples : crank angles in the initial scan.
     """
-    from scipy.optimize.elementwise import find_minimum, find_root
+    from scipy.optimize.elementwise import find_minimum
 
     from pumplink.mechanisms.fourbar import kinematic_state
 
@@ -454,16 +473,10 @@ def measure_motion(lk: FourBar, samples: int = 4096) -> MeasuredMotion:
     th = (np.arange(samples + 1) + 0.5) * (two_pi / samples)
     st = kinematic_state(lk, th)
     assembles = bool(np.all(np.isfinite(st.coupler_x)))
-    rate = st.rocker_rate
-    flips = np.nonzero(np.sign(rate[:-1]) != np.sign(rate[1:]))[0]
+    roots = rocker_stops(lk, th, st.rocker_rate) if assembles else None
     nan = float("nan")
-    if not assembles or flips.size != 2:
+    if roots is None:
         return MeasuredMotion(nan, nan, nan, assembles)
-    roots = find_root(
-        lambda x: kinematic_state(lk, x).rocker_rate,
-        (th[flips], th[flips + 1]),
-        tolerances=dict(xatol=1e-15, xrtol=1e-16),
-    ).x
     ends = kinematic_state(lk, roots)
     ang = np.arctan2(ends.coupler_y - lk.pivot_y, ends.coupler_x - lk.pivot_x)
     swing = abs(float(np.angle(np.exp(1j * (ang[1] - ang[0])))))

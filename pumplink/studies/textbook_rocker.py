@@ -58,11 +58,11 @@ def fourbar_extremes(lk: FourBar, samples: int = 4096) -> FourBarExtremes:
 
     Only the position kinematics (:func:`pumplink.mechanisms.fourbar.kinematic_state`) are used:
     the transmission angle's extremes are refined from a sweep with a bracketing minimiser, the
-    dead centres are the roots of the rocker rate (bracketing root finder, ~1e-15 rad), told
-    apart by the distance of the coupler point from the crank pivot (coupler + crank when
-    stretched out).
+    dead centres are the roots of the rocker rate
+    (:func:`pumplink.mechanisms.crank_rocker.rocker_stops`), told apart by the distance of the
+    coupler point from the crank pivot (coupler + crank when stretched out).
     """
-    from scipy.optimize.elementwise import find_minimum, find_root
+    from scipy.optimize.elementwise import find_minimum
 
     from pumplink.mechanisms.fourbar import kinematic_state
 
@@ -82,15 +82,9 @@ def fourbar_extremes(lk: FourBar, samples: int = 4096) -> FourBarExtremes:
     gmin = smallest(lambda x: kinematic_state(lk, x).transmission_angle, g)
     gmax = -smallest(lambda x: -kinematic_state(lk, x).transmission_angle, -g)
     rate = np.append(st.rocker_rate, st.rocker_rate[0])
-    grid = np.append(th, th[0] + TAU)
-    flips = np.nonzero(np.sign(rate[:-1]) != np.sign(rate[1:]))[0]
-    if flips.size != 2:
+    roots = cr.rocker_stops(lk, np.append(th, th[0] + TAU), rate)
+    if roots is None:
         return FourBarExtremes(gmin, gmax, nan, nan)
-    roots = find_root(
-        lambda x: kinematic_state(lk, x).rocker_rate,
-        (grid[flips], grid[flips + 1]),
-        tolerances=dict(xatol=1e-15, xrtol=1e-16),
-    ).x
     ends = kinematic_state(lk, roots)
     far = np.hypot(ends.coupler_x, ends.coupler_y) > float(lk.coupler)
     if bool(far[0]) == bool(far[1]):
