@@ -3,21 +3,24 @@
 from __future__ import annotations
 
 import sys
-from enum import Enum
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
-from pumplink.cli.common import ModelOpt, StrictOpt, app, dask_cluster, model_key, need_extra, optional
+from pumplink.cli.common import (
+    ModelOpt,
+    StrictOpt,
+    app,
+    choices,
+    dask_cluster,
+    model_key,
+    need_extra,
+    optional,
+)
 from pumplink.errors import SpecError
 
-
-class BatchFormat(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
-    table = "table"
-    json = "json"
-    csv = "csv"
-    parquet = "parquet"
+BatchFormat = choices("BatchFormat", "table", "json", "csv", "parquet")
 
 
 #: Runs of at least this many variants print their size and estimated time before they start.

@@ -106,10 +106,13 @@ def command_group(typer_app: typer.Typer):
 settings = {"debug": False}
 
 
-class Format(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
-    table = "table"
-    json = "json"
-    csv = "csv"
+def choices(name: str, *values: str) -> type[Enum]:
+    """The words an option takes, as the str Enum typer lists as its choices (member names = the
+    words; typer needs the str mixin, not a StrEnum)."""
+    return Enum(name, [(v, v) for v in values], type=str)
+
+
+Format = choices("Format", "table", "json", "csv")
 
 
 FormatOpt = Annotated[Format, typer.Option("--format", "-f", help="Output: table (Rich), json or csv.")]

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from enum import Enum
 from pathlib import Path
 from typing import Annotated
 
@@ -16,6 +15,7 @@ from pumplink.cli.common import (
     ToleranceOpt,
     YieldOpt,
     app,
+    choices,
     load_specs,
     model_key,
     optional,
@@ -23,12 +23,8 @@ from pumplink.cli.common import (
 )
 from pumplink.errors import SpecError
 
-
 # ----------------------------------------------------------------------------- design search
-class Objective(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
-    peak = "peak"
-    mean = "mean"
-    flow = "flow"
+Objective = choices("Objective", "peak", "mean", "flow")
 
 
 def res_passes(result, strict: bool) -> bool:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import sys
-from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
 
@@ -15,6 +14,7 @@ from pumplink.cli.common import (
     ModelOpt,
     StrictOpt,
     app,
+    choices,
     dask_cluster,
     model_key,
     optional,
@@ -23,10 +23,7 @@ from pumplink.cli.common import (
 )
 from pumplink.errors import SpecError
 
-
-class Distribution(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
-    uniform = "uniform"
-    normal = "normal"
+Distribution = choices("Distribution", "uniform", "normal")
 
 
 def _below_2_63(value: int) -> int:
