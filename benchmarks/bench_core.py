@@ -29,7 +29,8 @@ from _record import machine, record, repeats, smoke
 
 from pumplink.inputs.pump import default_spec
 from pumplink.mechanisms.angles import offset_table, shifted_directions
-from pumplink.mechanisms.fourbar import force_kernel, kernel_work, kinematic_state
+from pumplink.mechanisms.fourbar import kinematic_state
+from pumplink.mechanisms.fourbar_kernel import force_kernel, kernel_work
 from pumplink.studies.force import design
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -24,7 +24,8 @@ from bench_core import ROOT  # noqa: E402
 from pumplink.evaluate import motion  # noqa: E402
 from pumplink.inputs.pump import load_spec  # noqa: E402
 from pumplink.mechanisms.fourbar import synthesize  # noqa: E402
-from pumplink.models import dynamics as dy  # noqa: E402
+from pumplink.models import dynamics_solver as ds  # noqa: E402
+from pumplink.models import dynamics_terms as dt  # noqa: E402
 from pumplink.studies.force import force_analysis  # noqa: E402
 from pumplink.studies.speed import cadence  # noqa: E402
 
@@ -70,7 +71,7 @@ def batch_designs(spec, n, seed=12):
     )
     ok = np.nonzero(syn.reason == 0)[0][:n]
     four = syn.linkage.take(ok)
-    masses = dy.bar_masses(four, rng.uniform(0.5, 3.0, ok.size), rng.uniform(0.0, 6.0, ok.size))
+    masses = dt.bar_masses(four, rng.uniform(0.5, 3.0, ok.size), rng.uniform(0.0, 6.0, ok.size))
     return (
         four,
         syn.dead_centre_extended[ok],
@@ -92,7 +93,7 @@ def main() -> None:
     dce, dcf = syn.dead_centre_extended, syn.dead_centre_folded
     ms = motion.link_masses_of(r.evaluation, arms=False)  # the hand force: no arms at the grip
     w = np.radians(spec.operator.speed)
-    wall, cpu = timed(lambda: dy.least_peak_force(lk, dce, dcf, mw, j, ms, w, 0.2), 51)
+    wall, cpu = timed(lambda: ds.least_peak_force(lk, dce, dcf, mw, j, ms, w, 0.2), 51)
     line(
         "Fp*, one design (12 m example)",
         f"cpu {cpu * 1e3:.2f} ms (wall {wall * 1e3:.2f})",
@@ -103,7 +104,7 @@ def main() -> None:
     )
     args = batch_designs(spec, 20 if smoke() else BATCH)
     n = args[0].crank.size
-    wall, cpu = timed(lambda: dy.least_peak_force(*args), 5)
+    wall, cpu = timed(lambda: ds.least_peak_force(*args), 5)
     line(
         f"Fp*, {n:,} designs in one call",
         f"cpu {n / cpu:,.0f}/s (wall {n / wall:,.0f}/s)",

@@ -29,6 +29,8 @@ from bench_core import EXE, ROOT, median_time  # noqa: E402
 from pumplink.inputs.pump import load_spec  # noqa: E402
 from pumplink.mechanisms.fourbar import FourBar, synthesize  # noqa: E402
 from pumplink.models import flywheel as fw  # noqa: E402
+from pumplink.models import flywheel_solver as fs  # noqa: E402
+from pumplink.models import grip_travel as gt  # noqa: E402
 from pumplink.models.quasi_static import dead_band_peak_force, mean_force  # noqa: E402
 from pumplink.studies.force import design  # noqa: E402
 
@@ -82,8 +84,8 @@ def main() -> None:
     band = float(fw.energy_band(j, 2 * np.pi, 0.2))
 
     # one design (the example at 360 deg/s)
-    t1, c1 = wall_and_cpu(lambda: fw.least_peak_force(lk, dce, dcf, mw, band), 41)
-    r1 = median_time(lambda: fw._reference_least_peak_force(lk, dce, dcf, mw, band), 7)
+    t1, c1 = wall_and_cpu(lambda: fs.least_peak_force(lk, dce, dcf, mw, band), 41)
+    r1 = median_time(lambda: fs._reference_least_peak_force(lk, dce, dcf, mw, band), 7)
     tq = median_time(lambda: dead_band_peak_force(lk, dce, dcf, DEAD_BAND, mw), 41)
     result(
         "flywheel least peak force, one design",
@@ -100,11 +102,11 @@ def main() -> None:
     n = 40 if smoke() else 10_000
     rep = FourBar(*(np.full(n, float(v)) for v in lk.parameters))
     bands = np.linspace(0.5, 15.0, n)
-    wn, tn = wall_and_cpu(lambda: fw.least_peak_force(rep, dce, dcf, mw, bands), 5)
+    wn, tn = wall_and_cpu(lambda: fs.least_peak_force(rep, dce, dcf, mw, bands), 5)
     _, tqn = wall_and_cpu(lambda: dead_band_peak_force(rep, dce, dcf, DEAD_BAND, mw), 5)
     k = n // 5  # the reference route on a fifth of them (its rate)
     part = rep.take(slice(0, k))
-    _, rn = wall_and_cpu(lambda: fw._reference_least_peak_force(part, dce, dcf, mw, bands[:k]), 1)
+    _, rn = wall_and_cpu(lambda: fs._reference_least_peak_force(part, dce, dcf, mw, bands[:k]), 1)
     result(
         f"flywheel least peak force, {n:,} bands of the example vectorised",
         f"{n / tn:,.0f} designs/s per core (CPU; wall {n / wn:,.0f}/s; medians of {repeats(5)})",
@@ -117,7 +119,7 @@ def main() -> None:
     )
     (rlk, rdce, rdcf), rmw, rband = random_designs(56 if smoke() else 14_000)
     m = rdce.size
-    wr, tr = wall_and_cpu(lambda: fw.least_peak_force(rlk, rdce, rdcf, rmw, rband), 5)
+    wr, tr = wall_and_cpu(lambda: fs.least_peak_force(rlk, rdce, rdcf, rmw, rband), 5)
     _, trq = wall_and_cpu(lambda: dead_band_peak_force(rlk, rdce, rdcf, DEAD_BAND, rmw), 5)
     result(
         f"flywheel least peak force, {m:,} random designs vectorised",
@@ -128,8 +130,8 @@ def main() -> None:
         value=m / tr,
         unit="designs/s",
     )
-    fast = fw.least_peak_force(rlk, rdce, rdcf, rmw, rband)
-    ref = fw._reference_least_peak_force(rlk, rdce, rdcf, rmw, rband)
+    fast = fs.least_peak_force(rlk, rdce, rdcf, rmw, rband)
+    ref = fs._reference_least_peak_force(rlk, rdce, rdcf, rmw, rband)
     fin = np.isfinite(ref)
     same = np.array_equal(np.isfinite(fast), fin) and np.array_equal(np.isnan(fast), np.isnan(ref))
     rel = float(np.max(np.abs(fast[fin] / ref[fin] - 1.0)))
@@ -142,7 +144,7 @@ def main() -> None:
         value=rel,
         unit="relative",
     )
-    stroke = np.abs(fw.grip_position(rdcf, *rlk.parameters) - fw.grip_position(rdce, *rlk.parameters))
+    stroke = np.abs(gt.grip_position(rdcf, *rlk.parameters) - gt.grip_position(rdce, *rlk.parameters))
     limit = mean_force(rmw, stroke) * 10.0 ** np.random.default_rng(1).uniform(0.0, 2.0, m)  # to 100 F_mean
     _, te = wall_and_cpu(lambda: fw.min_passing_speed(rlk, rdce, rdcf, rmw, limit, 1.0, 0.2), 5)
     print(f"slowest passing speed (energy deficit), {m:,} random designs: {m / te:,.0f} designs/s per core")

@@ -19,7 +19,8 @@ from _record import judged, record, repeats, smoke
 
 from pumplink.inputs.pump import default_spec
 from pumplink.mechanisms.angles import grid_directions
-from pumplink.mechanisms.fourbar import FourBar, force_kernel, kernel_work, synthesize
+from pumplink.mechanisms.fourbar import FourBar, synthesize
+from pumplink.mechanisms.fourbar_kernel import force_kernel, kernel_work
 from pumplink.studies.force import design
 from pumplink.studies.methods import numeric, vector
 

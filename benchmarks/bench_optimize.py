@@ -28,7 +28,8 @@ from _record import repeats, result, smoke
 
 from pumplink.inputs.pump import load_spec
 from pumplink.mechanisms.crank_rocker import optimal_crank_rocker
-from pumplink.search.optimize import make_problem, optimize
+from pumplink.search.optimize import optimize
+from pumplink.search.problem import make_problem
 
 REPEATS = 3
 ROOT = Path(__file__).resolve().parent.parent
@@ -125,7 +126,7 @@ def main(village=VILLAGE):
 
 def grid_check(path: Path, m: int) -> None:
     """Brute force over the default bounds: is the optimiser's answer really the best there is?"""
-    from pumplink.search.optimize import evaluate_designs
+    from pumplink.search.problem import evaluate_designs
 
     problem = make_problem(load_spec(path))
     axes = [np.linspace(lo, hi, m) for lo, hi in zip(problem.lower, problem.upper)]

@@ -62,8 +62,13 @@ class OperatorProfile:
     sources: MappingProxyType = field(repr=False, compare=False)
 
 
-def _profile(name, values, sources):
-    return OperatorProfile(name=name, **values, sources=MappingProxyType(dict(sources)))
+def _profile(name: str, **limits: tuple) -> OperatorProfile:
+    """A profile from its limits, each given as (value, :class:`Source`)."""
+    return OperatorProfile(
+        name=name,
+        **{key: value for key, (value, _) in limits.items()},
+        sources=MappingProxyType({key: source for key, (_, source) in limits.items()}),
+    )
 
 
 # ------------------------------------------------------------------------------------- sources
@@ -108,30 +113,35 @@ _SPEED = (
     "pumplink.constants.ARM_MASS_FRACTION); rounded down to 0.1 m/s"
 )
 
+
+def _zone(derivation: str) -> Source:
+    """A grip-height range derived from the push/pull zone (:data:`_ZONE`) and a stature."""
+    return Source(_ZONE + "; " + derivation, "derived")
+
+
+def _speed(derivation: str) -> Source:
+    """A grip-speed limit scaled from the men's (:data:`_SPEED`) with the profile's numbers."""
+    return Source(_SPEED + "; " + derivation, "derived")
+
+
 # ------------------------------------------------------------------------------------- profiles
 MEN = _profile(
     "men",
-    dict(
-        force_limit=100.0,
-        sustained_power=75.0,
-        hour_power=150.0,
-        grip_height_range=(0.90, 1.33),
-        grip_speed_warn=2.5,
-        grip_speed_fail=4.0,
-    ),
-    dict(
-        force_limit=Source(_HSE + "; men, keeping a load in motion: 100 N", "source"),
-        sustained_power=Source(_POWER + ", upper end 75 W", "source"),
-        hour_power=Source(_HOUR + ", upper end 150 W", "secondary"),
-        grip_height_range=Source(
-            _ZONE + "; " + _PHEASANT + ": 0.485 x 1.855 = 0.90 m to 0.818 x 1.625 = 1.33 m", "derived"
-        ),
-        grip_speed_warn=Source(
+    force_limit=(100.0, Source(_HSE + "; men, keeping a load in motion: 100 N", "source")),
+    sustained_power=(75.0, Source(_POWER + ", upper end 75 W", "source")),
+    hour_power=(150.0, Source(_HOUR + ", upper end 150 W", "secondary")),
+    grip_height_range=((0.90, 1.33), _zone(_PHEASANT + ": 0.485 x 1.855 = 0.90 m to 0.818 x 1.625 = 1.33 m")),
+    grip_speed_warn=(
+        2.5,
+        Source(
             "V. Kleshnev, 'Rowing Biomechanics' (2006): trained rowers' handle speed peaks at about "
             "2-3 m/s in the drive (docs/references.md [rowing biomechanics]; not re-read here)",
             "secondary",
         ),
-        grip_speed_fail=Source(
+    ),
+    grip_speed_fail=(
+        4.0,
+        Source(
             "docs/models.md §4: on a 1.4 m stroke the grip accelerates at 2 v^2 / stroke = 23 m/s^2 "
             "at 4 m/s, and 4.32 kg of arms (0.072 x 60 kg) then need about 100 N, the force limit",
             "derived",
@@ -141,47 +151,33 @@ MEN = _profile(
 
 WOMEN = _profile(
     "women",
-    dict(
-        force_limit=70.0,
-        sustained_power=60.0,
-        hour_power=125.0,
-        grip_height_range=(0.83, 1.23),
-        grip_speed_warn=2.1,
-        grip_speed_fail=3.3,
-    ),
-    dict(
-        force_limit=Source(_HSE + "; women, keeping a load in motion: 70 N", "source"),
-        sustained_power=Source(
+    force_limit=(70.0, Source(_HSE + "; women, keeping a load in motion: 70 N", "source")),
+    sustained_power=(
+        60.0,
+        Source(
             _POWER
             + ": its lower end, 60 W, taken for women; agrees with 75 W / 1.2 = 62.5 W from "
             + _SEX_RATIO,
             "derived",
         ),
-        hour_power=Source("150 W / 1.2 = 125 W: the men's hour power over " + _SEX_RATIO, "derived"),
-        grip_height_range=Source(
-            _ZONE + "; " + _PHEASANT + ": 0.485 x 1.710 = 0.83 m to 0.818 x 1.505 = 1.23 m", "derived"
-        ),
-        grip_speed_warn=Source(
-            _SPEED + "; 70 N, 58.2 kg (CDC 2000 growth charts, weight-for-age median at 20 years, "
-            "girls): 2.5 x sqrt((70/58.2)/(100/60)) = 2.12",
-            "derived",
-        ),
-        grip_speed_fail=Source(_SPEED + "; as the warn limit: 4.0 x 0.850 = 3.40", "derived"),
     ),
+    hour_power=(125.0, Source("150 W / 1.2 = 125 W: the men's hour power over " + _SEX_RATIO, "derived")),
+    grip_height_range=((0.83, 1.23), _zone(_PHEASANT + ": 0.485 x 1.710 = 0.83 m to 0.818 x 1.505 = 1.23 m")),
+    grip_speed_warn=(
+        2.1,
+        _speed(
+            "70 N, 58.2 kg (CDC 2000 growth charts, weight-for-age median at 20 years, girls): "
+            "2.5 x sqrt((70/58.2)/(100/60)) = 2.12"
+        ),
+    ),
+    grip_speed_fail=(3.3, _speed("as the warn limit: 4.0 x 0.850 = 3.40")),
 )
 
 CHILDREN = _profile(
     "children",
-    dict(
-        force_limit=38.0,
-        sustained_power=33.0,
-        hour_power=69.0,
-        grip_height_range=(0.86, 1.04),
-        grip_speed_warn=2.1,
-        grip_speed_fail=3.3,
-    ),
-    dict(
-        force_limit=Source(
+    force_limit=(
+        38.0,
+        Source(
             "no published push/pull guideline for children was found; the HSE women's 70 N scaled by "
             "body mass, 70 x 32.1 / 58.2 = 38.6 N, rounded down (CDC 2000 weight-for-age medians: "
             "boys 10 years 32.1 kg, girls 20 years 58.2 kg); de Winter et al., 'Pushing and pulling "
@@ -190,53 +186,54 @@ CHILDREN = _profile(
             "estimate for children under 10",
             "derived",
         ),
-        sustained_power=Source(
+    ),
+    sustained_power=(
+        33.0,
+        Source(
             "the women's 60 W scaled by the same body-mass ratio 32.1/58.2 = 33 W; Shephard et al., "
             "'Sex differences of physical working capacity' (Ergonomics 31, 1988, abstract): "
             "working capacity follows fat-free body mass",
             "derived",
         ),
-        hour_power=Source("the women's 125 W x 32.1/58.2 = 69 W", "derived"),
-        grip_height_range=Source(
-            _ZONE + "; stature 10-14 years, CDC 2000 stature-for-age: girls 10 years 5th percentile "
-            "127.5 cm, boys 14 years 95th percentile 177.0 cm: 0.485 x 1.770 = 0.86 m to 0.818 x "
-            "1.275 = 1.04 m (adult proportions applied to children: approximate)",
-            "derived",
-        ),
-        grip_speed_warn=Source(_SPEED + "; 38 N, 32.1 kg: 2.5 x sqrt((38/32.1)/(100/60)) = 2.11", "derived"),
-        grip_speed_fail=Source(_SPEED + "; as the warn limit: 4.0 x 0.843 = 3.37", "derived"),
     ),
+    hour_power=(69.0, Source("the women's 125 W x 32.1/58.2 = 69 W", "derived")),
+    grip_height_range=(
+        (0.86, 1.04),
+        _zone(
+            "stature 10-14 years, CDC 2000 stature-for-age: girls 10 years 5th percentile "
+            "127.5 cm, boys 14 years 95th percentile 177.0 cm: 0.485 x 1.770 = 0.86 m to 0.818 x "
+            "1.275 = 1.04 m (adult proportions applied to children: approximate)"
+        ),
+    ),
+    grip_speed_warn=(2.1, _speed("38 N, 32.1 kg: 2.5 x sqrt((38/32.1)/(100/60)) = 2.11")),
+    grip_speed_fail=(3.3, _speed("as the warn limit: 4.0 x 0.843 = 3.37")),
 )
 
 ACCESSIBLE = _profile(
     "accessible",
-    dict(
-        force_limit=22.2,
-        sustained_power=25.0,
-        hour_power=50.0,
-        grip_height_range=(0.71, 1.02),
-        grip_speed_warn=1.1,
-        grip_speed_fail=1.8,
-    ),
-    dict(
-        force_limit=Source(_ADA, "source"),
-        sustained_power=Source(
+    force_limit=(22.2, Source(_ADA, "source")),
+    sustained_power=(
+        25.0,
+        Source(
             "no source found for seated arm work; 25 W is about the mean power a design can demand "
             "at this profile's force and warn-speed limits (22.2 N x 1.1 m/s = 24 W), so the force "
             "limit, not the power, decides",
             "derived",
         ),
-        hour_power=Source("twice the sustained power, the men's ratio 150 W / 75 W", "derived"),
-        grip_height_range=Source(
+    ),
+    hour_power=(50.0, Source("twice the sustained power, the men's ratio 150 W / 75 W", "derived")),
+    grip_height_range=(
+        (0.71, 1.02),
+        Source(
             "USDA Forest Service MTDC Tech Tip 0571-2311 'New Accessible Handpump for Campgrounds' "
             "(Kuhn & Beckley 2005): control heights between 28 and 40 inches (0.71-1.02 m), citing "
             "ADA Accessibility Guidelines 14.15.4; inside the current ABA §1011.6 range for operable "
             "parts of water hydrants, 15-48 inches (0.38-1.22 m)",
             "source",
         ),
-        grip_speed_warn=Source(_SPEED + "; 22.2 N, 60 kg adult: 2.5 x sqrt(22.2/100) = 1.18", "derived"),
-        grip_speed_fail=Source(_SPEED + "; as the warn limit: 4.0 x 0.471 = 1.88", "derived"),
     ),
+    grip_speed_warn=(1.1, _speed("22.2 N, 60 kg adult: 2.5 x sqrt(22.2/100) = 1.18")),
+    grip_speed_fail=(1.8, _speed("as the warn limit: 4.0 x 0.471 = 1.88")),
 )
 
 #: The profiles by name (docs/operators.md).

@@ -100,7 +100,8 @@ def test_force_batch_and_optimize_agree_on_every_shipped_config(path):
     assert row["peak_force_N"] == force["peak_force_N"]
     results = {c["key"]: c["result"] for c in force["checks"]}
     assert {k.removeprefix("check_"): v for k, v in row.items() if k.startswith("check_") and v} == results
-    from pumplink.search.optimize import make_problem, optimize
+    from pumplink.search.optimize import optimize
+    from pumplink.search.problem import make_problem
 
     problem = make_problem(pumplink.load(path), grip_height=(0.0, 5.0), stroke=(0.0, 5.0))
     res = optimize(problem, maxiter=3, polish=False)

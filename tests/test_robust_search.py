@@ -21,12 +21,14 @@ import pytest
 from pumplink.evaluate import evaluate, pump_designs
 from pumplink.inputs.pump import load_spec, spec_values
 from pumplink.search import optimize as opt
+from pumplink.search import problem as search_problem
 from pumplink.search import size as sizing
 from pumplink.studies import tolerance as tl
+from pumplink.studies import tolerance_study as ts
 
 ROOT = Path(__file__).resolve().parents[1]
 VILLAGE = ROOT / "tests" / "data" / "village-first-sized.toml"  # a fixed design: see its header
-ONE_MM = tl.Robust(tl.tolerances(0.001), 0.95)
+ONE_MM = ts.Robust(tl.tolerances(0.001), 0.95)
 
 
 def first_order_share(spec, robust) -> float:
@@ -41,8 +43,8 @@ def cadence():
     """The most water from the village pump by its cadence alone: the grip speed's 4 m/s limit binds."""
     spec = load_spec(VILLAGE)
     bounds = {"operator.speed": (100.0, 700.0)}
-    plain = opt.optimize(opt.make_problem(spec, bounds, "flow"))
-    robust = opt.optimize(opt.make_problem(spec, bounds, "flow", robust=ONE_MM))
+    plain = opt.optimize(search_problem.make_problem(spec, bounds, "flow"))
+    robust = opt.optimize(search_problem.make_problem(spec, bounds, "flow", robust=ONE_MM))
     return plain, robust
 
 
@@ -58,7 +60,7 @@ def test_the_monte_carlo_check_of_the_robust_optimum_agrees_with_its_first_order
     _, robust = cadence
     check = robust.robust
     mc = check.monte_carlo
-    assert mc.n == tl.CHECK_BUILDS
+    assert mc.n == ts.CHECK_BUILDS
     # the first-order share lies in the Monte Carlo's 95 % interval (within a point for rounding)
     assert mc.low - 0.01 <= check.first_order <= mc.high + 0.01
     assert mc.high >= 0.95
@@ -69,10 +71,10 @@ def test_a_robust_size_moves_off_the_force_limit_without_losing_water():
     limit and too few of its builds at ±2 mm pass without warnings (90 %); the robust answer gives
     the same water to within 1 % and its builds pass."""
     spec = load_spec(VILLAGE)
-    two_mm = tl.Robust(tl.tolerances(0.002), 0.95)
+    two_mm = ts.Robust(tl.tolerances(0.002), 0.95)
     plain = sizing.size(sizing.problem_for(spec, profile="women", pipes=(0.01905,)))
     robust = sizing.size(sizing.problem_for(spec, profile="women", pipes=(0.01905,), robust=two_mm))
-    strict = tl.Robust(two_mm.tolerances, 0.95, strict=True)
+    strict = ts.Robust(two_mm.tolerances, 0.95, strict=True)
     assert plain.found and robust.found
     assert first_order_share(plain.best.spec, strict) < 0.95
     assert first_order_share(robust.best.spec, strict) >= 0.95
@@ -85,8 +87,8 @@ def test_a_constraint_the_plain_optimum_meets_changes_nothing():
     at ±1 mm passes, and the robust search returns the plain optimum."""
     spec = load_spec(VILLAGE)
     bounds = {"rocker": (0.1, 0.4), "swing": (30.0, 100.0)}
-    plain = opt.optimize(opt.make_problem(spec, bounds), maxiter=30)
-    robust = opt.optimize(opt.make_problem(spec, bounds, robust=ONE_MM), maxiter=30)
+    plain = opt.optimize(search_problem.make_problem(spec, bounds), maxiter=30)
+    robust = opt.optimize(search_problem.make_problem(spec, bounds, robust=ONE_MM), maxiter=30)
     assert np.array_equal(plain.x, robust.x)
     assert robust.robust.monte_carlo.value == 1.0 and robust.robust.first_order > 0.999
 
@@ -115,11 +117,11 @@ def test_the_commands_report_both_shares():
     assert p.returncode == 0, p.stderr
     r = json.loads(p.stdout)["robust"]
     assert r["tolerance_mm"] == 1.0 and r["target"] == 0.95 and r["without_warnings"] is False
-    assert r["first_order_share"] >= 0.95 - 1e-3 and r["monte_carlo"]["builds"] == tl.CHECK_BUILDS
+    assert r["first_order_share"] >= 0.95 - 1e-3 and r["monte_carlo"]["builds"] == ts.CHECK_BUILDS
     table = _run("optimize", prototype, "--tolerance", "1mm")
     text = " ".join(table.stdout.split())
     assert table.returncode == 0 and "builds within ±1 mm that pass: 100.0% to first order" in text, text
-    assert f"of {tl.CHECK_BUILDS:,} built at random" in text
+    assert f"of {ts.CHECK_BUILDS:,} built at random" in text
 
 
 @pytest.mark.parametrize("command", ["size", "optimize"])

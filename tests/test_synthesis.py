@@ -17,7 +17,9 @@ from hypothesis import strategies as st
 
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.mechanisms import crank_rocker as cr
+from pumplink.mechanisms import crank_rocker_synthesis as crs
 from pumplink.studies import textbook as S
+from pumplink.studies import textbook_rocker as SR
 
 
 def brute_slider(r, rod, e, n=2_000_001):
@@ -149,7 +151,7 @@ def test_rocker_optimum_reproduces_the_published_example():
     """The optimal-transmission paper's example: our optimum beats both printed designs
     (their minimum transmission angles by the paper's own Eq. (4), computed in the module's
     published comparisons) and runs exactly with K = 1.1818 and a 40 deg swing."""
-    rep = S.rocker(math.radians(40), 50.0, 1.1818)
+    rep = SR.rocker(math.radians(40), 50.0, 1.1818)
     assert rep.agrees
     mu = _ind(rep, "min_transmission").simulated
     for cmp in cr.published_comparisons():
@@ -160,9 +162,9 @@ def test_rocker_optimum_reproduces_the_published_example():
 @pytest.mark.parametrize("K", [1.0, 1.25, 1.6])
 def test_rocker_at_frame_resimulated(K):
     swing = math.radians(50)
-    lo, hi = cr.frame_range(K, swing, 0.3)
+    lo, hi = crs.frame_range(K, swing, 0.3)
     frame = 0.5 * (lo + hi)
-    rep = S.rocker(swing, 0.3, K, frame=frame)
+    rep = SR.rocker(swing, 0.3, K, frame=frame)
     assert rep.agrees
     assert _len(rep, "frame") == pytest.approx(frame, rel=1e-12)
     assert math.hypot(_len(rep, "pivot_x"), _len(rep, "pivot_y")) == pytest.approx(frame, rel=1e-12)
@@ -170,23 +172,23 @@ def test_rocker_at_frame_resimulated(K):
 
 def test_rocker_k1_dead_centres_half_a_turn_apart():
     """K = 1: the crank pivot on the chord line; the rocker's extremes come 180 deg apart."""
-    rep = S.rocker(math.radians(40), 1.0, 1.0, frame=1.6)
+    rep = SR.rocker(math.radians(40), 1.0, 1.0, frame=1.6)
     assert _ind(rep, "time_ratio").simulated == pytest.approx(1.0, abs=1e-12)
     with pytest.raises(InfeasibleDesign, match="no optimum"):
-        S.rocker(math.radians(40), 1.0, 1.0)
+        SR.rocker(math.radians(40), 1.0, 1.0)
 
 
 def test_rocker_frame_outside_range_is_infeasible():
     swing = math.radians(50)
-    lo, hi = cr.frame_range(1.25, swing, 0.3)
-    assert S.rocker(swing, 0.3, 1.25, frame=hi * 0.999).agrees
+    lo, hi = crs.frame_range(1.25, swing, 0.3)
+    assert SR.rocker(swing, 0.3, 1.25, frame=hi * 0.999).agrees
     with pytest.raises(InfeasibleDesign, match="frame lengths from"):
-        S.rocker(swing, 0.3, 1.25, frame=hi * 1.01)
+        SR.rocker(swing, 0.3, 1.25, frame=hi * 1.01)
 
 
 def test_rocker_pivot_point_fixes_k_and_is_checked():
     swing = math.radians(50)
-    rep = S.rocker(swing, 0.3, pivot=(-0.26, 0.19))
+    rep = SR.rocker(swing, 0.3, pivot=(-0.26, 0.19))
     assert rep.agrees
     # by hand: theta = angle C1 A C2 from the coordinates
     w, y = 0.3 * math.sin(swing / 2), 0.3 * math.cos(swing / 2)
@@ -198,9 +200,9 @@ def test_rocker_pivot_point_fixes_k_and_is_checked():
     )
     # on the swing bisector, between D and the chord: C1 and C2 on opposite sides of the frame line
     with pytest.raises(InfeasibleDesign, match="one side"):
-        S.rocker(swing, 0.3, pivot=(0.0, 0.1))
+        SR.rocker(swing, 0.3, pivot=(0.0, 0.1))
     with pytest.raises(SpecError):
-        S.rocker(swing, 0.3, 1.2, pivot=(0.0, 0.1))
+        SR.rocker(swing, 0.3, 1.2, pivot=(0.0, 0.1))
 
 
 # ~15 ms each (a scan of both design arcs, a root per crossing, a simulation); 15 draws
@@ -210,8 +212,8 @@ def test_rocker_at_frame_property(K, swing_deg, frac):
     """Any frame length inside the admissible range gives a crank-rocker that really swings
     through the asked swing with the asked K (checked by measure_motion)."""
     swing = math.radians(swing_deg)
-    lo, hi = cr.frame_range(K, swing, 1.0)
-    rep = S.rocker(swing, 1.0, K, frame=lo + frac * (hi - lo))
+    lo, hi = crs.frame_range(K, swing, 1.0)
+    rep = SR.rocker(swing, 1.0, K, frame=lo + frac * (hi - lo))
     assert rep.agrees
 
 
@@ -436,7 +438,7 @@ def brute_rocker(rep, n=2_000_001):
     ],
 )
 def test_rocker_gamma_extremes_and_dead_centres_by_brute_force(args, kwargs):
-    rep = S.rocker(*args, **kwargs)
+    rep = SR.rocker(*args, **kwargs)
     gmin, gmax, extended, folded = brute_rocker(rep)
     assert _ind(rep, "gamma_min").closed_form == pytest.approx(gmin, abs=1e-9)
     assert _ind(rep, "gamma_max").closed_form == pytest.approx(gmax, abs=1e-9)
@@ -452,7 +454,7 @@ def test_rocker_gamma_extremes_and_dead_centres_by_brute_force(args, kwargs):
 
 def test_rocker_k1_dead_centres_are_half_a_turn_apart_by_hand():
     """K = 1: the crank turns 180 deg from one dead centre to the other (theta = 0)."""
-    rep = S.rocker(math.radians(40), 1.0, 1.0, frame=1.6)
+    rep = SR.rocker(math.radians(40), 1.0, 1.0, frame=1.6)
     gap = _ind(rep, "dead_centre_folded").simulated - _ind(rep, "dead_centre_extended").simulated
     assert _turn_gap(gap, math.pi) < 1e-9
 
@@ -460,7 +462,7 @@ def test_rocker_k1_dead_centres_are_half_a_turn_apart_by_hand():
 def test_rocker_k1_without_frame_states_the_limit_as_a_number():
     """The bound 90 deg - swing/2 at a 40 deg swing is 70 deg (by hand), printed as a number."""
     with pytest.raises(InfeasibleDesign) as err:
-        S.rocker(math.radians(40), 1.0, 1.0)
+        SR.rocker(math.radians(40), 1.0, 1.0)
     assert "approaches 70°" in str(err.value) and "swing/2" not in str(err.value)
 
 
@@ -506,8 +508,8 @@ def test_optimum_check_catches_a_simulation_that_disagrees():
     swing = math.radians(40)
     opt = cr.optimal_crank_rocker(1.1818, swing, 50.0)
     sim = cr.measure_motion(cr.optimum_linkage(opt))
-    good = S.optimum_check(opt, sim, 1.1818, swing)
+    good = SR.optimum_check(opt, sim, 1.1818, swing)
     assert good.agrees and good.verdict.outcome == "PASS"
-    bad = S.optimum_check(opt, dataclasses.replace(sim, swing=sim.swing + 1e-6), 1.1818, swing)
+    bad = SR.optimum_check(opt, dataclasses.replace(sim, swing=sim.swing + 1e-6), 1.1818, swing)
     assert not bad.agrees and bad.verdict.outcome == "FAIL"
     assert bad.verdict["simulation"].result == "fail"

@@ -1,6 +1,6 @@
-"""Build tolerances (pumplink.studies.tolerance): the linkage a build is, the builds' independence of
-the chunking, the Monte Carlo spread against the first-order prediction, the Wilson interval and
-the tolerance allocation.
+"""Build tolerances (pumplink.studies.builds, tolerance and tolerance_study): the linkage a build
+is, the builds' independence of the chunking, the Monte Carlo spread against the first-order
+prediction, the Wilson interval and the tolerance allocation.
 
 References: the build's geometry is rebuilt here from hole positions with plain 2-D vectors (the
 definition in docs/tolerance.md §1, not the module's formulas); the Wilson score interval from its
@@ -18,7 +18,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from pumplink.inputs.pump import load_spec
+from pumplink.mechanisms.fourbar import FourBar
+from pumplink.studies import builds as bd
 from pumplink.studies import tolerance as tl
+from pumplink.studies import tolerance_study as ts
 
 VILLAGE = "tests/data/village-first-sized.toml"  # a fixed design: see its header
 
@@ -67,9 +70,9 @@ def _by_hand(nominal, axle, offs: dict) -> dict:
 @settings(max_examples=30)  # 30 random builds: each checks all seven parameters; cheap
 @given(st.lists(st.floats(-0.005, 0.005), min_size=18, max_size=18))
 def test_a_build_is_the_linkage_between_its_holes(values):
-    nominal = tl.FourBar(-1.048, -0.307, 0.0484, 1.0659, 0.123, 0.897, -1.0)
-    offs = dict(zip(tl.DIMENSIONS, values))
-    lk, axle = tl.build(nominal, 0.574, np.array([values]))
+    nominal = FourBar(-1.048, -0.307, 0.0484, 1.0659, 0.123, 0.897, -1.0)
+    offs = dict(zip(bd.DIMENSIONS, values))
+    lk, axle = bd.build(nominal, 0.574, np.array([values]))
     want = _by_hand(nominal, 0.574, offs)
     got = dict(
         crank=lk.crank[0], coupler=lk.coupler[0], rocker=lk.rocker[0], handle=lk.handle[0],
@@ -81,16 +84,16 @@ def test_a_build_is_the_linkage_between_its_holes(values):
 
 
 def test_the_first_order_map_is_the_derivative_of_the_build():
-    nominal = tl.FourBar(-1.048, -0.307, 0.0484, 1.0659, 0.123, 0.897, -1.0)
+    nominal = FourBar(-1.048, -0.307, 0.0484, 1.0659, 0.123, 0.897, -1.0)
     h = 1e-7
     eye = np.eye(18) * h
-    up, axle_up = tl.build(nominal, 0.574, eye)
-    down, axle_down = tl.build(nominal, 0.574, -eye)
+    up, axle_up = bd.build(nominal, 0.574, eye)
+    down, axle_down = bd.build(nominal, 0.574, -eye)
     fd = np.array(
-        [(getattr(up, p) - getattr(down, p)) / (2 * h) for p in tl.PARAMETERS[:-1]]
+        [(getattr(up, p) - getattr(down, p)) / (2 * h) for p in bd.PARAMETERS[:-1]]
         + [(axle_up - axle_down) / (2 * h)]
     )
-    assert np.allclose(fd, tl.first_order_map(), atol=1e-7)
+    assert np.allclose(fd, bd.first_order_map(), atol=1e-7)
 
 
 # ----------------------------------------------------------------------------- the builds
@@ -103,8 +106,8 @@ def test_a_builds_dimensions_do_not_depend_on_how_many_are_drawn(village):
     b = np.concatenate([tl.offsets(large, *t) for t in large.chunks])
     assert [t[1:] for t in large.chunks] == [(0, 1000), (1000, 2000), (2000, 2500)]
     assert np.array_equal(a, b[:1500])
-    ra = tl.summarize(small, tl.run_chunks(small), keep=True)
-    rb = tl.summarize(large, tl.run_chunks(large), keep=True)
+    ra = ts.summarize(small, ts.run_chunks(small), keep=True)
+    rb = ts.summarize(large, ts.run_chunks(large), keep=True)
     assert np.array_equal(ra.values["peak_force"], rb.values["peak_force"][:1500])
 
 
@@ -148,7 +151,7 @@ def test_the_monte_carlo_spread_at_a_small_tolerance_is_the_first_order_spread(v
     σ's own standard error is ~1/sqrt(2n) = 0.8 %, the curvature over 0.1 mm far less)."""
     tol = tl.tolerances(0.0001, distribution=distribution)
     prob = tl.problem(village, tol, samples=8000)
-    res = tl.summarize(prob, tl.run_chunks(prob))
+    res = ts.summarize(prob, ts.run_chunks(prob))
     fo = res.first_order
     for key, gradient in (("peak_force", fo.peak_force), ("mean_force", fo.mean_force)):
         predicted = fo.spread(gradient, tol)
@@ -159,7 +162,7 @@ def test_the_monte_carlo_spread_at_a_small_tolerance_is_the_first_order_spread(v
 
 def test_holes_across_a_bar_do_nothing_to_first_order(village_first_order):
     fo = village_first_order
-    for j, (key, axis) in enumerate(tl.DIMENSIONS):
+    for j, (key, axis) in enumerate(bd.DIMENSIONS):
         if axis == "across":
             assert abs(fo.peak_force[j]) < 1e-6, key
         else:
@@ -185,7 +188,7 @@ def test_the_share_interval_is_wilsons(count, n):
     p = count / n
     centre = (p + z * z / (2 * n)) / (1 + z * z / n)
     half = z / (1 + z * z / n) * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-    s = tl.share(count, n)
+    s = ts.share(count, n)
     assert s.value == p
     assert s.low == pytest.approx(max(0.0, centre - half), abs=1e-12)
     assert s.high == pytest.approx(min(1.0, centre + half), abs=1e-12)
@@ -201,7 +204,7 @@ def test_the_allocation_is_the_loosest_ladder_that_keeps_the_target(village_firs
         if t == tl.LADDER[-1]:
             continue
         looser = list(a.holes)
-        for k, (key, _, _) in enumerate(tl.HOLES):
+        for k, (key, _, _) in enumerate(bd.HOLES):
             if key in tl.GROUPS[g][1]:
                 looser[k] = tl.LADDER[tl.LADDER.index(t) + 1]
         assert fo.share(tl.Tolerances(tuple(looser))) < 0.95, tl.GROUPS[g][0]
@@ -213,7 +216,7 @@ def test_the_allocation_holds_in_the_monte_carlo(village, village_first_order):
     """At the allocated tolerances 95 % of 4,000 builds pass, within the Wilson interval."""
     a = tl.allocate(village_first_order, 0.95)
     prob = tl.problem(village, a.tolerances, samples=4000)
-    res = tl.summarize(prob, tl.run_chunks(prob))
+    res = ts.summarize(prob, ts.run_chunks(prob))
     assert res.passed.high >= 0.95
 
 

@@ -137,6 +137,7 @@ def test_every_command_decides_through_assess(monkeypatch, tmp_path):
     import pumplink.evaluate.piston
     import pumplink.evaluate.stages
     import pumplink.search.optimize
+    import pumplink.search.problem
     import pumplink.studies.force
     import pumplink.studies.speed
     import pumplink.verdict as verdict
@@ -157,7 +158,7 @@ def test_every_command_decides_through_assess(monkeypatch, tmp_path):
 
     chunk = batch.evaluate_chunk(batch.spec_batch(spec, "default"), 0, 1, 0)
     assert not chunk.passed.any()
-    problem = pumplink.search.optimize.make_problem(spec)
+    problem = pumplink.search.problem.make_problem(spec)
     result = pumplink.search.optimize.optimize(problem, maxiter=30, polish=False)
     assert not result.best_result.passed and not result.spec_result.passed
     fly = spec.model_copy(update={"wheel": spec.wheel.model_copy(update={"mass": 4.0})})

@@ -3,21 +3,24 @@
 from __future__ import annotations
 
 import sys
-from enum import Enum
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
-from pumplink.cli.common import ModelOpt, StrictOpt, app, dask_cluster, model_key, need_extra
+from pumplink.cli.common import (
+    ModelOpt,
+    StrictOpt,
+    app,
+    choices,
+    dask_cluster,
+    model_key,
+    need_extra,
+    optional,
+)
 from pumplink.errors import SpecError
 
-
-class BatchFormat(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
-    table = "table"
-    json = "json"
-    csv = "csv"
-    parquet = "parquet"
+BatchFormat = choices("BatchFormat", "table", "json", "csv", "parquet")
 
 
 #: Runs of at least this many variants print their size and estimated time before they start.
@@ -51,21 +54,8 @@ def batch(
             "of a large run).",
         ),
     ] = BatchFormat.table,
-    out: Annotated[
-        Optional[Path],
-        typer.Option(
-            "--out",
-            "-o",
-            help="Write the rows to this file (atomically) instead of stdout.",
-            show_default=False,
-        ),
-    ] = None,
-    junit: Annotated[
-        Optional[Path],
-        typer.Option(
-            "--junit", help="Also write JUnit XML, one testcase per variant (atomically).", show_default=False
-        ),
-    ] = None,
+    out: optional(Path, "Write the rows to this file (atomically) instead of stdout.", "--out", "-o") = None,
+    junit: optional(Path, "Also write JUnit XML, one testcase per variant (atomically).", "--junit") = None,
     workers: Annotated[
         int,
         typer.Option(
@@ -86,25 +76,20 @@ def batch(
     ] = "all",
     strict: StrictOpt = False,
     model: ModelOpt = None,
-    chunk: Annotated[
-        Optional[str],
-        typer.Option(
-            "--chunk",
-            help="Evaluate only slice K of N (1-based) of all "
-            "variants, e.g. 3/8; names stay those of the full run.",
-            show_default=False,
-        ),
-    ] = None,
-    scheduler: Annotated[
-        Optional[str],
-        typer.Option(
-            "--scheduler",
-            help="Run on Dask instead of the local pool: local:N (a local cluster of N worker "
+    chunk: optional(
+        str,
+        "Evaluate only slice K of N (1-based) of all variants, e.g. 3/8; names stay those of the full run.",
+        "--chunk",
+    ) = None,
+    scheduler: optional(
+        str,
+        (
+            "Run on Dask instead of the local pool: local:N (a local cluster of N worker "
             "processes) or the address of a running scheduler, tcp://host:8786 (needs pip "
-            "install 'pumplink\\[dask]'). Same rows, same order.",
-            show_default=False,
+            "install 'pumplink\\[dask]'). Same rows, same order."
         ),
-    ] = None,
+        "--scheduler",
+    ) = None,
 ) -> None:
     """Evaluate many variants at once: a base spec plus axes to vary (Cartesian product).
 
@@ -138,6 +123,7 @@ def batch(
 
     from pumplink import batch as _batch
     from pumplink.output import batchfiles as rb
+    from pumplink.output import batchtable
     from pumplink.output.formats import check_output, duration, progress
 
     t0 = time.perf_counter()
@@ -208,8 +194,8 @@ def batch(
             sys.stderr.write(f"interrupted: {what}; no output file written\n")
             raise typer.Exit(130) from None
     if fmt.value == "table":
-        rb.render_table(summary, rows)
+        batchtable.render_table(summary, rows)
     else:
         wrote = [p for p in (out, junit) if p is not None]
-        sys.stderr.write(rb.summary_line(summary, time.perf_counter() - t0, wrote) + "\n")
+        sys.stderr.write(batchtable.summary_line(summary, time.perf_counter() - t0, wrote) + "\n")
     raise typer.Exit(1 if summary["failed_selected"] else 0)

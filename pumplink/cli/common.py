@@ -106,13 +106,28 @@ def command_group(typer_app: typer.Typer):
 settings = {"debug": False}
 
 
-class Format(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
-    table = "table"
-    json = "json"
-    csv = "csv"
+def choices(name: str, *values: str) -> type[Enum]:
+    """The words an option takes, as the str Enum typer lists as its choices (member names = the
+    words; typer needs the str mixin, not a StrEnum)."""
+    return Enum(name, [(v, v) for v in values], type=str)
+
+
+Format = choices("Format", "table", "json", "csv")
 
 
 FormatOpt = Annotated[Format, typer.Option("--format", "-f", help="Output: table (Rich), json or csv.")]
+
+
+def optional(kind, help: str, *names: str, argument: bool = False, **settings):
+    """The type of an option (``argument``: a positional argument) that may be left out: None when
+    it is, and no default in ``--help`` (its help says what leaving it out means).
+
+    ``names``: its flags (none: from the parameter's name); ``settings``: typer's other settings
+    (``metavar``, ``min``, ...).  ``x: optional(float, "...") = None`` stands for
+    ``x: Annotated[Optional[float], typer.Option(help="...", show_default=False)] = None``.
+    """
+    make = typer.Argument if argument else typer.Option
+    return Annotated[Optional[kind], make(*names, help=help, show_default=False, **settings)]
 
 
 SAMPLE_LIMIT_KEPT = 1_000_000
@@ -290,31 +305,25 @@ def dask_cluster():
 
 
 #: ``--tolerance`` and ``--yield`` of the searches (size, optimize): a robust design.
-ToleranceOpt = Annotated[
-    Optional[str],
-    typer.Option(
-        "--tolerance",
-        metavar="LENGTH",
-        help="Ask for a robust design: every hole and pivot built within ±LENGTH (e.g. 1mm) and at least "
-        "--yield of such builds passing, to first order in the search and checked on the answer by a "
-        "Monte Carlo of 2,000 builds (docs/tolerance.md).",
-        show_default=False,
-    ),
-]
-YieldOpt = Annotated[
-    Optional[float],
-    typer.Option(
-        "--yield",
-        help="With --tolerance: the share of builds that must pass (default 0.95).",
-        min=0.5,
-        max=0.9999,
-        show_default=False,
-    ),
-]
+ToleranceOpt = optional(
+    str,
+    "Ask for a robust design: every hole and pivot built within ±LENGTH (e.g. 1mm) and at least "
+    "--yield of such builds passing, to first order in the search and checked on the answer by a "
+    "Monte Carlo of 2,000 builds (docs/tolerance.md).",
+    "--tolerance",
+    metavar="LENGTH",
+)
+YieldOpt = optional(
+    float,
+    "With --tolerance: the share of builds that must pass (default 0.95).",
+    "--yield",
+    min=0.5,
+    max=0.9999,
+)
 
 
 def robust_ask(tolerance: str | None, target: float | None, strict: bool = False):
-    """The search's :class:`pumplink.studies.tolerance.Robust` for ``--tolerance``/``--yield`` (None
+    """The search's :class:`pumplink.studies.tolerance_study.Robust` for ``--tolerance``/``--yield`` (None
     without --tolerance); --yield alone is a SpecError."""
     from pumplink.errors import SpecError
 
@@ -322,7 +331,8 @@ def robust_ask(tolerance: str | None, target: float | None, strict: bool = False
         if target is not None:
             raise SpecError("--yield is the share of builds at --tolerance that pass: give --tolerance too")
         return None
-    from pumplink.studies.tolerance import Robust, tolerances
+    from pumplink.studies.tolerance import tolerances
+    from pumplink.studies.tolerance_study import Robust
 
     return Robust(
         tolerances(parse_length(tolerance, "--tolerance")), 0.95 if target is None else target, strict

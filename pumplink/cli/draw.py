@@ -4,37 +4,26 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
-from pumplink.cli.common import app, load_specs
+from pumplink.cli.common import app, load_specs, optional
 from pumplink.errors import SpecError
 
 
 @app.command()
 def draw(
     spec: Annotated[Path, typer.Argument(help="TOML pump spec.", show_default=False)],
-    out: Annotated[
-        Optional[Path],
-        typer.Option(
-            "--out",
-            "-o",
-            help="Drawing file, .png/.svg/.pdf (default: SPEC's name with .png, in this folder).",
-            show_default=False,
-        ),
-    ] = None,
+    out: optional(
+        Path, "Drawing file, .png/.svg/.pdf (default: SPEC's name with .png, in this folder).", "--out", "-o"
+    ) = None,
     peak: Annotated[
         bool, typer.Option("--peak", help="Also draw the linkage where the quasi-static peak force is.")
     ] = False,
-    animate: Annotated[
-        Optional[Path],
-        typer.Option(
-            "--animate",
-            help="Write an animation of one revolution to this .gif instead (with --out: as well).",
-            show_default=False,
-        ),
-    ] = None,
+    animate: optional(
+        Path, "Write an animation of one revolution to this .gif instead (with --out: as well).", "--animate"
+    ) = None,
     steps: Annotated[
         int, typer.Option(help="Frames of the animation: crank steps per revolution.", min=4, max=720)
     ] = 72,

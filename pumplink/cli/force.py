@@ -16,6 +16,7 @@ from pumplink.cli.common import (
     StrictOpt,
     app,
     model_key,
+    optional,
     spec_or_default,
     speed_option,
 )
@@ -24,36 +25,28 @@ from pumplink.errors import SpecError
 
 @app.command()
 def force(
-    spec: Annotated[
-        Optional[Path],
-        typer.Argument(
-            help="TOML pump spec; omit it to use ./pump.toml if present, else the built-in design.",
-            show_default=False,
-        ),
-    ] = None,
+    spec: optional(
+        Path,
+        "TOML pump spec; omit it to use ./pump.toml if present, else the built-in design.",
+        argument=True,
+    ) = None,
     speed: Annotated[
         Optional[float], speed_option(help="Wheel speed (default: the spec's operator.speed).")
     ] = None,
     samples: Annotated[
         int, typer.Option(help="Uniform crank samples over one revolution.", min=1, max=1_000_000_000)
     ] = 360,
-    at: Annotated[
-        Optional[list[float]],
-        typer.Option(
-            "--at", help="Evaluate exactly this crank angle \\[deg] (repeatable).", show_default=False
-        ),
-    ] = None,
+    at: optional(list[float], "Evaluate exactly this crank angle \\[deg] (repeatable).", "--at") = None,
     summary: Annotated[
         bool, typer.Option("--summary", help="Only the checks and verdict (no per-sample rows).")
     ] = False,
-    plot: Annotated[
-        Optional[Path],
-        typer.Option(
-            help="Also write the force curve to this .png/.svg/.pdf "
-            "(needs the plot extra: pip install 'pumplink\\[plot]').",
-            show_default=False,
+    plot: optional(
+        Path,
+        (
+            "Also write the force curve to this .png/.svg/.pdf "
+            "(needs the plot extra: pip install 'pumplink\\[plot]')."
         ),
-    ] = None,
+    ) = None,
     explain: Annotated[
         bool,
         typer.Option(

@@ -3,51 +3,32 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, app
+from pumplink.cli.common import Format, FormatOpt, app, optional
 from pumplink.errors import SpecError
 
 
 @app.command()
 def methods(
-    spec: Annotated[
-        Optional[Path],
-        typer.Argument(help="TOML pump spec; omit for the built-in default design.", show_default=False),
-    ] = None,
+    spec: optional(Path, "TOML pump spec; omit for the built-in default design.", argument=True) = None,
     samples: Annotated[
         int, typer.Option(help="Uniform crank samples of the accuracy sweep.", min=4, max=100_000)
     ] = 360,
-    method: Annotated[
-        Optional[list[str]],
-        typer.Option(
-            "--method",
-            "-m",
-            help="Only this method (repeatable): vector, paper, numeric, reference.",
-            show_default=False,
-        ),
-    ] = None,
+    method: optional(
+        list[str], "Only this method (repeatable): vector, paper, numeric, reference.", "--method", "-m"
+    ) = None,
     repeats: Annotated[
         int, typer.Option(help="Timing repeats per method and sampling (median).", min=1, max=1000)
     ] = 7,
-    plot: Annotated[
-        Optional[Path],
-        typer.Option(
-            "--plot",
-            help="Write log error vs log time per position (.png, .svg or .pdf).",
-            show_default=False,
-        ),
-    ] = None,
-    samples_plot: Annotated[
-        Optional[Path],
-        typer.Option(
-            "--samples-plot",
-            help="Write sampled vs exact peak and mean force for N = 12..3600 (.png, .svg or .pdf).",
-            show_default=False,
-        ),
-    ] = None,
+    plot: optional(Path, "Write log error vs log time per position (.png, .svg or .pdf).", "--plot") = None,
+    samples_plot: optional(
+        Path,
+        "Write sampled vs exact peak and mean force for N = 12..3600 (.png, .svg or .pdf).",
+        "--samples-plot",
+    ) = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Speed against accuracy of the force methods, where each one fails, and how many samples a sweep needs.

@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-from enum import Enum
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
@@ -16,18 +15,16 @@ from pumplink.cli.common import (
     ToleranceOpt,
     YieldOpt,
     app,
+    choices,
     load_specs,
     model_key,
+    optional,
     robust_ask,
 )
 from pumplink.errors import SpecError
 
-
 # ----------------------------------------------------------------------------- design search
-class Objective(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
-    peak = "peak"
-    mean = "mean"
-    flow = "flow"
+Objective = choices("Objective", "peak", "mean", "flow")
 
 
 def res_passes(result, strict: bool) -> bool:
@@ -40,17 +37,16 @@ def optimize(
     spec: Annotated[
         Path, typer.Argument(help="TOML pump spec: fixed values and the starting design.", show_default=False)
     ],
-    vary: Annotated[
-        Optional[list[str]],
-        typer.Option(
-            "--vary",
-            help="KEY=LO:HI in spec units (repeatable); keys: L1, D1, "
+    vary: optional(
+        list[str],
+        (
+            "KEY=LO:HI in spec units (repeatable); keys: L1, D1, "
             "b, rocker, handle \\[m], swing \\[deg], and what a builder chooses: wheel.radius, "
             "wheel.axle_height, load.pipe_diameter \\[m], wheel.mass \\[kg], operator.speed \\[deg/s]. "
-            "Default: rocker=0.1:0.4 L1=0:1 D1=-0.3:1.2 swing=30:100.",
-            show_default=False,
+            "Default: rocker=0.1:0.4 L1=0:1 D1=-0.3:1.2 swing=30:100."
         ),
-    ] = None,
+        "--vary",
+    ) = None,
     objective: Annotated[
         Objective,
         typer.Option(
@@ -66,25 +62,18 @@ def optimize(
             help="Random seed of the differential evolution (same seed, same answer).", min=0, max=2**32 - 1
         ),
     ] = 0,
-    axle_height: Annotated[
-        Optional[float],
-        typer.Option(
-            help="Wheel-axle height \\[m] (default: the spec's wheel.axle_height, else 0.55).",
-            show_default=False,
+    axle_height: optional(
+        float, "Wheel-axle height \\[m] (default: the spec's wheel.axle_height, else 0.55)."
+    ) = None,
+    grip_height: optional(
+        str,
+        (
+            "Allowed grip height above ground over the swing, LO:HI \\[m] (default: the operator "
+            "profile's, 0.9:1.33 for men)."
         ),
-    ] = None,
-    grip_height: Annotated[
-        Optional[str],
-        typer.Option(
-            help="Allowed grip height above ground over the swing, LO:HI \\[m] (default: the operator "
-            "profile's, 0.9:1.33 for men).",
-            show_default=False,
-        ),
-    ] = None,
+    ) = None,
     stroke: Annotated[str, typer.Option(help="Allowed horizontal grip stroke, LO:HI \\[m].")] = "0:1.0",
-    write: Annotated[
-        Optional[Path], typer.Option(help="Write the optimum as a new spec (TOML).", show_default=False)
-    ] = None,
+    write: optional(Path, "Write the optimum as a new spec (TOML).") = None,
     overwrite: Annotated[
         bool, typer.Option("--force", help="Overwrite the --write file if it exists.")
     ] = False,
@@ -106,8 +95,8 @@ def optimize(
     Example: [bold]pumplink optimize configs/prototype.toml --write best.toml[/]
     """  # noqa: E501 -- typer prints this docstring as the --help text, keeping its line breaks
     from pumplink.output.optimize import optimize_row, render_optimize
-    from pumplink.search.optimize import STROKE_M, make_problem, parse_bounds, parse_range
     from pumplink.search.optimize import optimize as run
+    from pumplink.search.problem import STROKE_M, make_problem, parse_bounds, parse_range
 
     bounds = parse_bounds(vary)
     gh = None if grip_height is None else parse_range("grip-height", grip_height, (0.9, 1.33))

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, app
+from pumplink.cli.common import Format, FormatOpt, app, optional
 from pumplink.errors import SpecError
 
 
@@ -26,21 +26,11 @@ def _pivot(text: str | None):
 def rocker(
     swing: Annotated[float, typer.Option(help="Rocker swing between its extreme positions \\[deg].")],
     rocker_length: Annotated[float, typer.Option("--rocker", help="Rocker length (any length unit).")],
-    time_ratio: Annotated[
-        Optional[float],
-        typer.Option("--time-ratio", "-k", help="Time ratio K >= 1 (not with --pivot).", show_default=False),
-    ] = None,
-    frame: Annotated[
-        Optional[float],
-        typer.Option(help="Put the crank pivot at this distance from the rocker pivot.", show_default=False),
-    ] = None,
-    pivot: Annotated[
-        Optional[str],
-        typer.Option(
-            help="Put the crank pivot at X,Y (rocker pivot at 0,0, swing bisector along +y); fixes K.",
-            show_default=False,
-        ),
-    ] = None,
+    time_ratio: optional(float, "Time ratio K >= 1 (not with --pivot).", "--time-ratio", "-k") = None,
+    frame: optional(float, "Put the crank pivot at this distance from the rocker pivot.") = None,
+    pivot: optional(
+        str, "Put the crank pivot at X,Y (rocker pivot at 0,0, swing bisector along +y); fixes K."
+    ) = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Crank-rocker that swings the rocker between two extreme positions with time ratio K.
@@ -62,7 +52,7 @@ def rocker(
     import math
 
     from pumplink.output.mechanisms import render_synthesis, synthesis_labels, synthesis_row
-    from pumplink.studies.textbook import rocker as synthesise
+    from pumplink.studies.textbook_rocker import rocker as synthesise
 
     if not math.isfinite(swing):
         raise SpecError(f"--swing {swing!r} is not a finite number")

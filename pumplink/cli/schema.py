@@ -3,19 +3,14 @@
 from __future__ import annotations
 
 import sys
-from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import app
+from pumplink.cli.common import app, choices
 
-
-class Kind(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
-    spec = "spec"
-    piston = "piston"
-    batch = "batch"
+Kind = choices("Kind", "spec", "piston", "batch")
 
 
 @app.command()

@@ -3,11 +3,20 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, ToleranceOpt, YieldOpt, app, robust_ask, spec_or_default
+from pumplink.cli.common import (
+    Format,
+    FormatOpt,
+    ToleranceOpt,
+    YieldOpt,
+    app,
+    optional,
+    robust_ask,
+    spec_or_default,
+)
 from pumplink.errors import SpecError
 
 
@@ -29,33 +38,18 @@ def _bores(text: str | None) -> tuple[float, ...] | None:
 
 @app.command()
 def size(
-    spec: Annotated[
-        Optional[Path],
-        typer.Argument(
-            help="Base spec (its frame width, dead band, masses...); omit it for the built-in design.",
-            show_default=False,
-        ),
-    ] = None,
-    head: Annotated[
-        Optional[float],
-        typer.Option(
-            help="Pumping head [m] (default: the spec's load.head).", min=0.001, max=200, show_default=False
-        ),
-    ] = None,
-    profile: Annotated[
-        Optional[str],
-        typer.Option(
-            help="Who pumps: men, women, children or accessible (default: the spec's, else men).",
-            show_default=False,
-        ),
-    ] = None,
-    pipes: Annotated[
-        Optional[str],
-        typer.Option(
-            help='Pipe bores to choose from, e.g. 16,20,25mm (default: the nominal ½" to 1½").',
-            show_default=False,
-        ),
-    ] = None,
+    spec: optional(
+        Path,
+        "Base spec (its frame width, dead band, masses...); omit it for the built-in design.",
+        argument=True,
+    ) = None,
+    head: optional(float, "Pumping head [m] (default: the spec's load.head).", min=0.001, max=200) = None,
+    profile: optional(
+        str, "Who pumps: men, women, children or accessible (default: the spec's, else men)."
+    ) = None,
+    pipes: optional(
+        str, 'Pipe bores to choose from, e.g. 16,20,25mm (default: the nominal ½" to 1½").'
+    ) = None,
     allow_warnings: Annotated[
         bool, typer.Option("--allow-warnings", help="Accept warnings; only failing checks are excluded.")
     ] = False,
@@ -64,9 +58,7 @@ def size(
     ] = 0,
     tolerance: ToleranceOpt = None,
     target: YieldOpt = None,
-    write: Annotated[
-        Optional[Path], typer.Option(help="Write the sized pump as a spec (TOML).", show_default=False)
-    ] = None,
+    write: optional(Path, "Write the sized pump as a spec (TOML).") = None,
     overwrite: Annotated[
         bool, typer.Option("--force", help="Overwrite the --write file if it exists.")
     ] = False,

@@ -3,11 +3,9 @@ crank-slider, checked by simulation and judged."""
 
 from __future__ import annotations
 
-from typing import Annotated, Optional
-
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, app
+from pumplink.cli.common import Format, FormatOpt, app, optional
 from pumplink.errors import SpecError
 
 
@@ -17,44 +15,19 @@ def _given(**options) -> list[str]:
 
 @app.command()
 def slider(
-    stroke: Annotated[
-        Optional[float],
-        typer.Option("--stroke", "-H", help="Slider stroke H (any length unit).", show_default=False),
-    ] = None,
-    rod_ratio: Annotated[
-        Optional[float],
-        typer.Option("--rod-ratio", "-L", help="Rod ratio L = rod/crank > 1.", show_default=False),
-    ] = None,
-    time_ratio: Annotated[
-        Optional[float],
-        typer.Option(
-            "--time-ratio", "-k", help="Time ratio K >= 1 (Task 2: the offset follows).", show_default=False
-        ),
-    ] = None,
-    offset_ratio: Annotated[
-        Optional[float],
-        typer.Option(
-            "--offset-ratio",
-            help="Offset ratio e/r (Task 1 only; default 0: a central crank-slider).",
-            show_default=False,
-        ),
-    ] = None,
-    crank: Annotated[
-        Optional[float],
-        typer.Option("--crank", help="Analysis: crank length r (any length unit).", show_default=False),
-    ] = None,
-    rod: Annotated[
-        Optional[float],
-        typer.Option("--rod", help="Analysis: rod (connecting-rod) length l.", show_default=False),
-    ] = None,
-    offset: Annotated[
-        Optional[float],
-        typer.Option(
-            "--offset",
-            help="Analysis: offset e of the guide from the crank pivot (default 0).",
-            show_default=False,
-        ),
-    ] = None,
+    stroke: optional(float, "Slider stroke H (any length unit).", "--stroke", "-H") = None,
+    rod_ratio: optional(float, "Rod ratio L = rod/crank > 1.", "--rod-ratio", "-L") = None,
+    time_ratio: optional(
+        float, "Time ratio K >= 1 (Task 2: the offset follows).", "--time-ratio", "-k"
+    ) = None,
+    offset_ratio: optional(
+        float, "Offset ratio e/r (Task 1 only; default 0: a central crank-slider).", "--offset-ratio"
+    ) = None,
+    crank: optional(float, "Analysis: crank length r (any length unit).", "--crank") = None,
+    rod: optional(float, "Analysis: rod (connecting-rod) length l.", "--rod") = None,
+    offset: optional(
+        float, "Analysis: offset e of the guide from the crank pivot (default 0).", "--offset"
+    ) = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Crank-slider (piston drive): synthesis from the stroke, or analysis of given lengths.

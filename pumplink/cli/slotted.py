@@ -6,7 +6,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, app
+from pumplink.cli.common import Format, FormatOpt, app, optional
 
 
 def _length(*names: str, text: str):
@@ -15,15 +15,9 @@ def _length(*names: str, text: str):
 
 @app.command()
 def slotted(
-    time_ratio: Annotated[
-        Optional[float],
-        typer.Option(
-            "--time-ratio",
-            "-k",
-            help="Time ratio K > 1 (slow/fast stroke); leave out to analyse.",
-            show_default=False,
-        ),
-    ] = None,
+    time_ratio: optional(
+        float, "Time ratio K > 1 (slow/fast stroke); leave out to analyse.", "--time-ratio", "-k"
+    ) = None,
     stroke: _length(
         "--stroke", "-H", text="Chord between the lever tip's extremes (any length unit)."
     ) = None,

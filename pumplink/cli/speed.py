@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
@@ -16,6 +16,7 @@ from pumplink.cli.common import (
     app,
     load_specs,
     model_key,
+    optional,
     speed_option,
 )
 from pumplink.errors import SpecError
@@ -32,14 +33,13 @@ def speed(
     lo: Annotated[float, speed_option("--from", help="Lowest mean wheel speed.")] = 120.0,
     hi: Annotated[float, speed_option("--to", help="Highest mean wheel speed.")] = 720.0,
     step: Annotated[float, speed_option("--step", help="Speed step.")] = 30.0,
-    plot: Annotated[
-        Optional[Path],
-        typer.Option(
-            help="Write the chart (peak force against speed by model, the "
-            "best cadence, 75 W) to this .png/.svg/.pdf (needs pumplink\\[plot]).",
-            show_default=False,
+    plot: optional(
+        Path,
+        (
+            "Write the chart (peak force against speed by model, the "
+            "best cadence, 75 W) to this .png/.svg/.pdf (needs pumplink\\[plot])."
         ),
-    ] = None,
+    ) = None,
     strict: StrictOpt = False,
     model: ModelOpt = None,
     fmt: FormatOpt = Format.table,

@@ -3,23 +3,22 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated, Optional
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, app, load_specs, spec_or_default
+from pumplink.cli.common import Format, FormatOpt, app, load_specs, optional, spec_or_default
 
 
 @app.command()
 def synth(
-    specs: Annotated[
-        Optional[list[Path]],
-        typer.Argument(
-            help="TOML pump specs ('-' reads one from stdin); none: ./pump.toml if present, else the "
-            "built-in design.",
-            show_default=False,
+    specs: optional(
+        list[Path],
+        (
+            "TOML pump specs ('-' reads one from stdin); none: ./pump.toml if present, else the "
+            "built-in design."
         ),
-    ] = None,
+        argument=True,
+    ) = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Dead-centre synthesis: link lengths, dead centres, time ratio, transmission range.

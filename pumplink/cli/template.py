@@ -3,19 +3,14 @@
 from __future__ import annotations
 
 import sys
-from enum import Enum
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
-from pumplink.cli.common import app, load_specs
+from pumplink.cli.common import app, choices, load_specs
 
-
-class Paper(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
-    A4 = "A4"
-    A3 = "A3"
-    letter = "letter"
+Paper = choices("Paper", "A4", "A3", "letter")
 
 
 @app.command()

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import sys
-from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
 
@@ -15,17 +14,16 @@ from pumplink.cli.common import (
     ModelOpt,
     StrictOpt,
     app,
+    choices,
     dask_cluster,
     model_key,
+    optional,
     parse_length,
     spec_or_default,
 )
 from pumplink.errors import SpecError
 
-
-class Distribution(str, Enum):  # noqa: UP042 -- typer needs the str mixin semantics unchanged
-    uniform = "uniform"
-    normal = "normal"
+Distribution = choices("Distribution", "uniform", "normal")
 
 
 def _below_2_63(value: int) -> int:
@@ -54,29 +52,26 @@ def _length(option: str):
 
 @app.command()
 def tolerance(
-    spec: Annotated[
-        Optional[Path],
-        typer.Argument(
-            help="TOML rope-pump spec; omit it to use ./pump.toml if present, else the built-in design.",
-            show_default=False,
-        ),
-    ] = None,
+    spec: optional(
+        Path,
+        "TOML rope-pump spec; omit it to use ./pump.toml if present, else the built-in design.",
+        argument=True,
+    ) = None,
     hole: Annotated[str, _length("--hole")] = "1mm",
     pivot: Annotated[Optional[str], _length("--pivot")] = None,
     crank_hole: Annotated[Optional[str], _length("--crank-hole")] = None,
     coupler_hole: Annotated[Optional[str], _length("--coupler-hole")] = None,
     rocker_hole: Annotated[Optional[str], _length("--rocker-hole")] = None,
     grip: Annotated[Optional[str], _length("--grip")] = None,
-    tol: Annotated[
-        Optional[list[str]],
-        typer.Option(
-            "--tol",
-            metavar="HOLE=LENGTH",
-            help="One hole's tolerance (repeatable): crank.O2, crank.A, coupler.A, coupler.B, rocker.O4, "
-            "rocker.B, rocker.grip, stand.O2, stand.O4; e.g. --tol crank.A=0.5mm.",
-            show_default=False,
+    tol: optional(
+        list[str],
+        (
+            "One hole's tolerance (repeatable): crank.O2, crank.A, coupler.A, coupler.B, rocker.O4, "
+            "rocker.B, rocker.grip, stand.O2, stand.O4; e.g. --tol crank.A=0.5mm."
         ),
-    ] = None,
+        "--tol",
+        metavar="HOLE=LENGTH",
+    ) = None,
     distribution: Annotated[
         Distribution,
         typer.Option(
@@ -108,15 +103,14 @@ def tolerance(
         int,
         typer.Option(help="Worker processes (0: one per CPU; never more than the chunks).", min=0, max=256),
     ] = 1,
-    scheduler: Annotated[
-        Optional[str],
-        typer.Option(
-            "--scheduler",
-            help="Run on Dask instead of the local pool: local:N or tcp://host:8786 (needs pip install "
-            "'pumplink\\[dask]'). The same numbers as one process.",
-            show_default=False,
+    scheduler: optional(
+        str,
+        (
+            "Run on Dask instead of the local pool: local:N or tcp://host:8786 (needs pip install "
+            "'pumplink\\[dask]'). The same numbers as one process."
         ),
-    ] = None,
+        "--scheduler",
+    ) = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """The pumps a workshop builds from a design: every hole off by a little.
@@ -170,6 +164,7 @@ def tolerance(
     from pumplink.output.formats import progress
     from pumplink.output.tolerance import render_tolerance
     from pumplink.studies import tolerance as tl
+    from pumplink.studies import tolerance_study as ts
 
     tols = tl.tolerances(
         parse_length(hole, "--hole"),
@@ -188,7 +183,7 @@ def tolerance(
             mapper = functools.partial(run_module.map_ordered, workers=n)
         try:
             with progress(samples, "tolerance (builds)") as advance:
-                result = tl.summarize(prob, tl.run_chunks(prob, mapper), target, advance, fmt.value == "csv")
+                result = ts.summarize(prob, ts.run_chunks(prob, mapper), target, advance, fmt.value == "csv")
         except BrokenProcessPool as exc:
             what = str(exc) if client is not None else "a worker process was killed (out of memory?)"
             sys.stderr.write(f"interrupted: {what}\n")

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
-from pumplink.cli.common import Format, FormatOpt, app
-from pumplink.errors import InfeasibleDesign, SpecError
+from pumplink.cli.common import Format, FormatOpt, app, optional
+from pumplink.errors import SpecError
 
 #: Rocker lengths the command accepts (any unit): beyond them the lengths' squares overflow.
 ROCKER_RANGE = (1e-6, 1e6)
@@ -32,14 +32,13 @@ def transmission(
             "--compare/--no-compare", help="Compare with the paper's published designs (its example only)."
         ),
     ] = True,
-    chart: Annotated[
-        Optional[Path],
-        typer.Option(
-            help="Write the paper's design diagram (contours over θ and φ) "
-            "to this image file instead (needs pumplink\\[plot]).",
-            show_default=False,
+    chart: optional(
+        Path,
+        (
+            "Write the paper's design diagram (contours over θ and φ) "
+            "to this image file instead (needs pumplink\\[plot])."
         ),
-    ] = None,
+    ) = None,
     fmt: FormatOpt = Format.table,
 ) -> None:
     """Crank-rocker with the best minimum transmission angle for K and φ (exact).
@@ -57,19 +56,18 @@ def transmission(
     """
     import math
 
-    from pumplink.mechanisms import crank_rocker as cr
+    from pumplink.studies import textbook_rocker as study
 
     if chart is not None:
         from pumplink.output.charts import check_path, pyplot, transmission_chart
 
         check_path(chart, "--chart")
         pyplot()  # fail early (exit 2) when matplotlib is missing
-        transmission_chart(cr.design_chart(), chart)
+        transmission_chart(study.design_chart(), chart)
         typer.echo(f"wrote {chart}", err=True)
         return
 
     from pumplink.output.transmission import render_transmission, transmission_rows
-    from pumplink.studies.textbook import optimum_check
 
     for name, v in (("--time-ratio", time_ratio), ("--swing", swing), ("--rocker", rocker)):
         if not math.isfinite(v):
@@ -84,16 +82,7 @@ def transmission(
             f"--rocker {rocker:g}: the rocker length is out of range; allowed: "
             f"{ROCKER_RANGE[0]:g} <= value <= {ROCKER_RANGE[1]:g} (any unit: give e.g. 50 for millimetres)"
         )
-    opt = cr.optimal_crank_rocker(time_ratio, math.radians(swing), rocker)
-    if not math.isfinite(opt.transmission):  # no point of the design circle gives a crank-rocker
-        raise InfeasibleDesign(
-            f"no crank-rocker found for time ratio K = {time_ratio:g} and swing {swing:g}° (extreme "
-            f"included angle θ = {math.degrees(opt.theta):.4g}°); give a time ratio closer to 1"
-        )
-    sim = cr.measure_motion(cr.optimum_linkage(opt))
-    check = optimum_check(opt, sim, time_ratio, math.radians(swing))
-    comps = (
-        cr.published_comparisons() if compare and cr.is_published_example(time_ratio, swing, rocker) else []
-    )
-    render_transmission(transmission_rows(opt, sim, comps, cr.PUBLISHED_GAMMA_MIN_DEG, check), fmt.value)
-    raise typer.Exit(0 if check.verdict.passed else 1)
+    t = study.transmission(time_ratio, math.radians(swing), rocker, compare)
+    rows = transmission_rows(t.optimum, t.motion, t.comparisons, t.published_gamma_min_deg, t.check)
+    render_transmission(rows, fmt.value)
+    raise typer.Exit(0 if t.check.verdict.passed else 1)

@@ -22,8 +22,8 @@ from typing import Any, Literal
 from pydantic import Field, model_validator
 
 from pumplink.constants import DEFAULT_SPEED_FLUCTUATION
-from pumplink.inputs.pump import Use, limits_in_order
-from pumplink.inputs.toml import Section, read_toml, spec_name, validate
+from pumplink.inputs.pump import HOUR_POWER, SUSTAINED_POWER, Use, limits_in_order
+from pumplink.inputs.toml import Section, optional, read_toml, spec_name, validate
 from pumplink.models import load as _load
 from pumplink.profiles import operator_limits
 
@@ -40,11 +40,8 @@ class Piston(Section):
         description="force (mechanical) efficiency [-]: the piston force is the water column's weight "
         "over it",
     )
-    volumetric_efficiency: float | None = Field(
-        default=None,
-        ge=0.05,
-        le=1,
-        description="delivered over swept volume [-] (leakage past the piston and valves; default 0.87)",
+    volumetric_efficiency: float | None = optional(
+        "delivered over swept volume [-] (leakage past the piston and valves; default 0.87)", ge=0.05, le=1
     )
 
 
@@ -56,20 +53,13 @@ class CrankSlider(Section):
 
 class PistonOperator(Section):
     handle: float = Field(ge=0.02, le=2, description="radius of the crank the operator turns [m]")
-    profile: Literal["men", "women", "children", "accessible"] | None = Field(
-        default=None,
-        description="who pumps: sets force_limit, sustained_power and hour_power (docs/operators.md); a key "
-        "given here overrides it (default: men)",
+    profile: Literal["men", "women", "children", "accessible"] | None = optional(
+        "who pumps: sets force_limit, sustained_power and hour_power (docs/operators.md); a key "
+        "given here overrides it (default: men)"
     )
-    force_limit: float | None = Field(
-        default=None, ge=1, le=10_000, description="force limit [N] (profile's)"
-    )
-    sustained_power: float | None = Field(
-        default=None, ge=1, le=1000, description="power the operator sustains for hours [W] (profile's)"
-    )
-    hour_power: float | None = Field(
-        default=None, ge=1, le=2000, description="power the operator gives for about an hour [W] (profile's)"
-    )
+    force_limit: float | None = optional("force limit [N] (profile's)", ge=1, le=10_000)
+    sustained_power: float | None = SUSTAINED_POWER
+    hour_power: float | None = HOUR_POWER
     speed: float = Field(default=360.0, gt=0, le=7200, description="crank speed [deg/s]")
     speed_fluctuation: float = Field(
         default=DEFAULT_SPEED_FLUCTUATION, gt=0, le=1, description="largest (w_max - w_min)/w_mean [-]"
@@ -82,11 +72,9 @@ class PistonOperator(Section):
 
 
 class Flywheel(Section):
-    inertia: float | None = Field(
-        default=None, gt=0, le=1000, description="inertia on the crank shaft [kg m^2]"
-    )
-    mass: float | None = Field(default=None, gt=0, le=1000, description="wheel mass [kg] (a rim)")
-    radius: float | None = Field(default=None, ge=0.01, le=5, description="wheel radius [m] (with mass)")
+    inertia: float | None = optional("inertia on the crank shaft [kg m^2]", gt=0, le=1000)
+    mass: float | None = optional("wheel mass [kg] (a rim)", gt=0, le=1000)
+    radius: float | None = optional("wheel radius [m] (with mass)", ge=0.01, le=5)
 
     @model_validator(mode="after")
     def _one(self) -> Flywheel:

@@ -20,31 +20,23 @@ from pumplink.constants import (
     DEFAULT_SPEED_FLUCTUATION,
 )
 from pumplink.errors import SpecError
-from pumplink.inputs.toml import MAX_NAME_CHARS, Section, read_toml, spec_name, validate
+from pumplink.inputs.toml import MAX_NAME_CHARS, Section, optional, read_toml, spec_name, validate
 from pumplink.models import load as _load
 from pumplink.profiles import DEFAULT_PROFILE, PROFILES, OperatorProfile, operator_limits
 
 
 class Wheel(Section):
     radius: float = Field(ge=0.001, le=5, description="upper wheel radius rw [m]")
-    axle_height: float | None = Field(
-        default=None,
-        gt=0,
-        le=5,
-        description="height of the wheel axle above the ground [m] (optional; the paper uses 0.40-0.70 m)",
+    axle_height: float | None = optional(
+        "height of the wheel axle above the ground [m] (optional; the paper uses 0.40-0.70 m)", gt=0, le=5
     )
-    inertia: float | None = Field(
-        default=None,
+    inertia: float | None = optional(
+        ("moment of inertia of the wheel about its axle [kg m^2] (optional; turns on the flywheel model)"),
         gt=0,
         le=1000,
-        description="moment of inertia of the wheel about its axle [kg m^2] "
-        "(optional; turns on the flywheel model)",
     )
-    mass: float | None = Field(
-        default=None,
-        gt=0,
-        le=1000,
-        description="wheel mass [kg], taken as a rim: J = mass * radius^2 (optional, instead of inertia)",
+    mass: float | None = optional(
+        "wheel mass [kg], taken as a rim: J = mass * radius^2 (optional, instead of inertia)", gt=0, le=1000
     )
 
     @model_validator(mode="after")
@@ -72,32 +64,32 @@ class Linkage(Section):
         lt=180,
         description="total handle swing [deg], symmetric about vertical",
     )
-    mass_per_length: float | None = Field(
-        default=None,
+    mass_per_length: float | None = optional(
+        (
+            "mass per metre of the handle and coupler [kg/m] for the link-energy estimate "
+            "(default 1.56: 3/4-inch steel tube)"
+        ),
         gt=0,
         le=100,
-        description="mass per metre of the handle and coupler [kg/m] for the link-energy estimate "
-        "(default 1.56: 3/4-inch steel tube)",
     )
-    coupler_mass: float | None = Field(
-        default=None,
+    coupler_mass: float | None = optional(
+        "coupler mass [kg] (full dynamics; default mass_per_length * coupler length)", ge=0, le=1000
+    )
+    handle_mass: float | None = optional(
+        (
+            "handle mass [kg], a uniform bar from the rocker pivot to the grip (full dynamics; "
+            "default mass_per_length * max(handle, rocker))"
+        ),
         ge=0,
         le=1000,
-        description="coupler mass [kg] (full dynamics; default mass_per_length * coupler length)",
     )
-    handle_mass: float | None = Field(
-        default=None,
-        ge=0,
-        le=1000,
-        description="handle mass [kg], a uniform bar from the rocker pivot to the grip (full dynamics; "
-        "default mass_per_length * max(handle, rocker))",
-    )
-    hole_diameter: float | None = Field(
-        default=None,
+    hole_diameter: float | None = optional(
+        (
+            "diameter of the pins and of their holes on the workshop template [m], in a spec "
+            "without [parts] (an older name of parts.pin_diameter; default 0.012)"
+        ),
         ge=0.001,
         le=0.1,
-        description="diameter of the pins and of their holes on the workshop template [m], in a spec "
-        "without [parts] (an older name of parts.pin_diameter; default 0.012)",
     )
 
     @model_validator(mode="before")
@@ -122,34 +114,34 @@ class Linkage(Section):
 
 
 class Load(Section):
-    rope_force: float | None = Field(
-        default=None,
-        ge=0.001,  # 1 mN: below, the flywheel's energy balance loses every digit (denormal torques)
-        le=10_000,
-        description="rope force Fw at the wheel rim [N] (or give head and pipe_diameter)",
+    rope_force: float | None = optional(
+        "rope force Fw at the wheel rim [N] (or give head and pipe_diameter)", ge=0.001, le=10_000
     )
-    head: float | None = Field(default=None, ge=0.001, le=200, description="pumping head [m]")
-    pipe_diameter: float | None = Field(default=None, ge=0.001, le=0.5, description="rising-main bore [m]")
-    efficiency: float | None = Field(
-        default=None,
+    head: float | None = optional("pumping head [m]", ge=0.001, le=200)
+    pipe_diameter: float | None = optional("rising-main bore [m]", ge=0.001, le=0.5)
+    efficiency: float | None = optional(
+        (
+            "force (mechanical) efficiency with head/pipe_diameter [-]: the rope force is the "
+            "water column's weight over it (default 0.75)"
+        ),
         ge=0.05,
         le=1,
-        description="force (mechanical) efficiency with head/pipe_diameter [-]: the rope force is the "
-        "water column's weight over it (default 0.75)",
     )
-    volumetric_efficiency: float | None = Field(
-        default=None,
+    volumetric_efficiency: float | None = optional(
+        (
+            "delivered over swept flow with head/pipe_diameter [-] (leakage past the pistons; "
+            "default 0.87, docs/water.md)"
+        ),
         ge=0.05,
         le=1,
-        description="delivered over swept flow with head/pipe_diameter [-] (leakage past the pistons; "
-        "default 0.87, docs/water.md)",
     )
-    moving_mass: float | None = Field(
-        default=None,
+    moving_mass: float | None = optional(
+        (
+            "rope, pistons and water moving with the wheel rim [kg] (default with head and "
+            "pipe_diameter: the water in the rising main)"
+        ),
         ge=0,
         le=10_000,
-        description="rope, pistons and water moving with the wheel rim [kg] (default with head and "
-        "pipe_diameter: the water in the rising main)",
     )
 
     @property
@@ -181,36 +173,29 @@ class Load(Section):
         return self
 
 
+#: The operator's power keys, the same in the rope-pump spec and the piston-pump spec.
+SUSTAINED_POWER = optional("power the operator sustains for hours [W] (profile's)", ge=1, le=1000)
+HOUR_POWER = optional("power the operator gives for about an hour [W] (profile's)", ge=1, le=2000)
+
+
 class Operator(Section):
-    profile: Literal["men", "women", "children", "accessible"] | None = Field(
-        default=None,
-        description="who pumps: sets force_limit, sustained_power, hour_power, the grip-height range and "
+    profile: Literal["men", "women", "children", "accessible"] | None = optional(
+        "who pumps: sets force_limit, sustained_power, hour_power, the grip-height range and "
         "the grip-speed limits (docs/operators.md); any of those keys given here overrides it "
-        "(default: men)",
+        "(default: men)"
     )
-    force_limit: float | None = Field(
-        default=None,
-        ge=1,
-        le=10_000,
-        description="largest acceptable operator force [N] (default: the profile's; men 100, women 70)",
+    force_limit: float | None = optional(
+        "largest acceptable operator force [N] (default: the profile's; men 100, women 70)", ge=1, le=10_000
     )
-    sustained_power: float | None = Field(
-        default=None, ge=1, le=1000, description="power the operator sustains for hours [W] (profile's)"
+    sustained_power: float | None = SUSTAINED_POWER
+    hour_power: float | None = HOUR_POWER
+    grip_height_min: float | None = optional("lowest comfortable grip height [m] (profile's)", ge=0, le=3)
+    grip_height_max: float | None = optional("highest comfortable grip height [m] (profile's)", ge=0, le=3)
+    grip_speed_warn: float | None = optional(
+        "grip speed above which the verdict warns [m/s] (profile's)", gt=0, le=20
     )
-    hour_power: float | None = Field(
-        default=None, ge=1, le=2000, description="power the operator gives for about an hour [W] (profile's)"
-    )
-    grip_height_min: float | None = Field(
-        default=None, ge=0, le=3, description="lowest comfortable grip height [m] (profile's)"
-    )
-    grip_height_max: float | None = Field(
-        default=None, ge=0, le=3, description="highest comfortable grip height [m] (profile's)"
-    )
-    grip_speed_warn: float | None = Field(
-        default=None, gt=0, le=20, description="grip speed above which the verdict warns [m/s] (profile's)"
-    )
-    grip_speed_fail: float | None = Field(
-        default=None, gt=0, le=20, description="grip speed above which the design fails [m/s] (profile's)"
+    grip_speed_fail: float | None = optional(
+        "grip speed above which the design fails [m/s] (profile's)", gt=0, le=20
     )
     speed: float = Field(default=360.0, gt=0, le=7200, description="wheel speed [deg/s]")
     dead_band: float = Field(
@@ -226,17 +211,17 @@ class Operator(Section):
         le=1,
         description="largest coefficient of speed fluctuation (w_max - w_min) / w_mean [-] (flywheel model)",
     )
-    arm_mass: float | None = Field(
-        default=None,
+    arm_mass: float | None = optional(
+        (
+            "operator's hands and forearms moving with the grip [kg] (full dynamics: the "
+            "muscular effort and the best cadence; default 4.32)"
+        ),
         ge=0,
         le=100,
-        description="operator's hands and forearms moving with the grip [kg] (full dynamics: the "
-        "muscular effort and the best cadence; default 4.32)",
     )
-    arms_in_verdict: bool | None = Field(
-        default=None,
-        description="true to judge the muscular effort (arm_mass at the grip) against force_limit "
-        "instead of the hand force",
+    arms_in_verdict: bool | None = optional(
+        "true to judge the muscular effort (arm_mass at the grip) against force_limit "
+        "instead of the hand force"
     )
 
     @property

@@ -26,7 +26,7 @@ from typing import Literal
 from pydantic import Field
 
 from pumplink.errors import SpecError
-from pumplink.inputs.toml import Section, read_toml, spec_name, validate
+from pumplink.inputs.toml import Section, optional, read_toml, spec_name, validate
 from pumplink.mechanisms import structure as _structure
 
 Name = str
@@ -46,7 +46,7 @@ class StructureSpec(Section):
     joints: dict[Name, JointSpec] = Field(
         min_length=1, description="table of joints: name = { kind = ..., links = [...] }"
     )
-    drivers: list[Name] | None = Field(default=None, description="driving link(s) (default: found)")
+    drivers: list[Name] | None = optional("driving link(s) (default: found)")
     passive_links: list[Name] = Field(default=[], description="links whose constraints are redundant")
     local_mobilities: int = Field(default=0, ge=0, le=100, description="number of local freedoms")
 

@@ -19,7 +19,7 @@ import typing
 from pathlib import Path
 from typing import Any
 
-from pydantic import BaseModel, ConfigDict, ValidationError, field_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
 from pumplink.errors import SHOWN_CHARS, SpecError, bad_character, escape_control, shown
 
@@ -52,6 +52,13 @@ class Section(BaseModel):
     @classmethod
     def _writable_name(cls, name: str) -> str:
         return check_name(name)
+
+
+def optional(description: str, **bounds) -> Any:
+    """A key a file may leave out (None when it does): ``Field(default=None, ...)`` with its
+    ``description`` (what the key is, its unit and what leaving it out means) and ``bounds``
+    (``ge``, ``le``, ...)."""
+    return Field(default=None, description=description, **bounds)
 
 
 # ----------------------------------------------------------------------------- error sentences

@@ -167,15 +167,7 @@ def _mechanism(links, frame, joints):
         if j.kind == HIGHER_KIND and len(j.links) != 2:
             raise ValueError(f"higher pair {j.name!r} must join exactly two links.")
     # every link reachable from the frame
-    reached, todo = {frame}, [frame]
-    while todo:
-        here = todo.pop()
-        for j in out:
-            if here in j.links:
-                for x in j.links:
-                    if x not in reached:
-                        reached.add(x)
-                        todo.append(x)
+    reached = _reachable(frame, out)
     lost = [x for x in names if x not in reached]
     if lost:
         raise ValueError(f"link {lost[0]!r} is not connected to the frame through any joint.")
@@ -270,19 +262,24 @@ def redundant_constraints(formula_mobility: int, mobility: int, local_mobilities
 
 
 # --------------------------------------------------------------------------- Assur groups
-def _connected(group, joints):
-    group = set(group)
-    start = next(iter(group))
+def _reachable(start, joints, within=None) -> set:
+    """The links joined to ``start`` through ``joints``, directly or through other links (only
+    links of ``within``, when given), and ``start`` itself."""
     seen, todo = {start}, [start]
     while todo:
         here = todo.pop()
         for j in joints:
             if here in j.links:
                 for x in j.links:
-                    if x in group and x not in seen:
+                    if (within is None or x in within) and x not in seen:
                         seen.add(x)
                         todo.append(x)
-    return seen == group
+    return seen
+
+
+def _connected(group, joints):
+    group = set(group)
+    return _reachable(next(iter(group)), joints, group) == group
 
 
 def _distances(drivers, present, joints, frame):

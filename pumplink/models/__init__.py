@@ -48,17 +48,20 @@ def _quasi_static_peak(
 
 def _flywheel_peak(fourbar, dead_centre_extended, dead_centre_folded, wheel_torque, conditions: Conditions):
     """Least peak force for a periodic motion inside the energy band [N] (docs/models.md §2, Eq. (4))."""
-    from pumplink.models import flywheel  # loaded when first needed: a start-up cost otherwise
+    # loaded when first needed: a start-up cost otherwise
+    from pumplink.models import flywheel, flywheel_solver
 
     band = flywheel.energy_band(conditions.inertia, conditions.speed, conditions.speed_fluctuation)
-    return flywheel.least_peak_force(fourbar, dead_centre_extended, dead_centre_folded, wheel_torque, band)
+    return flywheel_solver.least_peak_force(
+        fourbar, dead_centre_extended, dead_centre_folded, wheel_torque, band
+    )
 
 
 def _dynamics_peak(fourbar, dead_centre_extended, dead_centre_folded, wheel_torque, conditions: Conditions):
     """Least peak force with link masses, weight and arms [N] (docs/models.md §3, (C1)-(C2))."""
-    from pumplink.models import dynamics  # loaded when first needed: a start-up cost otherwise
+    from pumplink.models import dynamics_solver  # loaded when first needed: a start-up cost otherwise
 
-    return dynamics.least_peak_force(
+    return dynamics_solver.least_peak_force(
         fourbar,
         dead_centre_extended,
         dead_centre_folded,

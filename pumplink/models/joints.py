@@ -29,7 +29,7 @@ r = B - O4 and S = u x r,
     d3 = (R . r) / S,  d4 = (R . u) / S,  R = -d2A/dt2 + h3^2 u - h4^2 r     (their derivatives)
     w3 = h3 w,  a3 = h3 a + d3 w^2  (coupler);  w4 = h4 w,  a4 = h4 a + d4 w^2  (handle)
 
-(the formulas of :func:`pumplink.models.dynamics.terms`).  Newton-Euler, with g = (0, -g_n):
+(the formulas of :func:`pumplink.models.dynamics_terms.terms`).  Newton-Euler, with g = (0, -g_n):
 
     coupler:  R_A + R_B + m_c g = m_c a_Gc,     u x R_B - (u/2) x m_c (a_Gc - g) = I_c a3      (J1)
     handle:   R_O4 - R_B + F ex + (m_h + m_p) g = m_h a_Gh + m_p a_P                            (J2)
@@ -62,7 +62,8 @@ import numpy as np
 
 from pumplink.constants import GRAVITY
 from pumplink.mechanisms.angles import TWO_PI
-from pumplink.mechanisms.fourbar import FourBar, kinematic_state, loop_closure
+from pumplink.mechanisms.fourbar import FourBar, kinematic_state
+from pumplink.mechanisms.fourbar_kernel import loop_closure
 from pumplink.models import Masses
 
 #: The joints in the order of :attr:`JointForces.magnitudes` and :class:`PeakLoads`.
@@ -268,13 +269,14 @@ def dynamics_motion(scene, crank_angle) -> Motion:
     crank_angle : t [rad].
     """
     from pumplink.models import dynamics as dy
+    from pumplink.models import dynamics_terms as dt
 
     th = np.asarray(crank_angle, float)
     force, speed, tm = dy.motion_state(scene, np.atleast_1d(th))
     force, speed = force.reshape(th.shape), speed.reshape(th.shape)
-    tm = dy.Terms(*(None if v is None else np.reshape(v, th.shape) for v in vars(tm).values()))
+    tm = dt.Terms(*(None if v is None else np.reshape(v, th.shape) for v in vars(tm).values()))
     rhs = force * tm.grip_rate - scene.wheel_torque - tm.potential_rate - 0.5 * tm.inertia_rate * speed**2
-    acc = rhs / (scene.inertia + tm.inertia)  # Eq. (7) of pumplink.models.dynamics in time
+    acc = rhs / (scene.inertia + tm.inertia)  # Eq. (7) of pumplink.models.dynamics_terms in time
     return Motion(th, speed, acc, force, scene.masses)
 
 

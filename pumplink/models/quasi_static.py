@@ -11,7 +11,8 @@ import numpy as np
 
 from pumplink.mechanisms.angles import TWO_PI, angular_distance, offset_table, shifted_directions
 from pumplink.mechanisms.bracket import find_minimum
-from pumplink.mechanisms.fourbar import FourBar, force_kernel, kernel_work, per_design
+from pumplink.mechanisms.fourbar import FourBar, per_design
+from pumplink.mechanisms.fourbar_kernel import force_kernel, kernel_work
 
 #: Points per dead-band window on which the exact peak search starts (independent of the
 #: user's --samples); the best interior point is then refined by a bracketing minimiser.

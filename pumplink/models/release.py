@@ -20,7 +20,7 @@ eta = M_col / Mw leaves) oppose the motion.  After the release
    run back the head, s = head, i.e. head / rw radians of crank.
 
 Equation of motion, in the crank angle t, with the links' reduced inertia I_l(t) and potential
-V_l(t) of full dynamics (:func:`pumplink.models.dynamics.terms`, docs/models.md §3a), the wheel's
+V_l(t) of full dynamics (:func:`pumplink.models.dynamics_terms.terms`, docs/models.md §3a), the wheel's
 inertia J (wheel, rope and water) of which ``column_inertia`` = rho head A rw^2 is the water:
 
     (J - Jc (s / head) + I_l) t'' + I_l' t'^2 / 2 + V_l' = -M_col (1 - s / head) - M_loss sign(t')
@@ -192,14 +192,14 @@ def release(
     """
     from scipy.integrate import solve_ivp
 
-    from pumplink.models import dynamics as dy
+    from pumplink.models import dynamics_terms as dt
 
     rw, jc, mcol, mloss = float(wheel_radius), float(column_inertia), float(column_torque), float(loss_torque)
     empty_angle = head / rw  # crank angle the rope must run back to empty the column
 
     # the links' terms one crank angle at a time on floats (the right-hand side is called ~8,000
-    # times a release; dynamics.terms on one angle costs several times more in numpy's per-call work)
-    terms_at = dy.point_terms(lk, masses, gravity)
+    # times a release; dynamics_terms.terms on one angle costs several times more in numpy's per-call work)
+    terms_at = dt.point_terms(lk, masses, gravity)
 
     def share(th, top):
         """Fraction of the column left, 1 - s / head, s = rw (top - th) clipped to [0, head]."""

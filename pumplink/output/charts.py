@@ -356,12 +356,6 @@ def plot_sampling(study: list[dict], path: Path, title: str = "", dead_band_deg:
     )
     a1.axhline(study[0]["exact_peak"], color="tab:blue", ls="--", label="exact peak outside band")
     a1.axhline(study[0]["exact_mean"], color="tab:green", ls=":", label="mean force (lower bound)")
-    a1.set_xscale("log")
-    a1.set_yscale("log")
-    a1.set_xlabel("samples per revolution N")
-    a1.set_ylabel("force [N]")
-    a1.legend(fontsize=8)
-    a1.set_title("peak force a sweep reports", fontsize=10)
     a2.plot(n, [s["peak_error"] for s in study], "s-", color="tab:blue", label="sampled peak (outside band)")
     a2.plot(
         n,
@@ -370,13 +364,16 @@ def plot_sampling(study: list[dict], path: Path, title: str = "", dead_band_deg:
         color="tab:green",
         label="sampled mean force",
     )
-    a2.set_xscale("log")
-    a2.set_yscale("log")
-    a2.set_xlabel("samples per revolution N")
-    a2.set_ylabel("relative error vs exact")
-    a2.legend(fontsize=8)
-    a2.set_title("error of sampled values", fontsize=10)
-    for a in (a1, a2):
+    for a, quantity, what in (
+        (a1, "force [N]", "peak force a sweep reports"),
+        (a2, "relative error vs exact", "error of sampled values"),
+    ):
+        a.set_xscale("log")
+        a.set_yscale("log")
+        a.set_xlabel("samples per revolution N")
+        a.set_ylabel(quantity)
+        a.legend(fontsize=8)
+        a.set_title(what, fontsize=10)
         a.grid(True, which="major", alpha=0.3)
     if title:
         fig.suptitle(title, fontsize=10)

@@ -286,6 +286,22 @@ def console(file=None):
     return Console(file=file, highlight=False, width=w, soft_wrap=False)
 
 
+def report_table(title: str, caption: str | None = None):
+    """A Rich table in the reports' style: the title (and the caption) on the left, a rule under
+    the header, no padding at the edges."""
+    from rich import box
+    from rich.table import Table
+
+    return Table(
+        title=title,
+        title_justify="left",
+        caption=caption,
+        caption_justify="left",
+        box=box.SIMPLE_HEAD,
+        pad_edge=False,
+    )
+
+
 def duration(seconds: float) -> str:
     """A time for people: '40 s', '12 min', '3 h 20 min', '5.2 days'."""
     if seconds < 60:

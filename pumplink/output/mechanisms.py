@@ -13,6 +13,7 @@ import textwrap
 from typing import Any
 
 from pumplink.output.formats import console, num, render
+from pumplink.output.words import check_row as verdict_check_row
 
 #: Words for the mechanism verdict's checks (``pumplink.studies.textbook.judge``).
 CHECK_NAMES = {
@@ -35,16 +36,7 @@ def _unit(kind: str) -> str:
 def check_row(c) -> dict[str, Any]:
     """One check of a mechanism verdict (:class:`pumplink.verdict.Check`) in the pump verdict's
     JSON shape ({key, name, value, unit, relation, warn_limit, fail_limit, result})."""
-    return {
-        "key": c.key,
-        "name": CHECK_NAMES[c.key],
-        "value": num(c.value),
-        "unit": c.unit,
-        "relation": c.relation,
-        "warn_limit": None if c.warn_limit is None else num(c.warn_limit),
-        "fail_limit": None if c.fail_limit is None else num(c.fail_limit),
-        "result": c.result,
-    }
+    return verdict_check_row(c, name=CHECK_NAMES[c.key])
 
 
 def verdict_fields(verdict, agrees: bool) -> dict[str, Any]:

@@ -18,7 +18,7 @@ from pumplink.constants import (
     ROCKER_PERPENDICULAR,
     UNIFORM,
 )
-from pumplink.output.formats import console, render
+from pumplink.output.formats import console, render, report_table
 
 if TYPE_CHECKING:
     pass
@@ -91,9 +91,7 @@ def render_methods(
         ]
 
     def table() -> None:
-        from rich import box
         from rich.markup import escape
-        from rich.table import Table
 
         c = console(out)
         kinds = list(rows[0]["samplings"]) if rows else []
@@ -103,14 +101,10 @@ def render_methods(
             "dead_centre": "at DC",
             "danger_points": "danger",
         }
-        t = Table(
-            title=f"{name}: force methods vs the 50-digit reference",
-            title_justify="left",
-            caption="largest relative error of Fh on each sample set: uniform sweep; near DC (1° down to "
+        t = report_table(
+            f"{name}: force methods vs the 50-digit reference",
+            "largest relative error of Fh on each sample set: uniform sweep; near DC (1° down to "
             "1e-6° from a dead centre); at DC; danger points; — = every point flagged",
-            caption_justify="left",
-            box=box.SIMPLE_HEAD,
-            pad_edge=False,
         )
         for h in ["method", "time/pos. [ns]"] + [short.get(k, k) for k in kinds] + ["verdict"]:
             t.add_column(escape(h), justify="left" if h in ("method", "verdict") else "right")
@@ -136,14 +130,10 @@ def render_methods(
         for r in rows:
             c.print(f"  {r['name']}: {r['summary']}; cannot handle: {r['cannot_handle']}", markup=False)
 
-        st = Table(
-            title=f"How many samples? A uniform sweep from crank 0° vs exact (dead band ±{dead_band_deg:g}°)",
-            title_justify="left",
-            caption="max |Fh|: the sweep's largest force with no band; peak: outside the band; "
+        st = report_table(
+            f"How many samples? A uniform sweep from crank 0° vs exact (dead band ±{dead_band_deg:g}°)",
+            "max |Fh|: the sweep's largest force with no band; peak: outside the band; "
             "err: relative error of the sampled value",
-            caption_justify="left",
-            box=box.SIMPLE_HEAD,
-            pad_edge=False,
         )
         for h in (
             "N",

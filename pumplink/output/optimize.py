@@ -8,7 +8,7 @@ from __future__ import annotations
 import sys
 from typing import TYPE_CHECKING, Any
 
-from pumplink.output.formats import console, num, render
+from pumplink.output.formats import console, num, render, report_table
 from pumplink.output.formats import fmt as _f
 from pumplink.output.precision import at_optimum, difference, optimum_text, slack
 from pumplink.output.tolerance import robust_line, robust_row
@@ -138,9 +138,7 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
         return [flat]
 
     def table() -> None:
-        from rich import box
         from rich.markup import escape
-        from rich.table import Table
 
         c = console(out)
         fly = row["speed_fluctuation"] is not None  # an energy model decides (flywheel or full dynamics)
@@ -162,7 +160,7 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
             f"{row['grip_height_range_m'][0]:g}–{row['grip_height_range_m'][1]:g} m, "
             f"stroke {row['stroke_range_m'][0]:g}–{row['stroke_range_m'][1]:g} m"
         )
-        t = Table(title="Variables", title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
+        t = report_table("Variables")
         for h in ("key", "bounds", "spec", "optimum"):
             t.add_column(h, justify="left" if h == "key" else "right")
         tol = row["tolerance"]
@@ -175,14 +173,10 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
             )
         c.print(t)
         o, s = row["optimum"], row["spec_design"]
-        t = Table(
-            title="Forces and verdicts (as pumplink force)",
-            title_justify="left",
-            box=box.SIMPLE_HEAD,
-            pad_edge=False,
-            caption="peak: the verdict's peak"
+        t = report_table(
+            "Forces and verdicts (as pumplink force)",
+            "peak: the verdict's peak"
             + (f" ({s['model']} / {o['model']})" if fly else " outside the dead bands"),
-            caption_justify="left",
         )
         for h in ("design", "peak [N]", "mean [N]", "γ [°]", "verdict"):
             t.add_column(escape(h), justify="left" if h in ("design", "verdict") else "right")
@@ -217,12 +211,7 @@ def render_optimize(row: dict[str, Any], fmt: str, out=None, strict: bool = Fals
                 f"the spec's own design is outside the search's limits: {'; '.join(s['violated'])}",
                 markup=False,
             )
-        t = Table(
-            title="Constraints at the optimum (slack >= 0 is met)",
-            title_justify="left",
-            box=box.SIMPLE_HEAD,
-            pad_edge=False,
-        )
+        t = report_table("Constraints at the optimum (slack >= 0 is met)")
         for h in ("constraint", "slack", "binding"):
             t.add_column(h, justify="right" if h == "slack" else "left")
         for k in row["constraints"]:

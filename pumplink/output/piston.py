@@ -17,8 +17,8 @@ from pumplink.constants import EXTREMUM_ARGUMENT
 from pumplink.output.formats import console, deg, num, render
 from pumplink.output.formats import fmt as _f
 from pumplink.output.precision import known_to
+from pumplink.output.words import WATER_KEYS, water_lines, water_row
 from pumplink.output.words import check_row as verdict_check_row
-from pumplink.output.words import water_lines, water_row
 
 #: Rows of the condensed sweep in the table (every k-th sample).
 TABLE_ROWS = 24
@@ -33,7 +33,7 @@ _CHECK_LABELS = {
 def _checks(r) -> list[dict[str, Any]]:
     """The verdict's checks in the rope pump's JSON shape (``pumplink.output.words.check_row``)."""
     checks = r.verdict.checks if r.verdict is not None else ()
-    return [{**verdict_check_row(c), "name": _CHECK_LABELS.get(c.key, c.key)} for c in checks]
+    return [verdict_check_row(c, name=_CHECK_LABELS.get(c.key, c.key)) for c in checks]
 
 
 def summary_row(r) -> dict[str, Any]:
@@ -266,13 +266,7 @@ BATCH_COLUMNS = (
     "largest_pressure_angle_deg",
     "speed_deg_s",
     "power_W",
-    "flow_l_min",
-    "flow_m3_h",
-    "water_power_W",
-    "pump_efficiency",
-    "power_limited_flow_l_min",
-    "flow_share",
-    "people_served",
+    *WATER_KEYS,
     "mean_force_N",
     "quasi_static_peak_N",
     "quasi_static_peak_angle_deg",
@@ -302,9 +296,7 @@ def batch_rows(names: list[str], c) -> list[dict[str, Any]]:
         checks = (
             []
             if verdict is None
-            else [
-                {**verdict_check_row(ch), "name": _CHECK_LABELS.get(ch.key, ch.key)} for ch in verdict.checks
-            ]
+            else [verdict_check_row(ch, name=_CHECK_LABELS.get(ch.key, ch.key)) for ch in verdict.checks]
         )
         rows.append(
             {

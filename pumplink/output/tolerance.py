@@ -1,7 +1,7 @@
 """`pumplink tolerance`: the spread of a design's builds, the share that pass, the holes that matter
 and how exactly to drill them (docs/tolerance.md).
 
-Renderers only render: every number comes from :func:`pumplink.studies.tolerance.study`.
+Renderers only render: every number comes from :func:`pumplink.studies.tolerance_study.study`.
 """
 
 from __future__ import annotations
@@ -14,7 +14,8 @@ from pumplink.output.formats import console, num, render
 from pumplink.output.words import CHECK_LABELS, L_PER_MIN
 
 if TYPE_CHECKING:
-    from pumplink.studies.tolerance import Allocation, Result, Robust, RobustCheck
+    from pumplink.studies.tolerance import Allocation
+    from pumplink.studies.tolerance_study import Result, Robust, RobustCheck
 
 #: The reported quantities: key, JSON key, words, unit as printed, factor from SI, digits.
 QUANTITY_VIEW = (

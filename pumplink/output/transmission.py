@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from pumplink.output.formats import console, deg, num, render
+from pumplink.output.formats import console, deg, num, render, report_table
 from pumplink.output.formats import fmt as _f
 
 if TYPE_CHECKING:
@@ -33,7 +33,8 @@ def transmission_rows(opt, sim, comparisons=(), printed_gamma_min=None, check=No
     sim : :class:`pumplink.mechanisms.crank_rocker.MeasuredMotion` of the optimum.
     comparisons : :class:`pumplink.mechanisms.crank_rocker.Comparison` of published designs.
     printed_gamma_min : the transmission angle the paper prints for its diagram design [deg].
-    check : :class:`pumplink.studies.textbook.OptimumCheck` (simulation agreement and verdict), or None.
+    check : :class:`pumplink.studies.textbook_rocker.OptimumCheck` (simulation agreement and
+        verdict), or None.
     """
     from pumplink.output.mechanisms import verdict_fields
 
@@ -97,7 +98,6 @@ def render_transmission(row: dict[str, Any], fmt: str, out=None) -> None:
 
     def table() -> None:
         from rich.markup import escape
-        from rich.table import Table
 
         from pumplink.output.mechanisms import print_wrapped, render_verdict
 
@@ -106,16 +106,10 @@ def render_transmission(row: dict[str, Any], fmt: str, out=None) -> None:
             f"[bold]Optimal-transmission crank-rocker[/] for K = {row['time_ratio']:g} "
             f"(θ = {row['theta_deg']:.6f}°), swing φ = {row['swing_deg']:g}°, rocker = {row['rocker']:g}"
         )
-        from rich import box
-
-        t = Table(
-            title="Link lengths (in the rocker's unit) and transmission angle",
-            title_justify="left",
-            box=box.SIMPLE_HEAD,
-            pad_edge=False,
-            caption="(1) optimum (this tool)"
+        t = report_table(
+            "Link lengths (in the rocker's unit) and transmission angle",
+            "(1) optimum (this tool)"
             + "".join(f"; ({n}) {escape(cmp['design'])}" for n, cmp in enumerate(row["compare"], 2)),
-            caption_justify="left",
         )
         sim = row["simulated"]
         cols = [

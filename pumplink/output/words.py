@@ -17,11 +17,12 @@ if TYPE_CHECKING:
     from pumplink.studies.force import ForceResult
 
 
-def check_row(c, r: ForceResult | None = None) -> dict[str, Any]:
-    """One verdict check as a JSON row (``result``: pass, warn or fail)."""
+def check_row(c, r: ForceResult | None = None, name: str | None = None) -> dict[str, Any]:
+    """One verdict check as a JSON row (``result``: pass, warn or fail); ``name``: its words
+    (default :func:`check_label`'s, in ``r``'s context)."""
     return {
         "key": c.key,
-        "name": check_label(c, r),
+        "name": check_label(c, r) if name is None else name,
         "value": num(c.value),
         "unit": c.unit,
         "relation": c.relation,
@@ -258,23 +259,24 @@ OUTCOME_MARKUP = {
 L_PER_MIN, M3_PER_H = 60_000.0, 3_600.0
 
 
+#: The keys of the water a design delivers, in its JSON (:func:`water_row`) and a batch's rows.
+WATER_KEYS = (
+    "flow_l_min",
+    "flow_m3_h",
+    "water_power_W",
+    "pump_efficiency",
+    "power_limited_flow_l_min",
+    "flow_share",
+    "people_served",
+)
+
+
 def water_row(w) -> dict[str, Any]:
     """The JSON of the water a design delivers (:class:`pumplink.evaluate.Water`, one design):
     ``null`` throughout where the spec gives a rope force instead of a head and a pipe."""
     given = w is not None and math.isfinite(w.flow)
     if not given:
-        return {
-            k: None
-            for k in (
-                "flow_l_min",
-                "flow_m3_h",
-                "water_power_W",
-                "pump_efficiency",
-                "power_limited_flow_l_min",
-                "flow_share",
-                "people_served",
-            )
-        }
+        return dict.fromkeys(WATER_KEYS)
     return {
         "flow_l_min": num(w.flow * L_PER_MIN),
         "flow_m3_h": num(w.flow * M3_PER_H),

@@ -11,7 +11,7 @@ import sys
 from typing import TYPE_CHECKING, Any
 
 from pumplink.constants import MODEL_WORDS, RELEASE_SETTLED
-from pumplink.output.formats import console, deg, num
+from pumplink.output.formats import console, deg, num, report_table
 from pumplink.output.precision import known_to
 
 if TYPE_CHECKING:
@@ -172,11 +172,9 @@ def render_workshop(w: Workshop | None, out=None) -> None:
     """The workshop's view as a table and sentences (after ``--explain``'s report)."""
     if w is None:
         return
-    from rich import box
-    from rich.table import Table
 
     c = console(out or sys.stdout)
-    t = Table(title=loads_title(w), title_justify="left", box=box.SIMPLE_HEAD, pad_edge=False)
+    t = report_table(loads_title(w))
     for h in ("where", "peak", "at crank"):
         t.add_column(h, justify="left" if h == "where" else "right")
     for row in load_rows(w):

@@ -32,7 +32,7 @@ import numpy as np
 from pumplink.errors import SpecError
 from pumplink.evaluate import JUDGED, WARN, Evaluation, evaluate, excess, pump_designs, rope_pump_flow
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
-from pumplink.studies.tolerance import Robust, RobustCheck, robust_check, shortfall
+from pumplink.studies.tolerance_study import Robust, RobustCheck, robust_check, shortfall
 
 #: Nominal pipe bores searched by default [m]: ½", ¾", 1", 1¼" and 1½" (12.7-38.1 mm), the sizes
 #: rope-pump rising mains are made of.  They are the nominal inch sizes, not measured bores: give

@@ -36,7 +36,8 @@ from pumplink.constants import (
     ROCKER_PERPENDICULAR,
     UNIFORM,
 )
-from pumplink.mechanisms.fourbar import SINGULAR_SIN, FourBar, kinematic_state
+from pumplink.mechanisms.fourbar import FourBar, kinematic_state
+from pumplink.mechanisms.fourbar_kernel import SINGULAR_SIN
 
 #: The kinds of position where a textbook formula breaks down (identifiers in
 #: :mod:`pumplink.constants`; their words are the output layer's).
@@ -386,6 +387,18 @@ class Method:
     cannot: str
 
 
+#: The tolerance the paper's method and the numeric one promise: 1e-6 of the force away from the
+#: dead centres, 1e-2 at and next to them.
+_APPROXIMATE = {
+    UNIFORM: 1e-6,
+    NEAR_DEAD_CENTRE: 1e-2,
+    DEAD_CENTRE: 1e-2,
+    CRANK_PERPENDICULAR: 1e-6,
+    ROCKER_PERPENDICULAR: 1e-6,
+    CRANK_PARALLEL_ROCKER: 1e-6,
+    CRANK_ALONG_FRAME: 1e-6,
+}
+
 #: Relative force error a method promises where it returns an unflagged value, by point kind.
 #: vector: 1e-12 at >= 1 deg from a dead centre, 1e-6 at 1e-6 deg.
 METHODS: dict[str, Method] = {
@@ -428,15 +441,7 @@ METHODS: dict[str, Method] = {
             CRANK_PARALLEL_ROCKER: "flags",
             CRANK_ALONG_FRAME: "flags",
         },
-        {
-            UNIFORM: 1e-6,
-            NEAR_DEAD_CENTRE: 1e-2,
-            DEAD_CENTRE: 1e-2,
-            CRANK_PERPENDICULAR: 1e-6,
-            ROCKER_PERPENDICULAR: 1e-6,
-            CRANK_PARALLEL_ROCKER: 1e-6,
-            CRANK_ALONG_FRAME: 1e-6,
-        },
+        _APPROXIMATE,
         "xA = 0, xB = l1, tA = tB (division by zero) and yA ~ 0 (the quadratic's discriminant rounds "
         "below zero: flagged though the linkage assembles; half the digits lost nearby)",
     ),
@@ -454,15 +459,7 @@ METHODS: dict[str, Method] = {
             CRANK_PARALLEL_ROCKER: "accurate",
             CRANK_ALONG_FRAME: "accurate",
         },
-        {
-            UNIFORM: 1e-6,
-            NEAR_DEAD_CENTRE: 1e-2,
-            DEAD_CENTRE: 1e-2,
-            CRANK_PERPENDICULAR: 1e-6,
-            ROCKER_PERPENDICULAR: 1e-6,
-            CRANK_PARALLEL_ROCKER: 1e-6,
-            CRANK_ALONG_FRAME: 1e-6,
-        },
+        _APPROXIMATE,
         "within a few difference steps of a dead centre (flagged); cannot say 'dead centre'",
     ),
     "reference": Method(

@@ -3,10 +3,13 @@ and a verdict.
 
 One function per problem form of the commands ``pumplink slider``, ``slotted`` and ``rocker``
 (synthesis from the textbook's data, or analysis of a given mechanism), and
-:func:`optimum_check` for ``pumplink transmission``.  Each runs the kernel's closed forms, then
-runs the mechanism through a full crank turn (:mod:`pumplink.mechanisms.simulation`,
-:func:`pumplink.mechanisms.crank_rocker.measure_motion`, :func:`fourbar_extremes`) and reports
-the requested, the closed-form and the measured value of every indicator.
+:func:`~pumplink.studies.textbook_rocker.optimum_check` for ``pumplink transmission``.  Each runs
+the kernel's closed forms, then runs the mechanism through a full crank turn
+(:mod:`pumplink.mechanisms.simulation`, :func:`pumplink.mechanisms.crank_rocker.measure_motion`,
+:func:`~pumplink.studies.textbook_rocker.fourbar_extremes`) and reports the requested, the
+closed-form and the measured value of every indicator.  Here: the reports, the verdict, the
+crank-slider and the slotted lever; the crank-rocker and the transmission check are
+:mod:`pumplink.studies.textbook_rocker`.
 
 The verdict uses the pump verdict's check machinery (:mod:`pumplink.verdict`: the same
 :class:`~pumplink.verdict.Check`, levels and PASS / PASS with warnings / FAIL):
@@ -44,12 +47,10 @@ from pumplink.constants import (
     PERMISSIBLE_PRESSURE_SLIDING_DEG,
 )
 from pumplink.errors import InfeasibleDesign, SpecError
-from pumplink.mechanisms import crank_rocker as cr
+from pumplink.evaluate import Verdict, check
 from pumplink.mechanisms import crank_slider as cs
 from pumplink.mechanisms import simulation
 from pumplink.mechanisms import slotted_lever as sl
-from pumplink.mechanisms.fourbar import FourBar
-from pumplink.verdict import Verdict, check
 
 #: Relative (absolute for angles, in rad) agreement demanded between asked and simulated values.
 SIMULATION_TOL = 1e-9
@@ -67,7 +68,7 @@ LENGTH, RATIO, ANGLE = "length", "ratio", "angle"
 TAU = 2.0 * math.pi
 
 
-def _turn(x: float) -> float:
+def wrap_angle(x: float) -> float:
     """A crank angle in [0, 2 pi) (NaN stays NaN)."""
     return float(np.mod(x, TAU))
 
@@ -182,7 +183,8 @@ def judge(
     return Verdict(tuple(checks), max(int(c.level) for c in checks))
 
 
-def _finite(**values):
+def require_finite(**values):
+    """SpecError naming the option (``--name``) of a value given that is not a finite number."""
     for name, v in values.items():
         if v is None:
             continue
@@ -190,14 +192,16 @@ def _finite(**values):
             raise SpecError(f"--{name.replace('_', '-')} {v!r} is not a finite number")
 
 
-def _positive(**values):
-    _finite(**values)
+def require_positive(**values):
+    """SpecError naming the option of a value given that is not a positive finite number."""
+    require_finite(**values)
     for name, v in values.items():
         if v is not None and not v > 0:
             raise SpecError(f"--{name.replace('_', '-')} {v:g} must be positive")
 
 
-def _time_ratio_at_least_one(k):
+def require_time_ratio(k):
+    """SpecError for a time ratio K below 1 (the slow stroke's time over the fast one's)."""
     if k < 1:
         raise SpecError(
             f"--time-ratio {k:g} is below 1; K is the slow stroke's time over the fast one's, so K >= 1"
@@ -238,9 +242,16 @@ def _slider_report(r, rod, e, *, mechanism_task, given, asked_stroke, asked_k, r
             m.largest_pressure_angle,
         ),
         Indicator(
-            "dead_centre_extended", "dead centre, extended", ANGLE, None, _turn(extended), _turn(t_far)
+            "dead_centre_extended",
+            "dead centre, extended",
+            ANGLE,
+            None,
+            wrap_angle(extended),
+            wrap_angle(t_far),
         ),
-        Indicator("dead_centre_folded", "dead centre, folded", ANGLE, None, _turn(folded), _turn(t_near)),
+        Indicator(
+            "dead_centre_folded", "dead centre, folded", ANGLE, None, wrap_angle(folded), wrap_angle(t_near)
+        ),
     )
     out = math.degrees(float(np.mod(folded - extended, TAU)))  # CCW, extended -> folded
     if abs(out - 180.0) <= 1e-9:
@@ -282,8 +293,8 @@ def slider(stroke: float, rod_ratio: float, time_ratio: float | None = None, off
     SpecError : non-finite input, H <= 0, K < 1, or an offset with Task 2.
     InfeasibleDesign : outside the realisability condition.
     """
-    _positive(stroke=stroke, rod_ratio=rod_ratio)
-    _finite(time_ratio=time_ratio, offset_ratio=offset_ratio)
+    require_positive(stroke=stroke, rod_ratio=rod_ratio)
+    require_finite(time_ratio=time_ratio, offset_ratio=offset_ratio)
     if time_ratio is None:
         d = cs.synthesize_from_stroke(stroke, rod_ratio, offset_ratio)
         task = "Task 1: from the stroke H and the rod ratio L = l/r"
@@ -296,7 +307,7 @@ def slider(stroke: float, rod_ratio: float, time_ratio: float | None = None, off
     else:
         if offset_ratio != 0.0:
             raise SpecError("--offset-ratio is for Task 1 only; Task 2 (--time-ratio) computes the offset")
-        _time_ratio_at_least_one(time_ratio)
+        require_time_ratio(time_ratio)
         d = cs.synthesize_from_time_ratio(stroke, time_ratio, rod_ratio)
         task = "Task 2: from the stroke H, the time ratio K and the rod ratio L = l/r"
         if int(d.reason) != cs.OK:
@@ -341,8 +352,8 @@ def slider_analysis(crank: float, rod: float, offset: float = 0.0):
     SpecError : non-finite input, r <= 0 or l <= 0.
     InfeasibleDesign : the crank cannot turn fully.
     """
-    _positive(crank=crank, rod=rod)
-    _finite(offset=offset)
+    require_positive(crank=crank, rod=rod)
+    require_finite(offset=offset)
     if not bool(cs.turns_fully(crank, rod, offset)):
         raise InfeasibleDesign(
             f"a crank-slider with crank {crank:g}, rod {rod:g} and offset {offset:g} cannot turn fully: "
@@ -404,13 +415,13 @@ def slotted(
         under-determines the mechanism.
     InfeasibleDesign : outside the realisability conditions.
     """
-    _positive(stroke=stroke, frame=frame_length, crank=crank, lever=lever)
-    _finite(time_ratio=time_ratio)
+    require_positive(stroke=stroke, frame=frame_length, crank=crank, lever=lever)
+    require_finite(time_ratio=time_ratio)
     if stroke is not None and lever is not None:
         raise SpecError("--stroke and --lever each fix the lever; give one of them")
     if time_ratio is None:
         return _slotted_analysis(crank, frame_length, lever, stroke)
-    _time_ratio_at_least_one(time_ratio)
+    require_time_ratio(time_ratio)
     if crank is not None and frame_length is not None:
         raise SpecError(
             "--time-ratio, --crank and --frame over-determine the slotted lever (K follows from "
@@ -531,8 +542,10 @@ def _slotted_report(r, d, lever, task, given, *, asked_k, asked_stroke, asked_ps
         ),
         Indicator("slow_arc", "crank arc, slow stroke", ANGLE, None, math.pi + psi, max(arc, TAU - arc)),
         Indicator("fast_arc", "crank arc, fast stroke", ANGLE, None, math.pi - psi, min(arc, TAU - arc)),
-        Indicator("dead_centre_right", "dead centre, right", ANGLE, None, _turn(right), _turn(t_right)),
-        Indicator("dead_centre_left", "dead centre, left", ANGLE, None, _turn(left), _turn(t_left)),
+        Indicator(
+            "dead_centre_right", "dead centre, right", ANGLE, None, wrap_angle(right), wrap_angle(t_right)
+        ),
+        Indicator("dead_centre_left", "dead centre, left", ANGLE, None, wrap_angle(left), wrap_angle(t_left)),
     ]
     lengths = [("crank", "crank r", r), ("frame", "frame d", d)]
     if lever is not None:
@@ -557,240 +570,3 @@ def _slotted_report(r, d, lever, task, given, *, asked_k, asked_stroke, asked_ps
         ratios=tuple(ratios),
         notes=tuple(notes),
     )
-
-
-# ----------------------------------------------------------------------------- crank-rocker
-@dataclass(frozen=True)
-class FourBarExtremes:
-    """Extremes of a crank-rocker measured over one crank turn (angles in radians).
-
-    Attributes
-    ----------
-    gamma_min, gamma_max : smallest and largest transmission angle.
-    extended, folded : crank angles where the rocker stops with crank and coupler stretched out
-        resp. folded (the dead centres), CCW from +x in [0, 2 pi).
-    """
-
-    gamma_min: float
-    gamma_max: float
-    extended: float
-    folded: float
-
-
-def fourbar_extremes(lk: FourBar, samples: int = 4096) -> FourBarExtremes:
-    """Run a crank-rocker through a full crank turn: its transmission-angle extremes and dead centres.
-
-    Only the position kinematics (:func:`pumplink.mechanisms.fourbar.kinematic_state`) are used:
-    the transmission angle's extremes are refined from a sweep with a bracketing minimiser, the
-    dead centres are the roots of the rocker rate (bracketing root finder, ~1e-15 rad), told
-    apart by the distance of the coupler point from the crank pivot (coupler + crank when
-    stretched out).
-    """
-    from scipy.optimize.elementwise import find_minimum, find_root
-
-    from pumplink.mechanisms.fourbar import kinematic_state
-
-    nan = float("nan")
-    step = TAU / samples
-    th = (np.arange(samples) + 0.5) * step  # half a step off round angles (symmetric designs)
-    st = kinematic_state(lk, th)
-    if not np.all(np.isfinite(st.coupler_x)):
-        return FourBarExtremes(nan, nan, nan, nan)
-
-    def smallest(f, values):
-        j = int(np.argmin(values))
-        res = find_minimum(f, (th[j] - step, th[j], th[j] + step), tolerances=dict(xatol=1e-14, xrtol=1e-15))
-        return min(float(res.f_x), float(values[j])) if bool(res.success) else float(values[j])
-
-    g = st.transmission_angle
-    gmin = smallest(lambda x: kinematic_state(lk, x).transmission_angle, g)
-    gmax = -smallest(lambda x: -kinematic_state(lk, x).transmission_angle, -g)
-    rate = np.append(st.rocker_rate, st.rocker_rate[0])
-    grid = np.append(th, th[0] + TAU)
-    flips = np.nonzero(np.sign(rate[:-1]) != np.sign(rate[1:]))[0]
-    if flips.size != 2:
-        return FourBarExtremes(gmin, gmax, nan, nan)
-    roots = find_root(
-        lambda x: kinematic_state(lk, x).rocker_rate,
-        (grid[flips], grid[flips + 1]),
-        tolerances=dict(xatol=1e-15, xrtol=1e-16),
-    ).x
-    ends = kinematic_state(lk, roots)
-    far = np.hypot(ends.coupler_x, ends.coupler_y) > float(lk.coupler)
-    if bool(far[0]) == bool(far[1]):
-        return FourBarExtremes(gmin, gmax, nan, nan)
-    extended, folded = (roots[0], roots[1]) if far[0] else (roots[1], roots[0])
-    return FourBarExtremes(gmin, gmax, _turn(extended), _turn(folded))
-
-
-def rocker_dead_centres(c: cr.CrankRocker) -> tuple[float, float]:
-    """Crank angles (CCW from +x, [0, 2 pi)) of a crank-rocker's dead centres, by construction.
-
-    At the extended dead centre the crank points from A to the farther extreme position (|A C| =
-    coupler + crank), at the folded one away from the nearer (|A C| = coupler - crank)
-    (docs/crank-rocker.md §7).
-    """
-    (x1, y1), (x2, y2) = cr.extreme_positions(c.swing, c.rocker)
-    ax, ay = c.crank_pivot_x, c.crank_pivot_y
-    near, far = ((x1, y1), (x2, y2))
-    if math.hypot(x1 - ax, y1 - ay) > math.hypot(x2 - ax, y2 - ay):
-        near, far = far, near
-    extended = math.atan2(far[1] - ay, far[0] - ax)
-    folded = math.atan2(ay - near[1], ax - near[0])
-    return _turn(extended), _turn(folded)
-
-
-def rocker(
-    swing: float,
-    rocker_length: float,
-    time_ratio: float | None = None,
-    frame: float | None = None,
-    pivot: tuple[float, float] | None = None,
-):
-    """Crank-rocker from the rocker's two extreme positions (swing, rocker) and the crank pivot.
-
-    The crank pivot is chosen in one of three ways (docs/crank-rocker.md §7): ``pivot`` (a point:
-    it fixes K), ``frame`` (with K: the design-circle points at that distance from the rocker
-    pivot; the best transmission of up to four), or neither (with K > 1: the optimum of the
-    optimal-transmission paper).
-
-    Realisability: the crank pivot must see C1 and C2 on one side of the frame line (else the
-    linkage swings to the mirror image of C1); for a frame length, the design circle must reach it.
-    """
-    _positive(rocker=rocker_length, frame=frame)
-    _finite(swing=swing, time_ratio=time_ratio)
-    if not 0.0 < swing < math.pi:
-        raise SpecError(f"--swing {math.degrees(swing):g} deg must be between 0 and 180 deg")
-    notes = [
-        "rocker pivot D at the origin, swing bisector +y, extreme positions C1 (-x side) and C2; "
-        "crank angles counter-clockwise from +x (docs/crank-rocker.md §7)"
-    ]
-    given = [("swing", "rocker swing", ANGLE, swing), ("rocker", "rocker length", LENGTH, rocker_length)]
-    if pivot is not None:
-        if time_ratio is not None or frame is not None:
-            raise SpecError(
-                "--pivot fixes the time ratio and the frame; give it without --time-ratio and --frame"
-            )
-        _finite(pivot_x=pivot[0], pivot_y=pivot[1])
-        c = cr.crank_rocker_at_pivot(pivot[0], pivot[1], swing, rocker_length)
-        if not c.admissible:
-            raise InfeasibleDesign(
-                f"the crank pivot ({pivot[0]:g}, {pivot[1]:g}) does not see both extreme positions "
-                "on one side of the frame line, so the crank would swing the rocker to another "
-                "position; move the pivot (e.g. onto the swing bisector's side away from the chord C1C2)"
-            )
-        given += [
-            ("pivot_x", "crank pivot x", LENGTH, pivot[0]),
-            ("pivot_y", "crank pivot y", LENGTH, pivot[1]),
-        ]
-        task = "from the two extreme rocker positions and a given crank pivot"
-        k_asked = None
-    else:
-        if time_ratio is None:
-            raise SpecError("give --time-ratio K (or a crank pivot with --pivot X,Y)")
-        _time_ratio_at_least_one(time_ratio)
-        given.insert(0, ("time_ratio", "time ratio K", RATIO, time_ratio))
-        k_asked = time_ratio
-        if frame is not None:
-            found = cr.crank_rockers_at_frame(time_ratio, swing, rocker_length, frame)
-            if not found:
-                lo, hi = cr.frame_range(time_ratio, swing, rocker_length)
-                raise InfeasibleDesign(
-                    f"no crank pivot on the design circle for K = {time_ratio:g} lies at frame "
-                    f"length {frame:g} with both extreme positions on one side of the frame line; "
-                    "the crank-rockers for these "
-                    f"K and swing have frame lengths from about {lo:.4g} to {hi:.4g}"
-                )
-            c = found[0]
-            given.append(("frame", "frame length", LENGTH, frame))
-            task = "from K, the two extreme rocker positions and the frame length"
-            if len(found) > 1:
-                notes.append(
-                    f"{len(found)} crank pivots on the design circle have this frame length; shown: the one "
-                    "with the best transmission angle"
-                )
-        else:
-            if time_ratio <= 1.0:
-                raise InfeasibleDesign(
-                    "at K = 1 the best transmission angle has no optimum (it approaches "
-                    f"{90.0 - math.degrees(swing) / 2:.6g}° as the frame grows without bound); give "
-                    "--frame, or K > 1"
-                )
-            c = cr.from_optimum(cr.optimal_crank_rocker(time_ratio, swing, rocker_length))
-            task = "from K and the two extreme rocker positions, best minimum transmission angle"
-    lk = cr.linkage(c)
-    m = cr.measure_motion(lk)
-    x = fourbar_extremes(lk)
-    extended, folded = rocker_dead_centres(c)
-    indicators = (
-        Indicator("swing", "rocker swing", ANGLE, swing, swing, m.swing),
-        Indicator("time_ratio", "time ratio K", RATIO, k_asked, c.time_ratio, m.time_ratio),
-        Indicator("min_transmission", "min transmission angle", ANGLE, None, c.transmission, m.transmission),
-        Indicator("gamma_min", "transmission γmin", ANGLE, None, c.gamma_min, x.gamma_min),
-        Indicator("gamma_max", "transmission γmax", ANGLE, None, c.gamma_max, x.gamma_max),
-        Indicator("dead_centre_extended", "dead centre, extended", ANGLE, None, extended, x.extended),
-        Indicator("dead_centre_folded", "dead centre, folded", ANGLE, None, folded, x.folded),
-    )
-    return SynthesisReport(
-        mechanism="crank-rocker",
-        task=task,
-        given=tuple(given),
-        lengths=(
-            ("crank", "crank", c.crank),
-            ("coupler", "coupler", c.coupler),
-            ("rocker", "rocker", c.rocker),
-            ("frame", "frame", c.frame),
-            ("pivot_x", "crank pivot x", c.crank_pivot_x),
-            ("pivot_y", "crank pivot y", c.crank_pivot_y),
-        ),
-        indicators=indicators,
-        verdict=judge(indicators, transmission=m.transmission),
-        pairs="revolute",
-        notes=tuple(notes),
-    )
-
-
-# ----------------------------------------------------------------------------- transmission
-@dataclass(frozen=True)
-class OptimumCheck:
-    """``pumplink transmission``'s check: the optimum against its own simulation, and the verdict.
-
-    Attributes
-    ----------
-    indicators : swing and K (asked, closed form, simulated) and the effective minimum
-        transmission angle (closed form, simulated).
-    verdict : ``transmission_angle`` and ``simulation`` checks (:func:`judge`).
-    """
-
-    indicators: tuple[Indicator, ...]
-    verdict: Verdict
-
-    @property
-    def agrees(self) -> bool:
-        """True when the simulated linkage swings as asked, with the asked K and the optimum's
-        transmission angle."""
-        return all(i.agrees for i in self.indicators)
-
-
-def optimum_check(opt: cr.OptimalCrankRocker, sim: cr.MeasuredMotion, time_ratio: float, swing: float):
-    """Judge an optimal-transmission crank-rocker (scalar) by its simulation ``sim``.
-
-    Parameters
-    ----------
-    opt : :func:`pumplink.mechanisms.crank_rocker.optimal_crank_rocker` for K and swing.
-    sim : :func:`pumplink.mechanisms.crank_rocker.measure_motion` of its linkage.
-    time_ratio : the asked K;  swing : the asked swing [rad].
-    """
-    indicators = (
-        Indicator("swing", "rocker swing", ANGLE, swing, float(opt.swing), sim.swing),
-        Indicator("time_ratio", "time ratio K", RATIO, time_ratio, float(opt.time_ratio), sim.time_ratio),
-        Indicator(
-            "min_transmission",
-            "min transmission angle",
-            ANGLE,
-            None,
-            float(opt.transmission),
-            sim.transmission,
-        ),
-    )
-    return OptimumCheck(indicators, judge(indicators, transmission=sim.transmission))

@@ -1,26 +1,13 @@
 """Build tolerances: how the pumps a workshop builds from a design differ from it, which holes
 matter, and how exactly each must be drilled (docs/tolerance.md).
 
-A pump is built from its template: each link is a bar with holes drilled where they were
-marked, and the stand carries the wheel axle O2 and the rocker pivot O4 where they were welded.
-Every one of these *dimensions* is off by a little.  The holes (:data:`HOLES`) and their
-coordinates (:data:`DIMENSIONS`):
-
-* on each link, a hole is off **along** the bar (this changes the link's length) and **across**
-  it (which changes it only to second order): crank O2 and A, coupler A and B, rocker O4 and B and
-  the grip P on the handle (the rocker extended);
-* on the stand, the axle O2 and the pivot O4 are off in **x** and **y** (O2's y also moves the
-  axle height, so the grip's height above the ground follows O4 alone).
-
-A build is analysed as the linkage it *is* (:func:`build`): each link's length is the distance
-between its two holes as drilled, the handle the distance from O4 to the grip measured along the
-rocker (O4 -> B), the pivot vector O4 - O2 as welded; nothing is re-synthesised, and the one
-evaluation (:func:`pumplink.evaluate.evaluate` with ``PumpDesigns.linkage``) judges it: the
-deciding model's peak force, the swing it actually makes, its dead centres, the verdict.
+Every hole and pivot of a build (:data:`pumplink.studies.builds.HOLES`) is off by a little in
+each of its two coordinates (:data:`pumplink.studies.builds.DIMENSIONS`); a build is analysed as
+the linkage it *is* (:func:`pumplink.studies.builds.build`) by the one evaluation.
 
 Three results:
 
-* **Monte Carlo** (:func:`run_chunk`, :func:`summarize`): builds drawn with every coordinate
+* **Monte Carlo** (:mod:`pumplink.studies.tolerance_study`): builds drawn with every coordinate
   independently off by a uniform ±t or a normal with 3σ = t; the spread (median, 5th and 95th
   percentile) of each quantity and the share of builds that pass with its Wilson score 95 %
   interval.  The samples are drawn per fixed chunk of :data:`CHUNK_SAMPLES` from
@@ -34,46 +21,37 @@ Three results:
   (:data:`LADDER`) that keeps the first-order share at the target, by the equal-effect rule with
   caps (docs/tolerance.md §4).
 
+Here: the tolerances, the margins of the checks, the problem, the first order and the allocation;
+the Monte Carlo, the result and the robust search's check are :mod:`pumplink.studies.tolerance_study`.
 Pure functions on floats and arrays (SI units, radians); the CLI runs the chunks on the batch
 engine and :mod:`pumplink.output.tolerance` renders the result.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from collections.abc import Callable, Iterable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from pumplink.constants import AXLE_HEIGHT_RANGE_M
 from pumplink.errors import InfeasibleDesign, SpecError
-from pumplink.evaluate import JUDGED, MODEL_LABELS, Evaluation, PumpDesigns, evaluate, pump_designs
+from pumplink.evaluate import JUDGED, PASS, WARN, Evaluation, PumpDesigns, evaluate, pump_designs
 from pumplink.inputs.pump import PumpSpec, spec_values
 from pumplink.mechanisms.fourbar import FourBar
-from pumplink.verdict import FAIL, PASS, WARN
+from pumplink.studies.builds import (
+    DIMENSIONS,
+    HOLE_KEYS,
+    HOLES,
+    PARAMETERS,
+    PARTS,
+    as_built,
+    broadcast_column,
+    build,
+    first_order_map,
+    take,
+)
 
-#: The holes and pivots of a build: key, the part it is on, words.  Link holes are off along and
-#: across their bar, the stand's pivots in x and y (product coordinates, docs/physics.md §1).
-HOLES = (
-    ("crank.O2", "crank", "crank hole on the axle (O2)"),
-    ("crank.A", "crank", "crank pin hole (A)"),
-    ("coupler.A", "coupler", "coupler hole at the crank pin (A)"),
-    ("coupler.B", "coupler", "coupler hole at the rocker (B)"),
-    ("rocker.O4", "rocker", "rocker pivot hole (O4)"),
-    ("rocker.B", "rocker", "rocker hole at the coupler (B)"),
-    ("rocker.grip", "rocker", "grip on the handle (P)"),
-    ("stand.O2", "stand", "wheel axle on the stand (O2)"),
-    ("stand.O4", "stand", "rocker pivot on the stand (O4)"),
-)
-HOLE_KEYS = tuple(h[0] for h in HOLES)
-#: The parts, in the order a tolerance per part is given (``--crank-hole`` ...).
-PARTS = ("crank", "coupler", "rocker", "stand")
-#: The coordinates of each hole: a link hole along and across its bar, a stand pivot in x and y.
-DIMENSIONS = tuple(
-    (key, axis) for key, part, _ in HOLES for axis in (("x", "y") if part == "stand" else ("along", "across"))
-)
 #: Central-difference step of the sensitivities [m]: the peak force's relative rounding (~1e-12)
 #: over it is ~1e-7 of the derivative, its curvature (~1e4 N/m² on the shipped designs) times it
 #: ~1e-4 N/m, both far below the ~1e3 N/m that matter.
@@ -86,23 +64,7 @@ LADDER = (0.0001, 0.0002, 0.0005, 0.001, 0.002, 0.005)
 #: What a hand-marked, hand-drilled hole holds without special care [m] (the issue's "1-2 mm"):
 #: a hole whose allocated tolerance is tighter is *critical* and marked on the template.
 WORKSHOP_TOLERANCE = 0.001
-#: Coverage of the share's confidence interval (Wilson score interval).
-CONFIDENCE = 0.95
 DISTRIBUTIONS = ("uniform", "normal")
-#: The quantities whose spread is reported, with their SI unit.
-QUANTITIES = (
-    ("swing", "rad"),
-    ("stroke", "m"),
-    ("grip_low", "m"),
-    ("grip_high", "m"),
-    ("dead_centre_extended", "rad"),
-    ("dead_centre_folded", "rad"),
-    ("transmission_angle", "rad"),
-    ("grip_speed", "m/s"),
-    ("peak_force", "N"),
-    ("mean_force", "N"),
-    ("flow", "m3/s"),
-)
 
 
 # ----------------------------------------------------------------------------- the tolerances
@@ -174,116 +136,6 @@ def tolerances(
     return Tolerances(tuple(out), distribution)
 
 
-# ----------------------------------------------------------------------------- a build
-#: The linkage parameters a build changes, and the axle height (what :func:`build` returns).
-PARAMETERS = ("pivot_x", "pivot_y", "crank", "coupler", "rocker", "handle", "axle_height")
-
-
-def _index(key: str, axis: str) -> int:
-    return DIMENSIONS.index((key, axis))
-
-
-def build(nominal: FourBar, axle_height, offsets) -> tuple[FourBar, np.ndarray]:
-    """The linkage a build *is*, and its axle height, from the design's and the offsets of its
-    holes (exactly, not linearised).
-
-    Parameters
-    ----------
-    nominal : the design's four-bar (floats, or arrays broadcasting with the builds).
-    axle_height : the design's axle height [m] (NaN: not given).
-    offsets : (builds, 18) offsets [m] of :data:`DIMENSIONS`: link holes along and across the bar
-        from the first hole to the second (the grip along O4 -> B), stand pivots in x and y.
-
-    Returns
-    -------
-    (FourBar, axle_height) over the builds: crank = |A - O2|, coupler = |B - A|, rocker = |B - O4|
-    between the holes as drilled; handle = (P - O4) . (B - O4) / rocker, the grip measured along
-    the rocker; pivot = O4 - O2 as welded; axle height + the axle's y offset.
-    """
-    u = np.asarray(offsets, float)
-
-    def d(key, axis):
-        return u[:, _index(key, axis)]
-
-    def length(first, second, nominal_length):
-        along = nominal_length + d(second, "along") - d(first, "along")
-        across = d(second, "across") - d(first, "across")
-        return along, across, np.hypot(along, across)
-
-    _, _, crank = length("crank.O2", "crank.A", nominal.crank)
-    _, _, coupler = length("coupler.A", "coupler.B", nominal.coupler)
-    along, across, rocker = length("rocker.O4", "rocker.B", nominal.rocker)
-    grip_along = nominal.handle + d("rocker.grip", "along") - d("rocker.O4", "along")
-    grip_across = d("rocker.grip", "across") - d("rocker.O4", "across")
-    handle = (grip_along * along + grip_across * across) / rocker
-    px = nominal.pivot_x + d("stand.O4", "x") - d("stand.O2", "x")
-    py = nominal.pivot_y + d("stand.O4", "y") - d("stand.O2", "y")
-    branch = np.broadcast_to(np.asarray(nominal.branch, float), crank.shape)
-    axle = np.asarray(axle_height, float) + d("stand.O2", "y")
-    return FourBar(px, py, crank, coupler, rocker, handle, branch), axle
-
-
-def first_order_map() -> np.ndarray:
-    """(7, 18): how each of :data:`PARAMETERS` moves with each of :data:`DIMENSIONS` to first order
-    (∂parameter/∂offset of :func:`build` at zero offsets: ±1 along a bar or on the stand, 0 across)."""
-    m = np.zeros((len(PARAMETERS), len(DIMENSIONS)))
-    rows = {
-        "pivot_x": (("stand.O4", "x", 1), ("stand.O2", "x", -1)),
-        "pivot_y": (("stand.O4", "y", 1), ("stand.O2", "y", -1)),
-        "crank": (("crank.A", "along", 1), ("crank.O2", "along", -1)),
-        "coupler": (("coupler.B", "along", 1), ("coupler.A", "along", -1)),
-        "rocker": (("rocker.B", "along", 1), ("rocker.O4", "along", -1)),
-        "handle": (("rocker.grip", "along", 1), ("rocker.O4", "along", -1)),
-        "axle_height": (("stand.O2", "y", 1),),
-    }
-    for name, entries in rows.items():
-        for key, axis, sign in entries:
-            m[PARAMETERS.index(name), _index(key, axis)] = sign
-    return m
-
-
-def _broadcast(value, n: int):
-    return np.broadcast_to(np.asarray(value, float), (n,))
-
-
-def take(designs: PumpDesigns, idx) -> PumpDesigns:
-    """The designs ``idx`` (an index array) of columns over designs: every column broadcast to
-    the designs and indexed, the built linkage too."""
-    idx = np.asarray(idx)
-    n = max(
-        [np.size(getattr(designs, f.name)) for f in dataclasses.fields(designs) if f.name != "linkage"]
-        + ([np.size(designs.linkage.crank)] if designs.linkage is not None else [])
-    )
-    out = {}
-    for f in dataclasses.fields(designs):
-        v = getattr(designs, f.name)
-        if f.name == "arms_in_verdict" or v is None:
-            out[f.name] = v
-        elif f.name == "linkage":
-            out[f.name] = FourBar(*(_broadcast(p, n)[idx] for p in v.parameters))
-        elif dataclasses.is_dataclass(v):  # the spec's [parts]: each size a column too
-            out[f.name] = type(v)(
-                **{g.name: _broadcast(getattr(v, g.name), n)[idx] for g in dataclasses.fields(v)}
-            )
-        else:
-            out[f.name] = _broadcast(v, n)[idx]
-    return PumpDesigns(**out)
-
-
-def as_built(designs: PumpDesigns, linkage: FourBar, axle_height) -> PumpDesigns:
-    """The evaluation's columns for builds: ``designs`` (one design, or as many as the builds) with
-    the built ``linkage`` and axle height (NaN: the design gives none)."""
-    n = np.size(linkage.crank)
-    axle = None if designs.axle_height is None else _broadcast(axle_height, n)
-    return dataclasses.replace(
-        designs,
-        linkage=linkage,
-        rocker=_broadcast(linkage.rocker, n),  # columns of n builds: the rest broadcast to them
-        handle=_broadcast(linkage.handle, n),
-        axle_height=axle,
-    )
-
-
 # ----------------------------------------------------------------------------- margins
 #: The margins a check gives (key, the check of the verdict, which limit, the side): one per
 #: limit; a height range gives one margin per end.
@@ -301,8 +153,8 @@ def margins(ev: Evaluation, strict: bool = False) -> dict[str, np.ndarray]:
     n = len(ev)
 
     def put(key, value, limit, relation):
-        v = _broadcast(value, n)
-        lim = _broadcast(limit, n)
+        v = broadcast_column(value, n)
+        lim = broadcast_column(limit, n)
         with np.errstate(invalid="ignore"):
             m = lim - v if relation == "<=" else v - lim
         out[key] = np.where(feasible & ~np.isnan(m), m, -np.inf)
@@ -426,74 +278,6 @@ def evaluate_builds(prob: Problem, offs: np.ndarray) -> Evaluation:
     return evaluate(as_built(prob.designs, lk, axle), JUDGED, model=prob.model)
 
 
-def quantities(ev: Evaluation) -> dict[str, np.ndarray]:
-    """The reported quantities of :data:`QUANTITIES` per design (NaN where not defined)."""
-    syn, n = ev.synthesis, len(ev)
-    nan = np.full(n, np.nan)
-    low, high = ev.grip_height if ev.grip_height is not None else (nan, nan)
-    return {
-        "swing": _broadcast(syn.swing, n),
-        "stroke": _broadcast(ev.stroke, n),
-        "grip_low": _broadcast(low, n),
-        "grip_high": _broadcast(high, n),
-        "dead_centre_extended": _broadcast(syn.dead_centre_extended, n),
-        "dead_centre_folded": _broadcast(syn.dead_centre_folded, n),
-        "transmission_angle": _broadcast(ev.transmission_angle, n),
-        "grip_speed": _broadcast(ev.grip_speed, n),
-        "peak_force": _broadcast(ev.peak_force, n),
-        "mean_force": _broadcast(ev.mean_force, n),
-        "flow": _broadcast(ev.water.flow, n),
-    }
-
-
-@dataclass(frozen=True)
-class Chunk:
-    """The builds ``start..stop-1`` (chunk ``index``): each quantity per build, the verdict's
-    level, the deciding model, and how many builds fail and warn on each check."""
-
-    index: int
-    start: int
-    stop: int
-    values: dict[str, np.ndarray]
-    level: np.ndarray
-    model_index: np.ndarray
-    fails: dict[str, int]
-    warns: dict[str, int]
-
-    def __len__(self) -> int:
-        return self.stop - self.start
-
-
-def run_chunk(prob: Problem, task: tuple[int, int, int]) -> Chunk:
-    """One chunk of builds through the one evaluation (a task of the batch engine)."""
-    index, start, stop = task
-    ev = evaluate_builds(prob, offsets(prob, index, start, stop))
-    fails, warns = {}, {}
-    for c in ev.verdict.checks:
-        lv = _broadcast(c.level, len(ev))
-        fails[c.key] = int(np.count_nonzero(lv == FAIL))
-        warns[c.key] = int(np.count_nonzero(lv == WARN))
-    return Chunk(
-        index,
-        start,
-        stop,
-        quantities(ev),
-        _broadcast(ev.verdict.level, len(ev)).astype(np.int8),
-        np.asarray(ev.model_index, np.int8),
-        fails,
-        warns,
-    )
-
-
-def run_chunks(prob: Problem, mapper: Callable | None = None) -> Iterator[Chunk]:
-    """Every chunk of builds, in order: ``mapper(run_chunk, [(prob, task), ...])`` (the batch
-    engine's, on a pool or a cluster), else one after the other in this process."""
-    items = [(prob, t) for t in prob.chunks]
-    if mapper is None:
-        return (run_chunk(p, t) for p, t in items)
-    return mapper(run_chunk, items)
-
-
 # ----------------------------------------------------------------------------- first order
 @dataclass(frozen=True)
 class FirstOrder:
@@ -595,7 +379,7 @@ def first_order_shares(
     differences in the six linkage parameters (and the axle height, exactly), mapped onto the holes
     by :func:`first_order_map`: 6 evaluations a design beside its own (docs/tolerance.md §5)."""
     n = len(ev)
-    level = np.asarray(_broadcast(ev.verdict.level, n))
+    level = np.asarray(broadcast_column(ev.verdict.level, n))
     ok = np.asarray(ev.feasible, bool) & (level <= (PASS if strict else WARN))
     if only is not None:
         ok &= np.asarray(only, bool)
@@ -605,9 +389,9 @@ def first_order_shares(
         return out
     base = take(designs, rows)
     lk = ev.synthesis.linkage
-    nominal = [_broadcast(p, n)[rows] for p in lk.parameters]
+    nominal = [broadcast_column(p, n)[rows] for p in lk.parameters]
     axle = (
-        _broadcast(designs.axle_height, n)[rows]
+        broadcast_column(designs.axle_height, n)[rows]
         if designs.axle_height is not None
         else np.full(rows.size, np.nan)
     )
@@ -774,253 +558,3 @@ def allocate(fo: FirstOrder, target: float = 0.95, distribution: str = "uniform"
         else:
             break
     return Allocation(target, distribution, tuple(float(x) for x in t), share(t))
-
-
-# ----------------------------------------------------------------------------- the result
-@dataclass(frozen=True)
-class Spread:
-    """A quantity over the builds: the design's value, and the median, 5th and 95th percentile
-    over the builds that are crank-rockers, the sample standard deviation [SI unit]."""
-
-    nominal: float
-    median: float
-    p5: float
-    p95: float
-    std: float
-
-
-@dataclass(frozen=True)
-class Share:
-    """How many builds of ``n`` do something, and the Wilson score interval of the share."""
-
-    count: int
-    n: int
-    low: float
-    high: float
-
-    @property
-    def value(self) -> float:
-        return self.count / self.n if self.n else math.nan
-
-
-def share(count: int, n: int, confidence: float = CONFIDENCE) -> Share:
-    """``count`` of ``n`` with its Wilson score interval (scipy.stats.binomtest)."""
-    from scipy.stats import binomtest
-
-    ci = binomtest(int(count), int(n)).proportion_ci(confidence, method="wilson")
-    return Share(int(count), int(n), float(ci.low), float(ci.high))
-
-
-@dataclass(frozen=True)
-class Result:
-    """What ``pumplink tolerance`` reports (SI units, radians).
-
-    spread : per quantity of :data:`QUANTITIES`;  passed, clean : builds that pass, and that pass
-    without warnings;  fails, warns : per check, the share of builds it fails or warns;
-    infeasible : builds that are no crank-rocker;  models : builds decided by each model (by
-    index into pumplink.models.ORDER);  first_order : the design's sensitivities;
-    allocation : the tolerances per hole for the target share.
-    """
-
-    problem: Problem
-    spread: dict[str, Spread]
-    passed: Share
-    clean: Share
-    fails: dict[str, float]
-    warns: dict[str, float]
-    infeasible: int
-    models: tuple[int, ...]
-    first_order: FirstOrder
-    allocation: Allocation
-    target: float
-    nominal_level: int
-    values: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
-    offsets: np.ndarray | None = field(default=None, repr=False)
-
-    # what a renderer needs to name things, without importing this module
-    holes = HOLES
-    dimensions = DIMENSIONS
-    groups = GROUPS
-    quantities = QUANTITIES
-    model_labels = MODEL_LABELS
-    ladder = LADDER
-    workshop_tolerance = WORKSHOP_TOLERANCE
-
-    @property
-    def first_order_share(self) -> float:
-        """The first-order share of builds that pass (fail limits, or warn limits with strict)."""
-        return self.first_order.share(self.problem.tolerances)
-
-    @property
-    def meets_target(self) -> bool:
-        """The Monte Carlo share (clean, with strict) is at least the target."""
-        s = self.clean if self.problem.strict else self.passed
-        return s.value >= self.target
-
-
-def summarize(
-    prob: Problem,
-    chunks: Iterable[Chunk],
-    target: float = 0.95,
-    progress: Callable[[int], None] | None = None,
-    keep: bool = False,
-) -> Result:
-    """The spread, the shares and the first order of a design's builds, from its chunks (in order).
-
-    ``progress(n)`` after each chunk of n builds; ``keep``: every build's values, verdict level
-    (``values["level"]``) and offsets (the (builds, 18) array, drawn again) in the result.
-    """
-    parts: dict[str, list[np.ndarray]] = {k: [] for k, _ in QUANTITIES}
-    levels, models = [], []
-    fails: dict[str, int] = {}
-    warns: dict[str, int] = {}
-    for c in chunks:
-        for k in parts:
-            parts[k].append(c.values[k])
-        levels.append(c.level)
-        models.append(c.model_index)
-        for k, v in c.fails.items():
-            fails[k] = fails.get(k, 0) + v
-        for k, v in c.warns.items():
-            warns[k] = warns.get(k, 0) + v
-        if progress is not None:
-            progress(len(c))
-    values = {k: np.concatenate(v) for k, v in parts.items()}
-    level = np.concatenate(levels)
-    n = level.size
-    nominal_ev = evaluate_builds(prob, np.zeros((1, len(DIMENSIONS))))
-    nominal = {k: float(v[0]) for k, v in quantities(nominal_ev).items()}
-    spread = {}
-    for k, v in values.items():
-        ok = ~np.isnan(v)
-        if ok.any():
-            p5, med, p95 = np.percentile(v[ok], [5.0, 50.0, 95.0])
-            std = float(np.std(v[ok], ddof=1)) if np.count_nonzero(ok) > 1 else math.nan
-        else:
-            p5 = med = p95 = std = math.nan
-        spread[k] = Spread(nominal[k], float(med), float(p5), float(p95), std)
-    fo = sensitivities(prob)
-    return Result(
-        prob,
-        spread,
-        share(int(np.count_nonzero(level < FAIL)), n),
-        share(int(np.count_nonzero(level == PASS)), n),
-        {k: v / n for k, v in fails.items()},
-        {k: v / n for k, v in warns.items()},
-        int(np.count_nonzero(np.isnan(values["swing"]))),
-        tuple(int(x) for x in np.bincount(np.concatenate(models), minlength=3)),
-        fo,
-        allocate(fo, target, prob.tolerances.distribution),
-        target,
-        int(np.ravel(nominal_ev.verdict.level)[0]),
-        {**values, "level": level} if keep else {},
-        np.concatenate([offsets(prob, *t) for t in prob.chunks]) if keep else None,
-    )
-
-
-def study(
-    spec: PumpSpec,
-    tol: Tolerances,
-    samples: int = 10_000,
-    seed: int = 0,
-    model: str | None = None,
-    strict: bool = False,
-    target: float = 0.95,
-    mapper: Callable | None = None,
-    progress: Callable[[int], None] | None = None,
-    keep: bool = False,
-) -> Result:
-    """A design's builds at these tolerances: the Monte Carlo (on ``mapper``, the batch engine's,
-    or in this process), the first order and the allocation."""
-    prob = problem(spec, tol, samples, seed, model, strict)
-    return summarize(prob, run_chunks(prob, mapper), target, progress, keep)
-
-
-# ----------------------------------------------------------------------------- robust designs
-#: Builds of the Monte Carlo check of a search's answer (the share to about ±1 % at 95 %).
-CHECK_BUILDS = 2000
-
-
-@dataclass(frozen=True)
-class Robust:
-    """What a robust search asks (``--tolerance 1mm --yield 0.95``): at least ``target`` of the
-    builds at ``tolerances`` pass (``strict``: pass without warnings), to first order in the search
-    (:func:`first_order_shares`) and checked on the answer by a Monte Carlo of ``builds`` builds."""
-
-    tolerances: Tolerances
-    target: float = 0.95
-    strict: bool = False
-    builds: int = CHECK_BUILDS
-    seed: int = 0
-
-    @property
-    def tolerance(self) -> float:
-        """The largest tolerance asked for [m] (a search's ``--tolerance``: every hole the same)."""
-        return max(self.tolerances.holes)
-
-
-@dataclass(frozen=True)
-class RobustCheck:
-    """A search's answer at its tolerances: the first-order share of builds that pass (the
-    search's own estimate) and the Monte Carlo's share with its Wilson interval."""
-
-    robust: Robust
-    first_order: float
-    monte_carlo: Share
-
-    @property
-    def meets(self) -> bool:
-        """The Monte Carlo share reaches the target."""
-        return self.monte_carlo.value >= self.robust.target
-
-
-def shortfall(designs: PumpDesigns, ev: Evaluation, robust: Robust, model=None) -> np.ndarray:
-    """How far the first-order share of builds that pass falls short of the target, per design
-    (0: it reaches it; the target where the design itself does not pass) [-]."""
-    shares = first_order_shares(designs, ev, robust.tolerances, robust.strict, model)
-    return np.maximum(robust.target - shares, 0.0)
-
-
-def robust_check(spec: PumpSpec, robust: Robust, model: str | None = None) -> RobustCheck:
-    """The first-order share and the Monte Carlo check of a search's answer (in this process)."""
-    res = study(spec, robust.tolerances, robust.builds, robust.seed, model, robust.strict, robust.target)
-    return RobustCheck(robust, res.first_order_share, res.clean if robust.strict else res.passed)
-
-
-__all__ = [
-    "CHUNK_SAMPLES",
-    "DIMENSIONS",
-    "HOLES",
-    "HOLE_KEYS",
-    "LADDER",
-    "PARTS",
-    "QUANTITIES",
-    "WORKSHOP_TOLERANCE",
-    "CHECK_BUILDS",
-    "Allocation",
-    "Robust",
-    "RobustCheck",
-    "Chunk",
-    "FirstOrder",
-    "GROUPS",
-    "Problem",
-    "Result",
-    "Share",
-    "Spread",
-    "Tolerances",
-    "allocate",
-    "build",
-    "first_order_map",
-    "first_order_shares",
-    "margins",
-    "problem",
-    "run_chunk",
-    "robust_check",
-    "run_chunks",
-    "sensitivities",
-    "share",
-    "shortfall",
-    "study",
-    "summarize",
-    "tolerances",
-]

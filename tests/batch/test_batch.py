@@ -789,7 +789,7 @@ def test_flywheel_table_shows_the_verdict_peak_and_the_model(tmp_path):
 def test_zero_inertia_fails_with_an_infinite_peak(tmp_path):
     """A moving mass of 0 kg and no wheel mass, by the flywheel (--model): J = 0, no energy band
     (W = 0), so the least peak force is the quasi-static maximum, infinite
-    (flywheel.least_peak_force: inf for band 0)."""
+    (flywheel_solver.least_peak_force: inf for band 0)."""
     p = tmp_path / "j0.toml"
     p.write_text(PROTO_INLINE + '[vary]\n"load.moving_mass" = [0.0, 40.0]\n')
     junit = tmp_path / "r.xml"

@@ -31,12 +31,17 @@ HEAVY = [
     "numba",
     # pumplink's own modules for other commands and mechanisms
     "pumplink.search.optimize",
+    "pumplink.search.problem",
     "pumplink.batch",
     "pumplink.studies.methods",
     "pumplink.studies.accuracy",
     "pumplink.studies.piston",
     "pumplink.models.flywheel",  # the inertia models: a spec without inertia never needs them
     "pumplink.models.dynamics",
+    "pumplink.models.dynamics_solver",
+    "pumplink.models.dynamics_terms",
+    "pumplink.models.flywheel_solver",
+    "pumplink.models.grip_travel",
 ]
 
 PROBE = """
@@ -90,7 +95,11 @@ def test_a_spec_with_inertia_loads_the_inertia_models():
     assert "VERDICT" in res["out"] and "released handle" in res["out"], res["out"]
     assert sorted(res["loaded"]) == [
         "pumplink.models.dynamics",
+        "pumplink.models.dynamics_solver",
+        "pumplink.models.dynamics_terms",
         "pumplink.models.flywheel",
+        "pumplink.models.flywheel_solver",
+        "pumplink.models.grip_travel",
         "scipy.integrate",
         "scipy.optimize",
     ], res["loaded"]

@@ -13,7 +13,8 @@ import pytest
 from scipy.optimize import elementwise
 
 from pumplink.mechanisms.bracket import CONVERGED, INVALID_BRACKET, MAXITER, NONFINITE, find_minimum
-from pumplink.mechanisms.fourbar import FourBar, force_kernel, kinematic_state, synthesize
+from pumplink.mechanisms.fourbar import FourBar, kinematic_state, synthesize
+from pumplink.mechanisms.fourbar_kernel import force_kernel
 
 TIGHT = dict(xatol=1e-13, xrtol=1e-15)  # the peak searches' tolerances
 

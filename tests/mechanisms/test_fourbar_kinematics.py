@@ -11,7 +11,8 @@ from hypothesis import strategies as st
 from mpmath import mpf
 
 from pumplink.mechanisms.angles import crank_grid, grid_directions
-from pumplink.mechanisms.fourbar import FourBar, force_kernel, kinematic_state, synthesize
+from pumplink.mechanisms.fourbar import FourBar, kinematic_state, synthesize
+from pumplink.mechanisms.fourbar_kernel import force_kernel
 
 DEG = math.pi / 180
 MIN_CRANK = R.MIN_CRANK
@@ -72,7 +73,7 @@ def test_singular_exactly_at_dead_centres(design):
         at = kinematic_state(syn.linkage, float(dc), mw)
         assert bool(at.singular) and np.isnan(at.force)  # NaN, never a huge finite number
         # 1e-6 deg away: regular, finite, and right to 1e-6 (rounding grows like eps / angle),
-        # within the accuracy fourbar.SINGULAR_SIN documents: transmission angles of a few degrees
+        # within the accuracy fourbar_kernel.SINGULAR_SIN documents: transmission angles of a few degrees
         # and more.  A near-change-point linkage (the @example: gamma_min = 0.012 deg) is
         # ill-conditioned there (1.8e-5, measured against the reference); it keeps the checks below.
         off = float(dc) + np.array([-1e-6, 1e-6]) * DEG
@@ -94,7 +95,7 @@ def test_singular_exactly_at_dead_centres(design):
 
 
 def test_force_accuracy_just_outside_singular_threshold():
-    """kinematics.SINGULAR_SIN's comment: beyond the threshold the force's relative rounding
+    """fourbar_kernel.SINGULAR_SIN's comment: beyond the threshold the force's relative rounding
     error is below ~1e-6.  Checked (with a 10x allowance, 1e-5) at 1e-9 rad from both dead
     centres of a design with a 40 mm crank, a 1.18 m coupler and a 50 mm rocker (a design found
     by hypothesis; measured 2.4e-5 and 3.1e-5 at the extended dead centre)."""

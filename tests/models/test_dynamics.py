@@ -24,7 +24,11 @@ import reference as R
 from pumplink.constants import GRAVITY
 from pumplink.inputs.pump import load_spec, parse_spec
 from pumplink.models import dynamics as dy
+from pumplink.models import dynamics_solver as ds
+from pumplink.models import dynamics_terms as dt
 from pumplink.models import flywheel as fw
+from pumplink.models import flywheel_solver as fs
+from pumplink.models import grip_travel as gt
 from pumplink.models.quasi_static import mean_force
 from pumplink.studies.force import design
 
@@ -53,15 +57,15 @@ def case(request):
 def test_flywheel_is_the_special_case_without_link_masses(case, speed_deg):
     spec, syn, lk, dce, dcf = case
     w = math.radians(speed_deg)
-    ref = fw.least_peak_force(lk, dce, dcf, spec.wheel_torque, fw.energy_band(spec.inertia, w, 0.2))
-    got = dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, dy.Masses(), w, 0.2)
+    ref = fs.least_peak_force(lk, dce, dcf, spec.wheel_torque, fw.energy_band(spec.inertia, w, 0.2))
+    got = ds.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, dy.Masses(), w, 0.2)
     assert got == pytest.approx(ref, rel=1e-11)
 
 
 def test_zero_masses_give_the_flywheel_band_and_terms(case):
     spec, syn, lk, dce, dcf = case
     th = np.linspace(0, 2 * np.pi, 37)
-    lo, hi = dy.energy_band(lk, th, 0.5, dy.Masses(), 3.0, 0.2)
+    lo, hi = dt.energy_band(lk, th, 0.5, dy.Masses(), 3.0, 0.2)
     assert np.all(np.ptp(lo) == 0) and np.all(np.ptp(hi) == 0)  # no V, no link inertia: flat
     assert lo[0] == pytest.approx(0.5 * 0.5 * 2.7**2, rel=1e-15)
     assert hi[0] == pytest.approx(0.5 * 0.5 * 3.3**2, rel=1e-15)
@@ -70,29 +74,29 @@ def test_zero_masses_give_the_flywheel_band_and_terms(case):
 
 def test_infinite_wheel_needs_only_the_mean_force(case):
     spec, syn, lk, dce, dcf = case
-    ms = dy.bar_masses(lk, 1.56, 4.0)
-    got = dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, 1e9, ms, 2 * np.pi, 0.2)
+    ms = dt.bar_masses(lk, 1.56, 4.0)
+    got = ds.least_peak_force(lk, dce, dcf, spec.wheel_torque, 1e9, ms, 2 * np.pi, 0.2)
     stroke = 2 * spec.linkage.handle * math.sin(math.radians(spec.linkage.swing) / 2)
     assert got == pytest.approx(float(mean_force(spec.wheel_torque, stroke)), rel=1e-9)
 
 
 def test_scaling_all_masses_and_the_load_scales_the_force(case):
     spec, syn, lk, dce, dcf = case
-    ms = dy.bar_masses(lk, 1.56, 2.0)
-    base = dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 2 * np.pi, 0.2)
+    ms = dt.bar_masses(lk, 1.56, 2.0)
+    base = ds.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 2 * np.pi, 0.2)
     k = 3.0
     ms3 = dy.Masses(k * ms.coupler, k * ms.handle, k * ms.grip)
-    got = dy.least_peak_force(lk, dce, dcf, k * spec.wheel_torque, k * spec.inertia, ms3, 2 * np.pi, 0.2)
+    got = ds.least_peak_force(lk, dce, dcf, k * spec.wheel_torque, k * spec.inertia, ms3, 2 * np.pi, 0.2)
     assert got == pytest.approx(k * base, rel=1e-10)
 
 
 def test_time_scaling_speed_gravity_and_load_together(case):
     """w -> s w, g -> s^2 g, Mw -> s^2 Mw: every energy scales by s^2, so Fp* does too."""
     spec, syn, lk, dce, dcf = case
-    ms = dy.bar_masses(lk, 1.56, 3.0)
-    base = dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 2 * np.pi, 0.2)
+    ms = dt.bar_masses(lk, 1.56, 3.0)
+    base = ds.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 2 * np.pi, 0.2)
     s = 1.5
-    got = dy.least_peak_force(
+    got = ds.least_peak_force(
         lk, dce, dcf, s * s * spec.wheel_torque, spec.inertia, ms, s * 2 * np.pi, 0.2, gravity=s * s * GRAVITY
     )
     assert got == pytest.approx(s * s * base, rel=1e-10)
@@ -149,7 +153,7 @@ def test_inertia_and_potential_against_positions_in_mpmath(t2_deg):
         ip, vp = _ref_energy(ref, t2 + e, mc, mh, ma, arm)
         im, vm = _ref_energy(ref, t2 - e, mc, mh, ma, arm)
         di, dv = (ip - im) / (2 * e), (vp - vm) / (2 * e)
-    tm = dy.terms(lk, math.radians(t2_deg), ms)
+    tm = dt.terms(lk, math.radians(t2_deg), ms)
     scale_i = float(i0) + 1.0
     assert float(tm.inertia) == pytest.approx(float(i0), abs=1e-12 * scale_i)
     assert float(tm.inertia_rate) == pytest.approx(float(di), abs=1e-11 * scale_i)
@@ -164,8 +168,8 @@ def test_point_mass_at_the_grip_by_hand():
     m, j = 4.0, 0.5
     for t2 in np.radians([10.0, 95.0, 200.0, 300.0]):
         st = R.state(ref, t2)
-        i, _ = dy.reduced_inertia(lk, t2, j, dy.Masses(0.0, 0.0, m))
-        v, _ = dy.potential(lk, t2, dy.Masses(0.0, 0.0, m))
+        i, _ = dt.reduced_inertia(lk, t2, j, dy.Masses(0.0, 0.0, m))
+        v, _ = dt.potential(lk, t2, dy.Masses(0.0, 0.0, m))
         hand_i = j + m * float(ref.handle) ** 2 * float(st["rate"]) ** 2
         hand_v = m * GRAVITY * float(ref.oy + ref.handle * mpmath.sin(st["rocker_angle"]))
         assert float(i) == pytest.approx(hand_i, rel=1e-12)
@@ -175,28 +179,28 @@ def test_point_mass_at_the_grip_by_hand():
 # ----------------------------------------------------------------------------- exactness
 def _brute_lower_bound(lk, dce, dcf, mw, j, ms, w, delta, n=200_000):
     """Dinkelbach over the pairs of n uniform angles plus the grid nodes: a lower bound of Fp*."""
-    pb, _ = dy._problem(lk, dce, dcf, mw, j, ms, w, delta, GRAVITY)
+    pb, _ = ds.problem(lk, dce, dcf, mw, j, ms, w, delta, GRAVITY)
     x = np.sort(np.concatenate([np.linspace(0, 2 * np.pi, n, endpoint=False), pb.prep.nodes[0]]))[None, :]
-    base, local = fw.travel_parts(x, *(v[:, None] for v in pb.prep.args()))
+    base, local = gt.travel_parts(x, *(v[:, None] for v in pb.prep.args()))
     up, lo = pb.edges(x)
     cap = np.array([np.inf])
     f_mean = mean_force(pb.mw, pb.stroke)
-    return float(dy._dinkelbach((x, base, local, up, lo), pb.mw, pb.stroke, f_mean, cap)[0])
+    return float(ds._dinkelbach((x, base, local, up, lo), pb.mw, pb.stroke, f_mean, cap)[0])
 
 
 @pytest.mark.parametrize("speed_deg,arms", [(180.0, 0.0), (360.0, 0.0), (360.0, 4.0), (540.0, 4.0)])
 def test_least_force_is_exact_brute_force_and_margin(speed_deg, arms):
     spec, syn, lk, dce, dcf = _case()
-    ms = dy.bar_masses(lk, 1.56, arms)
+    ms = dt.bar_masses(lk, 1.56, arms)
     w, mw, j = math.radians(speed_deg), spec.wheel_torque, spec.inertia
-    got = dy.least_peak_force(lk, dce, dcf, mw, j, ms, w, 0.2)
+    got = ds.least_peak_force(lk, dce, dcf, mw, j, ms, w, 0.2)
     low = _brute_lower_bound(lk, dce, dcf, mw, j, ms, w, 0.2)
     # a lower bound from a 200,000-point grid: below, by at most its sampling error (~1e-6)
     assert low <= got * (1 + 1e-12)
     assert low >= got * (1 - 1e-6)
     # the exact test of docs/models.md §3 holds at Fp* and fails just below it
-    assert dy.band_margin(lk, dce, dcf, mw, j, ms, w, 0.2, got) <= 1e-9
-    assert dy.band_margin(lk, dce, dcf, mw, j, ms, w, 0.2, got * (1 - 1e-3)) > 0
+    assert ds.band_margin(lk, dce, dcf, mw, j, ms, w, 0.2, got) <= 1e-9
+    assert ds.band_margin(lk, dce, dcf, mw, j, ms, w, 0.2, got * (1 - 1e-3)) > 0
 
 
 def test_vectorised_equals_one_at_a_time():
@@ -205,11 +209,11 @@ def test_vectorised_equals_one_at_a_time():
     arms = np.array([0.0, 4.0, 2.0, 6.0])
     n = speeds.size
     rep = type(lk)(*(np.full(n, float(v)) for v in lk.parameters))
-    ms = dy.bar_masses(rep, 1.56, arms)
-    many = dy.least_peak_force(rep, dce, dcf, spec.wheel_torque, spec.inertia, ms, speeds, 0.2)
+    ms = dt.bar_masses(rep, 1.56, arms)
+    many = ds.least_peak_force(rep, dce, dcf, spec.wheel_torque, spec.inertia, ms, speeds, 0.2)
     for i in range(n):
-        one = dy.least_peak_force(
-            lk, dce, dcf, spec.wheel_torque, spec.inertia, dy.bar_masses(lk, 1.56, arms[i]), speeds[i], 0.2
+        one = ds.least_peak_force(
+            lk, dce, dcf, spec.wheel_torque, spec.inertia, dt.bar_masses(lk, 1.56, arms[i]), speeds[i], 0.2
         )
         assert many[i] == pytest.approx(one, rel=1e-12)
 
@@ -219,7 +223,7 @@ def test_solve_ivp_confirms_the_profile_and_rejects_a_weaker_operator():
     """At Fp* the reported profile, integrated open loop, is periodic inside the band at the mean
     speed (to 1e-6); at Fp* (1 - 1e-3) the best motion leaves the band (negative control)."""
     spec, syn, lk, dce, dcf = _case()
-    ms = dy.bar_masses(lk, 1.56, 4.0)
+    ms = dt.bar_masses(lk, 1.56, 4.0)
     args = (lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 2 * np.pi, 0.2)
     sc = dy.scene(*args)
     th = np.linspace(0, 2 * np.pi, 721)
@@ -242,7 +246,7 @@ def test_effect_sizes_against_independent_routes():
     spec, syn, lk, dce, dcf = _case()
     ref = R.from_synthesis(syn)
     mpl, arms, w = 1.56, 4.32, math.radians(300.0)
-    ms = dy.bar_masses(lk, mpl, arms)
+    ms = dt.bar_masses(lk, mpl, arms)
     link, weight, arm = dy.effect_sizes(lk, ms, w)
     th = np.arange(dy.EFFECT_GRID) * (2 * np.pi / dy.EFFECT_GRID)
     assert link == pytest.approx(float(np.max(fw.link_energy(lk, th, w, mpl))), rel=1e-12)
@@ -284,10 +288,10 @@ def test_least_peak_force_is_convex_in_the_mean_speed_squared():
     """Every pair's N is affine in w^2 and K does not depend on it (docs/models.md §3a), so Fp* is
     the maximum of affine functions of w^2: convex.  Second differences on a uniform grid in w^2."""
     spec, syn, lk, dce, dcf = _case()
-    ms = dy.bar_masses(lk, 1.56, 4.32)
+    ms = dt.bar_masses(lk, 1.56, 4.32)
     u = np.linspace(math.radians(200.0) ** 2, math.radians(900.0) ** 2, 41)
     rep = type(lk)(*(np.full(u.size, float(v)) for v in lk.parameters))
-    f = dy.least_peak_force(rep, dce, dcf, spec.wheel_torque, spec.inertia, ms, np.sqrt(u), 0.2)
+    f = ds.least_peak_force(rep, dce, dcf, spec.wheel_torque, spec.inertia, ms, np.sqrt(u), 0.2)
     second = f[:-2] - 2 * f[1:-1] + f[2:]
     assert np.all(second >= -1e-9 * f[1:-1])
     assert np.any(second > 1e-3)  # and not affine: the effort has a minimum inside
@@ -297,17 +301,17 @@ def test_best_speed_is_the_minimum_of_a_dense_scan():
     """The best cadence against 600 speeds scanned in one call: no scanned speed needs less effort,
     and the nearest ones differ by no more than the scan's step allows."""
     spec, syn, lk, dce, dcf = _case()
-    ms = dy.bar_masses(lk, 1.56, 4.32)
+    ms = dt.bar_masses(lk, 1.56, 4.32)
     lo, hi = math.radians(60.0), math.radians(1440.0)
     best, effort = dy.best_speed(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 0.2, lo, hi)
     w = np.linspace(lo, hi, 600)
     rep = type(lk)(*(np.full(w.size, float(v)) for v in lk.parameters))
-    f = dy.least_peak_force(rep, dce, dcf, spec.wheel_torque, spec.inertia, ms, w, 0.2)
+    f = ds.least_peak_force(rep, dce, dcf, spec.wheel_torque, spec.inertia, ms, w, 0.2)
     assert effort <= np.nanmin(f) * (1 + 1e-12)
     k = int(np.nanargmin(f))
     assert w[k - 1] <= best <= w[k + 1]
     assert effort == pytest.approx(
-        dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, best, 0.2), rel=1e-12
+        ds.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, best, 0.2), rel=1e-12
     )
     # without links or arms this is the flywheel: faster is never harder, and from some speed on the
     # force is the mean force (an infinite flywheel's, the floor), where the search stops
@@ -315,13 +319,13 @@ def test_best_speed_is_the_minimum_of_a_dense_scan():
     at, floor = dy.best_speed(lk, dce, dcf, spec.wheel_torque, spec.inertia, none, 0.2, lo, hi)
     stroke = 2 * spec.linkage.handle * math.sin(math.radians(spec.linkage.swing) / 2)
     assert floor == pytest.approx(float(mean_force(spec.wheel_torque, stroke)), rel=1e-9)
-    faster = dy.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, none, hi, 0.2)
+    faster = ds.least_peak_force(lk, dce, dcf, spec.wheel_torque, spec.inertia, none, hi, 0.2)
     assert faster == pytest.approx(floor, rel=1e-9) and at < hi
 
 
 def test_speed_range_ends_where_the_force_meets_the_limit():
     spec, syn, lk, dce, dcf = _case()
-    ms = dy.bar_masses(lk, 1.56, 4.32)
+    ms = dt.bar_masses(lk, 1.56, 4.32)
     args = (lk, dce, dcf, spec.wheel_torque, spec.inertia, ms, 0.2)
     lo, hi = math.radians(60.0), math.radians(1440.0)
     best, effort = dy.best_speed(*args, lo, hi)
@@ -329,8 +333,8 @@ def test_speed_range_ends_where_the_force_meets_the_limit():
     a, b = dy.speed_range(*args, limit, lo, hi, best)
     assert lo < a < best < b < hi
     for end in (a, b):
-        assert dy.least_peak_force(*args[:6], end, 0.2) == pytest.approx(limit, rel=1e-7)
-    inside = dy.least_peak_force(*args[:6], np.array([a * (1 + 1e-4), b * (1 - 1e-4)]), 0.2)
-    outside = dy.least_peak_force(*args[:6], np.array([a * (1 - 1e-4), b * (1 + 1e-4)]), 0.2)
+        assert ds.least_peak_force(*args[:6], end, 0.2) == pytest.approx(limit, rel=1e-7)
+    inside = ds.least_peak_force(*args[:6], np.array([a * (1 + 1e-4), b * (1 - 1e-4)]), 0.2)
+    outside = ds.least_peak_force(*args[:6], np.array([a * (1 - 1e-4), b * (1 + 1e-4)]), 0.2)
     assert np.all(inside <= limit) and np.all(outside > limit)
     assert all(math.isnan(x) for x in dy.speed_range(*args, 0.9 * effort, lo, hi, best))  # none passes

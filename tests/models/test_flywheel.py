@@ -39,6 +39,7 @@ from hypothesis import strategies as st
 from pumplink.inputs.pump import default_spec, parse_spec
 from pumplink.mechanisms.fourbar import FourBar, grip_stroke, kinematic_state, synthesize
 from pumplink.models import flywheel as fw
+from pumplink.models import flywheel_solver as fs
 from pumplink.models.quasi_static import mean_force
 from pumplink.studies.force import design
 
@@ -79,14 +80,14 @@ class Case:
     def required(self, band):
         """Fp* [N] for one band, or (one vectorised call) for a list of bands [J]."""
         if np.ndim(band):
-            return fw.least_peak_force(*_repeat(self, len(band)), np.asarray(band, float))
-        return fw.least_peak_force(self.lk, *self.dcs, self.mw, band)
+            return fs.least_peak_force(*_repeat(self, len(band)), np.asarray(band, float))
+        return fs.least_peak_force(self.lk, *self.dcs, self.mw, band)
 
     def deficit(self, force):
         """D(Fp) [J] for one force, or (one vectorised call) for a list of forces [N]."""
         if np.ndim(force):
-            return fw.energy_deficit(*_repeat(self, len(force)), np.asarray(force, float))
-        return fw.energy_deficit(self.lk, *self.dcs, self.mw, force)
+            return fs.energy_deficit(*_repeat(self, len(force)), np.asarray(force, float))
+        return fs.energy_deficit(self.lk, *self.dcs, self.mw, force)
 
     def scene(self, inertia, speed, fluctuation):
         return fw.scene(self.lk, *self.dcs, self.mw, inertia, speed, fluctuation)
@@ -370,7 +371,7 @@ def test_force_grows_without_bound_as_the_band_vanishes():
     """
     case = DEFAULT
     limit = _asymptote(case)
-    cap = fw.FORCE_CAP_RATIO * case.f_mean
+    cap = fs.FORCE_CAP_RATIO * case.f_mean
     bands = [10.0**-k for k in range(1, 11)] + [1e-30, 1e-300]
     forces = list(case.required(bands))
     bad = [(w, f, g) for w, f, g in zip(bands, forces, forces[1:]) if not (g > f or f == g == math.inf)]
@@ -659,8 +660,8 @@ def test_infeasible_design_gives_nan_and_a_zero_band_gives_inf():
     syn = synthesize(0.0, 0.0, 0.0, 0.2, math.radians(60.0), 1.0)  # pivot on the axle
     assert not syn.feasible and np.isnan(syn.crank_length)
     args = (syn.linkage, syn.dead_centre_extended, syn.dead_centre_folded, 10.0)
-    assert np.isnan(fw.least_peak_force(*args, 2.0))
-    assert np.isnan(fw.energy_deficit(*args, 100.0))
+    assert np.isnan(fs.least_peak_force(*args, 2.0))
+    assert np.isnan(fs.energy_deficit(*args, 100.0))
     assert np.isnan(fw.min_passing_speed(*args, 100.0, 1.0, 0.2))
     assert np.isnan(fw.scene(*args, 1.0, 6.0, 0.2).least_peak_force)
     assert DEFAULT.required(0.0) == np.inf
@@ -693,9 +694,9 @@ def test_vectorised_calls_equal_per_design_calls(items):
     dce = np.array([c.dcs[0] for c in cases])
     dcf = np.array([c.dcs[1] for c in cases])
     mw = np.array([c.mw for c in cases])
-    forces = fw.least_peak_force(lk, dce, dcf, mw, np.array(bands))
+    forces = fs.least_peak_force(lk, dce, dcf, mw, np.array(bands))
     limits = np.array([2.0 * c.f_mean if c.syn.feasible else 1.0 for c in cases])
-    deficits = fw.energy_deficit(lk, dce, dcf, mw, limits)
+    deficits = fs.energy_deficit(lk, dce, dcf, mw, limits)
     for i, c in enumerate(cases):
         one = c.required(bands[i])
         assert forces[i] == pytest.approx(one, rel=1e-12, nan_ok=True)

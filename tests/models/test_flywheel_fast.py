@@ -1,6 +1,6 @@
 """The fast route of the flywheel model against its reference route.
 
-``pumplink.models.flywheel.least_peak_force`` and ``energy_deficit`` take the extrema of U from a
+``pumplink.models.flywheel_solver.least_peak_force`` and ``energy_deficit`` take the extrema of U from a
 table of |g| at the grid's uniform nodes and the dead centres, refined by a secant iteration on
 |g| (the fast route).  The reference route (``_reference_least_peak_force``,
 ``_reference_energy_deficit``) evaluates U at 338 nodes per design, with 12-point Gauss-Legendre
@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from pumplink.mechanisms.fourbar import synthesize
-from pumplink.models import flywheel as fw
+from pumplink.models import flywheel_solver as fs
 from pumplink.models.quasi_static import mean_force
 
 REL = 1e-9
@@ -53,13 +53,13 @@ def reference_calls(monkeypatch):
     resolve a design)."""
     calls = []
     for name in ("_reference_least_peak_force", "_reference_energy_deficit"):
-        original = getattr(fw, name)
+        original = getattr(fs, name)
 
         def spy(*args, original=original):
             calls.append(np.size(args[1]))
             return original(*args)
 
-        monkeypatch.setattr(fw, name, spy)
+        monkeypatch.setattr(fs, name, spy)
     return calls
 
 
@@ -68,9 +68,9 @@ def test_least_peak_force_equals_the_reference_route(seed, reference_calls):
     designs, f_mean, rng = _random_designs(seed, 500)
     m = f_mean.size
     band = 10.0 ** rng.uniform(-3.0, 2.5, m)  # 1 mJ to 300 J
-    fast = fw.least_peak_force(*designs, band)
+    fast = fs.least_peak_force(*designs, band)
     assert reference_calls == []  # the fast route resolved every design itself
-    reference = fw._reference_least_peak_force(*designs, band)
+    reference = fs._reference_least_peak_force(*designs, band)
     _assert_same(fast, reference)
     # the designs cover every regime: F_mean itself, above it, near the cap, beyond it (inf)
     ratio = reference / f_mean
@@ -85,9 +85,9 @@ def test_energy_deficit_equals_the_reference_route(reference_calls):
     force = f_mean * 10.0 ** rng.uniform(0.0, 3.5, f_mean.size)
     force[:20] = f_mean[:20] * (1 + 1e-12)  # at F_mean: the deficit the largest
     force[20:30] = f_mean[20:30] * 0.99  # below it: inf
-    fast = fw.energy_deficit(*designs, force)
+    fast = fs.energy_deficit(*designs, force)
     assert reference_calls == []
-    _assert_same(fast, fw._reference_energy_deficit(*designs, force))
+    _assert_same(fast, fs._reference_energy_deficit(*designs, force))
     assert np.all(np.isinf(fast[20:30])) and np.all(np.isfinite(fast[30:]))
 
 
@@ -97,9 +97,9 @@ def test_designs_the_table_cannot_resolve_go_to_the_reference_route(monkeypatch,
     designs, f_mean, rng = _random_designs(4, 60)
     band = 10.0 ** rng.uniform(-2.0, 2.0, f_mean.size)
     band[:3] = (0.0, np.inf, np.nan)  # answered without the iteration: inf, F_mean, NaN
-    monkeypatch.setattr(fw, "MAX_PASSES", 0)
-    fast = fw.least_peak_force(*designs, band)
+    monkeypatch.setattr(fs, "MAX_PASSES", 0)
+    fast = fs.least_peak_force(*designs, band)
     assert reference_calls == [f_mean.size - 3]
-    reference = fw._reference_least_peak_force(*designs, band)
+    reference = fs._reference_least_peak_force(*designs, band)
     assert np.array_equal(fast, reference, equal_nan=True)
     assert fast[0] == np.inf and fast[1] == pytest.approx(f_mean[1], rel=1e-12) and np.isnan(fast[2])

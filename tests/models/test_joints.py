@@ -29,6 +29,7 @@ from pumplink.inputs.pump import load_spec
 from pumplink.mechanisms.fourbar import FourBar, kinematic_state, synthesize
 from pumplink.models import Masses
 from pumplink.models import dynamics as dy
+from pumplink.models import dynamics_terms as dt
 from pumplink.models import joints as J
 from pumplink.studies.force import force_analysis
 
@@ -274,11 +275,11 @@ def test_operator_force_by_virtual_work_matches_newton_euler(design, w, a, masse
     assume(syn.feasible and syn.crank_length >= 1e-3 and syn.transmission_min >= math.radians(5))
     lk, ms, jw, mw = syn.linkage, Masses(*masses), 0.9, 13.6
     th = np.linspace(0.0, 2 * math.pi, 64, endpoint=False)
-    tm = dy.terms(lk, th, ms)
+    tm = dt.terms(lk, th, ms)
     g = tm.grip_rate
     keep = np.abs(g) > 1e-3 * float(np.abs(g).max())  # away from the dead centres, where F = inf
     th, g = th[keep], g[keep]
-    tm = dy.terms(lk, th, ms)
+    tm = dt.terms(lk, th, ms)
     energy = (mw + (jw + tm.inertia) * a + 0.5 * tm.inertia_rate * w * w + tm.potential_rate) / g
     # T is affine in F: the force that closes the balance, by the reactions at F = 0 and F = 1
     t0 = J.joint_forces(lk, th, w, a, 0.0, ms).crank_torque

@@ -29,6 +29,7 @@ from pumplink.inputs.pump import load_spec
 from pumplink.mechanisms.fourbar import synthesize
 from pumplink.models import Masses
 from pumplink.models import dynamics as dy
+from pumplink.models import dynamics_terms as dt
 from pumplink.models import release as RL
 from pumplink.studies.force import force_analysis
 
@@ -284,15 +285,15 @@ def test_energy_balance_of_a_whole_release(design, start, speed, loss):
     syn = synthesize(reach, depth, 0.0, rocker, math.radians(swing), 1.1)
     assume(syn.feasible and syn.transmission_min >= math.radians(15))  # buildable crank-rockers only
     lk = syn.linkage
-    masses = dy.bar_masses(lk, 1.56)
+    masses = dt.bar_masses(lk, 1.56)
     mc_, j, head, rw = 10.0, 0.9, 4.0, 0.25
     got = RL.release(lk, start, speed, mc_, loss * mc_, j, head, rw, masses)
     assert got.end_reason == "column empty"
     phi_e = head / rw
     coast = got.stop_angle - start
-    tm0 = dy.terms(lk, start, masses)
+    tm0 = dt.terms(lk, start, masses)
     end_angle = got.stop_angle - phi_e
-    tm1 = dy.terms(lk, end_angle, masses)
+    tm1 = dt.terms(lk, end_angle, masses)
     e0 = 0.5 * (j + float(tm0.inertia)) * speed**2 + float(tm0.potential)
     work = -mc_ * coast + mc_ * phi_e / 2 - loss * mc_ * (coast + phi_e)
     kinetic = e0 + work - float(tm1.potential)

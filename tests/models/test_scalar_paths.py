@@ -1,7 +1,7 @@
 """The one-point float routes of the ODE right-hand sides against the array routes they mirror.
 
-``dynamics.point_terms`` (the links' I, I', V, V', g and Px at one crank angle, on floats with
-``math``) runs the same :func:`pumplink.models.dynamics._terms` as ``dynamics.terms`` does on
+``dynamics_terms.point_terms`` (the links' I, I', V, V', g and Px at one crank angle, on floats with
+``math``) runs the same :func:`pumplink.models.dynamics_terms.terms_from` as ``dynamics_terms.terms`` does on
 arrays; ``dynamics._profile_at`` (the reported motion's energy, regime and force at one angle, the
 right-hand side of ``integrate_motion``) is a float twin of ``dynamics._profile``.  The expected
 values here are the array routes' (numpy on many angles at once), so the twins cannot drift apart:
@@ -20,6 +20,7 @@ from hypothesis import strategies as st
 from pumplink.inputs.pump import load_spec
 from pumplink.mechanisms.fourbar import FourBar, synthesize
 from pumplink.models import dynamics as dy
+from pumplink.models import dynamics_terms as dt
 from pumplink.studies.force import design
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -49,11 +50,11 @@ def test_point_terms_equal_the_array_terms(geometry, mass_per_length, arms, seed
     syn = synthesize(reach, depth, 0.0, rocker, math.radians(swing), 1.1)
     assume(syn.feasible)
     lk = syn.linkage
-    masses = dy.bar_masses(lk, mass_per_length, arms)
+    masses = dt.bar_masses(lk, mass_per_length, arms)
     th = np.random.default_rng(seed).uniform(-20.0, 40.0, 200)
     with np.errstate(all="ignore"):
-        want = dy._terms(dy._coefficients(lk, masses), th, 9.80665, fly_x=True)
-    at = dy.point_terms(lk, masses, 9.80665)
+        want = dt.terms_from(dt.coefficients(lk, masses), th, 9.80665, fly_x=True)
+    at = dt.point_terms(lk, masses, 9.80665)
     got = np.array([at(t, fly_x=True) for t in th]).T
     for g, w in zip(got, want, strict=True):
         _close(g, w, max(np.nanmax(np.abs(w)), 1e-300))
@@ -63,11 +64,11 @@ def test_point_terms_give_nan_where_the_linkage_does_not_assemble():
     """A coupler too short to close the loop at some angles: the float route's square root of a
     negative number falls back to numpy, NaN where the array route gives NaN (and equal elsewhere)."""
     lk = FourBar(0.5, 0.3, 0.2, 0.3, 0.25, 0.9, 1.0)
-    masses = dy.bar_masses(lk, 1.56, 2.0)
+    masses = dt.bar_masses(lk, 1.56, 2.0)
     th = np.linspace(0.0, 2 * np.pi, 73)
-    want = dy.terms(lk, th, masses)
+    want = dt.terms(lk, th, masses)
     assert np.isnan(want.inertia).any() and not np.isnan(want.inertia).all()  # the case is a mixed one
-    at = dy.point_terms(lk, masses)
+    at = dt.point_terms(lk, masses)
     got = np.array([at(t)[:6] for t in th]).T
     for g, w in zip(
         got, (want.inertia, want.inertia_rate, want.potential, want.potential_rate), strict=False
@@ -80,7 +81,7 @@ def scene(request):
     spec = load_spec(ROOT / request.param)
     syn = design(spec).synthesis
     lk = syn.linkage
-    masses = dy.bar_masses(lk, 1.56, 4.0)
+    masses = dt.bar_masses(lk, 1.56, 4.0)
     args = (lk, syn.dead_centre_extended, syn.dead_centre_folded, spec.wheel_torque, spec.inertia, masses)
     return dy.scene(*args, 2 * np.pi, 0.2)
 
