@@ -241,15 +241,17 @@ def load_specs(paths: list[Path]):
 
 
 def spec_or_default(path: Path | None):
-    """The spec at ``path``; without one, ``./pump.toml`` if it exists (saying so on stderr), else
-    the built-in design."""
-    from pumplink.inputs.pump import default_spec, load_spec
+    """The spec at ``path``, read once (a rope pump's or a piston pump's,
+    :func:`pumplink.inputs.load`); without one, ``./pump.toml`` if it exists (saying so on
+    stderr), else the built-in design."""
+    from pumplink.inputs import load
+    from pumplink.inputs.pump import default_spec
 
     if path is not None:
-        return load_spec(path)
+        return load(path)
     if LOCAL_SPEC.is_file():
         typer.echo(f"using ./{LOCAL_SPEC} (give a spec file to use another)", err=True)
-        return load_spec(LOCAL_SPEC)
+        return load(LOCAL_SPEC)
     return default_spec()
 
 

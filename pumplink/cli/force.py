@@ -109,10 +109,11 @@ def force(
             f"--samples {samples} keeps too many rows (at most {SAMPLE_LIMIT_KEPT:,}); "
             "add --summary to stream them"
         )
-    from pumplink.inputs.toml import is_piston_file
+    from pumplink.inputs.piston import PistonSpec
 
-    if spec is not None and is_piston_file(spec):  # mechanism = "crank-slider": docs/piston-pump.md
-        _piston(spec, speed, samples, at, summary, plot, explain, verify, fmt.value)
+    s = spec_or_default(spec)  # read once: a rope pump's spec, or a piston pump's
+    if isinstance(s, PistonSpec):  # mechanism = "crank-slider": docs/piston-pump.md
+        _piston(s, spec, speed, samples, at, summary, plot, explain, verify, fmt.value)
     if plot is not None:
         from pumplink.output.charts import check_path, pyplot
 
@@ -120,7 +121,6 @@ def force(
         pyplot()  # fail early (exit 2) when matplotlib is missing
     from pumplink.output.formats import progress
 
-    s = spec_or_default(spec)
     with progress(1000, "force sweep") as advance:  # drawn on a terminal for sweeps over a second
         done = [0]
 
@@ -142,20 +142,19 @@ def force(
     raise typer.Exit(0 if result.passed_strict(strict) and st.agrees else 1)
 
 
-def _piston(spec: Path, speed, samples: int, at, summary: bool, plot, explain: bool, verify: bool, fmt: str):
-    """``pumplink force SPEC`` for a piston-pump spec; exits 0 (PASS) or 1 (FAIL, infeasible, a
-    --verify disagreement)."""
+def _piston(
+    s, spec: Path, speed, samples: int, at, summary: bool, plot, explain: bool, verify: bool, fmt: str
+):
+    """``pumplink force SPEC`` for a piston-pump spec (``s``, read from ``spec``); exits 0 (PASS)
+    or 1 (FAIL, infeasible, a --verify disagreement)."""
     if plot is not None:
         raise SpecError(
             f"--plot is for rope-pump specs; {spec} is a piston pump (mechanism = 'crank-slider')"
         )
-    from pumplink.inputs.piston import load_piston
     from pumplink.output.piston import render_checks, render_force
     from pumplink.studies import piston
 
-    result = piston.force_analysis(
-        load_piston(spec), speed, samples, at_deg=at or None, keep_samples=not summary
-    )
+    result = piston.force_analysis(s, speed, samples, at_deg=at or None, keep_samples=not summary)
     why = piston.explain(result) if explain and result.feasible else None
     check = piston.verify(result) if verify and result.feasible else None
     render_force(result, fmt, summary=summary, why=why, check=check)

@@ -134,9 +134,10 @@ def tolerance(
     import os
     from concurrent.futures.process import BrokenProcessPool
 
-    from pumplink.inputs.toml import is_piston_file
+    from pumplink.inputs.piston import PistonSpec
 
-    if spec is not None and is_piston_file(spec):
+    s = spec_or_default(spec)  # read once
+    if isinstance(s, PistonSpec):
         raise SpecError(f"{spec} is a piston pump (mechanism = 'crank-slider'); tolerance is for rope pumps")
     cluster = dask_cluster() if scheduler is not None else None
     where = cluster.parse_scheduler(scheduler) if cluster is not None else None
@@ -173,7 +174,6 @@ def tolerance(
         holes,
         distribution.value,
     )
-    s = spec_or_default(spec)
     prob = tl.problem(s, tols, samples, seed, model_key(model), strict)
     with cluster.connect(where) if where is not None else contextlib.nullcontext() as client:
         if client is not None:

@@ -400,19 +400,6 @@ def batch_base(data: dict, path: Path) -> Any:
     return base
 
 
-def is_piston_file(path: str | Path) -> bool:
-    """True for a piston-pump spec file, or a batch file whose base is one.  Unreadable files are
-    not piston files (the rope-pump path reports their errors)."""
-    path = Path(path)
-    if not is_stdin(path) and not path.is_file():
-        return False
-    try:
-        data = read_toml(path)
-        return is_piston_data(data) or (isinstance(data, dict) and is_piston_data(batch_base(data, path)))
-    except SpecError:
-        return False
-
-
 def spec_name(data: Any, path: str | Path) -> Any:
     """The mapping read from ``path`` with ``name`` defaulting to the file stem (SpecError when
     the stem cannot be a name, :func:`check_name`)."""
