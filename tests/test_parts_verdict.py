@@ -232,20 +232,12 @@ def test_the_searches_shortcut_gives_the_same_verdicts():
     """``parts_of_failing=False`` (the part checks only where no other check fails) changes no
     design's outcome, and where it judges the parts their values are the full route's."""
     spec = _spec({"pin_diameter": PIN, "pin_width": 0.0052, "crank_diameter": 0.0127})
-    base = spec_values(spec)
     speeds = np.linspace(60.0, 900.0, 12)  # [deg/s], as in a spec
     forces = np.linspace(20.0, 120.0, 5)
     sp, fw = (a.ravel() for a in np.meshgrid(speeds, forces))
-
-    def value(key):
-        if key == "operator.speed":
-            return sp
-        if key == "load.rope_force":
-            return fw
-        return base(key)
-
-    full = evaluate(pump_designs(value))
-    quick = evaluate(pump_designs(value), screen_parts=True)
+    values = {**spec_values(spec), "operator.speed": sp, "load.rope_force": fw}
+    full = evaluate(pump_designs(values))
+    quick = evaluate(pump_designs(values), screen_parts=True)
     assert np.array_equal(np.asarray(full.verdict.level), np.asarray(quick.verdict.level))
     levels = np.asarray(full.verdict.level)
     assert {PASS, WARN, FAIL} <= set(levels.tolist()) or {PASS, FAIL} <= set(levels.tolist())

@@ -32,6 +32,7 @@ from pumplink.evaluate import (
     pump_designs,
 )
 from pumplink.inputs.batch import CRANK_SLIDER, FOUR_BAR, Batch, axis_indices
+from pumplink.inputs.pump import spec_values
 from pumplink.mechanisms import crank_slider as cs
 from pumplink.mechanisms.fourbar import infeasibility_reason
 
@@ -237,8 +238,8 @@ class PistonChunk(_Judged):
         return [MODEL_LABELS[i] for i in self.evaluation.model_index.tolist()]
 
 
-def batch_values(batch: Batch, cols: dict[str, np.ndarray], n: int | None = None):
-    """``value(key)`` for :func:`pumplink.evaluate.pump_designs`: the varied values of a key (an
+def batch_values(batch: Batch, cols: dict[str, np.ndarray], n: int | None = None) -> dict:
+    """The spec values :func:`pumplink.evaluate.pump_designs` reads: the varied values of a key (an
     array over the chunk's variants), else the base spec's value (None where it gives none).
 
     With ``n`` (the chunk's variants) a base value that is a number is given as ``n`` copies, so
@@ -246,16 +247,12 @@ def batch_values(batch: Batch, cols: dict[str, np.ndarray], n: int | None = None
     reads apart from the others (``wheel.axle_height``, the ``[parts]``) or not at all
     (``linkage.hole_diameter``; ``wheel.radius`` beside a piston pump's ``wheel.inertia``)."""
 
-    def value(key: str):
-        if key in cols:
-            return cols[key]
-        section, name = key.split(".")
-        v = getattr(getattr(batch.spec, section), name, None)
+    def per_variant(v):
         if n is not None and isinstance(v, (int, float)) and not isinstance(v, bool):
             return np.full(n, float(v))
         return v
 
-    return value
+    return {**{k: per_variant(v) for k, v in spec_values(batch.spec).items()}, **cols}
 
 
 def evaluate_chunk(
@@ -329,7 +326,7 @@ def _piston_chunk(batch: Batch, start: int, stop: int, batch_index: int, values,
     n = stop - start
     ev = _one_per_variant(evaluate(piston_designs(value)), n)
     spec = {
-        k: np.broadcast_to(np.asarray(value(k) if value(k) is not None else 0.0, float), (n,))
+        k: np.broadcast_to(np.asarray(value.get(k) if value.get(k) is not None else 0.0, float), (n,))
         for k in PISTON_KEYS
     }
     spec["operator.force_limit"] = np.broadcast_to(np.asarray(ev.designs.force_limit, float), (n,))

@@ -1,14 +1,14 @@
 """The inputs of the evaluation: designs and their operating conditions as columns.
 
 A spec is one design of floats; a batch chunk gives arrays for the keys it varies.
-:func:`pump_designs` and :func:`piston_designs` build the columns from spec values (``value(key)``
+:func:`pump_designs` and :func:`piston_designs` build the columns from spec values (``values[key]``
 gives a dotted spec key's value in spec units, or None where it is not given), so every route into
 the evaluation assembles its inputs here.  SI units, radians.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Mapping
 from dataclasses import dataclass, fields
 from typing import Any
 
@@ -104,15 +104,17 @@ def _or(value, default):
     return default if value is None else value
 
 
-def pump_designs(value: Callable[[str], Any], speed=None) -> PumpDesigns:
+def pump_designs(values: Mapping[str, Any], speed=None) -> PumpDesigns:
     """The columns of rope-pump designs from their spec values.
 
     Parameters
     ----------
-    value : ``value("linkage.swing")`` gives a spec key's value in spec units (degrees, deg/s):
-        a float, an array over designs, or None where the key is not given.
+    values : a spec key's value by its dotted name (``values["linkage.swing"]``) in spec units
+        (degrees, deg/s): a float, an array over designs, or None (or absent) where the key is not
+        given (:func:`pumplink.inputs.pump.spec_values`).
     speed : mean wheel speed [deg/s] instead of ``operator.speed`` (a float or an array).
     """
+    value = values.get
     inertia = np.nan
     mass = _load.moving_mass(value("load.moving_mass"), value("load.head"), value("load.pipe_diameter"))
     if any(value(k) is not None for k in INERTIA_KEYS):
@@ -231,8 +233,9 @@ class PistonDesigns:
     litres_per_person_day: Any = DEFAULT_LITRES_PER_PERSON_DAY
 
 
-def piston_designs(value: Callable[[str], Any], speed=None) -> PistonDesigns:
-    """The columns of piston pumps from their spec values (``value`` as in :func:`pump_designs`)."""
+def piston_designs(values: Mapping[str, Any], speed=None) -> PistonDesigns:
+    """The columns of piston pumps from their spec values (``values`` as in :func:`pump_designs`)."""
+    value = values.get
     limits = operator_limits(value)
     inertia = np.nan
     if value("wheel.inertia") is not None or value("wheel.mass") is not None:

@@ -459,15 +459,16 @@ def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
     return validate(PumpSpec, data, source)
 
 
-def spec_values(spec):
-    """``value(key)`` for :func:`pumplink.evaluate.pump_designs`: the spec's value of a dotted key
-    ("linkage.swing"), None where the spec does not give it."""
-
-    def value(key: str):
-        section, name = key.split(".")
-        return getattr(getattr(spec, section), name, None)
-
-    return value
+def spec_values(spec) -> dict[str, Any]:
+    """A spec's values by dotted key ("linkage.swing"): the mapping
+    :func:`pumplink.evaluate.pump_designs` and :func:`~pumplink.evaluate.piston_designs` read (a
+    key of a table the spec leaves out is absent; one it leaves empty is None)."""
+    out: dict[str, Any] = {}
+    for section in type(spec).model_fields:
+        table = getattr(spec, section)
+        if isinstance(table, Section):
+            out.update({f"{section}.{name}": getattr(table, name) for name in type(table).model_fields})
+    return out
 
 
 def spec_from_file_data(data: Any, path: str | Path) -> PumpSpec:

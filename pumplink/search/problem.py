@@ -424,19 +424,11 @@ def designs(problem: Problem, x) -> PumpDesigns:
     """The evaluation's columns for x of shape (variables, designs): the varied linkage keys, the
     rest of the spec fixed."""
     p = _columns(problem, x)
-    base = spec_values(problem.spec)
-
-    def value(key: str):
-        section, name = key.split(".")
-        if section == "linkage" and name in p:
-            return p[name]
-        if key in p:
-            return p[key]
-        if key == "wheel.inertia" and "wheel.mass" in problem.names:
-            return None  # the wheel's mass is varied instead
-        return base(key)
-
-    return pump_designs(value)
+    values = spec_values(problem.spec)
+    if "wheel.mass" in problem.names:
+        values["wheel.inertia"] = None  # the wheel's mass is varied instead
+    values.update({k if "." in k else f"linkage.{k}": v for k, v in p.items()})
+    return pump_designs(values)
 
 
 def evaluate_designs(problem: Problem, x, search: bool = False) -> Candidates:

@@ -114,22 +114,12 @@ class SizeResult:
         return self.best.found
 
 
-def _values(problem: SizeProblem, pipe: float, x: np.ndarray):
-    """``value(key)`` for :func:`pumplink.evaluate.pump_designs`: x (variables, designs) on the
+def _values(problem: SizeProblem, pipe: float, x: np.ndarray) -> dict:
+    """The spec values :func:`pumplink.evaluate.pump_designs` reads: x (variables, designs) on the
     varied keys, this pipe, the base spec elsewhere."""
-    base = spec_values(problem.spec)
-    cols = dict(zip(problem.names, x))
-
-    def value(key: str):
-        if key in cols:
-            return cols[key]
-        if key == "load.pipe_diameter":
-            return pipe
-        if key == "wheel.inertia":
-            return None  # the wheel's mass is varied instead
-        return base(key)
-
-    return value
+    # the wheel's mass is varied instead of its inertia
+    return {**spec_values(problem.spec), "load.pipe_diameter": pipe, "wheel.inertia": None,
+            **dict(zip(problem.names, x))}  # fmt: skip
 
 
 def _flow(problem: SizeProblem, pipe: float, x: np.ndarray) -> np.ndarray:
@@ -295,15 +285,8 @@ def discharge(spec: PumpSpec, heads, allow_warnings: bool = False, speeds=None):
     base = spec_values(spec)
     out = []
     for h in heads:
-
-        def value(key, h=h):
-            if key == "load.head":
-                return float(h)
-            if key == "operator.speed":
-                return speeds
-            return base(key)
-
-        ev = evaluate(pump_designs(value), JUDGED, screen_parts=True)
+        values = {**base, "load.head": float(h), "operator.speed": speeds}
+        ev = evaluate(pump_designs(values), JUDGED, screen_parts=True)
         ok = np.asarray(ev.verdict.level) <= (WARN if allow_warnings else 0)
         ok = np.broadcast_to(ok, speeds.shape)
         if ok.any():

@@ -81,14 +81,11 @@ def suggest(result: ForceResult, count: int = 2) -> list[Suggestion]:
     if not found:
         return []
     changed = {key for key, *_ in found}
-    values = [spec_values(s) for *_, s in found]
-
-    def value(key: str):
-        return np.array([v(key) for v in values], float) if key in changed else spec_values(spec)(key)
-
+    each = [spec_values(s) for *_, s in found]
+    values = {**spec_values(spec), **{k: np.array([v[k] for v in each], float) for k in changed}}
     speeds = np.array([new if key == "operator.speed" else speed for key, _, _, new, _ in found])
     forced = None if result.effects is None or not result.effects.forced else result.model_key
-    ev = evaluate(pump_designs(value, speeds), JUDGED, model=forced)
+    ev = evaluate(pump_designs(values, speeds), JUDGED, model=forced)
     base = (int(result.verdict.level), excess(result.verdict))
     best: dict[str, Suggestion] = {}
     for i, (key, unit, old, new, _) in enumerate(found):
