@@ -106,7 +106,12 @@ PISTON_VALUES = {
     "use.litres_per_person_day": [15.0, 20.0, 25.0],
 }
 #: Keys that are not numbers: a batch refuses to vary them (one line, exit 2).
-NOT_NUMBERS = {"operator.profile": ["men", "women"], "operator.arms_in_verdict": [True, False]}
+NOT_NUMBERS = {
+    "operator.profile": ["men", "women"],
+    "operator.arms_in_verdict": [True, False],
+    "parts.handle_joint": ["hole", "lug"],
+    "parts.crank_joint": ["welded", "hole"],
+}
 
 
 def rope_base(key: str) -> dict:
@@ -114,6 +119,8 @@ def rope_base(key: str) -> dict:
         return ROPE_BY_FORCE
     if key in ("wheel.inertia", "wheel.mass", "load.moving_mass"):  # the energy models: no [parts]
         return {k: v for k, v in ROPE.items() if k != "parts"}  # (their part checks cost ~50 ms each)
+    if key == "linkage.hole_diameter":  # the older name of parts.pin_diameter: a spec gives one
+        return {k: v for k, v in ROPE.items() if k != "parts"}
     return ROPE
 
 
