@@ -268,7 +268,7 @@ def _binding(problem: SizeProblem, best: Sized) -> tuple[str, ...]:
             out.append(c.key)
     values = spec_values(best.spec)
     for k, (lo, hi) in problem.bounds.items():
-        x = values(k)
+        x = values.get(k)
         if x is not None and min(abs(x - lo), abs(hi - x)) <= 1e-3 * (hi - lo):
             out.append(f"{k} at its {'lower' if abs(x - lo) <= abs(hi - x) else 'upper'} bound")
     short = float(best.evaluation.water.share[0]) < 0.95
