@@ -79,6 +79,7 @@ length) is :mod:`pumplink.mechanisms.crank_rocker_synthesis`.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -490,7 +491,10 @@ def measure_motion(lk: FourBar, samples: int = 4096) -> MeasuredMotion:
     dv = dev(th)
     j = int(np.clip(np.argmin(dv), 1, samples - 1))
     res = find_minimum(dev, (th[j - 1], th[j], th[j + 1]), tolerances=dict(xatol=1e-14, xrtol=1e-15))
-    tmin = min(float(res.f_x), float(dv[j]))
+    # the refinement where it converged (a flat minimum next to a symmetric design's sample may
+    # give none: then the sample's value, not NaN)
+    refined = float(res.f_x) if bool(res.success) and np.isfinite(res.f_x) else math.inf
+    tmin = min(refined, float(dv[j]))
     return MeasuredMotion(swing=swing, time_ratio=ratio, transmission=tmin, assembles=assembles)
 
 
