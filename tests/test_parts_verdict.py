@@ -1,6 +1,6 @@
 """The verdict's part checks (a spec's ``[parts]``; docs/workshop.md §2): the pins' bearing
 pressure against a hand derivation of the joint forces, the levels at the documented limits, and
-the searches' shortcut (``parts_of_failing=False``) giving the same verdicts.
+the searches' shortcut (``screen_parts=True``) giving the same verdicts.
 
 The hand derivation (quasi-static, massless links; docs/workshop.md §1): the coupler is a
 two-force member, so the force on it at A is t u (u the unit vector A -> B) and on the handle at
@@ -229,7 +229,7 @@ def test_no_parts_table_no_part_checks():
 
 
 def test_the_searches_shortcut_gives_the_same_verdicts():
-    """``parts_of_failing=False`` (the part checks only where no other check fails) changes no
+    """``screen_parts=True`` (the part checks only where no other check fails) changes no
     design's outcome, and where it judges the parts their values are the full route's."""
     spec = _spec({"pin_diameter": PIN, "pin_width": 0.0052, "crank_diameter": 0.0127})
     speeds = np.linspace(60.0, 900.0, 12)  # [deg/s], as in a spec
