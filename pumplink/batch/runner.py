@@ -60,11 +60,45 @@ FLYWHEEL_DESIGNS = 1024
 
 
 class _Judged:
-    """What a chunk of either pump gives the run: its size, the verdict's level per variant and
-    the one ``--fail-on`` rule (``feasible``, ``mean_ok``, ``peak_ok`` and ``verdict`` per variant)."""
+    """What a chunk of either pump gives the run, read from its evaluation (``evaluation``): its
+    size, the verdict and its level per variant, the forces, and the one ``--fail-on`` rule."""
 
     def __len__(self) -> int:
         return self.stop - self.start
+
+    @property
+    def feasible(self) -> np.ndarray:
+        return self.evaluation.feasible
+
+    @property
+    def verdict(self) -> Verdict:
+        """Every check, per variant (:func:`pumplink.verdict.assess`)."""
+        return self.evaluation.verdict
+
+    @property
+    def mean_ok(self) -> np.ndarray:
+        return np.asarray(self.verdict["mean_force"].passed)
+
+    @property
+    def peak_ok(self) -> np.ndarray:
+        return np.asarray(self.verdict["peak_force"].passed)
+
+    @property
+    def passed(self) -> np.ndarray:
+        return np.asarray(self.verdict.passed)
+
+    @property
+    def mean_force(self) -> np.ndarray:
+        return self.evaluation.mean_force
+
+    @property
+    def verdict_peak_force(self) -> np.ndarray:
+        """The peak force that decides the verdict [N]."""
+        return self.evaluation.peak_force
+
+    @property
+    def least_peak_force(self) -> np.ndarray:
+        return self.evaluation.least_peak_force
 
     @property
     def level(self) -> np.ndarray:
@@ -112,40 +146,6 @@ class Chunk(_Judged):
     mechanism = FOUR_BAR
 
     @property
-    def feasible(self) -> np.ndarray:
-        return self.evaluation.feasible
-
-    @property
-    def verdict(self) -> Verdict:
-        """Every check, per variant (:func:`pumplink.verdict.assess`)."""
-        return self.evaluation.verdict
-
-    @property
-    def mean_ok(self) -> np.ndarray:
-        return np.asarray(self.verdict["mean_force"].passed)
-
-    @property
-    def peak_ok(self) -> np.ndarray:
-        return np.asarray(self.verdict["peak_force"].passed)
-
-    @property
-    def passed(self) -> np.ndarray:
-        return np.asarray(self.verdict.passed)
-
-    @property
-    def mean_force(self) -> np.ndarray:
-        return self.evaluation.mean_force
-
-    @property
-    def verdict_peak_force(self) -> np.ndarray:
-        """The peak force that decides the verdict [N]."""
-        return self.evaluation.peak_force
-
-    @property
-    def least_peak_force(self) -> np.ndarray:
-        return self.evaluation.least_peak_force
-
-    @property
     def flywheel(self) -> np.ndarray:
         """True where an energy model (the flywheel or full dynamics) decides."""
         return self.evaluation.energy_decides
@@ -184,38 +184,6 @@ class PistonChunk(_Judged):
     reason: list
 
     mechanism = CRANK_SLIDER
-
-    @property
-    def feasible(self) -> np.ndarray:
-        return self.evaluation.feasible
-
-    @property
-    def verdict(self) -> Verdict:
-        return self.evaluation.verdict
-
-    @property
-    def mean_ok(self) -> np.ndarray:
-        return np.asarray(self.verdict["mean_force"].passed)
-
-    @property
-    def peak_ok(self) -> np.ndarray:
-        return np.asarray(self.verdict["peak_force"].passed)
-
-    @property
-    def passed(self) -> np.ndarray:
-        return np.asarray(self.verdict.passed)
-
-    @property
-    def mean_force(self) -> np.ndarray:
-        return self.evaluation.mean_force
-
-    @property
-    def verdict_peak_force(self) -> np.ndarray:
-        return self.evaluation.peak_force
-
-    @property
-    def least_peak_force(self) -> np.ndarray:
-        return self.evaluation.least_peak_force
 
     @property
     def flywheel(self) -> np.ndarray:
