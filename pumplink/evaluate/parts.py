@@ -150,6 +150,44 @@ def quasi_static_strength(lk, dead_centre_extended, dead_centre_folded, dead_ban
     return _strength_of(value[:4], cycle, parts, n)
 
 
+def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses, speed,
+                      speed_fluctuation, force, rope_pull, wheel_weight, parts) -> Strength:  # fmt: skip
+    """:func:`strength` of :func:`part_loads` for many designs under full dynamics at once: ``lk``
+    with parameters of shape (n,), the other values of shape (n,) (``force`` each design's finite
+    least peak force, ``masses`` the links' without the operator's arms) and ``parts`` columns
+    (:class:`pumplink.evaluate.PartSizes`).  The scenes are :func:`pumplink.models.dynamics.scenes`,
+    the cycle and its peaks those of :func:`part_loads` (:func:`pumplink.models.joints.cycle_peak_loads`):
+    the same operations on the same values per design (tests/models/test_part_routes.py)."""
+    from pumplink.models import dynamics as _dy
+
+    scs = _dy.scenes(lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses, speed,
+                     speed_fluctuation, force)  # fmt: skip
+    n = scs.least_peak_force.shape[0]
+
+    def column(v):
+        return np.broadcast_to(np.asarray(v, float), (n,))[:, None]
+
+    rope, weight = column(rope_pull), column(wheel_weight)
+    ends = np.concatenate([column(dead_centre_extended), column(dead_centre_folded)], axis=1)
+    jumps = (ends[:, :, None] + np.array([-_joints.JUMP_OFFSET, _joints.JUMP_OFFSET])).reshape(n, 4)
+    turn = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
+    th = np.sort(np.mod(np.concatenate([np.broadcast_to(turn, (n, CYCLE_SAMPLES)), jumps], axis=1), TWO_PI))
+
+    def loads_at(rows, angles):
+        sub = scs.take(rows)
+        motion = _joints.dynamics_motion(sub, angles)
+        return _joints.motion_forces(sub.linkage, motion, GRAVITY, rope[rows], weight[rows])
+
+    every = np.arange(n)
+    cycle = loads_at(every, th)
+    value, angle = _joints.cycle_peak_loads(loads_at, th, cycle)
+    # the fatigue cycle holds the reported peak moments' crank angles too
+    more = loads_at(every, angle[4:6].T)
+    pairs = zip(vars(cycle).values(), vars(more).values())
+    cycle = type(cycle)(*(np.concatenate([a, b], axis=-1) for a, b in pairs))
+    return _strength_of(value[:4], cycle, parts, n)
+
+
 @dataclass(frozen=True)
 class Strength:
     """What the loads mean for the parts (docs/workshop.md §2).
@@ -281,7 +319,23 @@ def part_checks(syn, c, sizes, index, least, masses, feasible) -> dict:
         out["pin_pressure"][block] = st.pin_pressure / 1e6  # [MPa]
         out["handle_fatigue"][block] = st.handle.safety
         out["crank_fatigue"][block] = st.crank.safety
-    for i in np.nonzero(feasible & (model != 0))[0].tolist():
+    # full dynamics' designs all at once, in blocks that keep the cycle's arrays in the cache
+    dyn = np.nonzero(feasible & (model == ORDER.index(DYNAMICS)) & np.isfinite(least))[0]
+    for block in np.array_split(dyn, -(-dyn.size // SCENE_BLOCK)) if dyn.size else ():
+        col = {k: np.broadcast_to(np.asarray(c[k], float), (n,))[block]
+               for k in ("wheel_torque", "inertia", "speed", "speed_fluctuation", "rope_force")}  # fmt: skip
+        st = dynamics_strength(
+            FourBar(*(np.broadcast_to(np.asarray(v, float), (n,))[block] for v in syn.linkage.parameters)),
+            syn.dead_centre_extended[block], syn.dead_centre_folded[block], col["wheel_torque"],
+            col["inertia"], Masses(coupler[block], handle[block], 0.0), col["speed"],
+            col["speed_fluctuation"], least[block], col["rope_force"], weight[block],
+            PartSizes(*(np.broadcast_to(np.asarray(getattr(sizes, k), float), (n,))[block]
+                        for k in PART_KEYS)),
+        )  # fmt: skip
+        out["pin_pressure"][block] = st.pin_pressure / 1e6  # [MPa]
+        out["handle_fatigue"][block] = st.handle.safety
+        out["crank_fatigue"][block] = st.crank.safety
+    for i in np.nonzero(feasible & (model != 0) & (model != ORDER.index(DYNAMICS)))[0].tolist():
         lk = FourBar(*(float(np.asarray(v)[i]) for v in syn.linkage.parameters))
         dce, dcf = float(syn.dead_centre_extended[i]), float(syn.dead_centre_folded[i])
         key = ORDER[int(index[i])]
@@ -303,10 +357,14 @@ def part_checks(syn, c, sizes, index, least, masses, feasible) -> dict:
 #: Designs a block of the quasi-static part checks holds (its peak search holds ~1,500 crank angles
 #: and ~30 arrays a design: ~100 MB a block).
 PART_BLOCK = 256
+#: Designs a block of full dynamics' part checks holds (its cycle: ~1,450 crank angles a design).
+SCENE_BLOCK = 64
 
 
 __all__ = [
     "PART_BLOCK",
+    "SCENE_BLOCK",
+    "dynamics_strength",
     "part_checks",
     "CYCLE_SAMPLES",
     "FATIGUE_FAIL",

@@ -50,7 +50,8 @@ The models' motions
 motion I a + I' w^2 / 2 + V' = F g - Mw: §3a) give the motion the joint forces are taken along.
 
 Pure functions on floats / numpy arrays (broadcasting over crank angles and designs); SI units,
-radians.  The peak over the cycle, :func:`peak_joint_forces`, is per design.
+radians.  The peak over the cycle: :func:`peak_joint_forces` per design, :func:`cycle_peak_loads`
+and :func:`quasi_static_peak_loads` for many designs at once.
 """
 
 from __future__ import annotations
@@ -526,6 +527,61 @@ def quasi_static_peak_loads(
         a = np.where(live, np.take_along_axis(x, left[..., None], -1)[..., 0], a)
         b = np.where(live, np.take_along_axis(x, right[..., None], -1)[..., 0], b)
         live = live & ((b - a) > REFINE_XTOL)
+    return np.where(best == -np.inf, np.nan, best), np.mod(where, TWO_PI)
+
+
+def cycle_peak_loads(loads_at: Callable, grid, forces: JointForces):
+    """:func:`peak_joint_forces` from given nodes (``nodes``: one whole-turn arc, no jumps added)
+    for many designs at once: the same grid, brackets and zooms per design (a design's peaks do
+    not depend on its batch), the zooms of all designs and loads at once.  Loads of a design
+    whose brackets are the same (the joints next to a jump often peak at the same node) share
+    the points of a zoom: the same points, so the same values.
+
+    Parameters
+    ----------
+    loads_at : callable of designs (R,) (indices of the D, repeats allowed) and crank angles
+        (R, k), returning their :class:`JointForces` of shape (R, k).
+    grid : (D, K) crank angles [rad] in [0, 2 pi) on which ``forces`` (:class:`JointForces` of
+        shape (D, K)) were computed: at least :data:`PEAK_GRID_PER_RAD` a radian, with the nodes
+        :data:`JUMP_OFFSET` either side of each point where the loads may jump.
+
+    Returns
+    -------
+    value, angle : arrays of shape (6, D), as :func:`quasi_static_peak_loads`.
+    """
+    grid = np.asarray(grid, float)
+    n, m = grid.shape
+    order = np.argsort(grid, axis=1, kind="stable")
+    grid = np.take_along_axis(grid, order, axis=1)
+    vals = _finite_or_floor(np.take_along_axis(_loads(forces), order[None], axis=2))  # (6, D, K)
+    j = np.argmax(vals, axis=2)  # (6, D)
+    best = np.take_along_axis(vals, j[..., None], 2)[..., 0]
+    design = np.arange(n)[None, :]
+    where = grid[design, j]
+    a, b = grid[design, np.maximum(j - 1, 0)], grid[design, np.minimum(j + 1, m - 1)]
+    live = np.isfinite(best) & (0.0 <= a) & (b <= TWO_PI) & (b > a)  # neighbours on the arc
+    steps = np.linspace(0.0, 1.0, ZOOM_POINTS)
+    slot = np.full((6, n), -1)
+    while live.any():
+        load, dd = np.nonzero(live)
+        # the first live load of the design with the same bracket zooms for it
+        same = (a[:, None, dd] == a[None, :, dd]) & (b[:, None, dd] == b[None, :, dd]) & live[:, None, dd]
+        first = np.argmax(same, axis=0)[load, np.arange(load.size)]  # (L,)
+        own = first == load
+        slot[load[own], dd[own]] = np.arange(np.count_nonzero(own))
+        pick = slot[first, dd]  # the zoom's points of each live load
+        lo = a[load[own], dd[own]]
+        x = lo[:, None] + (b[load[own], dd[own]] - lo)[:, None] * steps  # (U, ZOOM_POINTS)
+        v = _finite_or_floor(_loads(loads_at(dd[own], x)))[load, pick]  # load i at its own points
+        k = np.argmax(v, axis=1)
+        top = v[np.arange(load.size), k]
+        xs = x[pick]
+        up = top > best[load, dd]
+        best[load[up], dd[up]] = top[up]
+        where[load[up], dd[up]] = xs[np.arange(load.size), k][up]
+        a[load, dd] = xs[np.arange(load.size), np.maximum(k - 1, 0)]
+        b[load, dd] = xs[np.arange(load.size), np.minimum(k + 1, ZOOM_POINTS - 1)]
+        live[load, dd] = (b[load, dd] - a[load, dd]) > REFINE_XTOL
     return np.where(best == -np.inf, np.nan, best), np.mod(where, TWO_PI)
 
 
