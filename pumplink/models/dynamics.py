@@ -263,7 +263,7 @@ def _profile(sc: Scene, crank_angle):
     phi = np.mod(th - sc.dead_centre_extended, TWO_PI)
     base, local = travel_parts(phi, *sc.travel)
     g_phi = base + local
-    tm = terms(sc.linkage, th, sc.masses, sc.gravity)
+    tm = terms(sc.linkage, th, sc.masses, sc.gravity, closure=True)
     i = sc.inertia + tm.inertia
     up = tm.potential + 0.5 * i * sc.max_speed**2
     dup = tm.potential_rate + 0.5 * tm.inertia_rate * sc.max_speed**2
@@ -446,6 +446,11 @@ def scenes(
     )
 
 
+#: Points a design up to which :func:`_profiles` counts the points before each angle column by
+#: column (two comparisons a point), beyond which all at once (a (D, K, points) comparison).
+_COUNT_BY_COLUMN = 12
+
+
 def _profiles(scs: Scenes, crank_angle):
     """:func:`_profile` of many designs: crank angles (D, K), the same operations on the same
     values per design.  The past and future minima over the points come from running minima
@@ -456,7 +461,7 @@ def _profiles(scs: Scenes, crank_angle):
     phi = np.mod(th - scs.dead_centre_extended, TWO_PI)
     base, local = travel_parts(phi, *scs.travel)
     g_phi = base + local
-    tm = terms(scs.linkage, th, scs.masses, scs.gravity)
+    tm = terms(scs.linkage, th, scs.masses, scs.gravity, closure=True)
     i = scs.inertia + tm.inertia
     up = tm.potential + 0.5 * i * scs.max_speed_squared
     dup = tm.potential_rate + 0.5 * tm.inertia_rate * scs.max_speed_squared
@@ -472,11 +477,15 @@ def _profiles(scs: Scenes, crank_angle):
     def at(v, k):
         return np.take_along_axis(v, k, axis=1)
 
-    below = np.empty(phi.shape, np.intp)  # points with x < phi
-    upto = np.empty(phi.shape, np.intp)  # points with x <= phi
-    for d in range(x.shape[0]):
-        below[d] = np.searchsorted(x[d], phi[d], "left")
-        upto[d] = np.searchsorted(x[d], phi[d], "right")
+    if x.shape[1] <= _COUNT_BY_COLUMN:  # a few points a design: counted column by column
+        below = np.zeros(phi.shape, np.intp)  # points with x < phi
+        upto = np.zeros(phi.shape, np.intp)  # points with x <= phi
+        for j in range(x.shape[1]):
+            below += x[:, j : j + 1] < phi
+            upto += x[:, j : j + 1] <= phi
+    else:  # many: all at once
+        below = np.count_nonzero(x[:, None, :] < phi[..., None], axis=-1)
+        upto = np.count_nonzero(x[:, None, :] <= phi[..., None], axis=-1)
     past = np.minimum(at(before(al), below), at(after(al + a), below))  # t in (phi - 2 pi, phi)
     future = np.minimum(at(before(de - b), upto), at(after(de), upto))  # t in (phi, phi + 2 pi)
     cand = np.stack([fp * g_phi - mw * phi + past, up, -fp * g_phi - mw * phi + future])

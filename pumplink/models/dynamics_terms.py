@@ -56,6 +56,10 @@ class Terms:
 
     inertia : I - J [kg m^2];  inertia_rate : dI/dt [kg m^2/rad];  potential : V [J];
     potential_rate : dV/dt [J/rad];  grip_rate : g = dPx/dt [m/rad];  grip_x : Px [m].
+    closure : the crank angles' cosines and sines and the loop closure's t and q (the values of
+        :func:`pumplink.mechanisms.fourbar_kernel.loop_closure`: the same operations), for the
+        joint forces along the same motion (:func:`pumplink.models.joints.joint_forces`); None
+        unless asked for.
     """
 
     inertia: np.ndarray
@@ -64,6 +68,7 @@ class Terms:
     potential_rate: np.ndarray
     grip_rate: np.ndarray
     grip_x: np.ndarray
+    closure: tuple | None = None
 
 
 def coefficients(lk: FourBar, masses: Masses) -> tuple:
@@ -116,6 +121,7 @@ def terms_from(
     fly_x: bool = False,
     grip: bool = True,
     lib=np,
+    closure: bool = False,
 ):
     """:func:`terms` on the constants ``co`` of :func:`coefficients` (no floating-point context).
 
@@ -126,6 +132,7 @@ def terms_from(
     computes it (its rounding), from the same loop closure.  ``lib``: the module whose cos, sin and
     sqrt are used; ``math`` on floats (``co`` and ``th`` floats) is the one-point route of
     :func:`point_terms`, the same operations in the same order, without numpy's per-call cost.
+    ``closure``: an eighth value, (cos t, sin t, t, q) of the loop closure (:attr:`Terms.closure`).
     """
     px, py, c, o2, c2, hkr, kk, k, rr, branch, mc, ic, i4, lever, mpy, hr, nhr = co
     cs, sn = lib.cos(th), lib.sin(th)
@@ -172,10 +179,14 @@ def terms_from(
             grip_x = px + hr * wx
     if fly_x:
         crank_x = px + hr * ((ccs + tdx) - qdy - px)
+    if closure:
+        return inertia, rate, potential, potential_rate, grip_rate, grip_x, crank_x, (cs, sn, t, q)
     return inertia, rate, potential, potential_rate, grip_rate, grip_x, crank_x
 
 
-def terms(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only: bool = False) -> Terms:
+def terms(
+    lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only: bool = False, closure: bool = False
+) -> Terms:
     """I(t) - J, I'(t), V(t), V'(t) and g(t) of Eq. (5)-(7) (docs/models.md §3a).
 
     With u = B - A (the coupler) and w = B - O4 (the rocker), the loop closure A + u = O4 + w
@@ -187,12 +198,12 @@ def terms(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only:
 
     (S = coupler * rocker * sin of the transmission angle: never zero for a crank-rocker; no instant
     centres).  ``rates_only``: I - J, V and Px are left None (the extremum refinement needs only I',
-    V' and g).
+    V' and g);  ``closure``: the loop closure too (:attr:`Terms.closure`).
     """
     th = np.asarray(crank_angle, float)
     with np.errstate(all="ignore"):
-        out = terms_from(coefficients(lk, masses), th, gravity, values=not rates_only)
-    return Terms(*out[:6])
+        out = terms_from(coefficients(lk, masses), th, gravity, values=not rates_only, closure=closure)
+    return Terms(*out[:6], out[7] if closure else None)
 
 
 def point_terms(lk: FourBar, masses: Masses, gravity=GRAVITY):

@@ -80,6 +80,9 @@ class Motion:
     crank_angle : t [rad];  crank_speed : w = dt/dtime [rad/s];  crank_acceleration : a [rad/s^2].
     operator_force : F, horizontal at the grip, +x positive [N].
     masses : the moving link masses and the point mass at the grip [kg] (zero: massless links).
+    closure : (cos t, sin t, t, q) of the loop closure at the crank angles where the model has
+        them already (:attr:`pumplink.models.dynamics_terms.Terms.closure`: the values
+        :func:`pumplink.mechanisms.fourbar_kernel.loop_closure` gives), else None.
     """
 
     crank_angle: np.ndarray
@@ -87,6 +90,7 @@ class Motion:
     crank_acceleration: np.ndarray
     operator_force: np.ndarray
     masses: Masses = Masses()
+    closure: tuple | None = None
 
 
 @dataclass(frozen=True)
@@ -135,6 +139,7 @@ def joint_forces(
     gravity=GRAVITY,
     rope_pull=0.0,
     wheel_weight=0.0,
+    closure=None,
 ) -> JointForces:
     """Joint forces from Newton-Euler on the coupler and the handle, Eq. (J1)-(J4) of the module.
 
@@ -148,6 +153,7 @@ def joint_forces(
     rope_pull : sum of the rope strands' tensions pulling the wheel down [N] (0: the linkage's
         share of the axle load only; docs/workshop.md §1).
     wheel_weight : weight of the wheel, crank and axle [N], carried by the axle.
+    closure : (cos, sin, t, q) at the crank angles (:attr:`Motion.closure`), or None: found here.
 
     Returns
     -------
@@ -159,15 +165,18 @@ def joint_forces(
     acc = np.asarray(crank_acceleration, float)
     force = np.asarray(operator_force, float)
     with np.errstate(all="ignore"):  # a non-assemblable linkage gives NaN, by design
-        return _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight)
+        return _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight, closure)
 
 
-def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight):
+def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight, closure=None):
     px, py, c, k, r = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker
     hh = lk.handle
     mc, mh, mp = masses.coupler, masses.handle, masses.grip
-    cs, sn = np.cos(th), np.sin(th)
-    _p1, _p2, _e2, t, q = loop_closure(lk, cs, sn)
+    if closure is None:
+        cs, sn = np.cos(th), np.sin(th)
+        _p1, _p2, _e2, t, q = loop_closure(lk, cs, sn)
+    else:
+        cs, sn, t, q = closure
     ax, ay = c * cs, c * sn  # the crank pin A
     dx, dy = px - ax, py - ay  # O4 - A
     ux, uy = t * dx - q * dy, t * dy + q * dx  # u = B - A (Eq. (6) of pumplink.mechanisms.fourbar)
@@ -275,10 +284,13 @@ def dynamics_motion(scene, crank_angle) -> Motion:
     th = np.asarray(crank_angle, float)
     force, speed, tm = dy.motion_state(scene, np.atleast_1d(th))
     force, speed = force.reshape(th.shape), speed.reshape(th.shape)
-    tm = dt.Terms(*(None if v is None else np.reshape(v, th.shape) for v in vars(tm).values()))
+    closure = tuple(np.reshape(v, th.shape) for v in tm.closure)
+    tm = dt.Terms(
+        *(None if v is None else np.reshape(v, th.shape) for v in vars(tm).values() if v is not tm.closure)
+    )
     rhs = force * tm.grip_rate - scene.wheel_torque - tm.potential_rate - 0.5 * tm.inertia_rate * speed**2
     acc = rhs / (scene.inertia + tm.inertia)  # Eq. (7) of pumplink.models.dynamics_terms in time
-    return Motion(th, speed, acc, force, scene.masses)
+    return Motion(th, speed, acc, force, scene.masses, closure)
 
 
 def motion_forces(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0):
@@ -293,6 +305,7 @@ def motion_forces(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, w
         gravity,
         rope_pull,
         wheel_weight,
+        motion.closure,
     )
 
 
