@@ -38,6 +38,10 @@ from pumplink.models.grip_travel import (
 #: Crank angles per revolution on which the links' largest kinetic energy and the range of their
 #: potential energy are taken for the model choice (1 deg steps).
 EFFECT_GRID = 360
+#: Designs whose sizes are found together: their (designs, EFFECT_GRID) arrays stay in the cache
+#: (all of a batch's chunk at once held ~100 MB of temporaries, handed back to the system and
+#: faulted in again every chunk).
+EFFECT_BLOCK = 128
 
 
 def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY, rocker_rate=None):
@@ -65,12 +69,15 @@ def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY, rocke
                                 rocker_rate if known else np.nan)  # fmt: skip
     geom, (mc, mh, ma, w, rate) = arrays[:7], arrays[7:]
     th = np.arange(EFFECT_GRID) * (TWO_PI / EFFECT_GRID)
-    col = FourBar(*(v[:, None] for v in geom))
+    link, weight = np.empty(w.shape), np.empty(w.shape)
     with np.errstate(all="ignore"):
-        co = coefficients(col, Masses(mc[:, None], mh[:, None], 0.0))
-        tm = terms_from(co, th, gravity, rates=False, grip=False)
-        link = 0.5 * tm[0].max(axis=1) * w * w
-        weight = np.ptp(tm[2], axis=1)
+        for s in range(0, w.size, EFFECT_BLOCK):  # blocks whose (designs, angles) arrays stay in the cache
+            b = slice(s, s + EFFECT_BLOCK)
+            col = FourBar(*(v[b, None] for v in geom))
+            co = coefficients(col, Masses(mc[b, None], mh[b, None], 0.0))
+            tm = terms_from(co, th, gravity, rates=False, grip=False)
+            link[b] = 0.5 * tm[0].max(axis=1) * w[b] * w[b]
+            weight[b] = np.ptp(tm[2], axis=1)
         # the peak rate only where arms are carried: a search that leaves them out of the verdict
         # passes no arm mass and skips the refinement (about half its cost per small batch)
         arm = np.zeros(np.shape(ma))
