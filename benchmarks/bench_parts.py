@@ -5,9 +5,11 @@ at a time; ``make bench`` builds it in build/base-94c2ab6 from this repository's
 Each command is the real one in a subprocess, start-up included, run through a wrapper that reads
 its wall time and its CPU time (user + system, of it and every process it starts); this
 checkout's runs and 94c2ab6's are interleaved, so load from other processes falls on both alike.
-Both sides run their own installed entry point (``.venv/bin/pumplink``) from this checkout's
-folder on this checkout's specs.  Medians of ``--repeat`` runs; the old install's design-space
-grid takes minutes a run, so it runs ``--repeat-slow`` times (once by default).
+Both sides run their own installed entry point (``.venv/bin/pumplink``), each from its own
+checkout's folder on that checkout's copy of the specs (94c2ab6 reads no ``handle_joint`` or
+``crank_joint`` in ``[parts]``, words added since; the village well is the same design).
+Medians of ``--repeat`` runs; the old install's design-space grid takes minutes a run, so it
+runs ``--repeat-slow`` times (once by default).
 
     .venv/bin/python benchmarks/bench_parts.py [--repeat 3] [--repeat-slow 1] [--base DIR] [--smoke]
 
@@ -55,19 +57,19 @@ GRID = "configs/grids/design-space.toml"
 SPREAD = 1.05
 
 
-def measure(exe: str, args: list[str]) -> dict:
-    """Wall and CPU time [s] of ``exe args`` run from this checkout's folder; its exit code must
-    be 0 or 1 (a verdict), else the benchmark stops."""
+def measure(exe: tuple[str, Path], args: list[str]) -> dict:
+    """Wall and CPU time [s] of ``exe args`` (``exe``: the entry point and the folder it runs
+    from); its exit code must be 0 or 1 (a verdict), else the benchmark stops."""
     out = subprocess.run(
-        [sys.executable, "-c", WRAPPER, exe, *args], capture_output=True, text=True, check=True, cwd=ROOT
+        [sys.executable, "-c", WRAPPER, exe[0], *args], capture_output=True, text=True, check=True, cwd=exe[1]
     )
     res = json.loads(out.stdout)
     if res["rc"] not in (0, 1):
-        raise SystemExit(f"{exe} {' '.join(args)} failed ({res['rc']}):\n{res['stderr']}")
+        raise SystemExit(f"{exe[0]} {' '.join(args)} failed ({res['rc']}):\n{res['stderr']}")
     return res
 
 
-def side_by_side(exes: dict[str, str], args: list[str], runs: int, base_runs: int) -> dict[str, dict]:
+def side_by_side(exes: dict[str, tuple], args: list[str], runs: int, base_runs: int) -> dict[str, dict]:
     """Median wall and CPU time of ``args`` on each install, interleaved round by round."""
     got: dict[str, list[dict]] = {name: [] for name in exes}
     for k in range(max(runs, base_runs)):
@@ -103,7 +105,7 @@ def main() -> None:
     ap.add_argument("--base", type=Path, default=ROOT / "build" / f"base-{BASE_COMMIT}")
     ap.add_argument("--smoke", action="store_true", help=SMOKE_HELP)
     args = ap.parse_args()
-    exes = {THIS: str(Path(sys.executable).parent / "pumplink")}
+    exes = {THIS: (str(Path(sys.executable).parent / "pumplink"), ROOT)}
     base_exe = args.base / ".venv" / "bin" / "pumplink"
     if smoke():
         print(
@@ -115,7 +117,7 @@ def main() -> None:
             f"no pinned install at {args.base}: run `make bench` (it builds one from {BASE_COMMIT})"
         )
     else:
-        exes[BASE_COMMIT] = str(base_exe)
+        exes[BASE_COMMIT] = (str(base_exe), args.base)
     n, slow = repeats(args.repeat), repeats(args.repeat_slow)
     print(f"the part checks under full dynamics, this checkout against {BASE_COMMIT}; {machine()}")
     with tempfile.TemporaryDirectory() as tmp:
