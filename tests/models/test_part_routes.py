@@ -92,6 +92,16 @@ def test_the_verdicts_part_checks_are_each_designs_own(village_variants):
     np.testing.assert_array_equal(got, want)
 
 
+def test_the_part_checks_do_not_depend_on_the_blocks(village_variants, monkeypatch):
+    """In blocks of five designs (three blocks, the last of two) the part checks are those of
+    one block of twelve."""
+    designs, ev = village_variants
+    monkeypatch.setattr(P, "SCENE_BLOCK", 5)
+    again = evaluate(designs, ("parts",))
+    for key in ("pin_pressure", "handle_fatigue", "crank_fatigue"):
+        np.testing.assert_array_equal(getattr(again, key), getattr(ev, key))
+
+
 def test_a_designs_peaks_do_not_depend_on_its_block(village_variants):
     """The cycle's peaks (the six loads and their crank angles) of the vector route equal
     :func:`pumplink.models.joints.peak_joint_forces` of each design on its own, in a block of
