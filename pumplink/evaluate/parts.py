@@ -9,6 +9,7 @@ report (``pumplink force --explain``) both come from :func:`part_loads` and :fun
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -178,14 +179,32 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
         motion = _joints.dynamics_motion(sub, angles)
         return _joints.motion_forces(sub.linkage, motion, GRAVITY, rope[rows], weight[rows])
 
-    every = np.arange(n)
-    cycle = loads_at(every, th)
-    value, angle = _joints.cycle_peak_loads(loads_at, th, cycle)
-    # the fatigue cycle holds the reported peak moments' crank angles too
+    # the loads over the cycle, CYCLE_ROWS designs at a time (their arrays stay in the cache): the
+    # six the peaks are searched on, and the moments and axial forces the fatigue reads, which
+    # also holds the reported peak moments' crank angles (the last two)
+    every, k = np.arange(n), th.shape[1]
+    six = np.empty((6, n, k))
+    fatigue = _Cycle(*(np.empty((n, k + 2)) for _ in _Cycle._fields))
+    for s in range(0, n, CYCLE_ROWS):
+        rows = every[s : s + CYCLE_ROWS]
+        forces = loads_at(rows, th[rows])
+        six[:, rows] = _joints.six_loads(forces)
+        for name, v in zip(_Cycle._fields, fatigue, strict=True):
+            v[rows, :k] = getattr(forces, name)
+    value, angle = _joints.cycle_peak_loads(loads_at, th, six)
     more = loads_at(every, angle[4:6].T)
-    pairs = zip(vars(cycle).values(), vars(more).values())
-    cycle = type(cycle)(*(np.concatenate([a, b], axis=-1) for a, b in pairs))
-    return _strength_of(value[:4], cycle, parts, n)
+    for name, v in zip(_Cycle._fields, fatigue, strict=True):
+        v[:, k:] = getattr(more, name)
+    return _strength_of(value[:4], fatigue, parts, n)
+
+
+class _Cycle(NamedTuple):
+    """The loads over the cycle that the fatigue reads (designs, crank angles)."""
+
+    handle_moment: np.ndarray
+    handle_axial: np.ndarray
+    crank_moment: np.ndarray
+    crank_axial: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -357,8 +376,11 @@ def part_checks(syn, c, sizes, index, least, masses, feasible) -> dict:
 #: Designs a block of the quasi-static part checks holds (its peak search holds ~1,500 crank angles
 #: and ~30 arrays a design: ~100 MB a block).
 PART_BLOCK = 256
-#: Designs a block of full dynamics' part checks holds (its cycle: ~1,450 crank angles a design).
-SCENE_BLOCK = 64
+#: Designs a block of full dynamics' part checks holds: their scenes and the zooms of their peak
+#: search at once (fewer, longer calls); their cycles (~1,450 crank angles a design) are computed
+#: CYCLE_ROWS designs at a time, arrays that stay in the processor's cache.
+SCENE_BLOCK = 256
+CYCLE_ROWS = 64
 
 
 __all__ = [

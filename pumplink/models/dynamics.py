@@ -495,9 +495,12 @@ def _profiles(scs: Scenes, crank_angle):
         upto = np.count_nonzero(x[:, None, :] <= phi[..., None], axis=-1)
     past = np.minimum(at(before(al), below), at(after(al + a), below))  # t in (phi - 2 pi, phi)
     future = np.minimum(at(before(de - b), upto), at(after(de), upto))  # t in (phi, phi + 2 pi)
-    cand = np.stack([fp * g_phi - mw * phi + past, up, -fp * g_phi - mw * phi + future])
-    regime = 1 - np.argmin(cand, axis=0)
-    return cand.min(axis=0), regime, dup, tm.potential, i, tm.grip_rate, tm
+    push, brake = fp * g_phi - mw * phi + past, -fp * g_phi - mw * phi + future
+    # the three candidates' minimum and the first that takes it (NaN: the first NaN), as
+    # np.min and np.argmin over them stacked give them
+    e = np.minimum(np.minimum(push, up), brake)
+    regime = np.where(np.isnan(push) | (push == e), 1, np.where(np.isnan(up) | (up == e), 0, -1))
+    return e, regime, dup, tm.potential, i, tm.grip_rate, tm
 
 
 def regime(sc: Scene, crank_angle):

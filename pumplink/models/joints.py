@@ -349,11 +349,15 @@ class PeakLoads:
     handle_moment: tuple
 
 
-def _loads(forces: JointForces) -> np.ndarray:
-    """The six magnitudes searched: the four joints, then |crank moment| and |handle moment|."""
-    return np.concatenate(
-        [forces.magnitudes, np.abs(forces.crank_moment)[None], np.abs(forces.handle_moment)[None]]
-    )
+def six_loads(forces: JointForces) -> np.ndarray:
+    """The six magnitudes searched: the four joints, then |crank moment| and |handle moment|
+    (shape (6, ...))."""
+    out = np.empty((6,) + np.shape(forces.crank_moment))
+    for i, name in enumerate(JOINTS):
+        np.hypot(*getattr(forces, name), out=out[i])  # JointForces.magnitudes
+    np.abs(forces.crank_moment, out=out[4])
+    np.abs(forces.handle_moment, out=out[5])
+    return out
 
 
 def peak_joint_forces(
@@ -393,7 +397,7 @@ def peak_joint_forces(
         )  # fmt: skip
         given = None
     else:
-        grid, given = np.asarray(nodes[0], float), _loads(nodes[1])
+        grid, given = np.asarray(nodes[0], float), six_loads(nodes[1])
     extra = []
     for j in jumps:
         for start, length in arcs:
@@ -404,9 +408,9 @@ def peak_joint_forces(
     extra = np.concatenate(extra) if extra else np.zeros(0)
     if given is None:
         grid = np.concatenate([grid, extra])
-        vals = _loads(loads_at(grid))
+        vals = six_loads(loads_at(grid))
     else:
-        vals = np.concatenate([given, _loads(loads_at(extra))], axis=1) if extra.size else given
+        vals = np.concatenate([given, six_loads(loads_at(extra))], axis=1) if extra.size else given
         grid = np.concatenate([grid, extra])
     order = np.argsort(grid, kind="stable")
     grid, vals = grid[order], _finite_or_floor(vals[:, order])  # (6, N)
@@ -424,7 +428,7 @@ def peak_joint_forces(
     while live.any():
         rows = np.nonzero(live)[0]
         x = a[rows, None] + (b - a)[rows, None] * steps  # (k, ZOOM_POINTS)
-        v = _finite_or_floor(_loads(loads_at(x.ravel())))[rows].reshape(rows.size, -1, ZOOM_POINTS)
+        v = _finite_or_floor(six_loads(loads_at(x.ravel())))[rows].reshape(rows.size, -1, ZOOM_POINTS)
         v = v[np.arange(rows.size), np.arange(rows.size)]  # load i at its own points
         k = np.argmax(v, axis=1)
         up = v[np.arange(rows.size), k] > best[rows]
@@ -506,7 +510,7 @@ def quasi_static_peak_loads(
     def loads_at(th):  # (n, k) crank angles -> (6, n, k) loads, NaN as -inf
         motion = quasi_static_motion(column, th, torque[:, None])
         forces = motion_forces(column, motion, GRAVITY, rope[:, None], weight[:, None])
-        return _finite_or_floor(_loads(forces))
+        return _finite_or_floor(six_loads(forces))
 
     plus = np.mod(dcf - dce, TWO_PI)
     start = np.stack([dce + band, dcf + band], axis=1)  # (n, 2): the two arcs judged
@@ -543,7 +547,7 @@ def quasi_static_peak_loads(
     return np.where(best == -np.inf, np.nan, best), np.mod(where, TWO_PI)
 
 
-def cycle_peak_loads(loads_at: Callable, grid, forces: JointForces):
+def cycle_peak_loads(loads_at: Callable, grid, loads):
     """:func:`peak_joint_forces` from given nodes (``nodes``: one whole-turn arc, no jumps added)
     for many designs at once: the same grid, brackets and zooms per design (a design's peaks do
     not depend on its batch), the zooms of all designs and loads at once.  Loads of a design
@@ -554,9 +558,9 @@ def cycle_peak_loads(loads_at: Callable, grid, forces: JointForces):
     ----------
     loads_at : callable of designs (R,) (indices of the D, repeats allowed) and crank angles
         (R, k), returning their :class:`JointForces` of shape (R, k).
-    grid : (D, K) crank angles [rad] in [0, 2 pi) on which ``forces`` (:class:`JointForces` of
-        shape (D, K)) were computed: at least :data:`PEAK_GRID_PER_RAD` a radian, with the nodes
-        :data:`JUMP_OFFSET` either side of each point where the loads may jump.
+    grid : (D, K) crank angles [rad] in [0, 2 pi): at least :data:`PEAK_GRID_PER_RAD` a radian,
+        with the nodes :data:`JUMP_OFFSET` either side of each point where the loads may jump.
+    loads : (6, D, K), :func:`six_loads` of the joint forces at ``grid``.
 
     Returns
     -------
@@ -564,9 +568,12 @@ def cycle_peak_loads(loads_at: Callable, grid, forces: JointForces):
     """
     grid = np.asarray(grid, float)
     n, m = grid.shape
-    order = np.argsort(grid, axis=1, kind="stable")
-    grid = np.take_along_axis(grid, order, axis=1)
-    vals = _finite_or_floor(np.take_along_axis(_loads(forces), order[None], axis=2))  # (6, D, K)
+    if (grid[:, 1:] >= grid[:, :-1]).all():  # sorted already (a stable sort leaves it as it is)
+        vals = _finite_or_floor(loads)  # (6, D, K)
+    else:
+        order = np.argsort(grid, axis=1, kind="stable")
+        grid = np.take_along_axis(grid, order, axis=1)
+        vals = _finite_or_floor(np.take_along_axis(loads, order[None], axis=2))
     j = np.argmax(vals, axis=2)  # (6, D)
     best = np.take_along_axis(vals, j[..., None], 2)[..., 0]
     design = np.arange(n)[None, :]
@@ -585,7 +592,7 @@ def cycle_peak_loads(loads_at: Callable, grid, forces: JointForces):
         pick = slot[first, dd]  # the zoom's points of each live load
         lo = a[load[own], dd[own]]
         x = lo[:, None] + (b[load[own], dd[own]] - lo)[:, None] * steps  # (U, ZOOM_POINTS)
-        v = _finite_or_floor(_loads(loads_at(dd[own], x)))[load, pick]  # load i at its own points
+        v = _finite_or_floor(six_loads(loads_at(dd[own], x)))[load, pick]  # load i at its own points
         k = np.argmax(v, axis=1)
         top = v[np.arange(load.size), k]
         xs = x[pick]

@@ -125,7 +125,7 @@ def test_a_designs_peaks_do_not_depend_on_its_block(village_variants):
             )
 
         cycle = loads_at(np.arange(rows.size), th)
-        value, angle = J.cycle_peak_loads(loads_at, th, cycle)
+        value, angle = J.cycle_peak_loads(loads_at, th, J.six_loads(cycle))
         np.testing.assert_array_equal(value, want[:, rows])
         np.testing.assert_array_equal(angle, want_at[:, rows])
 
