@@ -174,10 +174,13 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     turn = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
     th = np.sort(np.mod(np.concatenate([np.broadcast_to(turn, (n, CYCLE_SAMPLES)), jumps], axis=1), TWO_PI))
 
-    def loads_at(rows, angles):
+    def loads_at(rows, angles, fatigue=False):
         sub = scs.take(rows)
         motion = _joints.dynamics_motion(sub, angles)
-        return _joints.motion_forces(sub.linkage, motion, GRAVITY, rope[rows], weight[rows])
+        return _joints.motion_loads(sub.linkage, motion, GRAVITY, rope[rows], weight[rows], fatigue)
+
+    def six_at(rows, angles):
+        return loads_at(rows, angles)[0]
 
     # the loads over the cycle, CYCLE_ROWS designs at a time (their arrays stay in the cache): the
     # six the peaks are searched on, and the moments and axial forces the fatigue reads, which
@@ -187,14 +190,12 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     fatigue = _Cycle(*(np.empty((n, k + 2)) for _ in _Cycle._fields))
     for s in range(0, n, CYCLE_ROWS):
         rows = every[s : s + CYCLE_ROWS]
-        forces = loads_at(rows, th[rows])
-        six[:, rows] = _joints.six_loads(forces)
-        for name, v in zip(_Cycle._fields, fatigue, strict=True):
-            v[rows, :k] = getattr(forces, name)
-    value, angle = _joints.cycle_peak_loads(loads_at, th, six)
-    more = loads_at(every, angle[4:6].T)
-    for name, v in zip(_Cycle._fields, fatigue, strict=True):
-        v[:, k:] = getattr(more, name)
+        six[:, rows], read = loads_at(rows, th[rows], fatigue=True)
+        for v, r in zip(fatigue, read, strict=True):
+            v[rows, :k] = r
+    value, angle = _joints.cycle_peak_loads(six_at, th, six)
+    for v, r in zip(fatigue, loads_at(every, angle[4:6].T, fatigue=True)[1], strict=True):
+        v[:, k:] = r
     return _strength_of(value[:4], fatigue, parts, n)
 
 

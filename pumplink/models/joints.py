@@ -165,10 +165,15 @@ def joint_forces(
     acc = np.asarray(crank_acceleration, float)
     force = np.asarray(operator_force, float)
     with np.errstate(all="ignore"):  # a non-assemblable linkage gives NaN, by design
-        return _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight, closure)
+        c = _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight, closure)
+    return JointForces(
+        np.stack(c[0:2]), np.stack(c[2:4]), np.stack(c[4:6]), np.stack(c[6:8]), c[8], -c[8], *c[9:]
+    )
 
 
-def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight, closure=None):
+def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight, closure=None, axial=True):
+    """The components of :class:`JointForces`: R_A, R_B, R_O4, R_O2 (x, y each), the crank torque,
+    the crank's axial force, the handle's moment and its axial force (None without ``axial``)."""
     px, py, c, k, r = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker
     hh = lk.handle
     mc, mh, mp = masses.coupler, masses.handle, masses.grip
@@ -227,17 +232,31 @@ def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weigh
     fiy = m1 * (0.5 * r * pty + gravity) - oy_
     moment = m1 * r * r / 3.0 * a4 - (rx * fiy - ry * fix) + 0.5 * r * ex * m1 * gravity
     moment = np.where(hh >= r, moment, np.nan)  # a grip inside the rocker: no section beyond B
-    return JointForces(
-        np.stack([ax_, ay_]),
-        np.stack([bx_, by_]),
-        np.stack([ox_, oy_]),
-        np.stack([wx_, wy_]),
-        torque,
-        -torque,  # the crank's root carries the pin force's moment about the axle
-        -(ax_ * cs + ay_ * sn),  # -R_A . e_crank: the pin pulls the crank outward = tension
-        moment,
-        fix * ex + fiy * ey,  # the outer part pulling along +e: tension
-    )
+    # the crank's root carries the pin force's moment about the axle: crank_moment = -torque
+    crank_axial = (
+        -(ax_ * cs + ay_ * sn) if axial else None
+    )  # -R_A . e_crank: the pin pulls the crank outward = tension
+    handle_axial = fix * ex + fiy * ey if axial else None  # the outer part pulling along +e: tension
+    return ax_, ay_, bx_, by_, ox_, oy_, wx_, wy_, torque, crank_axial, moment, handle_axial
+
+
+def motion_loads(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0, fatigue=True):
+    """The loads a peak search and a fatigue check read along a :class:`Motion`, without the force
+    vectors of :func:`motion_forces` (the same values): :func:`six_loads`, shape (6, ...), and,
+    with ``fatigue``, the handle's and the crank's bending moments and axial forces (a tuple
+    ``(handle_moment, handle_axial, crank_moment, crank_axial)``; else None)."""
+    with np.errstate(all="ignore"):  # a non-assemblable linkage gives NaN, by design
+        ax_, ay_, bx_, by_, ox_, oy_, wx_, wy_, torque, crank_axial, moment, handle_axial = _joint_forces(
+            lk, *(np.asarray(v, float) for v in (motion.crank_angle, motion.crank_speed,
+                                                 motion.crank_acceleration, motion.operator_force)),
+            motion.masses, gravity, rope_pull, wheel_weight, motion.closure, fatigue,
+        )  # fmt: skip
+        out = np.empty((6,) + np.shape(torque))
+        for i, (x, y) in enumerate(((wx_, wy_), (ax_, ay_), (bx_, by_), (ox_, oy_))):  # JOINTS' order
+            np.hypot(x, y, out=out[i])
+        np.abs(torque, out=out[4])  # |crank moment| = |-torque|
+        np.abs(moment, out=out[5])
+        return out, ((moment, handle_axial, -torque, crank_axial) if fatigue else None)
 
 
 # ----------------------------------------------------------------------------- the models' motions
@@ -557,7 +576,7 @@ def cycle_peak_loads(loads_at: Callable, grid, loads):
     Parameters
     ----------
     loads_at : callable of designs (R,) (indices of the D, repeats allowed) and crank angles
-        (R, k), returning their :class:`JointForces` of shape (R, k).
+        (R, k), returning their :func:`six_loads`, shape (6, R, k).
     grid : (D, K) crank angles [rad] in [0, 2 pi): at least :data:`PEAK_GRID_PER_RAD` a radian,
         with the nodes :data:`JUMP_OFFSET` either side of each point where the loads may jump.
     loads : (6, D, K), :func:`six_loads` of the joint forces at ``grid``.
@@ -592,7 +611,7 @@ def cycle_peak_loads(loads_at: Callable, grid, loads):
         pick = slot[first, dd]  # the zoom's points of each live load
         lo = a[load[own], dd[own]]
         x = lo[:, None] + (b[load[own], dd[own]] - lo)[:, None] * steps  # (U, ZOOM_POINTS)
-        v = _finite_or_floor(six_loads(loads_at(dd[own], x)))[load, pick]  # load i at its own points
+        v = _finite_or_floor(loads_at(dd[own], x))[load, pick]  # load i at its own points
         k = np.argmax(v, axis=1)
         top = v[np.arange(load.size), k]
         xs = x[pick]

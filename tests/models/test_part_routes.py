@@ -115,17 +115,11 @@ def test_a_designs_peaks_do_not_depend_on_its_block(village_variants):
         th = np.stack([_cycle(sc) for sc in scenes])
 
         def loads_at(r, angles, rows=rows, scenes=scenes):
-            out = [_forces(scenes[k], angles[j], designs, rows[k], len(ev)) for j, k in enumerate(r)]
-            # a design's force vectors are (2, k), stacked as (2, R, k); the others (k,) as (R, k)
-            return J.JointForces(
-                *(
-                    np.stack([vars(f)[name] for f in out], axis=np.ndim(vars(out[0])[name]) - 1)
-                    for name in vars(out[0])
-                )
-            )
+            """The six loads of designs ``r`` of ``rows`` at ``angles``, one design at a time."""
+            return np.stack([J.six_loads(_forces(scenes[k], angles[j], designs, rows[k], len(ev)))
+                             for j, k in enumerate(r)], axis=1)  # fmt: skip
 
-        cycle = loads_at(np.arange(rows.size), th)
-        value, angle = J.cycle_peak_loads(loads_at, th, J.six_loads(cycle))
+        value, angle = J.cycle_peak_loads(loads_at, th, loads_at(np.arange(rows.size), th))
         np.testing.assert_array_equal(value, want[:, rows])
         np.testing.assert_array_equal(angle, want_at[:, rows])
 
@@ -143,3 +137,25 @@ def _forces(sc, angles, designs, i, n):
     """The joint forces of the one-design route along a scene's motion at crank angles."""
     rope, weight = _of(designs.rope_force, n, i), _of(designs.wheel_mass, n, i) * GRAVITY
     return J.motion_forces(sc.linkage, J.dynamics_motion(sc, angles), GRAVITY, rope, weight)
+
+
+def test_the_loads_without_the_force_vectors_are_the_forces_own(village_variants):
+    """:func:`pumplink.models.joints.motion_loads` (the six loads, the moments and the axial
+    forces, without stacking the force vectors) equals :func:`~pumplink.models.joints.six_loads`
+    of :func:`~pumplink.models.joints.motion_forces` and its fields, on the motion of a scene,
+    a quasi-static one and a flywheel-less one without the loop closure given."""
+    designs, ev = village_variants
+    sc, _, _ = _one_design(ev, designs, 2)
+    th = np.linspace(-1.0, 8.0, 997)
+    motions = (
+        J.dynamics_motion(sc, th),
+        J.quasi_static_motion(sc.linkage, th, sc.wheel_torque),
+        J.Motion(th, np.full(th.shape, 30.0), np.full(th.shape, -4.0), np.full(th.shape, 50.0), sc.masses),
+    )
+    for motion in motions:
+        forces = J.motion_forces(sc.linkage, motion, GRAVITY, 120.0, 98.0)
+        six, read = J.motion_loads(sc.linkage, motion, GRAVITY, 120.0, 98.0)
+        np.testing.assert_array_equal(six, J.six_loads(forces))
+        names = ("handle_moment", "handle_axial", "crank_moment", "crank_axial")
+        for name, got in zip(names, read, strict=True):
+            np.testing.assert_array_equal(got, getattr(forces, name))
