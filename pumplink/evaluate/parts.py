@@ -379,9 +379,10 @@ def part_checks(syn, c, sizes, index, least, masses, feasible) -> dict:
 PART_BLOCK = 256
 #: Designs a block of full dynamics' part checks holds: their scenes and the zooms of their peak
 #: search at once (fewer, longer calls); their cycles (~1,450 crank angles a design) are computed
-#: CYCLE_ROWS designs at a time, arrays that stay in the processor's cache.
-SCENE_BLOCK = 256
-CYCLE_ROWS = 64
+#: CYCLE_ROWS designs at a time, arrays that stay in the processor's cache.  A block of 256 held
+#: more than glibc's trim threshold at once (pumplink.malloc): its pages were faulted in again.
+SCENE_BLOCK = 128
+CYCLE_ROWS = 32
 
 
 __all__ = [
