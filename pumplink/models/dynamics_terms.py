@@ -56,10 +56,11 @@ class Terms:
 
     inertia : I - J [kg m^2];  inertia_rate : dI/dt [kg m^2/rad];  potential : V [J];
     potential_rate : dV/dt [J/rad];  grip_rate : g = dPx/dt [m/rad];  grip_x : Px [m].
-    closure : the crank angles' cosines and sines and the loop closure's t and q (the values of
-        :func:`pumplink.mechanisms.fourbar_kernel.loop_closure`: the same operations), for the
-        joint forces along the same motion (:func:`pumplink.models.joints.joint_forces`); None
-        unless asked for.
+    closure : the loop closure at the crank angles, for the joint forces along the same motion
+        (:func:`pumplink.models.joints.joint_forces`; None unless asked for): cos t, sin t, the crank
+        pin A, O4 - A, u = B - A, w = B - O4 and u x w, each (x, y) as two arrays (the values the
+        joint forces compute from :func:`pumplink.mechanisms.fourbar_kernel.loop_closure`: the same
+        operations).
     """
 
     inertia: np.ndarray
@@ -132,7 +133,7 @@ def terms_from(
     computes it (its rounding), from the same loop closure.  ``lib``: the module whose cos, sin and
     sqrt are used; ``math`` on floats (``co`` and ``th`` floats) is the one-point route of
     :func:`point_terms`, the same operations in the same order, without numpy's per-call cost.
-    ``closure``: an eighth value, (cos t, sin t, t, q) of the loop closure (:attr:`Terms.closure`).
+    ``closure``: an eighth value, the loop closure (:attr:`Terms.closure`).
     """
     px, py, c, o2, c2, hkr, kk, k, rr, branch, mc, ic, i4, lever, mpy, hr, nhr = co
     cs, sn = lib.cos(th), lib.sin(th)
@@ -151,7 +152,8 @@ def terms_from(
     tdx, qdy = t * dx, q * dy
     ux, uy = tdx - qdy, t * dy + q * dx  # B - A (Eq. (6) of pumplink.mechanisms.fourbar)
     wx, wy = ux - dx, uy - dy  # B - O4
-    inv = 1.0 / (ux * wy - uy * wx)
+    den = ux * wy - uy * wx  # u x w
+    inv = 1.0 / den
     h3 = (csn * wx - ccs * wy) * inv  # first derivative of the loop closure
     h4 = (csn * ux - ccs * uy) * inv
     h33, h44 = h3 * h3, h4 * h4
@@ -180,7 +182,8 @@ def terms_from(
     if fly_x:
         crank_x = px + hr * ((ccs + tdx) - qdy - px)
     if closure:
-        return inertia, rate, potential, potential_rate, grip_rate, grip_x, crank_x, (cs, sn, t, q)
+        loop = (cs, sn, ccs, csn, dx, dy, ux, uy, wx, wy, den)
+        return inertia, rate, potential, potential_rate, grip_rate, grip_x, crank_x, loop
     return inertia, rate, potential, potential_rate, grip_rate, grip_x, crank_x
 
 

@@ -80,9 +80,9 @@ class Motion:
     crank_angle : t [rad];  crank_speed : w = dt/dtime [rad/s];  crank_acceleration : a [rad/s^2].
     operator_force : F, horizontal at the grip, +x positive [N].
     masses : the moving link masses and the point mass at the grip [kg] (zero: massless links).
-    closure : (cos t, sin t, t, q) of the loop closure at the crank angles where the model has
-        them already (:attr:`pumplink.models.dynamics_terms.Terms.closure`: the values
-        :func:`pumplink.mechanisms.fourbar_kernel.loop_closure` gives), else None.
+    closure : the loop closure at the crank angles where the model has it already
+        (:attr:`pumplink.models.dynamics_terms.Terms.closure`: the values the joint forces would
+        compute), else None.
     """
 
     crank_angle: np.ndarray
@@ -153,7 +153,7 @@ def joint_forces(
     rope_pull : sum of the rope strands' tensions pulling the wheel down [N] (0: the linkage's
         share of the axle load only; docs/workshop.md §1).
     wheel_weight : weight of the wheel, crank and axle [N], carried by the axle.
-    closure : (cos, sin, t, q) at the crank angles (:attr:`Motion.closure`), or None: found here.
+    closure : the loop closure at the crank angles (:attr:`Motion.closure`), or None: found here.
 
     Returns
     -------
@@ -180,13 +180,13 @@ def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weigh
     if closure is None:
         cs, sn = np.cos(th), np.sin(th)
         _p1, _p2, _e2, t, q = loop_closure(lk, cs, sn)
-    else:
-        cs, sn, t, q = closure
-    ax, ay = c * cs, c * sn  # the crank pin A
-    dx, dy = px - ax, py - ay  # O4 - A
-    ux, uy = t * dx - q * dy, t * dy + q * dx  # u = B - A (Eq. (6) of pumplink.mechanisms.fourbar)
-    rx, ry = ux - dx, uy - dy  # r = B - O4
-    s = ux * ry - uy * rx  # u x r
+        ax, ay = c * cs, c * sn  # the crank pin A
+        dx, dy = px - ax, py - ay  # O4 - A
+        ux, uy = t * dx - q * dy, t * dy + q * dx  # u = B - A (Eq. (6) of pumplink.mechanisms.fourbar)
+        rx, ry = ux - dx, uy - dy  # r = B - O4
+        s = ux * ry - uy * rx  # u x r
+    else:  # the same, from the motion's terms
+        cs, sn, ax, ay, dx, dy, ux, uy, rx, ry, s = closure
     # velocity coefficients and their derivatives (unit crank speed, no crank acceleration)
     vx, vy = ay, -ax  # V = -dA/dt
     h3 = (vx * rx + vy * ry) / s
