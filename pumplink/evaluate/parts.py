@@ -1,9 +1,13 @@
 """Will the parts last? The loads on the pins, the crank and the handle over the deciding model's
 cycle, and what they mean for pins, tubes and bars a workshop builds (docs/workshop.md).
 
-One design at a time (the peak search and the cycle's sampling are per design): the verdict's
-part checks (:func:`pumplink.evaluate.evaluate` when a spec gives ``[parts]``) and the workshop
-report (``pumplink force --explain``) both come from :func:`part_loads` and :func:`strength`.
+Two routes to the same numbers: one design in depth, :func:`part_loads` and :func:`strength` (the
+workshop report of ``pumplink force --explain``, and the verdict's part checks of a design the
+flywheel decides), and many designs at once, :func:`quasi_static_strength` and
+:func:`dynamics_strength` (the verdict's part checks, :func:`part_checks`, of the designs the
+quasi-static model or full dynamics decides: a batch, a tolerance study, a search).  The
+full-dynamics routes run the same operations on the same values per design, so they agree bit for
+bit (tests/models/test_part_routes.py).
 """
 
 from __future__ import annotations
@@ -316,8 +320,8 @@ def part_checks(syn, c, sizes, index, least, masses, feasible) -> dict:
     that decided (``index`` into :data:`pumplink.models.ORDER`, its least peak force ``least``)
     against the part ``sizes`` (:class:`pumplink.evaluate.designs.PartSizes`, the spec's
     ``[parts]``), where ``feasible`` (NaN elsewhere); ``syn`` the synthesis and ``c`` the design
-    columns (arrays over designs).  The quasi-static designs in blocks at once, the energy models'
-    one at a time."""
+    columns (arrays over designs).  The quasi-static and the full-dynamics designs in blocks at
+    once, the flywheel's one at a time."""
     n = feasible.size
     out = {k: np.full(n, np.nan) for k in ("pin_pressure", "handle_fatigue", "crank_fatigue")}
     coupler, handle = (np.broadcast_to(np.asarray(v, float), (n,)) for v in (masses.coupler, masses.handle))
