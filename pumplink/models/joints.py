@@ -305,7 +305,7 @@ def dynamics_motion(scene, crank_angle) -> Motion:
     force, speed = force.reshape(th.shape), speed.reshape(th.shape)
     closure = tuple(np.reshape(v, th.shape) for v in tm.closure)
     tm = dt.Terms(
-        *(None if v is None else np.reshape(v, th.shape) for v in vars(tm).values() if v is not tm.closure)
+        **{k: None if v is None else np.reshape(v, th.shape) for k, v in vars(tm).items() if k != "closure"}
     )
     rhs = force * tm.grip_rate - scene.wheel_torque - tm.potential_rate - 0.5 * tm.inertia_rate * speed**2
     acc = rhs / (scene.inertia + tm.inertia)  # Eq. (7) of pumplink.models.dynamics_terms in time
