@@ -67,7 +67,19 @@ $(BASE_DIR)/.venv/.stamp:
 	$(BASE_DIR)/.venv/bin/python -m pip install --quiet $(BASE_DIR)
 	touch $@
 
-bench: $(VENV)/.stamp-bench $(BASE_DIR)/.venv/.stamp
+# The code before full dynamics and the part checks were computed for many designs at once, installed
+# the same way, for the side-by-side part-check, tolerance and sizing benchmark (benchmarks/bench_parts.py).
+BASE2_COMMIT := 94c2ab6
+BASE2_DIR := build/base-$(BASE2_COMMIT)
+$(BASE2_DIR)/.venv/.stamp:
+	rm -rf $(BASE2_DIR) && mkdir -p build
+	git worktree prune
+	git worktree add --detach $(BASE2_DIR) $(BASE2_COMMIT)
+	$(PYTHON) -m venv $(BASE2_DIR)/.venv
+	$(BASE2_DIR)/.venv/bin/python -m pip install --quiet $(BASE2_DIR)
+	touch $@
+
+bench: $(VENV)/.stamp-bench $(BASE_DIR)/.venv/.stamp $(BASE2_DIR)/.venv/.stamp
 	$(BIN)/python -m compileall -q pumplink
 	@mkdir -p $(dir $(BENCH_OUT)) && rm -f $(BENCH_OUT)
 	@for b in benchmarks/bench_*.py; do echo "== $$b"; \

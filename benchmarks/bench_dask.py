@@ -4,8 +4,8 @@ The real command end to end (start-up, cluster start and stop, evaluation, CSV w
 subprocess, on configs/grids/design-space.toml (27,216 variants that give inertia, the village
 well's 8 kg wheel: the flywheel or full dynamics decides each) and on the same grid without the
 wheel mass (quasi-static), both on a copy of the village well without its ``[parts]`` table: the
-part checks cost the same on either backend (~11 ms a design under full dynamics, one design at
-a time), so with them the comparison would take half an hour a run and say nothing more.
+part checks cost the same on either backend, so with them the comparison would say nothing more
+(the grid with them is benchmarks/bench_parts.py's).
 Wall and CPU time (user + system of the command and every process it started, from
 resource.getrusage in a wrapper process), medians of interleaved runs; the two backends' CSV files
 must be byte-identical.  One more Dask run on the inertia grid leaves out the workers' malloc

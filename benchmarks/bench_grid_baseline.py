@@ -85,7 +85,10 @@ def main() -> None:
         for _ in range(repeats(args.repeat)):
             for name, python in pythons.items():
                 out = tmp / f"{name.replace(' ', '-')}.csv"
-                cmd = [python, "-m", "pumplink", "batch", str(grid), "--samples", "360", "--fail-on", "none"]
+                # -P: not this folder first on sys.path, where `-m pumplink` would import this
+                # checkout's source whichever interpreter runs it (the pinned install's too)
+                cmd = [python, "-P", "-m", "pumplink", "batch", str(grid), "--samples", "360"]
+                cmd += ["--fail-on", "none"]
                 r = measure([*cmd, "--format", "csv", "--out", str(out), "--workers", "1"])
                 assert r["rc"] == 0, (name, r)
                 assert sum(1 for _ in out.open()) == n + 1

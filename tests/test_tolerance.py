@@ -194,6 +194,19 @@ def test_the_share_interval_is_wilsons(count, n):
     assert s.high == pytest.approx(min(1.0, centre + half), abs=1e-12)
 
 
+@settings(max_examples=200, deadline=None)
+@given(n=st.integers(1, 200_000), at=st.floats(0.0, 1.0), confidence=st.sampled_from([0.9, 0.95, 0.99]))
+def test_the_share_interval_is_scipys_to_the_bit(n, at, confidence):
+    """The interval is computed as scipy.stats.binomtest's Wilson interval (not imported by the
+    command: its start-up), with the same operations: the JSON prints every bit of it."""
+    from scipy.stats import binomtest
+
+    count = round(at * n)
+    ci = binomtest(count, n).proportion_ci(confidence, method="wilson")
+    s = ts.share(count, n, confidence)
+    assert (s.low, s.high) == (float(ci.low), float(ci.high))
+
+
 # ----------------------------------------------------------------------------- the allocation
 def test_the_allocation_is_the_loosest_ladder_that_keeps_the_target(village_first_order):
     fo = village_first_order

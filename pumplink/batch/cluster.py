@@ -12,7 +12,8 @@ machine) is run again on another worker, and the driver receives exactly one res
 so no row is lost or written twice.  A task that kills
 ``distributed.scheduler.allowed-failures`` + 1 workers (default 4) ends the run.
 
-The workers' malloc is tuned by a worker plugin (:class:`WorkerSetup`): Dask starts its workers
+The workers' malloc is tuned by a worker plugin (:class:`WorkerSetup`, :func:`pumplink.malloc.tune_malloc`):
+Dask starts its workers
 with ``MALLOC_TRIM_THRESHOLD_=65536``, which also freezes glibc's mmap threshold at 128 kB, so
 every temporary array of the kernels is mapped and unmapped afresh and its pages faulted in; on
 the flywheel design-space grid that cost twice the CPU time (``benchmarks/bench_dask.py``).
@@ -24,7 +25,6 @@ CLI only checks that it can be imported when ``--scheduler`` is given).
 from __future__ import annotations
 
 import contextlib
-import ctypes
 import logging
 import os
 import signal
@@ -41,23 +41,12 @@ import distributed
 from pumplink.batch.runner import Chunk, evaluate_chunk, plan, task_designs
 from pumplink.errors import SpecError, shown
 from pumplink.inputs.batch import Batch
+from pumplink.malloc import tune_malloc
 
 #: Seconds to wait for a remote scheduler to answer (a reachable one answers in milliseconds).
 CONNECT_TIMEOUT = 5.0
 #: Seconds to wait for a remote scheduler to have a worker (workers take seconds to start).
 WORKER_TIMEOUT = 60.0
-
-#: glibc's mmap threshold on the workers [bytes]: blocks below it come from the heap, which is
-#: reused across tasks.  32 MiB is the ceiling of glibc's own dynamic threshold
-#: (``DEFAULT_MMAP_THRESHOLD_MAX`` on 64-bit systems), which rises to the largest block freed: in
-#: a plain process, such as a worker of the local pool, the kernels' temporaries end up on the
-#: heap too.
-MMAP_THRESHOLD = 32 * 1024 * 1024
-#: glibc's trim threshold on the workers [bytes]: free memory at the top of the heap beyond this
-#: goes back to the system (twice the mmap threshold, as glibc's dynamic rule sets it).
-TRIM_THRESHOLD = 2 * MMAP_THRESHOLD
-
-_M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3  # mallopt parameters, <malloc.h>
 
 #: Dask settings of the local cluster: its background work, for a dashboard nobody watches here,
 #: is cut from ~9 % of a core (idle, 2 workers; the statistical profiler samples every task's
@@ -104,21 +93,6 @@ def parse_scheduler(text: str) -> Scheduler:
             "give e.g. --scheduler local:4 or --scheduler tcp://host:8786"
         )
     return Scheduler(text)
-
-
-# ----------------------------------------------------------------------------- workers' malloc
-def tune_malloc(mmap_threshold: int = MMAP_THRESHOLD, trim_threshold: int = TRIM_THRESHOLD) -> bool:
-    """Set this process's glibc mmap and trim thresholds (``mallopt``); False where the C
-    library is not glibc (macOS, musl), which then keeps its own behaviour."""
-    try:
-        libc = ctypes.CDLL("libc.so.6")
-        mallopt = libc.mallopt
-    except (OSError, AttributeError):
-        return False
-    mallopt.argtypes, mallopt.restype = (ctypes.c_int, ctypes.c_int), ctypes.c_int
-    return bool(mallopt(_M_MMAP_THRESHOLD, mmap_threshold)) and bool(
-        mallopt(_M_TRIM_THRESHOLD, trim_threshold)
-    )
 
 
 class WorkerSetup(distributed.WorkerPlugin):

@@ -33,6 +33,7 @@ from pumplink.evaluate import (
 )
 from pumplink.inputs.batch import CRANK_SLIDER, FOUR_BAR, Batch, axis_indices
 from pumplink.inputs.pump import spec_values
+from pumplink.malloc import tune_malloc
 from pumplink.mechanisms import crank_slider as cs
 from pumplink.mechanisms.fourbar import infeasibility_reason
 
@@ -376,6 +377,7 @@ def map_ordered(
     """
     workers = min(workers, len(items))  # never more processes than items
     if workers <= 1:
+        tune_malloc()  # pumplink.malloc: the kernels' temporaries on the heap
         if initializer is not None:
             initializer(*initargs)
         for item in items:
@@ -409,6 +411,7 @@ def map_ordered(
 
 def _init_pool(initializer, initargs) -> None:
     _ignore_stop_signals()
+    tune_malloc()  # a worker evaluates many designs: keep the kernels' temporaries on the heap
     if initializer is not None:
         initializer(*initargs)
 
@@ -435,6 +438,7 @@ def run(
         designs = task_designs(samples)
     tasks = plan(batches, chunk, designs)
     if min(workers, len(tasks)) <= 1:
+        tune_malloc()  # pumplink.malloc: the kernels' temporaries on the heap
         for t in tasks:
             yield _evaluate_one(batches, t, samples, post, model)
         return

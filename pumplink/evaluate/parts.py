@@ -1,14 +1,19 @@
 """Will the parts last? The loads on the pins, the crank and the handle over the deciding model's
 cycle, and what they mean for pins, tubes and bars a workshop builds (docs/workshop.md).
 
-One design at a time (the peak search and the cycle's sampling are per design): the verdict's
-part checks (:func:`pumplink.evaluate.evaluate` when a spec gives ``[parts]``) and the workshop
-report (``pumplink force --explain``) both come from :func:`part_loads` and :func:`strength`.
+Two routes to the same numbers: one design in depth, :func:`part_loads` and :func:`strength` (the
+workshop report of ``pumplink force --explain``, and the verdict's part checks of a design the
+flywheel decides), and many designs at once, :func:`quasi_static_strength` and
+:func:`dynamics_strength` (the verdict's part checks, :func:`part_checks`, of the designs the
+quasi-static model or full dynamics decides: a batch, a tolerance study, a search).  The
+full-dynamics routes run the same operations on the same values per design, so they agree bit for
+bit (tests/models/test_part_routes.py).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -150,6 +155,63 @@ def quasi_static_strength(lk, dead_centre_extended, dead_centre_folded, dead_ban
     return _strength_of(value[:4], cycle, parts, n)
 
 
+def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses, speed,
+                      speed_fluctuation, force, rope_pull, wheel_weight, parts) -> Strength:  # fmt: skip
+    """:func:`strength` of :func:`part_loads` for many designs under full dynamics at once: ``lk``
+    with parameters of shape (n,), the other values of shape (n,) (``force`` each design's finite
+    least peak force, ``masses`` the links' without the operator's arms) and ``parts`` columns
+    (:class:`pumplink.evaluate.PartSizes`).  The scenes are :func:`pumplink.models.dynamics.scenes`,
+    the cycle and its peaks those of :func:`part_loads` (:func:`pumplink.models.joints.cycle_peak_loads`):
+    the same operations on the same values per design (tests/models/test_part_routes.py)."""
+    from pumplink.models import dynamics as _dy
+
+    scs = _dy.scenes(lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses, speed,
+                     speed_fluctuation, force)  # fmt: skip
+    n = scs.least_peak_force.shape[0]
+
+    def column(v):
+        return np.broadcast_to(np.asarray(v, float), (n,))[:, None]
+
+    rope, weight = column(rope_pull), column(wheel_weight)
+    ends = np.concatenate([column(dead_centre_extended), column(dead_centre_folded)], axis=1)
+    jumps = (ends[:, :, None] + np.array([-_joints.JUMP_OFFSET, _joints.JUMP_OFFSET])).reshape(n, 4)
+    turn = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
+    th = np.sort(np.mod(np.concatenate([np.broadcast_to(turn, (n, CYCLE_SAMPLES)), jumps], axis=1), TWO_PI))
+
+    def loads_at(rows, angles, fatigue=False):
+        sub = scs.take(rows)
+        motion = _joints.dynamics_motion(sub, angles)
+        return _joints.motion_loads(sub.linkage, motion, GRAVITY, rope[rows], weight[rows], fatigue)
+
+    def six_at(rows, angles):
+        return loads_at(rows, angles)[0]
+
+    # the loads over the cycle, CYCLE_ROWS designs at a time (their arrays stay in the cache): the
+    # six the peaks are searched on, and the moments and axial forces the fatigue reads, which
+    # also holds the reported peak moments' crank angles (the last two)
+    every, k = np.arange(n), th.shape[1]
+    six = np.empty((6, n, k))
+    fatigue = _Cycle(*(np.empty((n, k + 2)) for _ in _Cycle._fields))
+    for s in range(0, n, CYCLE_ROWS):
+        rows = every[s : s + CYCLE_ROWS]
+        six[:, rows], read = loads_at(rows, th[rows], fatigue=True)
+        for v, r in zip(fatigue, read, strict=True):
+            v[rows, :k] = r
+    value, angle = _joints.cycle_peak_loads(six_at, th, six)
+    for v, r in zip(fatigue, loads_at(every, angle[4:6].T, fatigue=True)[1], strict=True):
+        v[:, k:] = r
+    return _strength_of(value[:4], fatigue, parts, n)
+
+
+class _Cycle(NamedTuple):
+    """The loads over the cycle that the fatigue reads (designs, crank angles)."""
+
+    handle_moment: np.ndarray
+    handle_axial: np.ndarray
+    crank_moment: np.ndarray
+    crank_axial: np.ndarray
+
+
 @dataclass(frozen=True)
 class Strength:
     """What the loads mean for the parts (docs/workshop.md §2).
@@ -258,8 +320,8 @@ def part_checks(syn, c, sizes, index, least, masses, feasible) -> dict:
     that decided (``index`` into :data:`pumplink.models.ORDER`, its least peak force ``least``)
     against the part ``sizes`` (:class:`pumplink.evaluate.designs.PartSizes`, the spec's
     ``[parts]``), where ``feasible`` (NaN elsewhere); ``syn`` the synthesis and ``c`` the design
-    columns (arrays over designs).  The quasi-static designs in blocks at once, the energy models'
-    one at a time."""
+    columns (arrays over designs).  The quasi-static and the full-dynamics designs in blocks at
+    once, the flywheel's one at a time."""
     n = feasible.size
     out = {k: np.full(n, np.nan) for k in ("pin_pressure", "handle_fatigue", "crank_fatigue")}
     coupler, handle = (np.broadcast_to(np.asarray(v, float), (n,)) for v in (masses.coupler, masses.handle))
@@ -281,7 +343,23 @@ def part_checks(syn, c, sizes, index, least, masses, feasible) -> dict:
         out["pin_pressure"][block] = st.pin_pressure / 1e6  # [MPa]
         out["handle_fatigue"][block] = st.handle.safety
         out["crank_fatigue"][block] = st.crank.safety
-    for i in np.nonzero(feasible & (model != 0))[0].tolist():
+    # full dynamics' designs all at once, in blocks that keep the cycle's arrays in the cache
+    dyn = np.nonzero(feasible & (model == ORDER.index(DYNAMICS)) & np.isfinite(least))[0]
+    for block in np.array_split(dyn, -(-dyn.size // SCENE_BLOCK)) if dyn.size else ():
+        col = {k: np.broadcast_to(np.asarray(c[k], float), (n,))[block]
+               for k in ("wheel_torque", "inertia", "speed", "speed_fluctuation", "rope_force")}  # fmt: skip
+        st = dynamics_strength(
+            FourBar(*(np.broadcast_to(np.asarray(v, float), (n,))[block] for v in syn.linkage.parameters)),
+            syn.dead_centre_extended[block], syn.dead_centre_folded[block], col["wheel_torque"],
+            col["inertia"], Masses(coupler[block], handle[block], 0.0), col["speed"],
+            col["speed_fluctuation"], least[block], col["rope_force"], weight[block],
+            PartSizes(*(np.broadcast_to(np.asarray(getattr(sizes, k), float), (n,))[block]
+                        for k in PART_KEYS)),
+        )  # fmt: skip
+        out["pin_pressure"][block] = st.pin_pressure / 1e6  # [MPa]
+        out["handle_fatigue"][block] = st.handle.safety
+        out["crank_fatigue"][block] = st.crank.safety
+    for i in np.nonzero(feasible & (model != 0) & (model != ORDER.index(DYNAMICS)))[0].tolist():
         lk = FourBar(*(float(np.asarray(v)[i]) for v in syn.linkage.parameters))
         dce, dcf = float(syn.dead_centre_extended[i]), float(syn.dead_centre_folded[i])
         key = ORDER[int(index[i])]
@@ -303,10 +381,18 @@ def part_checks(syn, c, sizes, index, least, masses, feasible) -> dict:
 #: Designs a block of the quasi-static part checks holds (its peak search holds ~1,500 crank angles
 #: and ~30 arrays a design: ~100 MB a block).
 PART_BLOCK = 256
+#: Designs a block of full dynamics' part checks holds: their scenes and the zooms of their peak
+#: search at once (fewer, longer calls); their cycles (~1,450 crank angles a design) are computed
+#: CYCLE_ROWS designs at a time, arrays that stay in the processor's cache.  A block of 256 held
+#: more than glibc's trim threshold at once (pumplink.malloc): its pages were faulted in again.
+SCENE_BLOCK = 128
+CYCLE_ROWS = 32
 
 
 __all__ = [
     "PART_BLOCK",
+    "SCENE_BLOCK",
+    "dynamics_strength",
     "part_checks",
     "CYCLE_SAMPLES",
     "FATIGUE_FAIL",

@@ -38,6 +38,10 @@ from pumplink.models.grip_travel import (
 #: Crank angles per revolution on which the links' largest kinetic energy and the range of their
 #: potential energy are taken for the model choice (1 deg steps).
 EFFECT_GRID = 360
+#: Designs whose sizes are found together: their (designs, EFFECT_GRID) arrays stay in the cache
+#: (all of a batch's chunk at once held ~100 MB of temporaries, handed back to the system and
+#: faulted in again every chunk).
+EFFECT_BLOCK = 128
 
 
 def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY, rocker_rate=None):
@@ -65,12 +69,15 @@ def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY, rocke
                                 rocker_rate if known else np.nan)  # fmt: skip
     geom, (mc, mh, ma, w, rate) = arrays[:7], arrays[7:]
     th = np.arange(EFFECT_GRID) * (TWO_PI / EFFECT_GRID)
-    col = FourBar(*(v[:, None] for v in geom))
+    link, weight = np.empty(w.shape), np.empty(w.shape)
     with np.errstate(all="ignore"):
-        co = coefficients(col, Masses(mc[:, None], mh[:, None], 0.0))
-        tm = terms_from(co, th, gravity, rates=False, grip=False)
-        link = 0.5 * tm[0].max(axis=1) * w * w
-        weight = np.ptp(tm[2], axis=1)
+        for s in range(0, w.size, EFFECT_BLOCK):  # blocks whose (designs, angles) arrays stay in the cache
+            b = slice(s, s + EFFECT_BLOCK)
+            col = FourBar(*(v[b, None] for v in geom))
+            co = coefficients(col, Masses(mc[b, None], mh[b, None], 0.0))
+            tm = terms_from(co, th, gravity, rates=False, grip=False)
+            link[b] = 0.5 * tm[0].max(axis=1) * w[b] * w[b]
+            weight[b] = np.ptp(tm[2], axis=1)
         # the peak rate only where arms are carried: a search that leaves them out of the verdict
         # passes no arm mass and skips the refinement (about half its cost per small batch)
         arm = np.zeros(np.shape(ma))
@@ -263,7 +270,7 @@ def _profile(sc: Scene, crank_angle):
     phi = np.mod(th - sc.dead_centre_extended, TWO_PI)
     base, local = travel_parts(phi, *sc.travel)
     g_phi = base + local
-    tm = terms(sc.linkage, th, sc.masses, sc.gravity)
+    tm = terms(sc.linkage, th, sc.masses, sc.gravity, closure=True)
     i = sc.inertia + tm.inertia
     up = tm.potential + 0.5 * i * sc.max_speed**2
     dup = tm.potential_rate + 0.5 * tm.inertia_rate * sc.max_speed**2
@@ -361,6 +368,141 @@ def _profile_at(sc: Scene):
     return at
 
 
+# ----------------------------------------------------------------------------- many designs at once
+@dataclass(frozen=True)
+class Scenes:
+    """The reported motions of many designs at once, for the part checks of a batch: the data of
+    :class:`Scene` that the motion on the cycle needs, per-design values as columns (D, 1), the
+    refined points (x, base, local, up, lo) as rows (D, P) (sorted; a short row repeats its last
+    point, which changes no minimum).  :func:`motion_state` of it is that of each design's
+    :class:`Scene` (the same operations on the same values; tests/models/test_part_routes.py)."""
+
+    linkage: FourBar
+    dead_centre_extended: np.ndarray
+    wheel_torque: np.ndarray
+    inertia: np.ndarray
+    masses: Masses
+    gravity: float
+    least_peak_force: np.ndarray
+    max_speed_squared: np.ndarray  # w_hi^2 as Scene.max_speed**2 (Python's pow) rounds it
+    stroke: np.ndarray
+    points: tuple
+    travel: list
+
+    def take(self, rows) -> Scenes:
+        """The scenes of designs ``rows`` (indices, repeats allowed)."""
+        n = self.least_peak_force.shape[0]
+        if rows.size == n and np.array_equal(rows, np.arange(n)):
+            return self
+
+        def pick(v):
+            return v[rows]
+
+        return Scenes(
+            FourBar(*(pick(v) for v in self.linkage.parameters)),
+            pick(self.dead_centre_extended),
+            pick(self.wheel_torque),
+            pick(self.inertia),
+            Masses(*(pick(v) for v in vars(self.masses).values())),
+            self.gravity,
+            pick(self.least_peak_force),
+            pick(self.max_speed_squared),
+            pick(self.stroke),
+            tuple(pick(v) for v in self.points),
+            [pick(v) for v in self.travel],
+        )
+
+
+def scenes(
+    lk: FourBar,
+    dead_centre_extended,
+    dead_centre_folded,
+    wheel_torque,
+    inertia,
+    masses: Masses,
+    mean_speed,
+    speed_fluctuation,
+    force,
+    gravity: float = GRAVITY,
+) -> Scenes:
+    """:func:`scene` of many designs (1-D arrays over designs) solved at ``force`` [N] (finite:
+    each design's least peak force), as :class:`Scenes`: one problem and one refinement of the
+    points for all of them."""
+    args = (lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses, mean_speed)
+    pb, _ = problem(*args, speed_fluctuation, gravity)
+    n = pb.mw.size
+    fp = np.array(np.broadcast_to(np.asarray(force, float), (n,)))
+    pts, _ = refined_points(pb, fp, np.arange(n))
+
+    def col(v):
+        return np.reshape(v, (n, 1))
+
+    w2 = np.array([float(w) ** 2 for w in pb.w_hi])  # Scene.max_speed**2: a Python float's pow
+    return Scenes(
+        FourBar(*(col(v) for v in pb.lk.parameters)),
+        col(pb.prep.dce),
+        col(pb.mw),
+        col(pb.inertia),
+        Masses(col(pb.masses.coupler), col(pb.masses.handle), col(pb.masses.grip)),
+        gravity,
+        col(fp),
+        col(w2),
+        col(pb.stroke),
+        pts,
+        pb.travel,
+    )
+
+
+#: Points a design up to which :func:`_profiles` counts the points before each angle column by
+#: column (two comparisons a point), beyond which all at once (a (D, K, points) comparison).
+_COUNT_BY_COLUMN = 12
+
+
+def _profiles(scs: Scenes, crank_angle):
+    """:func:`_profile` of many designs: crank angles (D, K), the same operations on the same
+    values per design.  The past and future minima over the points come from running minima
+    along the sorted points and the count of points before each angle (a minimum is exact in
+    any order; NaN sorts last, as a comparison leaves it out)."""
+    th = np.asarray(crank_angle, float)
+    fp, mw = scs.least_peak_force, scs.wheel_torque
+    phi = np.mod(th - scs.dead_centre_extended, TWO_PI)
+    base, local = travel_parts(phi, *scs.travel)
+    g_phi = base + local
+    tm = terms(scs.linkage, th, scs.masses, scs.gravity, closure=True)
+    i = scs.inertia + tm.inertia
+    up = tm.potential + 0.5 * i * scs.max_speed_squared
+    dup = tm.potential_rate + 0.5 * tm.inertia_rate * scs.max_speed_squared
+    x, a, b, al, de = _point_margins(scs)
+    inf = np.full((x.shape[0], 1), np.inf)
+
+    def before(v):  # [k]: the minimum of v over the first k points
+        return np.minimum.accumulate(np.concatenate([inf, v], axis=1), axis=1)
+
+    def after(v):  # [k]: the minimum of v over the points from the k-th on
+        return np.minimum.accumulate(np.concatenate([v, inf], axis=1)[:, ::-1], axis=1)[:, ::-1]
+
+    def at(v, k):
+        return np.take_along_axis(v, k, axis=1)
+
+    if x.shape[1] <= _COUNT_BY_COLUMN:  # a few points a design: counted column by column
+        below = np.zeros(phi.shape, np.intp)  # points with x < phi
+        upto = np.zeros(phi.shape, np.intp)  # points with x <= phi
+        for j in range(x.shape[1]):
+            below += x[:, j : j + 1] < phi
+            upto += x[:, j : j + 1] <= phi
+    else:  # many: all at once
+        below = np.count_nonzero(x[:, None, :] < phi[..., None], axis=-1)
+        upto = np.count_nonzero(x[:, None, :] <= phi[..., None], axis=-1)
+    past = np.minimum(at(before(al), below), at(after(al + a), below))  # t in (phi - 2 pi, phi)
+    future = np.minimum(at(before(de - b), upto), at(after(de), upto))  # t in (phi, phi + 2 pi)
+    push, brake = fp * g_phi - mw * phi + past, -fp * g_phi - mw * phi + future
+    # the three candidates' minimum and the first that takes it (NaN: the first NaN), as
+    # np.min and np.argmin over them stacked give them
+    e = np.minimum(np.minimum(push, up), brake)
+    regime = np.where(np.isnan(push) | (push == e), 1, np.where(np.isnan(up) | (up == e), 0, -1))
+    return e, regime, dup, tm.potential, i, tm.grip_rate, tm
+
+
 def regime(sc: Scene, crank_angle):
     """-1 where the operator brakes with Fp, 0 where the motion rides the top of the band, +1 where
     the operator pushes Fp with the grip."""
@@ -397,10 +539,11 @@ def wheel_speed(sc: Scene, crank_angle):
     return out if np.ndim(crank_angle) else float(out[0])
 
 
-def motion_state(sc: Scene, crank_angle):
+def motion_state(sc: Scene | Scenes, crank_angle):
     """:func:`operator_force`, :func:`wheel_speed` and the links' :func:`terms` at crank angles
-    (1-D), from one evaluation of the profile: (force [N], speed [rad/s], terms)."""
-    prof = _profile(sc, crank_angle)
+    (1-D; of :class:`Scenes`, (D, K): K angles per design), from one evaluation of the profile:
+    (force [N], speed [rad/s], terms)."""
+    prof = (_profiles if isinstance(sc, Scenes) else _profile)(sc, crank_angle)
     e, v, i, tm = prof[0], prof[3], prof[4], prof[6]
     with np.errstate(invalid="ignore"):
         speed = np.sqrt(2.0 * (e - v) / i)

@@ -56,6 +56,11 @@ class Terms:
 
     inertia : I - J [kg m^2];  inertia_rate : dI/dt [kg m^2/rad];  potential : V [J];
     potential_rate : dV/dt [J/rad];  grip_rate : g = dPx/dt [m/rad];  grip_x : Px [m].
+    closure : the loop closure at the crank angles, for the joint forces along the same motion
+        (:func:`pumplink.models.joints.joint_forces`; None unless asked for): cos t, sin t, the crank
+        pin A, O4 - A, u = B - A, w = B - O4 and u x w, each (x, y) as two arrays (the values the
+        joint forces compute from :func:`pumplink.mechanisms.fourbar_kernel.loop_closure`: the same
+        operations).
     """
 
     inertia: np.ndarray
@@ -64,6 +69,7 @@ class Terms:
     potential_rate: np.ndarray
     grip_rate: np.ndarray
     grip_x: np.ndarray
+    closure: tuple | None = None
 
 
 def coefficients(lk: FourBar, masses: Masses) -> tuple:
@@ -116,6 +122,7 @@ def terms_from(
     fly_x: bool = False,
     grip: bool = True,
     lib=np,
+    closure: bool = False,
 ):
     """:func:`terms` on the constants ``co`` of :func:`coefficients` (no floating-point context).
 
@@ -126,6 +133,7 @@ def terms_from(
     computes it (its rounding), from the same loop closure.  ``lib``: the module whose cos, sin and
     sqrt are used; ``math`` on floats (``co`` and ``th`` floats) is the one-point route of
     :func:`point_terms`, the same operations in the same order, without numpy's per-call cost.
+    ``closure``: an eighth value, the loop closure (:attr:`Terms.closure`).
     """
     px, py, c, o2, c2, hkr, kk, k, rr, branch, mc, ic, i4, lever, mpy, hr, nhr = co
     cs, sn = lib.cos(th), lib.sin(th)
@@ -144,7 +152,8 @@ def terms_from(
     tdx, qdy = t * dx, q * dy
     ux, uy = tdx - qdy, t * dy + q * dx  # B - A (Eq. (6) of pumplink.mechanisms.fourbar)
     wx, wy = ux - dx, uy - dy  # B - O4
-    inv = 1.0 / (ux * wy - uy * wx)
+    den = ux * wy - uy * wx  # u x w
+    inv = 1.0 / den
     h3 = (csn * wx - ccs * wy) * inv  # first derivative of the loop closure
     h4 = (csn * ux - ccs * uy) * inv
     h33, h44 = h3 * h3, h4 * h4
@@ -172,10 +181,15 @@ def terms_from(
             grip_x = px + hr * wx
     if fly_x:
         crank_x = px + hr * ((ccs + tdx) - qdy - px)
+    if closure:
+        loop = (cs, sn, ccs, csn, dx, dy, ux, uy, wx, wy, den)
+        return inertia, rate, potential, potential_rate, grip_rate, grip_x, crank_x, loop
     return inertia, rate, potential, potential_rate, grip_rate, grip_x, crank_x
 
 
-def terms(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only: bool = False) -> Terms:
+def terms(
+    lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only: bool = False, closure: bool = False
+) -> Terms:
     """I(t) - J, I'(t), V(t), V'(t) and g(t) of Eq. (5)-(7) (docs/models.md §3a).
 
     With u = B - A (the coupler) and w = B - O4 (the rocker), the loop closure A + u = O4 + w
@@ -187,12 +201,12 @@ def terms(lk: FourBar, crank_angle, masses: Masses, gravity=GRAVITY, rates_only:
 
     (S = coupler * rocker * sin of the transmission angle: never zero for a crank-rocker; no instant
     centres).  ``rates_only``: I - J, V and Px are left None (the extremum refinement needs only I',
-    V' and g).
+    V' and g);  ``closure``: the loop closure too (:attr:`Terms.closure`).
     """
     th = np.asarray(crank_angle, float)
     with np.errstate(all="ignore"):
-        out = terms_from(coefficients(lk, masses), th, gravity, values=not rates_only)
-    return Terms(*out[:6])
+        out = terms_from(coefficients(lk, masses), th, gravity, values=not rates_only, closure=closure)
+    return Terms(*out[:6], out[7] if closure else None)
 
 
 def point_terms(lk: FourBar, masses: Masses, gravity=GRAVITY):

@@ -79,13 +79,16 @@ def travel_parts(
     loop closure there already), used where phi lies in the first turn [0, 2 pi).
     """
     turns = np.floor(phi / TWO_PI)
-    p = phi - turns * TWO_PI
+    first = not turns.any()  # phi in its first turn (the usual case): p is phi, no turn's travel
+    p = phi if first else phi - turns * TWO_PI
     # nearest dead centre: 0 (extended), plus (folded) or 2 pi (extended, next turn)
     to_fold = p - plus
     at_fold = np.abs(to_fold) <= np.minimum(p, TWO_PI - p)
     s = np.where(at_fold, to_fold, np.where(p <= TWO_PI - p, p, p - TWO_PI))  # signed offset from it
-    base = np.where(at_fold, stroke, np.where(s >= 0, 0.0, 2.0 * stroke)) + 2.0 * stroke * turns
-    if grip_x is not None and not turns.any():  # p is phi: Px at dce + phi is given
+    base = np.where(at_fold, stroke, np.where(s >= 0, 0.0, 2.0 * stroke))
+    if not first or not np.isfinite(stroke).all():  # else 2 S turns is 0 and adds nothing
+        base = base + 2.0 * stroke * turns
+    if grip_x is not None and first:  # p is phi: Px at dce + phi is given
         x = grip_x
     else:
         x = grip_position(dce + p, px, py, crank, coupler, rocker, handle, branch)

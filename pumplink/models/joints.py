@@ -50,7 +50,8 @@ The models' motions
 motion I a + I' w^2 / 2 + V' = F g - Mw: §3a) give the motion the joint forces are taken along.
 
 Pure functions on floats / numpy arrays (broadcasting over crank angles and designs); SI units,
-radians.  The peak over the cycle, :func:`peak_joint_forces`, is per design.
+radians.  The peak over the cycle: :func:`peak_joint_forces` per design, :func:`cycle_peak_loads`
+and :func:`quasi_static_peak_loads` for many designs at once.
 """
 
 from __future__ import annotations
@@ -79,6 +80,9 @@ class Motion:
     crank_angle : t [rad];  crank_speed : w = dt/dtime [rad/s];  crank_acceleration : a [rad/s^2].
     operator_force : F, horizontal at the grip, +x positive [N].
     masses : the moving link masses and the point mass at the grip [kg] (zero: massless links).
+    closure : the loop closure at the crank angles where the model has it already
+        (:attr:`pumplink.models.dynamics_terms.Terms.closure`: the values the joint forces would
+        compute), else None.
     """
 
     crank_angle: np.ndarray
@@ -86,6 +90,7 @@ class Motion:
     crank_acceleration: np.ndarray
     operator_force: np.ndarray
     masses: Masses = Masses()
+    closure: tuple | None = None
 
 
 @dataclass(frozen=True)
@@ -134,6 +139,7 @@ def joint_forces(
     gravity=GRAVITY,
     rope_pull=0.0,
     wheel_weight=0.0,
+    closure=None,
 ) -> JointForces:
     """Joint forces from Newton-Euler on the coupler and the handle, Eq. (J1)-(J4) of the module.
 
@@ -147,6 +153,7 @@ def joint_forces(
     rope_pull : sum of the rope strands' tensions pulling the wheel down [N] (0: the linkage's
         share of the axle load only; docs/workshop.md §1).
     wheel_weight : weight of the wheel, crank and axle [N], carried by the axle.
+    closure : the loop closure at the crank angles (:attr:`Motion.closure`), or None: found here.
 
     Returns
     -------
@@ -158,20 +165,28 @@ def joint_forces(
     acc = np.asarray(crank_acceleration, float)
     force = np.asarray(operator_force, float)
     with np.errstate(all="ignore"):  # a non-assemblable linkage gives NaN, by design
-        return _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight)
+        c = _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight, closure)
+    return JointForces(
+        np.stack(c[0:2]), np.stack(c[2:4]), np.stack(c[4:6]), np.stack(c[6:8]), c[8], -c[8], *c[9:]
+    )
 
 
-def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight):
+def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weight, closure=None, axial=True):
+    """The components of :class:`JointForces`: R_A, R_B, R_O4, R_O2 (x, y each), the crank torque,
+    the crank's axial force, the handle's moment and its axial force (None without ``axial``)."""
     px, py, c, k, r = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker
     hh = lk.handle
     mc, mh, mp = masses.coupler, masses.handle, masses.grip
-    cs, sn = np.cos(th), np.sin(th)
-    _p1, _p2, _e2, t, q = loop_closure(lk, cs, sn)
-    ax, ay = c * cs, c * sn  # the crank pin A
-    dx, dy = px - ax, py - ay  # O4 - A
-    ux, uy = t * dx - q * dy, t * dy + q * dx  # u = B - A (Eq. (6) of pumplink.mechanisms.fourbar)
-    rx, ry = ux - dx, uy - dy  # r = B - O4
-    s = ux * ry - uy * rx  # u x r
+    if closure is None:
+        cs, sn = np.cos(th), np.sin(th)
+        _p1, _p2, _e2, t, q = loop_closure(lk, cs, sn)
+        ax, ay = c * cs, c * sn  # the crank pin A
+        dx, dy = px - ax, py - ay  # O4 - A
+        ux, uy = t * dx - q * dy, t * dy + q * dx  # u = B - A (Eq. (6) of pumplink.mechanisms.fourbar)
+        rx, ry = ux - dx, uy - dy  # r = B - O4
+        s = ux * ry - uy * rx  # u x r
+    else:  # the same, from the motion's terms
+        cs, sn, ax, ay, dx, dy, ux, uy, rx, ry, s = closure
     # velocity coefficients and their derivatives (unit crank speed, no crank acceleration)
     vx, vy = ay, -ax  # V = -dA/dt
     h3 = (vx * rx + vy * ry) / s
@@ -217,17 +232,31 @@ def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weigh
     fiy = m1 * (0.5 * r * pty + gravity) - oy_
     moment = m1 * r * r / 3.0 * a4 - (rx * fiy - ry * fix) + 0.5 * r * ex * m1 * gravity
     moment = np.where(hh >= r, moment, np.nan)  # a grip inside the rocker: no section beyond B
-    return JointForces(
-        np.stack([ax_, ay_]),
-        np.stack([bx_, by_]),
-        np.stack([ox_, oy_]),
-        np.stack([wx_, wy_]),
-        torque,
-        -torque,  # the crank's root carries the pin force's moment about the axle
-        -(ax_ * cs + ay_ * sn),  # -R_A . e_crank: the pin pulls the crank outward = tension
-        moment,
-        fix * ex + fiy * ey,  # the outer part pulling along +e: tension
-    )
+    # the crank's root carries the pin force's moment about the axle: crank_moment = -torque
+    crank_axial = (
+        -(ax_ * cs + ay_ * sn) if axial else None
+    )  # -R_A . e_crank: the pin pulls the crank outward = tension
+    handle_axial = fix * ex + fiy * ey if axial else None  # the outer part pulling along +e: tension
+    return ax_, ay_, bx_, by_, ox_, oy_, wx_, wy_, torque, crank_axial, moment, handle_axial
+
+
+def motion_loads(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0, fatigue=True):
+    """The loads a peak search and a fatigue check read along a :class:`Motion`, without the force
+    vectors of :func:`motion_forces` (the same values): :func:`six_loads`, shape (6, ...), and,
+    with ``fatigue``, the handle's and the crank's bending moments and axial forces (a tuple
+    ``(handle_moment, handle_axial, crank_moment, crank_axial)``; else None)."""
+    with np.errstate(all="ignore"):  # a non-assemblable linkage gives NaN, by design
+        ax_, ay_, bx_, by_, ox_, oy_, wx_, wy_, torque, crank_axial, moment, handle_axial = _joint_forces(
+            lk, *(np.asarray(v, float) for v in (motion.crank_angle, motion.crank_speed,
+                                                 motion.crank_acceleration, motion.operator_force)),
+            motion.masses, gravity, rope_pull, wheel_weight, motion.closure, fatigue,
+        )  # fmt: skip
+        out = np.empty((6,) + np.shape(torque))
+        for i, (x, y) in enumerate(((wx_, wy_), (ax_, ay_), (bx_, by_), (ox_, oy_))):  # JOINTS' order
+            np.hypot(x, y, out=out[i])
+        np.abs(torque, out=out[4])  # |crank moment| = |-torque|
+        np.abs(moment, out=out[5])
+        return out, ((moment, handle_axial, -torque, crank_axial) if fatigue else None)
 
 
 # ----------------------------------------------------------------------------- the models' motions
@@ -274,10 +303,13 @@ def dynamics_motion(scene, crank_angle) -> Motion:
     th = np.asarray(crank_angle, float)
     force, speed, tm = dy.motion_state(scene, np.atleast_1d(th))
     force, speed = force.reshape(th.shape), speed.reshape(th.shape)
-    tm = dt.Terms(*(None if v is None else np.reshape(v, th.shape) for v in vars(tm).values()))
+    closure = tuple(np.reshape(v, th.shape) for v in tm.closure)
+    tm = dt.Terms(
+        **{k: None if v is None else np.reshape(v, th.shape) for k, v in vars(tm).items() if k != "closure"}
+    )
     rhs = force * tm.grip_rate - scene.wheel_torque - tm.potential_rate - 0.5 * tm.inertia_rate * speed**2
     acc = rhs / (scene.inertia + tm.inertia)  # Eq. (7) of pumplink.models.dynamics_terms in time
-    return Motion(th, speed, acc, force, scene.masses)
+    return Motion(th, speed, acc, force, scene.masses, closure)
 
 
 def motion_forces(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0):
@@ -292,6 +324,7 @@ def motion_forces(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, w
         gravity,
         rope_pull,
         wheel_weight,
+        motion.closure,
     )
 
 
@@ -335,11 +368,15 @@ class PeakLoads:
     handle_moment: tuple
 
 
-def _loads(forces: JointForces) -> np.ndarray:
-    """The six magnitudes searched: the four joints, then |crank moment| and |handle moment|."""
-    return np.concatenate(
-        [forces.magnitudes, np.abs(forces.crank_moment)[None], np.abs(forces.handle_moment)[None]]
-    )
+def six_loads(forces: JointForces) -> np.ndarray:
+    """The six magnitudes searched: the four joints, then |crank moment| and |handle moment|
+    (shape (6, ...))."""
+    out = np.empty((6,) + np.shape(forces.crank_moment))
+    for i, name in enumerate(JOINTS):
+        np.hypot(*getattr(forces, name), out=out[i])  # JointForces.magnitudes
+    np.abs(forces.crank_moment, out=out[4])
+    np.abs(forces.handle_moment, out=out[5])
+    return out
 
 
 def peak_joint_forces(
@@ -379,7 +416,7 @@ def peak_joint_forces(
         )  # fmt: skip
         given = None
     else:
-        grid, given = np.asarray(nodes[0], float), _loads(nodes[1])
+        grid, given = np.asarray(nodes[0], float), six_loads(nodes[1])
     extra = []
     for j in jumps:
         for start, length in arcs:
@@ -390,9 +427,9 @@ def peak_joint_forces(
     extra = np.concatenate(extra) if extra else np.zeros(0)
     if given is None:
         grid = np.concatenate([grid, extra])
-        vals = _loads(loads_at(grid))
+        vals = six_loads(loads_at(grid))
     else:
-        vals = np.concatenate([given, _loads(loads_at(extra))], axis=1) if extra.size else given
+        vals = np.concatenate([given, six_loads(loads_at(extra))], axis=1) if extra.size else given
         grid = np.concatenate([grid, extra])
     order = np.argsort(grid, kind="stable")
     grid, vals = grid[order], _finite_or_floor(vals[:, order])  # (6, N)
@@ -410,7 +447,7 @@ def peak_joint_forces(
     while live.any():
         rows = np.nonzero(live)[0]
         x = a[rows, None] + (b - a)[rows, None] * steps  # (k, ZOOM_POINTS)
-        v = _finite_or_floor(_loads(loads_at(x.ravel())))[rows].reshape(rows.size, -1, ZOOM_POINTS)
+        v = _finite_or_floor(six_loads(loads_at(x.ravel())))[rows].reshape(rows.size, -1, ZOOM_POINTS)
         v = v[np.arange(rows.size), np.arange(rows.size)]  # load i at its own points
         k = np.argmax(v, axis=1)
         up = v[np.arange(rows.size), k] > best[rows]
@@ -492,7 +529,7 @@ def quasi_static_peak_loads(
     def loads_at(th):  # (n, k) crank angles -> (6, n, k) loads, NaN as -inf
         motion = quasi_static_motion(column, th, torque[:, None])
         forces = motion_forces(column, motion, GRAVITY, rope[:, None], weight[:, None])
-        return _finite_or_floor(_loads(forces))
+        return _finite_or_floor(six_loads(forces))
 
     plus = np.mod(dcf - dce, TWO_PI)
     start = np.stack([dce + band, dcf + band], axis=1)  # (n, 2): the two arcs judged
@@ -526,6 +563,64 @@ def quasi_static_peak_loads(
         a = np.where(live, np.take_along_axis(x, left[..., None], -1)[..., 0], a)
         b = np.where(live, np.take_along_axis(x, right[..., None], -1)[..., 0], b)
         live = live & ((b - a) > REFINE_XTOL)
+    return np.where(best == -np.inf, np.nan, best), np.mod(where, TWO_PI)
+
+
+def cycle_peak_loads(loads_at: Callable, grid, loads):
+    """:func:`peak_joint_forces` from given nodes (``nodes``: one whole-turn arc, no jumps added)
+    for many designs at once: the same grid, brackets and zooms per design (a design's peaks do
+    not depend on its batch), the zooms of all designs and loads at once.  Loads of a design
+    whose brackets are the same (the joints next to a jump often peak at the same node) share
+    the points of a zoom: the same points, so the same values.
+
+    Parameters
+    ----------
+    loads_at : callable of designs (R,) (indices of the D, repeats allowed) and crank angles
+        (R, k), returning their :func:`six_loads`, shape (6, R, k).
+    grid : (D, K) crank angles [rad] in [0, 2 pi): at least :data:`PEAK_GRID_PER_RAD` a radian,
+        with the nodes :data:`JUMP_OFFSET` either side of each point where the loads may jump.
+    loads : (6, D, K), :func:`six_loads` of the joint forces at ``grid``.
+
+    Returns
+    -------
+    value, angle : arrays of shape (6, D), as :func:`quasi_static_peak_loads`.
+    """
+    grid = np.asarray(grid, float)
+    n, m = grid.shape
+    if (grid[:, 1:] >= grid[:, :-1]).all():  # sorted already (a stable sort leaves it as it is)
+        vals = _finite_or_floor(loads)  # (6, D, K)
+    else:
+        order = np.argsort(grid, axis=1, kind="stable")
+        grid = np.take_along_axis(grid, order, axis=1)
+        vals = _finite_or_floor(np.take_along_axis(loads, order[None], axis=2))
+    j = np.argmax(vals, axis=2)  # (6, D)
+    best = np.take_along_axis(vals, j[..., None], 2)[..., 0]
+    design = np.arange(n)[None, :]
+    where = grid[design, j]
+    a, b = grid[design, np.maximum(j - 1, 0)], grid[design, np.minimum(j + 1, m - 1)]
+    live = np.isfinite(best) & (0.0 <= a) & (b <= TWO_PI) & (b > a)  # neighbours on the arc
+    steps = np.linspace(0.0, 1.0, ZOOM_POINTS)
+    slot = np.full((6, n), -1)
+    while live.any():
+        load, dd = np.nonzero(live)
+        # the first live load of the design with the same bracket zooms for it
+        same = (a[:, None, dd] == a[None, :, dd]) & (b[:, None, dd] == b[None, :, dd]) & live[:, None, dd]
+        first = np.argmax(same, axis=0)[load, np.arange(load.size)]  # (L,)
+        own = first == load
+        slot[load[own], dd[own]] = np.arange(np.count_nonzero(own))
+        pick = slot[first, dd]  # the zoom's points of each live load
+        lo = a[load[own], dd[own]]
+        x = lo[:, None] + (b[load[own], dd[own]] - lo)[:, None] * steps  # (U, ZOOM_POINTS)
+        v = _finite_or_floor(loads_at(dd[own], x))[load, pick]  # load i at its own points
+        k = np.argmax(v, axis=1)
+        top = v[np.arange(load.size), k]
+        xs = x[pick]
+        up = top > best[load, dd]
+        best[load[up], dd[up]] = top[up]
+        where[load[up], dd[up]] = xs[np.arange(load.size), k][up]
+        a[load, dd] = xs[np.arange(load.size), np.maximum(k - 1, 0)]
+        b[load, dd] = xs[np.arange(load.size), np.minimum(k + 1, ZOOM_POINTS - 1)]
+        live[load, dd] = (b[load, dd] - a[load, dd]) > REFINE_XTOL
     return np.where(best == -np.inf, np.nan, best), np.mod(where, TWO_PI)
 
 

@@ -22,6 +22,7 @@ import numpy as np
 
 from pumplink.evaluate import FAIL, MODEL_LABELS, PASS, WARN, Evaluation, PumpDesigns
 from pumplink.inputs.pump import PumpSpec
+from pumplink.malloc import tune_malloc
 from pumplink.studies.builds import DIMENSIONS, HOLES, broadcast_column
 from pumplink.studies.tolerance import (
     GROUPS,
@@ -153,11 +154,23 @@ class Share:
 
 
 def share(count: int, n: int, confidence: float = CONFIDENCE) -> Share:
-    """``count`` of ``n`` with its Wilson score interval (scipy.stats.binomtest)."""
-    from scipy.stats import binomtest
+    """``count`` of ``n`` with its Wilson score interval (Newcombe 1998, method 3), as
+    ``scipy.stats.binomtest(count, n).proportion_ci(confidence, method="wilson")`` computes it:
+    the same operations in the same order, without importing scipy.stats (about 0.5 s of a
+    command's start-up; tests/test_tolerance.py holds the two together)."""
+    from scipy.special import ndtri
 
-    ci = binomtest(int(count), int(n)).proportion_ci(confidence, method="wilson")
-    return Share(int(count), int(n), float(ci.low), float(ci.high))
+    k, n = int(count), int(n)
+    if n < 1:
+        raise ValueError("n must be an integer not less than 1")
+    p = k / n
+    z = ndtri(0.5 + 0.5 * confidence)
+    denom = 2 * (n + z**2)
+    center = (2 * n * p + z**2) / denom
+    delta = z / denom * math.sqrt(4 * n * p * (1 - p) + z**2)
+    low = 0.0 if k == 0 else center - delta
+    high = 1.0 if k == n else center + delta
+    return Share(k, n, float(low), float(high))
 
 
 @dataclass(frozen=True)
@@ -217,8 +230,10 @@ def summarize(
     """The spread, the shares and the first order of a design's builds, from its chunks (in order).
 
     ``progress(n)`` after each chunk of n builds; ``keep``: every build's values, verdict level
-    (``values["level"]``) and offsets (the (builds, 18) array, drawn again) in the result.
+    (``values["level"]``) and offsets (the (builds, 18) array, drawn again) in the result.  The
+    chunks run here are evaluated with malloc tuned for long runs (:func:`pumplink.malloc.tune_malloc`).
     """
+    tune_malloc()
     parts: dict[str, list[np.ndarray]] = {k: [] for k, _ in QUANTITIES}
     levels, models = [], []
     fails: dict[str, int] = {}
