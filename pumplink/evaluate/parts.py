@@ -328,37 +328,40 @@ def part_checks(syn, c, sizes, index, least, masses, feasible) -> dict:
     model = np.asarray(index, int)
     wheel_mass = np.broadcast_to(np.asarray(c["wheel_mass"], float), (n,))
     weight = np.where(np.isnan(wheel_mass), 0.0, wheel_mass) * GRAVITY
+
+    def columns(block, keys):
+        """The block's linkage, part sizes and design columns ``keys`` (arrays over the block)."""
+        take = {k: np.broadcast_to(np.asarray(c[k], float), (n,))[block] for k in keys}
+        lk = FourBar(*(np.broadcast_to(np.asarray(v, float), (n,))[block] for v in syn.linkage.parameters))
+        part = PartSizes(
+            *(np.broadcast_to(np.asarray(getattr(sizes, k), float), (n,))[block] for k in PART_KEYS)
+        )
+        return lk, part, take
+
+    def store(block, st):
+        out["pin_pressure"][block] = st.pin_pressure / 1e6  # [MPa]
+        out["handle_fatigue"][block] = st.handle.safety
+        out["crank_fatigue"][block] = st.crank.safety
+
     # the quasi-static designs all at once, in blocks that bound the peak search's memory
     quasi = np.nonzero(feasible & (model == 0))[0]
     for block in np.array_split(quasi, -(-quasi.size // PART_BLOCK)) if quasi.size else ():
-        col = {k: np.broadcast_to(np.asarray(c[k], float), (n,))[block]
-               for k in ("dead_band", "wheel_torque", "rope_force")}  # fmt: skip
-        st = quasi_static_strength(
-            FourBar(*(np.broadcast_to(np.asarray(v, float), (n,))[block] for v in syn.linkage.parameters)),
-            syn.dead_centre_extended[block], syn.dead_centre_folded[block], col["dead_band"],
-            col["wheel_torque"], col["rope_force"], weight[block],
-            PartSizes(*(np.broadcast_to(np.asarray(getattr(sizes, k), float), (n,))[block]
-                        for k in PART_KEYS)),
-        )  # fmt: skip
-        out["pin_pressure"][block] = st.pin_pressure / 1e6  # [MPa]
-        out["handle_fatigue"][block] = st.handle.safety
-        out["crank_fatigue"][block] = st.crank.safety
+        lk, part, col = columns(block, ("dead_band", "wheel_torque", "rope_force"))
+        store(block, quasi_static_strength(
+            lk, syn.dead_centre_extended[block], syn.dead_centre_folded[block], col["dead_band"],
+            col["wheel_torque"], col["rope_force"], weight[block], part,
+        ))  # fmt: skip
     # full dynamics' designs all at once, in blocks that keep the cycle's arrays in the cache
     dyn = np.nonzero(feasible & (model == ORDER.index(DYNAMICS)) & np.isfinite(least))[0]
     for block in np.array_split(dyn, -(-dyn.size // SCENE_BLOCK)) if dyn.size else ():
-        col = {k: np.broadcast_to(np.asarray(c[k], float), (n,))[block]
-               for k in ("wheel_torque", "inertia", "speed", "speed_fluctuation", "rope_force")}  # fmt: skip
-        st = dynamics_strength(
-            FourBar(*(np.broadcast_to(np.asarray(v, float), (n,))[block] for v in syn.linkage.parameters)),
-            syn.dead_centre_extended[block], syn.dead_centre_folded[block], col["wheel_torque"],
+        lk, part, col = columns(
+            block, ("wheel_torque", "inertia", "speed", "speed_fluctuation", "rope_force")
+        )
+        store(block, dynamics_strength(
+            lk, syn.dead_centre_extended[block], syn.dead_centre_folded[block], col["wheel_torque"],
             col["inertia"], Masses(coupler[block], handle[block], 0.0), col["speed"],
-            col["speed_fluctuation"], least[block], col["rope_force"], weight[block],
-            PartSizes(*(np.broadcast_to(np.asarray(getattr(sizes, k), float), (n,))[block]
-                        for k in PART_KEYS)),
-        )  # fmt: skip
-        out["pin_pressure"][block] = st.pin_pressure / 1e6  # [MPa]
-        out["handle_fatigue"][block] = st.handle.safety
-        out["crank_fatigue"][block] = st.crank.safety
+            col["speed_fluctuation"], least[block], col["rope_force"], weight[block], part,
+        ))  # fmt: skip
     for i in np.nonzero(feasible & (model != 0) & (model != ORDER.index(DYNAMICS)))[0].tolist():
         lk = FourBar(*(float(np.asarray(v)[i]) for v in syn.linkage.parameters))
         dce, dcf = float(syn.dead_centre_extended[i]), float(syn.dead_centre_folded[i])
@@ -371,10 +374,7 @@ def part_checks(syn, c, sizes, index, least, masses, feasible) -> dict:
         loads = part_loads(
             lk, dce, dcf, c["dead_band"][i], c["wheel_torque"][i], key, sc, c["rope_force"][i], weight[i]
         )
-        st = strength(loads, sizes.design(i))
-        out["pin_pressure"][i] = st.pin_pressure / 1e6  # [MPa]
-        out["handle_fatigue"][i] = st.handle.safety
-        out["crank_fatigue"][i] = st.crank.safety
+        store(i, strength(loads, sizes.design(i)))
     return out
 
 
