@@ -18,6 +18,10 @@ from pumplink.output.words import (
     OPERATOR_NOUNS,
     check_advice,
     check_row,
+    duty_words,
+    losses_word,
+    losses_words,
+    pit_words,
 )
 from pumplink.quantities import headline_items
 from pumplink.quantities import lines as quantity_lines
@@ -59,6 +63,11 @@ def size_row(res: SizeResult) -> dict[str, Any]:
         "reason": None if res.found else _holding_back(res),
         "design": {k: num(_value(spec, key) * f) for key, k, _, _, f in DESIGN},
         "cycles_per_min": num(_value(spec, "operator.speed") / 6.0),
+        "kept": list(res.problem.kept),
+        "allow_pit": res.problem.allow_pit,
+        "pit_depth_m": num(max(spec.linkage.D1 - spec.wheel.axle_height, 0.0)),
+        "held": [{"key": k, "value": v, "built_in": b} for k, v, b in res.problem.held],
+        "losses": losses_word(ev.water.design(0)),
         **{k: num(v) for k, v in headline_items(ev).items()},  # the catalogue's headline figures
         "verdict": verdict.outcome,
         "checks": [check_row(c) for c in verdict.checks],
@@ -79,6 +88,20 @@ def size_row(res: SizeResult) -> dict[str, Any]:
         "evaluations": res.evaluations,
         "robust": robust_row(res.problem.robust, res.robust),
     }
+
+
+def held_words(problem) -> str:
+    """What the base spec holds that the built-in design (the route without a spec) does not: why
+    the same well can get two pumps from two routes."""
+    items = [f"{k} {_shown(v)} (built-in: {_shown(b)})" for k, v, b in problem.held]
+    return (
+        f"from the base spec {problem.spec.name!r}, not the built-in design: {'; '.join(items)} "
+        "(size without a spec starts from the built-in design, so the same well can get another pump)"
+    )
+
+
+def _shown(v) -> str:
+    return "none" if v is None else (f"{v:g}" if isinstance(v, float) else str(v))
 
 
 def _holding_back(res: SizeResult) -> str:
@@ -142,7 +165,13 @@ def render_size(res: SizeResult, fmt: str, out=None) -> None:
         for _, k, words, unit, _f in DESIGN:
             t.add_row(words, f"{row['design'][k]:.4g} {unit}")
         t.add_row("cadence", f"{row['cycles_per_min']:.1f} push-pull cycles/min")
+        t.add_row("rope speed", f"{row['rope_speed_m_s']:.2f} m/s")
         c.print(t)
+        if res.problem.kept:
+            c.print(f"kept from the base spec: {', '.join(res.problem.kept)}", markup=False)
+        pit = pit_words(res.best.spec)
+        if pit:
+            c.print(pit, markup=False)
         c.print(
             f"water: {row['flow_l_min']:.1f} l/min ({row['flow_m3_h']:.2f} m³/h) "
             f"for {row['power_W']:.1f} W at the handle; {row['flow_share']:.0%} of the "
@@ -150,6 +179,9 @@ def render_size(res: SizeResult, fmt: str, out=None) -> None:
             f"sustained power could lift here; serves about {row['people_served']:,.0f} people",
             markup=False,
         )
+        water = res.best.evaluation.water.design(0)
+        c.print(losses_words(water), markup=False)
+        c.print(duty_words(water), markup=False)
         for line in quantity_lines(res.best.evaluation):  # the catalogue's quantities with a line
             c.print(line, markup=False)
         c.print(f"verdict: {row['verdict']} (pumplink force on the written spec says the same)", markup=False)
@@ -170,6 +202,8 @@ def render_size(res: SizeResult, fmt: str, out=None) -> None:
                 "none passes" if none else f"{r['flow_l_min']:.1f}",
             )
         c.print(d)
+        if res.problem.held:
+            c.print(held_words(res.problem), markup=False)
         tried = ", ".join(
             f"{p['pipe_diameter_mm']:g} mm: "
             + (f"{p['flow_l_min']:.1f} l/min" if p["found"] else "none meets the limits")
