@@ -298,11 +298,12 @@ def assess(
     return Verdict(tuple(checks), _scalar(level))
 
 
-def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf):
+def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf, warned=()):
     """How far a verdict's checks lie beyond their limits: per design, the sum over the checks that
     fail (``accept_warnings``) or that warn or fail (otherwise) of the relative distance beyond the
     limit they break (the fail limit for a failure, else the warn limit); 0 exactly where none
-    does.  A value that is not finite counts ``unbounded``.  The searches rank designs by it."""
+    does.  A value that is not finite counts ``unbounded``.  ``warned``: keys of checks whose
+    warnings count even where warnings are accepted.  The searches rank designs by it."""
     total = 0.0
     for c in verdict.checks:
         level = np.asarray(c.level)
@@ -315,6 +316,6 @@ def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf):
         with np.errstate(invalid="ignore", divide="ignore"):
             beyond = np.where(np.asarray(c.relation) == "<=", v - lim, lim - v) / np.abs(lim)
         beyond = np.where(np.isfinite(beyond), np.maximum(beyond, 0.0), unbounded)
-        counted = level == FAIL if accept_warnings else level >= WARN
+        counted = level == FAIL if accept_warnings and c.key not in warned else level >= WARN
         total = total + np.where(counted, beyond, 0.0)
     return _scalar(np.asarray(total, float))

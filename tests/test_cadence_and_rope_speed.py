@@ -70,3 +70,24 @@ def test_a_batch_has_a_column_for_each_new_check():
     from pumplink.output.batchfiles import CHECK_COLUMNS
 
     assert {"check_cadence", "check_rope_speed"} <= set(CHECK_COLUMNS)
+
+
+def test_a_flow_search_that_varies_the_speed_keeps_the_cadence_and_rope_in_range():
+    """optimize --objective flow: the verdict's constraint also holds the cadence and the rope speed
+    in their ranges where the search varies the speed (they only warn). The village pump at
+    480 deg/s, 80 turns a minute and 2.094 m/s of rope, breaks it by (80 − 60)/60 + (2.0944 −
+    1.8)/1.8 = 0.4969 (no check fails there); at its own 316 deg/s nothing; varying the linkage
+    alone leaves the constraint as it was."""
+    import numpy as np
+
+    from pumplink.inputs.pump import load_spec
+    from pumplink.search import problem as P
+
+    spec = load_spec("configs/village-10m.toml")
+    varied = P.make_problem(spec, {"operator.speed": (60.0, 540.0)}, objective="flow")
+    assert varied.constraint_names()[-1].endswith("the cadence and the rope speed in range")
+    slack = P.evaluate_designs(varied, np.array([[480.0, 316.0]])).slack[-1]
+    hand = (80 - 60) / 60 + (math.radians(480.0) * 0.25 - 1.8) / 1.8
+    assert slack[0] == pytest.approx(-hand, rel=1e-9) and slack[1] == 0.0
+    linkage = P.make_problem(spec, {"swing": (30.0, 100.0)}, objective="flow")
+    assert linkage.constraint_names()[-1] == "no check of the verdict fails"
