@@ -366,10 +366,16 @@ def problem_for(
                 "--keep pipe holds the base spec's rising main; give --pipes or --keep pipe, not both"
             )
         if spec.load.pipe_diameter is None:
-            raise SpecError(f"--keep pipe: {spec.name} gives no load.pipe_diameter to keep")
+            raise SpecError(
+                f"--keep pipe: {spec.name} gives no load.pipe_diameter to keep; give the spec of the "
+                "pump you have, or the bore with --pipes"
+            )
         pipes = (spec.load.pipe_diameter,)
     if "wheel" in keep and spec.wheel.mass is None and spec.wheel.inertia is None:
-        raise SpecError(f"--keep wheel: {spec.name} gives neither wheel.mass nor wheel.inertia to keep")
+        raise SpecError(
+            f"--keep wheel: {spec.name} gives neither wheel.mass nor wheel.inertia to keep; give the "
+            "spec of the pump you have (e.g. pumplink size configs/village-10m.toml --keep wheel)"
+        )
     load.setdefault("pipe_diameter", STANDARD_PIPES[0])
     data["load"] = load
     if profile is not None:
