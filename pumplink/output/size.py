@@ -104,6 +104,17 @@ def _shown(v) -> str:
     return "none" if v is None else (f"{v:g}" if isinstance(v, float) else str(v))
 
 
+def beyond_limit(value: float, limit: float, unit: str, side: str) -> str:
+    """The words "value unit > limit unit": the value to three significant digits, or as many more
+    (up to six) as it takes to tell it from the limit (a stroke of 1.0028 m is not "1 m > 1 m")."""
+    shown = f"{limit:g}"
+    for digits in range(3, 7):
+        text = f"{value:.{digits}g}"
+        if text != shown:
+            break
+    return f"{text} {unit} {side} {shown} {unit}"
+
+
 def _holding_back(res: SizeResult) -> str:
     """Why no design met the limits, in one sentence: the closest design's checks beyond them."""
     b = res.best
@@ -114,9 +125,8 @@ def _holding_back(res: SizeResult) -> str:
     for c in bad:
         lim = c.fail_limit if (c.level == 2 or c.warn_limit is None) else c.warn_limit
         side = ">" if c.relation == "<=" else "<"
-        parts.append(
-            f"{CHECK_LABELS.get(c.key, c.key)} {float(c.value):.3g} {c.unit} {side} {float(lim):g} {c.unit}"
-        )
+        beyond = beyond_limit(float(c.value), float(lim), c.unit, side)
+        parts.append(f"{CHECK_LABELS.get(c.key, c.key)} {beyond}")
     advice = "; ".join(
         dict.fromkeys(check_advice(c.key, parts=b.spec.parts) for c in bad if c.key in CHECK_ADVICE)
     )
