@@ -11,7 +11,6 @@ process, and the rows are counted in the CSV, the JSON, the table and the Parque
 
 from __future__ import annotations
 
-import contextlib
 import csv
 import io
 import json
@@ -22,8 +21,8 @@ from pathlib import Path
 import pyarrow.parquet as pq
 import pytest
 import tomli_w
+from in_process import run_main
 
-from pumplink import cli
 from pumplink.inputs.batch import PISTON_VARIABLE_KEYS, VARIABLE_KEYS
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -140,19 +139,6 @@ def piston_base(key: str) -> dict:
 CASES = [("rope", k, v) for k, v in ROPE_VALUES.items()] + [
     ("piston", k, v) for k, v in PISTON_VALUES.items()
 ]
-
-
-def run_main(*args) -> tuple[int, str, str]:
-    """The real entry point (``pumplink.cli.main``) in this process: exit code, stdout, stderr."""
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            cli.main([str(a) for a in args])
-        except SystemExit as exc:
-            code = exc.code
-        else:
-            code = 0
-    return code, out.getvalue(), err.getvalue()
 
 
 def batch_file(folder: Path, base: dict, key: str, values: list) -> Path:

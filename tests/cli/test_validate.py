@@ -8,37 +8,17 @@ Q = 0.75 x 0.87 x P / (rho g H) with the profile's filling power P (81 W men, 75
 docs/operators.md §7), and the cadence the rope speed P x 0.75 / (rho g H A) over the 0.25 m rim.
 """
 
-import contextlib
-import io
 import json
 import math
-import signal
 import xml.etree.ElementTree as ET
 
 import pytest
-
-from pumplink import cli
+from in_process import keep_process_state, run_main
 
 
 @pytest.fixture
 def cli_main_ready(monkeypatch):
-    """main() installs signal handlers and may point fd 1 at /dev/null: keep both from pytest."""
-    saved = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
-    monkeypatch.setattr(cli, "_quiet_stdout", lambda: None)
-    yield
-    for s, h in saved.items():
-        signal.signal(s, h)
-
-
-def run_main(*args) -> tuple[int, str, str]:
-    """The real entry point (``pumplink.cli.main``) in this process: exit code, stdout, stderr."""
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            cli.main([str(a) for a in args])
-        except SystemExit as exc:
-            return exc.code, out.getvalue(), err.getvalue()
-    return 0, out.getvalue(), err.getvalue()
+    yield from keep_process_state(monkeypatch)
 
 
 #: The published figures (docs/water.md §6): source, head [m], l/min, the profile's filling power [W].
