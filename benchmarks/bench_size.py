@@ -116,8 +116,8 @@ def main() -> None:
                         f"size --head {h:g} --profile {p}, share of Q*",
                         0.0,
                         "",
-                        None,
-                        None,
+                        ">= 0.80",
+                        False,  # no design: the aim is missed, whatever the note says holds it back
                         f"{wall:.1f} s, none: {row['reason']}",
                     )
     record("size, slowest answer", slowest, "s", "<= 30 s", slowest <= 30.0)
