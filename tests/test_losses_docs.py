@@ -46,3 +46,13 @@ def test_where_the_constants_decide_is_where_the_model_is_within_the_share():
     off = lambda d, v: abs(0.6525 / _eta(d, v) - 1)  # noqa: E731
     assert off(0.023, 0.665) > 0.05 > off(0.023, 0.675) and off(0.023, 2.055) < 0.05 < off(0.023, 2.065)
     assert chart.constant_intervals(0.0127) == [] and off(0.0127, 1.2) > 0.05
+
+
+def test_the_chart_is_the_scripts(tmp_path):
+    """docs/losses.png is what scripts/loss_chart.py draws from the loss model now, byte for byte
+    (matplotlib's Agg PNG carries no date; after a matplotlib upgrade, redraw it with the script)."""
+    out = tmp_path / "losses.png"
+    _script().chart(out)
+    assert out.read_bytes() == (ROOT / "docs" / "losses.png").read_bytes(), (
+        "docs/losses.png is not the loss model's chart: run .venv/bin/python scripts/loss_chart.py"
+    )
