@@ -63,6 +63,15 @@ GRIP_HEIGHT_RANGE_M = (0.90, 1.33)
 STROKE_LIMIT_M = 1.0
 #: Wheel-axle height range of the pump paper [m] (axle 40-70 cm above the ground).
 AXLE_HEIGHT_RANGE_M = (0.40, 0.70)
+#: Rope speed range [m/s] outside which the verdict warns: around the best rope speed of about
+#: 1.2 m/s that the mawama model equations give (Akvopedia, "Rope pump"), as far as each loss share
+#: of docs/water.md §2a stays within about twice its value there: leakage as about 1/v (1.95 times at
+#: 0.6 m/s), friction in the rising main as v^1.75 (twice at 1.2 x 2^(4/7) = 1.78 m/s, to 1.8).
+ROPE_SPEED_RANGE_M_S = (0.6, 1.8)
+#: The share by which the constant efficiencies may change a design's flow or force before the loss
+#: model decides instead (docs/water.md §2a): a third of the 15 % within which `pumplink validate`
+#: holds the published discharges.
+LOSS_SHARE = 0.05
 
 #: Coefficient of speed fluctuation used unless the spec says otherwise: 0.2, the loosest class of
 #: the machine-design tables (crushers, hammers, punch presses: Shigley's "Mechanical Engineering

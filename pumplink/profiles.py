@@ -2,7 +2,9 @@
 
 Data only (docs/operators.md gives the reasoning and the sources in full).  Each profile sets the
 largest push/pull force, the power sustained for hours and for about an hour, the grip-height
-range over the swing and the grip speeds at which the verdict warns and fails.  Every value
+range over the swing, the grip speeds at which the verdict warns and fails, the cadence (wheel
+turns a minute) outside which it warns, and the power the field's published discharges imply
+while filling containers (the filling duty, docs/water.md §6).  Every value
 carries a :class:`Source`: the text a reader can check and its basis, one of
 
 * ``"source"``: read at the source named;
@@ -10,7 +12,7 @@ carries a :class:`Source`: the text a reader can check and its basis, one of
 * ``"derived"``: computed from other values by the reasoning given (docs/operators.md).
 
 :data:`DEFAULT_PROFILE` is the men's: every limit of the verdict has a source.  The grip-height
-range 0.5-0.9 m used before profiles existed had none and is gone (docs/operators.md §6).
+range 0.5-0.9 m used before profiles existed had none and is gone (docs/operators.md §8).
 """
 
 from __future__ import annotations
@@ -29,6 +31,8 @@ FIELDS = (
     "grip_height_range",
     "grip_speed_warn",
     "grip_speed_fail",
+    "cadence_range",
+    "filling_power",
 )
 
 
@@ -48,8 +52,10 @@ class OperatorProfile:
     force_limit [N]: largest push/pull force at the grip;  sustained_power [W]: power kept up for
     hours (above it the verdict warns);  hour_power [W]: power for about an hour (above it the
     design fails);  grip_height_range [m]: lowest and highest grip height above the ground over the
-    swing;  grip_speed_warn, grip_speed_fail [m/s]: peak grip speeds;  sources: a :class:`Source`
-    per field of :data:`FIELDS`.
+    swing;  grip_speed_warn, grip_speed_fail [m/s]: peak grip speeds;  cadence_range [turns/min]:
+    the wheel turns (push-pull cycles) a minute outside which the verdict warns;  filling_power [W]:
+    the operator's power while filling containers, the duty the published discharges are for;
+    sources: a :class:`Source` per field of :data:`FIELDS`.
     """
 
     name: str
@@ -59,6 +65,8 @@ class OperatorProfile:
     grip_height_range: tuple[float, float]
     grip_speed_warn: float
     grip_speed_fail: float
+    cadence_range: tuple[float, float]
+    filling_power: float
     sources: MappingProxyType = field(repr=False, compare=False)
 
 
@@ -114,6 +122,22 @@ _SPEED = (
 )
 
 
+_CADENCE = (
+    "wheel turns (push-pull cycles) a minute: 30, the lower end of the 'strong preference for a "
+    "narrow operating speed range, 30 to 50 rev/min' for hand and foot operation found in Harare "
+    "tests of the rope-washer, Rower, Bumi and treadle pumps ('The efficient use of human energy for "
+    "micro-scale irrigation', J. Agric. Eng. Res. 48(3) 171-183, 1991; abstract read); 60, the "
+    "fastest rate of the AIT laboratory tests of hand pumps (IDRC report RP-01638, Table 2: 20-60 "
+    "strokes/min) and the pump paper's 60 rpm; no source for one kind of operator was found, so "
+    "every profile has the same range (docs/operators.md §6)"
+)
+_FILLING = (
+    "the operator's power while filling containers, fitted (one value) so that the published "
+    "one-person discharges for this operator are reproduced through the evaluation "
+    "(pumplink validate, docs/water.md §6)"
+)
+
+
 def _zone(derivation: str) -> Source:
     """A grip-height range derived from the push/pull zone (:data:`_ZONE`) and a stature."""
     return Source(_ZONE + "; " + derivation, "derived")
@@ -147,6 +171,16 @@ MEN = _profile(
             "derived",
         ),
     ),
+    cadence_range=((30.0, 60.0), Source(_CADENCE, "derived")),
+    filling_power=(
+        81.0,
+        Source(
+            _FILLING + ": Akvopedia 'Rope pump' (35 l/min at 10 m, half that at 20 m) and the "
+            "University of Twente demonstration site (an adult, 25 l/min at 12 m); minimax fit "
+            "80.95 W, residuals at 81 W -7.6 %, -7.6 %, +7.8 % (scripts/field_fit.py)",
+            "derived",
+        ),
+    ),
 )
 
 WOMEN = _profile(
@@ -171,6 +205,16 @@ WOMEN = _profile(
         ),
     ),
     grip_speed_fail=(3.3, _speed("as the warn limit: 4.0 x 0.850 = 3.40")),
+    cadence_range=((30.0, 60.0), Source(_CADENCE, "derived")),
+    filling_power=(
+        75.0,
+        Source(
+            _FILLING + ": Arrakis 'Hand rope pumps (continued)', women and children, 30 l/min at "
+            "10 m and 15 l/min at 20 m; minimax fit 75.17 W, residuals at 75 W -0.2 %, -0.2 % "
+            "(scripts/field_fit.py)",
+            "derived",
+        ),
+    ),
 )
 
 CHILDREN = _profile(
@@ -207,6 +251,16 @@ CHILDREN = _profile(
     ),
     grip_speed_warn=(2.1, _speed("38 N, 32.1 kg: 2.5 x sqrt((38/32.1)/(100/60)) = 2.11")),
     grip_speed_fail=(3.3, _speed("as the warn limit: 4.0 x 0.843 = 3.37")),
+    cadence_range=((30.0, 60.0), Source(_CADENCE, "derived")),
+    filling_power=(
+        41.0,
+        Source(
+            "no discharge published for children alone; the women's filling power (which Arrakis's "
+            "figure for women and children fits) scaled by the body-mass ratio 32.1/58.2, as the "
+            "children's other powers: 75 x 32.1 / 58.2 = 41.4 W, rounded down",
+            "derived",
+        ),
+    ),
 )
 
 ACCESSIBLE = _profile(
@@ -234,6 +288,15 @@ ACCESSIBLE = _profile(
     ),
     grip_speed_warn=(1.1, _speed("22.2 N, 60 kg adult: 2.5 x sqrt(22.2/100) = 1.18")),
     grip_speed_fail=(1.8, _speed("as the warn limit: 4.0 x 0.471 = 1.88")),
+    cadence_range=((30.0, 60.0), Source(_CADENCE, "derived")),
+    filling_power=(
+        27.0,
+        Source(
+            "no discharge published for seated operators; the sustained 25 W times the men's ratio "
+            "of filling to sustained power: 25 x 81 / 75 = 27.0 W",
+            "derived",
+        ),
+    ),
 )
 
 #: The profiles by name (docs/operators.md).
@@ -247,7 +310,8 @@ DEFAULT_PROFILE = MEN
 def operator_limits(value) -> OperatorProfile:
     """The operator's limits from spec values: ``value("operator.profile")`` names the profile
     (None: the default, the men's), and each of its limits a ``value("operator.<key>")`` that is
-    not None replaces (a float, or an array over designs)."""
+    not None replaces (a float, or an array over designs); ``operator.cadence_min`` and
+    ``operator.cadence_max`` the ends of the cadence range."""
     name = value("operator.profile")
     base = DEFAULT_PROFILE if name is None else PROFILES[name]
     lo, hi = base.grip_height_range
@@ -257,6 +321,19 @@ def operator_limits(value) -> OperatorProfile:
     )
     given = {
         k: value(f"operator.{k}")
-        for k in ("force_limit", "sustained_power", "hour_power", "grip_speed_warn", "grip_speed_fail")
-    }
-    return replace(base, grip_height_range=(lo, hi), **{k: v for k, v in given.items() if v is not None})
+        for k in (
+            "force_limit", "sustained_power", "hour_power", "grip_speed_warn", "grip_speed_fail",
+            "filling_power",
+        )
+    }  # fmt: skip
+    slow, fast = base.cadence_range
+    slow, fast = (
+        base if v is None else v
+        for base, v in ((slow, value("operator.cadence_min")), (fast, value("operator.cadence_max")))
+    )
+    return replace(
+        base,
+        grip_height_range=(lo, hi),
+        cadence_range=(slow, fast),
+        **{k: v for k, v in given.items() if v is not None},
+    )

@@ -17,6 +17,9 @@ limit gets:
 * ``transmission_angle``: min(γmin, 180° − γmax); warn below ``MIN_TRANSMISSION_DEG``, fail below
   ``FAIL_TRANSMISSION_DEG``.
 * ``power``: Mw ω̄; warn above ``SUSTAINED_POWER_W``, fail above ``HOUR_POWER_W``.
+* ``cadence``: wheel turns (push-pull cycles) a minute, ω̄ · 60 / 2π; warn outside the operator
+  profile's cadence range (30-60 turns a minute; docs/operators.md §6).
+* ``rope_speed``: the rope's speed ω̄ r_w; warn outside ``ROPE_SPEED_RANGE_M_S`` (docs/water.md §2a).
 * ``grip_speed``: the grip's peak speed at the mean wheel speed; warn above
   ``GRIP_SPEED_WARN_M_S``, fail above ``GRIP_SPEED_FAIL_M_S``.
 * ``stroke``: the horizontal grip stroke; warn above ``STROKE_LIMIT_M``.
@@ -43,6 +46,7 @@ from pumplink.constants import (
     HOUR_POWER_W,
     LINK_ENERGY_LIMIT,
     MIN_TRANSMISSION_DEG,
+    ROPE_SPEED_RANGE_M_S,
     STROKE_LIMIT_M,
     SUSTAINED_POWER_W,
 )
@@ -201,6 +205,10 @@ def assess(
     handle_fatigue=None,
     crank_fatigue=None,
     part_limits=((12.0, 30.0), (1.5, 1.0)),
+    cadence=None,
+    rope_speed=None,
+    cadence_range=(30.0, 60.0),
+    rope_speed_range=ROPE_SPEED_RANGE_M_S,
 ) -> Verdict:
     """Decide the checks and the verdict.
 
@@ -225,6 +233,8 @@ def assess(
     pin_pressure : the pins' largest mean bearing pressure [MPa];  handle_fatigue, crank_fatigue :
         fatigue safety factors [-] (docs/workshop.md §2; given when the spec gives ``[parts]``).
     part_limits : ((warn, fail) of the pin pressure [MPa], (warn, fail) of a safety factor).
+    cadence : wheel turns a minute [1/min];  rope_speed : ω̄ r_w [m/s] (a rope pump's).
+    cadence_range : (fewest, most) turns a minute (the profile's);  rope_speed_range : [m/s].
 
     Optional checks are left out when their input is None.
     """
@@ -250,6 +260,10 @@ def assess(
         )
     if power is not None:
         checks.append(check("power", power, "<=", "W", feasible, warn=power_limits[0], fail=power_limits[1]))
+    if cadence is not None:
+        checks.append(_range("cadence", cadence, cadence_range, "/min", feasible))
+    if rope_speed is not None:
+        checks.append(_range("rope_speed", rope_speed, rope_speed_range, "m/s", feasible))
     if grip_speed is not None:
         checks.append(
             check(
@@ -284,11 +298,12 @@ def assess(
     return Verdict(tuple(checks), _scalar(level))
 
 
-def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf):
+def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf, warned=()):
     """How far a verdict's checks lie beyond their limits: per design, the sum over the checks that
     fail (``accept_warnings``) or that warn or fail (otherwise) of the relative distance beyond the
     limit they break (the fail limit for a failure, else the warn limit); 0 exactly where none
-    does.  A value that is not finite counts ``unbounded``.  The searches rank designs by it."""
+    does.  A value that is not finite counts ``unbounded``.  ``warned``: keys of checks whose
+    warnings count even where warnings are accepted.  The searches rank designs by it."""
     total = 0.0
     for c in verdict.checks:
         level = np.asarray(c.level)
@@ -301,6 +316,6 @@ def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf):
         with np.errstate(invalid="ignore", divide="ignore"):
             beyond = np.where(np.asarray(c.relation) == "<=", v - lim, lim - v) / np.abs(lim)
         beyond = np.where(np.isfinite(beyond), np.maximum(beyond, 0.0), unbounded)
-        counted = level == FAIL if accept_warnings else level >= WARN
+        counted = level == FAIL if accept_warnings and c.key not in warned else level >= WARN
         total = total + np.where(counted, beyond, 0.0)
     return _scalar(np.asarray(total, float))

@@ -22,7 +22,9 @@ path, another libm) moves a solver's path the same way.
 * ``scipy.optimize.elementwise.find_minimum`` and ``pumplink.mechanisms.bracket.find_minimum``:
   their tolerances; the bracket's middle point, where it stays below the ends;
 * ``scipy.integrate.solve_ivp``: ``rtol``, ``atol`` (its start is the state it integrates from, a
-  result of the model, not a guess).
+  result of the model, not a guess);
+* ``pumplink.models.losses.duty_rope_speed`` (fixed-point steps, each shrinking the error at least
+  fivefold): two steps fewer (loosened, 25 times the error) or more; its start moved by SHIFT.
 
 pumplink imports scipy's solvers inside the functions that use them
 (``from scipy.optimize import brentq``), so replacing the module attributes reaches every call;
@@ -207,6 +209,15 @@ def _solve_ivp(original):
     return solve_ivp
 
 
+def _duty_rope_speed(original):
+    @_counted("duty_rope_speed")
+    def duty_rope_speed(power, head, pipe_diameter, efficiency, steps=60, start=1.0):
+        steps = steps - 2 if MODE == "loosen" else steps + 2
+        return original(power, head, pipe_diameter, efficiency, steps=steps, start=start * (1.0 + SHIFT))
+
+    return duty_rope_speed
+
+
 #: What to replace in each module, by the module's name: (attribute, wrapper maker, counted as).
 PATCHES = {
     "scipy.optimize": [
@@ -222,6 +233,7 @@ PATCHES = {
     ],
     "scipy.integrate": [("solve_ivp", _solve_ivp)],
     "pumplink.mechanisms.bracket": [("find_minimum", lambda f: _find_minimum(f, "bracket.find_minimum"))],
+    "pumplink.models.losses": [("duty_rope_speed", _duty_rope_speed)],
 }
 
 

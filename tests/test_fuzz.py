@@ -14,12 +14,9 @@ and nothing on stdout.  Never a traceback, never another exit code.
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 import math
 import random
-import signal
 import subprocess
 import sys
 import typing
@@ -30,8 +27,8 @@ import tomli_w
 from budget import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from in_process import keep_process_state, run_main
 
-import pumplink.cli as cli
 from pumplink.batch import VARIABLE_KEYS
 from pumplink.inputs.pump import PumpSpec
 
@@ -42,25 +39,7 @@ SHIPPED = sorted([*ROOT.glob("configs/*.toml"), *ROOT.glob("examples/*.toml")])
 # ----------------------------------------------------------------------------- running
 @pytest.fixture(autouse=True)
 def _keep_process_state(monkeypatch):
-    """main() installs signal handlers and, on a failed stdout, points fd 1 at /dev/null: keep
-    both away from the test process."""
-    saved = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
-    monkeypatch.setattr(cli, "_quiet_stdout", lambda: None)
-    yield
-    for s, h in saved.items():
-        signal.signal(s, h)
-
-
-def run_main(args: list[str]) -> tuple[int, str, str]:
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            cli.main([str(a) for a in args])
-        except SystemExit as exc:
-            code = exc.code
-        else:
-            code = 0
-    return code, out.getvalue(), err.getvalue()
+    yield from keep_process_state(monkeypatch)
 
 
 def check_contract(args, code, out: str, err: str) -> None:
@@ -80,7 +59,7 @@ def check_contract(args, code, out: str, err: str) -> None:
 
 
 def run_and_check(args: list[str]) -> int:
-    code, out, err = run_main(args)
+    code, out, err = run_main(*args)
     check_contract(args, code, out, err)
     return code
 

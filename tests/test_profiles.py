@@ -162,7 +162,7 @@ def test_default_profile_is_todays_constants():
 def test_the_default_profile_is_the_mens_and_the_verdicts_defaults_are_its_limits():
     """A spec without a profile is judged by the men's limits, each sourced; the verdict's defaults in
     pumplink.constants are the same numbers (the unsourced 0.5-0.9 m grip band is gone,
-    docs/operators.md §6)."""
+    docs/operators.md §8)."""
     from pumplink import constants as C
 
     men = PROFILES["men"]
@@ -218,7 +218,9 @@ HAND_SPEC = {
     "name": "profile check",
     "wheel": {"radius": 0.25, "axle_height": 0.55},
     "linkage": {"L1": 0.40, "D1": 0.20, "b": 0.10, "rocker": 0.20, "handle": 1.00, "swing": 60.0},
-    "load": {"head": 10.0, "pipe_diameter": 0.023},
+    # the efficiency given: the constant at every speed, so the hand formula holds (the loss
+    # model, docs/water.md §2a, would decide at some of the speeds below)
+    "load": {"head": 10.0, "pipe_diameter": 0.023, "efficiency": 0.75},
     "operator": {"speed": 270.0},
 }
 TORQUE = 0.25 * 1000.0 * 9.81 * 10.0 * (math.pi * 0.023**2 / 4) / 0.75  # [N m]

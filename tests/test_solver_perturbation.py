@@ -56,6 +56,8 @@ SOLVERS = {
     "optimize": {"differential_evolution", "minimize", "bracket.find_minimum"},
     "tolerance": {"bracket.find_minimum"},
     "batch": {"bracket.find_minimum"},
+    # the water alone: the loss model's duty where it decides (the 20 m wells' all-day duty)
+    "validate": {"duty_rope_speed"},
 }
 #: Commands with no iterative solver (closed forms): nothing to perturb, nothing may be called.
 CLOSED_FORMS = ("structure", "synth")

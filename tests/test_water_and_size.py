@@ -98,7 +98,7 @@ def test_a_profile_changes_the_limits_the_verdict_judges(tmp_path):
 
 def test_size_finds_a_pump_that_force_passes_with_the_same_water(tmp_path):
     out = tmp_path / "sized.toml"
-    r = pumplink("size", "--head", "8", "--pipes", "19mm", "--format", "json", "--write", out)
+    r = pumplink("size", "--head", "8", "--pipes", "25.4mm", "--format", "json", "--write", out)
     assert r.returncode == 0, r.stderr
     row = json.loads(r.stdout)
     assert row["found"] and row["verdict"] == "PASS"
@@ -113,11 +113,21 @@ def test_size_finds_a_pump_that_force_passes_with_the_same_water(tmp_path):
     assert row["fill_turns_20l"] == pytest.approx(t * checked["speed_deg_s"] / 360.0, rel=1e-12)
     assert (
         f"time to fill a 20-litre container: {t:.0f} s"
-        in pumplink("size", "--head", "8", "--pipes", "19mm").stdout
+        in pumplink("size", "--head", "8", "--pipes", "25.4mm").stdout
     )
+    # the cadence and the rope speed it recommends are inside the field's ranges (30-60 turns a
+    # minute, 0.6-1.8 m/s), by hand from the written spec: deg/s over 6, rad/s times the radius
+    turns = checked["speed_deg_s"] / 6.0
+    rope = math.radians(checked["speed_deg_s"]) * row["design"]["wheel_radius_m"]
+    assert row["cadence_per_min"] == pytest.approx(turns, rel=1e-12) and 30.0 <= turns <= 60.0
+    assert row["rope_speed_m_s"] == pytest.approx(rope, rel=1e-12) and 0.6 <= rope <= 1.8
     # the operator's power is the limit that binds: the flow is Q*, to the cadence's 1 deg/s rounding
     assert "power" in row["binding"]
     assert 0.99 <= row["flow_share"] <= 1.0
+    # the duties (docs/water.md §6) with the constants deciding: Q = 0.75 x 0.87 x P / (rho g H)
+    assert row["losses"] == "constant"
+    for key, power in (("all_day_flow_l_min", 75.0), ("filling_flow_l_min", 81.0)):
+        assert row[key] == pytest.approx(0.75 * 0.87 * power / (9810.0 * 8.0) * 60_000, rel=1e-12)
 
 
 #: The spec keys that set each check's limits (the operator profile's, overridden).

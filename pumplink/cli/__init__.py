@@ -148,6 +148,7 @@ from pumplink.cli import (  # noqa: E402, F401, I001 -- in the order of `pumplin
     batch,
     optimize,
     size,
+    validate,
     tolerance,
     draw,
     template,

@@ -53,7 +53,8 @@ def optimize(
             help="Minimise the peak force of the verdict (the least peak "
             "force of the flywheel or full dynamics when the spec gives "
             "inertia, else the exact peak outside the dead bands) or the mean force, or "
-            "maximise the flow with no check failing (flow; vary the cadence, wheel or pipe too)."
+            "maximise the flow with no check failing (flow; vary the cadence, wheel or pipe too: "
+            "the cadence and rope speed are then held in range)."
         ),
     ] = Objective.peak,
     seed: Annotated[

@@ -53,6 +53,15 @@ def size(
     allow_warnings: Annotated[
         bool, typer.Option("--allow-warnings", help="Accept warnings; only failing checks are excluded.")
     ] = False,
+    keep: optional(
+        str,
+        "Hold what you have at the base spec's value: wheel (radius and mass), pipe (its "
+        "rising main) and/or handle, e.g. --keep wheel,pipe.",
+    ) = None,
+    allow_pit: Annotated[
+        bool,
+        typer.Option("--allow-pit", help="Let the rocker pivot sit below the ground (in a pit)."),
+    ] = False,
     seed: Annotated[
         int, typer.Option(help="Seed of the search (the same seed, the same answer).", min=0)
     ] = 0,
@@ -66,15 +75,23 @@ def size(
 ) -> None:
     """Size the whole rope pump for the most water one operator can pump for hours.
 
-    Searches the pipe bore (from a list), the cadence, the wheel's radius and mass,
-    the handle, rocker, swing, the rocker pivot's place and the axle height, for
-    the most flow with no check failing and, unless --allow-warnings, none
-    warning; every candidate is judged as pumplink force judges it.  Prints the
-    pump, its flow, its share of what the operator's sustained power could lift
-    (Q*), what binds, and the flow at other heads.  With --tolerance, at least
-    --yield of the pumps built within it pass too (docs/tolerance.md).  Exit 0
-    when a design is found, 1 when none meets the limits (the output says what
-    holds it back).
+    Searches the pipe bore (from a list: by default ½", ¾", 1", 1¼", 1½"; none
+    below ½", 12.7 mm, the smallest a rope piston is made for), the cadence (10-90
+    turns a minute), the wheel's radius (0.15-0.35 m) and mass at its rim (1-15 kg),
+    the handle (0.5-1.6 m), rocker (0.10-0.40 m), swing (30-100 deg), the rocker
+    pivot's place (L1 0-1 m beyond the stand, D1 0.6 m above to 0.6 m below the
+    axle, never below the ground unless --allow-pit) and the axle height
+    (0.40-0.70 m), for the most flow with no check failing and, unless
+    --allow-warnings, none warning (so the cadence stays within the profile's 30-60
+    turns a minute and the rope within 0.6-1.8 m/s); every candidate is judged as
+    pumplink force judges it.  --keep holds the base spec's wheel, pipe or handle.
+    Prints the pump, its flow all day and filling containers, its share of what
+    the operator's sustained power could lift (Q*), what binds, what the base spec
+    holds that the built-in design does not, and the flow at other heads.  With
+    --tolerance, at least --yield of the pumps built within it pass too
+    (docs/tolerance.md).  Exit 0 when a design is found, 1 when none meets the
+    limits (the output says what holds it back).  Bounds and sources:
+    docs/optimize.md, "Sizing the whole pump".
 
     Example: [bold]pumplink size --head 12 --profile women --write well.toml[/]
     """
@@ -89,7 +106,10 @@ def size(
     if write is not None:
         check_output(write, "--write")
     robust = robust_ask(tolerance, target)
-    problem = sizing.problem_for(spec_or_default(spec), head, profile, _bores(pipes), allow_warnings, robust)
+    kept = () if keep is None else tuple(k.strip() for k in keep.split(",") if k.strip())
+    problem = sizing.problem_for(
+        spec_or_default(spec), head, profile, _bores(pipes), allow_warnings, robust, kept, allow_pit
+    )
     with progress(len(problem.pipes), "size (pipe bores)") as advance:
         result = sizing.size(problem, seed=seed, progress=advance)
     render_size(result, fmt.value)

@@ -21,13 +21,20 @@ from pumplink.constants import (
     DEFAULT_LITRES_PER_PERSON_DAY,
     DEFAULT_VOLUMETRIC_EFFICIENCY,
     LINK_MASS_PER_METRE,
+    LOSS_SHARE,
 )
 from pumplink.mechanisms.fourbar import FourBar
 from pumplink.models import load as _load
+from pumplink.models import losses as _losses
 from pumplink.profiles import DEFAULT_PROFILE, operator_limits
 
 #: Spec keys that give the wheel's inertia (the flywheel or full dynamics can then decide).
 INERTIA_KEYS = ("wheel.inertia", "wheel.mass", "load.moving_mass")
+#: Which efficiencies a rope-pump design is evaluated with (``PumpDesigns.losses``), by index:
+#: the constant defaults (the loss model within :data:`~pumplink.constants.LOSS_SHARE` of them),
+#: the loss model's (docs/water.md §2a), or the spec's own ``load.efficiency`` /
+#: ``load.volumetric_efficiency`` (a measurement: the loss model is not consulted).
+LOSSES = ("constant", "loss model", "spec")
 
 
 @dataclass(frozen=True)
@@ -60,6 +67,12 @@ class PumpDesigns:
     grip_height_min, grip_height_max [m], grip_speed_warn, grip_speed_fail [m/s]: the operator
     profile's limits (:mod:`pumplink.profiles`, with the spec's own keys instead where given).
     hours_per_day [h], litres_per_person_day [l]: how the water is used (the people it serves).
+    cadence_min, cadence_max [turns/min]: the profile's cadence range;  filling_power [W]: the
+    operator's power while filling containers (the filling duty).
+    losses : index into :data:`LOSSES`, which efficiencies ``force_efficiency`` and
+    ``volumetric_efficiency`` are;  model_force_efficiency, model_volumetric_efficiency : the loss
+    model's at the design's rope speed [-] (docs/water.md §2a; NaN without a head);
+    piston_clearance, piston_spacing : [m], the loss model's pistons.
     """
 
     L1: Any
@@ -93,6 +106,14 @@ class PumpDesigns:
     grip_speed_fail: Any = DEFAULT_PROFILE.grip_speed_fail
     hours_per_day: Any = DEFAULT_DAILY_PUMPING_HOURS
     litres_per_person_day: Any = DEFAULT_LITRES_PER_PERSON_DAY
+    cadence_min: Any = DEFAULT_PROFILE.cadence_range[0]
+    cadence_max: Any = DEFAULT_PROFILE.cadence_range[1]
+    filling_power: Any = DEFAULT_PROFILE.filling_power
+    losses: Any = 0
+    model_force_efficiency: Any = np.nan
+    model_volumetric_efficiency: Any = np.nan
+    piston_clearance: Any = _losses.PISTON_CLEARANCE
+    piston_spacing: Any = _losses.PISTON_SPACING
     arms_in_verdict: bool = False
     axle_height: Any = None
     linkage: FourBar | None = None
@@ -119,11 +140,13 @@ def pump_designs(values: Mapping[str, Any], speed=None) -> PumpDesigns:
     mass = _load.moving_mass(value("load.moving_mass"), value("load.head"), value("load.pipe_diameter"))
     if any(value(k) is not None for k in INERTIA_KEYS):
         inertia = _load.inertia(value("wheel.radius"), value("wheel.inertia"), value("wheel.mass"), mass)
-    rope = _load.rope_force(
-        value("load.rope_force"), value("load.head"), value("load.pipe_diameter"), value("load.efficiency")
-    )
-    limits = operator_limits(value)
+    speed = np.radians(value("operator.speed") if speed is None else speed)
     by_head = value("load.head") is not None
+    eff = _efficiencies(value, speed) if by_head else None
+    force_efficiency = None if eff is None else eff[0]
+    head, pipe = value("load.head"), value("load.pipe_diameter")
+    rope = _load.rope_force(value("load.rope_force"), head, pipe, force_efficiency)
+    limits = operator_limits(value)
     return PumpDesigns(
         L1=value("linkage.L1"),
         D1=value("linkage.D1"),
@@ -136,7 +159,7 @@ def pump_designs(values: Mapping[str, Any], speed=None) -> PumpDesigns:
         wheel_torque=rope * value("wheel.radius"),  # Mw = Fw rw, Eq. (3) of the pump paper
         moving_mass=mass,
         inertia=inertia,
-        speed=np.radians(value("operator.speed") if speed is None else speed),
+        speed=speed,
         dead_band=np.radians(value("operator.dead_band")),
         speed_fluctuation=value("operator.speed_fluctuation"),
         force_limit=limits.force_limit,
@@ -146,8 +169,7 @@ def pump_designs(values: Mapping[str, Any], speed=None) -> PumpDesigns:
         arm_mass=_or(value("operator.arm_mass"), DEFAULT_ARM_MASS),
         head=value("load.head") if by_head else np.nan,
         pipe_diameter=value("load.pipe_diameter") if by_head else np.nan,
-        force_efficiency=_or(value("load.efficiency"), DEFAULT_EFFICIENCY),
-        volumetric_efficiency=_or(value("load.volumetric_efficiency"), DEFAULT_VOLUMETRIC_EFFICIENCY),
+        **({} if eff is None else dict(zip(_EFFICIENCY_FIELDS, eff))),
         sustained_power=limits.sustained_power,
         hour_power=limits.hour_power,
         grip_height_min=limits.grip_height_range[0],
@@ -156,11 +178,51 @@ def pump_designs(values: Mapping[str, Any], speed=None) -> PumpDesigns:
         grip_speed_fail=limits.grip_speed_fail,
         hours_per_day=_or(value("use.hours_per_day"), DEFAULT_DAILY_PUMPING_HOURS),
         litres_per_person_day=_or(value("use.litres_per_person_day"), DEFAULT_LITRES_PER_PERSON_DAY),
+        cadence_min=limits.cadence_range[0],
+        cadence_max=limits.cadence_range[1],
+        filling_power=limits.filling_power,
         arms_in_verdict=bool(value("operator.arms_in_verdict")),
         axle_height=value("wheel.axle_height"),
         wheel_mass=_or(value("wheel.mass"), np.nan),
         parts=_part_sizes(value),
     )
+
+
+_EFFICIENCY_FIELDS = (
+    "force_efficiency",
+    "volumetric_efficiency",
+    "losses",
+    "model_force_efficiency",
+    "model_volumetric_efficiency",
+    "piston_clearance",
+    "piston_spacing",
+)
+
+
+def _efficiencies(value, speed) -> tuple:
+    """The efficiencies a rope pump given by its head and bore is evaluated with, by the rule of
+    docs/water.md §2a: the spec's own where it gives one; else the constant defaults where the loss
+    model's overall efficiency η_f η_v (the water a watt lifts) is within
+    :data:`~pumplink.constants.LOSS_SHARE` of theirs, the loss model's elsewhere.  Returns the
+    values of :data:`_EFFICIENCY_FIELDS` (arrays over designs)."""
+    d, head, r_w = value("load.pipe_diameter"), value("load.head"), value("wheel.radius")
+    clearance = _or(value("load.piston_clearance"), _losses.PISTON_CLEARANCE)
+    spacing = _or(value("load.piston_spacing"), _losses.PISTON_SPACING)
+    rope_speed = np.asarray(speed, float) * r_w
+    model_v = _losses.volumetric_efficiency(d, rope_speed, head, clearance, spacing)
+    model_f = _losses.force_efficiency(d, rope_speed)
+    given = value("load.efficiency") is not None or value("load.volumetric_efficiency") is not None
+    force = _or(value("load.efficiency"), DEFAULT_EFFICIENCY)
+    volumetric = _or(value("load.volumetric_efficiency"), DEFAULT_VOLUMETRIC_EFFICIENCY)
+    if given:
+        index = np.full(np.shape(model_f), LOSSES.index("spec"))
+    else:
+        # the water one watt lifts, η_f η_v: the constants' split is not sourced, only their product
+        off = _losses.off_by(force * volumetric, model_f * model_v)
+        model = ~(off <= LOSS_SHARE)  # NaN (no rope speed): the model decides, and gives NaN
+        index = np.where(model, LOSSES.index("loss model"), LOSSES.index("constant"))
+        force, volumetric = np.where(model, model_f, force), np.where(model, model_v, volumetric)
+    return force, volumetric, index, model_f, model_v, clearance, spacing
 
 
 #: The keys of a spec's ``[parts]`` table.

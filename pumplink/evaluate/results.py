@@ -43,7 +43,8 @@ class Evaluation:
     effort_peak_force : least peak effort, the hand force plus the arms (full dynamics) [N] [effort].
     power : Mw ω̄ [W];  rocker_rate : max|dθ4/dθ2| [-];  grip_speed : the grip's peak speed at the
         wheel's top speed [m/s];  link_energy_share : the flywheel's neglected link energy / its
-        band [%] (0 where the flywheel does not decide; None where it decides nowhere) [motion];
+        band [%] (0 where the flywheel does not decide; None where it decides nowhere);
+        cadence : wheel turns a minute [1/min];  rope_speed : ω̄ r_w [m/s] [motion];
         rocker_rate from [rate].
     water : :class:`pumplink.evaluate.water.Water` [water].
     pin_pressure [MPa], handle_fatigue, crank_fatigue [-] : the part checks' values (NaN where not
@@ -73,6 +74,8 @@ class Evaluation:
     rocker_rate: np.ndarray | None = None
     grip_speed: np.ndarray | None = None
     link_energy_share: np.ndarray | None = None
+    cadence: np.ndarray | None = None
+    rope_speed: np.ndarray | None = None
     water: Water | None = None
     pin_pressure: np.ndarray | None = None
     handle_fatigue: np.ndarray | None = None

@@ -17,7 +17,8 @@ peak                      peak_force (the deciding model's)         docs/models.
 sampled_peak              sampled_peak                              docs/models.md §1
 passing_speed             min_passing_speed                         docs/models.md §2
 effort                    effort_peak_force                         docs/models.md §3a
-motion                    power, grip_speed, link_energy_share      docs/models.md §4
+motion                    power, grip_speed, link_energy_share,     docs/models.md §4
+                          cadence, rope_speed
 water                     water                                     docs/water.md
 parts                     pin_pressure, handle/crank_fatigue        docs/workshop.md §2
 verdict                   verdict                                   docs/models.md §4
@@ -263,7 +264,9 @@ def motion(r: Run) -> dict[str, Any]:
         share = np.where(index == ORDER.index(FLYWHEEL), share, 0.0)
     grip = _load.grip_speed(rate, c["speed"], r["handle"], np.where(energy, c["speed_fluctuation"], 0.0))
     power = c["wheel_torque"] * c["speed"]
-    return dict(power=power, grip_speed=grip, link_energy_share=share)
+    cadence = c["speed"] / (2.0 * np.pi) * 60.0  # wheel turns a minute
+    rope_speed = c["speed"] * c["wheel_radius"]  # the rope moves with the rim (docs/water.md §1)
+    return dict(power=power, grip_speed=grip, link_energy_share=share, cadence=cadence, rope_speed=rope_speed)
 
 
 def water(r: Run) -> dict[str, Any]:
@@ -302,6 +305,7 @@ def _assess(r: Run, with_parts: bool = False):
         axle_height=r.designs.axle_height, power_limits=(c["sustained_power"], c["hour_power"]),
         grip_speed_limits=(c["grip_speed_warn"], c["grip_speed_fail"]),
         grip_height_range=(c["grip_height_min"], c["grip_height_max"]), **part_values,
+        cadence=r["cadence"], rope_speed=r["rope_speed"], cadence_range=(c["cadence_min"], c["cadence_max"]),
     )  # fmt: skip
 
 
@@ -322,7 +326,7 @@ STAGES = (
     Stage("sampled_peak", "geometry", "sampled_peak", sampled_peak),
     Stage("passing_speed", "model", "min_passing_speed", passing_speed),
     Stage("effort", "model", "effort_peak_force", effort),
-    Stage("motion", "model", "power grip_speed link_energy_share", motion),
+    Stage("motion", "model", "power grip_speed link_energy_share cadence rope_speed", motion),
     Stage("water", "", "water", water),
     Stage("parts", "mean_force peak motion", "pin_pressure handle_fatigue crank_fatigue", parts),
     Stage("verdict", "mean_force peak motion parts", "verdict", verdict),

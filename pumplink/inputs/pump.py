@@ -143,6 +143,19 @@ class Load(Section):
         ge=0,
         le=10_000,
     )
+    piston_clearance: float | None = optional(
+        (
+            "bore minus piston diameter [m], for the loss model's leakage (default 0.00035: the "
+            "middle of 0.2-0.5 mm, docs/water.md §2a)"
+        ),
+        gt=0,
+        le=0.01,
+    )
+    piston_spacing: float | None = optional(
+        "distance between the pistons on the rope [m], for the loss model (default 1.0, docs/water.md §2a)",
+        gt=0,
+        le=100,
+    )
 
     @property
     def rope_force_N(self) -> float:
@@ -165,6 +178,9 @@ class Load(Section):
             )
         if self.efficiency is not None and not by_head:
             raise ValueError("load.efficiency only applies with load.head and load.pipe_diameter")
+        for key in ("piston_clearance", "piston_spacing"):
+            if getattr(self, key) is not None and not by_head:
+                raise ValueError(f"load.{key} only applies with load.head and load.pipe_diameter")
         if self.volumetric_efficiency is not None and not by_head:
             raise ValueError(
                 "load.volumetric_efficiency only applies with load.head and load.pipe_diameter (the flow "
@@ -196,6 +212,15 @@ class Operator(Section):
     )
     grip_speed_fail: float | None = optional(
         "grip speed above which the design fails [m/s] (profile's)", gt=0, le=20
+    )
+    cadence_min: float | None = optional(
+        "fewest wheel turns a minute before the verdict warns [1/min] (profile's: 30)", gt=0, le=600
+    )
+    cadence_max: float | None = optional(
+        "most wheel turns a minute before the verdict warns [1/min] (profile's: 60)", gt=0, le=600
+    )
+    filling_power: float | None = optional(
+        "the operator's power while filling containers [W] (profile's; docs/water.md §6)", ge=1, le=2000
     )
     speed: float = Field(default=360.0, gt=0, le=7200, description="wheel speed [deg/s]")
     dead_band: float = Field(
@@ -250,6 +275,7 @@ def limits_in_order(limits: OperatorProfile, grip: bool = True) -> None:
         ("operator.grip_height_min must be below operator.grip_height_max", *limits.grip_height_range),
         ("operator.grip_speed_warn must be below operator.grip_speed_fail", *speeds),
     ]
+    pairs.append(("operator.cadence_min must be below operator.cadence_max", *limits.cadence_range))
     pairs = pairs if grip else []
     powers = (limits.sustained_power, limits.hour_power)
     pairs.append(("operator.sustained_power must be at most operator.hour_power", *powers))
@@ -529,6 +555,8 @@ rope_force = 45.0      # rope force at the wheel rim Fw [N], 0.001-10000; or ins
 # pipe_diameter = 0.023  # rising-main bore [m], 0.001-0.5
 # efficiency = 0.75    # rope-pump efficiency [-], 0.05-1 (with head and pipe_diameter)
 # moving_mass = 4.0    # rope and water moving with the rim [kg] (flywheel model)
+# piston_clearance = 0.00035  # bore minus piston diameter [m] (loss model, docs/water.md §2a)
+# piston_spacing = 1.0  # distance between the pistons on the rope [m] (loss model)
 
 [operator]
 profile = "men"        # who pumps: "men", "women", "children" or "accessible" (docs/operators.md).
@@ -544,6 +572,9 @@ profile = "men"        # who pumps: "men", "women", "children" or "accessible" (
 # grip_height_max = {grip_height_max}    # (checked with wheel.axle_height)
 # grip_speed_warn = {grip_speed_warn}     # the grip speeds at which the verdict warns and fails [m/s]
 # grip_speed_fail = {grip_speed_fail}
+# cadence_min = {cadence_min}        # the wheel turns a minute outside which the verdict warns
+# cadence_max = {cadence_max}
+# filling_power = {filling_power}       # the power while filling containers [W] (docs/water.md §6)
 speed = 360.0          # wheel speed [deg/s], 0-7200 (0 excluded; 360 deg/s = 60 rpm)
 dead_band = 20.0       # crank angle each side of a dead centre left to the wheel [deg], 0-90 (90 excluded)
 # speed_fluctuation = 0.2  # largest (w_max - w_min) / w_mean [-], 0-1 (0 excluded; flywheel model)
@@ -593,6 +624,8 @@ def spec_template(name: str, path: str = "pump.toml") -> str:
     limits = {k: getattr(men, k) for k in ("force_limit", "sustained_power", "hour_power")}
     limits.update(grip_speed_warn=men.grip_speed_warn, grip_speed_fail=men.grip_speed_fail)
     limits.update(grip_height_min=men.grip_height_range[0], grip_height_max=men.grip_height_range[1])
+    limits.update(cadence_min=men.cadence_range[0], cadence_max=men.cadence_range[1])
+    limits.update(filling_power=men.filling_power)
     values = {**Parts().model_dump(), **Use().model_dump(), **limits, "profiles": _profile_lines()}
     text = SPEC_TEMPLATE.replace("{name}", quoted).replace("{path}", path)
     for key, value in values.items():

@@ -45,6 +45,8 @@ CHECK_KEYS = (
     "link_energy_share",
     "transmission_angle",
     "power",
+    "cadence",
+    "rope_speed",
     "grip_speed",
     "stroke",
     "grip_height",
@@ -253,7 +255,7 @@ def junit_text(batch: Batch, c: Chunk, fail_on: Sequence[str]) -> tuple[str, int
     parts, failures, skipped = [], 0, 0
     names = batch.names(c.start, c.stop)
     for name, (fail, skip) in zip(names, _junit_messages(batch, c, cols, fail_on)):
-        parts.append(_junit_case(name, cls, fail, skip))
+        parts.append(junit_case(name, cls, fail, skip))
         failures += fail is not None
         skipped += skip is not None
     return "".join(parts), failures, skipped
@@ -360,7 +362,8 @@ def _attr(text: str) -> str:
     return quoteattr(escape_control(text))
 
 
-def _junit_case(name: str, classname: str, failure: str | None, skipped: str | None) -> str:
+def junit_case(name: str, classname: str, failure: str | None, skipped: str | None) -> str:
+    """One JUnit testcase: passed, or with a ``failure`` or ``skipped`` message."""
     head = f'    <testcase classname={_attr(classname)} name={_attr(name)} time="0"'
     if failure is not None:
         return (

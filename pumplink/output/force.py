@@ -31,7 +31,9 @@ from pumplink.output.words import (
     check_sentence,
     check_value,
     limit_text,
+    losses_word,
     model_line,
+    pit_words,
     verdict_line,
     water_lines,
 )
@@ -50,6 +52,7 @@ def force_summary(r: ForceResult) -> dict[str, Any]:
             "operator_profile": r.profile,
             "dead_band_deg": r.design.spec.operator.dead_band,
             "model": r.model,
+            "losses": losses_word(r.water),
             **{k: shown(q, v) for k, (q, v) in json_items(r.evaluation).items()},
             # the sampled peak of the angles this study kept (--at), else the evaluation's sweep
             "sampled_peak_force_N": num(r.sampled_peak),
@@ -360,6 +363,8 @@ def render_force(
             c.print(line, markup=False)
         for line in quantity_lines(r.evaluation):  # the catalogue's quantities with a line of their own
             c.print(line, markup=False)
+        if pit_words(r.design.spec):
+            c.print(pit_words(r.design.spec), markup=False)
         c.print(verdict_line(r, strict, cadence))
         for ch in r.checks:
             if ch.result == "warn":

@@ -18,6 +18,10 @@ from pumplink.output.words import (
     OPERATOR_NOUNS,
     check_advice,
     check_row,
+    duty_words,
+    losses_word,
+    losses_words,
+    pit_words,
 )
 from pumplink.quantities import headline_items
 from pumplink.quantities import lines as quantity_lines
@@ -59,6 +63,11 @@ def size_row(res: SizeResult) -> dict[str, Any]:
         "reason": None if res.found else _holding_back(res),
         "design": {k: num(_value(spec, key) * f) for key, k, _, _, f in DESIGN},
         "cycles_per_min": num(_value(spec, "operator.speed") / 6.0),
+        "kept": list(res.problem.kept),
+        "allow_pit": res.problem.allow_pit,
+        "pit_depth_m": num(max(spec.linkage.D1 - spec.wheel.axle_height, 0.0)),
+        "held": [{"key": k, "value": v, "built_in": b} for k, v, b in res.problem.held],
+        "losses": losses_word(ev.water.design(0)),
         **{k: num(v) for k, v in headline_items(ev).items()},  # the catalogue's headline figures
         "verdict": verdict.outcome,
         "checks": [check_row(c) for c in verdict.checks],
@@ -81,6 +90,31 @@ def size_row(res: SizeResult) -> dict[str, Any]:
     }
 
 
+def held_words(problem) -> str:
+    """What the base spec holds that the built-in design (the route without a spec) does not: why
+    the same well can get two pumps from two routes."""
+    items = [f"{k} {_shown(v)} (built-in: {_shown(b)})" for k, v, b in problem.held]
+    return (
+        f"from the base spec {problem.spec.name!r}, not the built-in design: {'; '.join(items)} "
+        "(size without a spec starts from the built-in design, so the same well can get another pump)"
+    )
+
+
+def _shown(v) -> str:
+    return "none" if v is None else (f"{v:g}" if isinstance(v, float) else str(v))
+
+
+def beyond_limit(value: float, limit: float, unit: str, side: str) -> str:
+    """The words "value unit > limit unit": the value to three significant digits, or as many more
+    (up to six) as it takes to tell it from the limit (a stroke of 1.0028 m is not "1 m > 1 m")."""
+    shown = f"{limit:g}"
+    for digits in range(3, 7):
+        text = f"{value:.{digits}g}"
+        if text != shown:
+            break
+    return f"{text} {unit} {side} {shown} {unit}"
+
+
 def _holding_back(res: SizeResult) -> str:
     """Why no design met the limits, in one sentence: the closest design's checks beyond them."""
     b = res.best
@@ -91,9 +125,8 @@ def _holding_back(res: SizeResult) -> str:
     for c in bad:
         lim = c.fail_limit if (c.level == 2 or c.warn_limit is None) else c.warn_limit
         side = ">" if c.relation == "<=" else "<"
-        parts.append(
-            f"{CHECK_LABELS.get(c.key, c.key)} {float(c.value):.3g} {c.unit} {side} {float(lim):g} {c.unit}"
-        )
+        beyond = beyond_limit(float(c.value), float(lim), c.unit, side)
+        parts.append(f"{CHECK_LABELS.get(c.key, c.key)} {beyond}")
     advice = "; ".join(
         dict.fromkeys(check_advice(c.key, parts=b.spec.parts) for c in bad if c.key in CHECK_ADVICE)
     )
@@ -142,7 +175,13 @@ def render_size(res: SizeResult, fmt: str, out=None) -> None:
         for _, k, words, unit, _f in DESIGN:
             t.add_row(words, f"{row['design'][k]:.4g} {unit}")
         t.add_row("cadence", f"{row['cycles_per_min']:.1f} push-pull cycles/min")
+        t.add_row("rope speed", f"{row['rope_speed_m_s']:.2f} m/s")
         c.print(t)
+        if res.problem.kept:
+            c.print(f"kept from the base spec: {', '.join(res.problem.kept)}", markup=False)
+        pit = pit_words(res.best.spec)
+        if pit:
+            c.print(pit, markup=False)
         c.print(
             f"water: {row['flow_l_min']:.1f} l/min ({row['flow_m3_h']:.2f} m³/h) "
             f"for {row['power_W']:.1f} W at the handle; {row['flow_share']:.0%} of the "
@@ -150,6 +189,9 @@ def render_size(res: SizeResult, fmt: str, out=None) -> None:
             f"sustained power could lift here; serves about {row['people_served']:,.0f} people",
             markup=False,
         )
+        water = res.best.evaluation.water.design(0)
+        c.print(losses_words(water), markup=False)
+        c.print(duty_words(water), markup=False)
         for line in quantity_lines(res.best.evaluation):  # the catalogue's quantities with a line
             c.print(line, markup=False)
         c.print(f"verdict: {row['verdict']} (pumplink force on the written spec says the same)", markup=False)
@@ -170,6 +212,8 @@ def render_size(res: SizeResult, fmt: str, out=None) -> None:
                 "none passes" if none else f"{r['flow_l_min']:.1f}",
             )
         c.print(d)
+        if res.problem.held:
+            c.print(held_words(res.problem), markup=False)
         tried = ", ".join(
             f"{p['pipe_diameter_mm']:g} mm: "
             + (f"{p['flow_l_min']:.1f} l/min" if p["found"] else "none meets the limits")

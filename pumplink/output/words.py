@@ -9,7 +9,12 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
-from pumplink.constants import AXLE_HEIGHT_RANGE_M
+from pumplink.constants import (
+    AXLE_HEIGHT_RANGE_M,
+    DEFAULT_EFFICIENCY,
+    DEFAULT_VOLUMETRIC_EFFICIENCY,
+    LOSS_SHARE,
+)
 from pumplink.output.formats import fmt as _f
 from pumplink.output.formats import num
 
@@ -51,6 +56,8 @@ CHECK_LABELS = {
     "link_energy_share": "link kinetic energy / band",
     "transmission_angle": "transmission angle (smallest)",
     "power": "operator power",
+    "cadence": "cadence, turns a minute",
+    "rope_speed": "rope speed",
     "grip_speed": "peak grip speed",
     "stroke": "grip stroke",
     "grip_height": "grip height over the swing",
@@ -132,6 +139,11 @@ CHECK_ADVICE = {
     "transmission_angle fail": "the coupler meets the rocker so obliquely that joint friction can jam "
     "the linkage (move the rocker pivot or lengthen the rocker)",
     "power fail": "more than the operator gives even for an hour; slow the wheel or lower the load",
+    "cadence": "outside the 30-60 turns a minute people keep up at a crank or handle (the profile's "
+    "range, docs/operators.md §6); change the wheel speed",
+    "rope_speed": "outside 0.6-1.8 m/s, where leakage (slow) or friction in the rising main (fast) "
+    "costs more than twice what it does at the best 1.2 m/s (docs/water.md §2a); change the wheel "
+    "speed or radius",
     "stroke": "a standing operator must step or lean; shorten the handle or the swing",
     "grip_height": "push and pull with the hands between knuckle and shoulder height (the operator "
     "profile's range); change D1, the handle or the axle height",
@@ -306,10 +318,76 @@ def water_lines(w, power: float, profile: str, hours: float, litres: float) -> l
             "load.pipe_diameter for litres per minute)"
         ]
     who = OPERATOR_NOUNS.get(profile, "the operator")
-    return [
+    out = [
         f"water: {w.flow * L_PER_MIN:.1f} l/min ({w.flow * M3_PER_H:.2f} m³/h) from {w.head:g} m; "
         f"{w.water_power:.1f} W of water for {power:.1f} W at the handle ({w.efficiency:.0%})",
-        f"that is {w.share:.0%} of the {w.limit * L_PER_MIN:.1f} l/min {who} sustaining "
-        f"{w.sustained_power:g} W could lift here with this pump",
-        f"serves about {w.people:,.0f} people ({litres:g} l each a day, {hours:g} h of pumping a day)",
     ]
+    if math.isfinite(w.losses):
+        out.append(losses_words(w))
+    out.append(
+        f"that is {w.share:.0%} of the {w.limit * L_PER_MIN:.1f} l/min {who} sustaining "
+        f"{w.sustained_power:g} W could lift here with this pump"
+    )
+    if math.isfinite(w.filling_flow):
+        out.append(duty_words(w))
+    out.append(f"serves about {w.people:,.0f} people ({litres:g} l each a day, {hours:g} h of pumping a day)")
+    return out
+
+
+#: The words of :data:`pumplink.evaluate.designs.LOSSES`, by index, in the JSON's ``losses``.
+LOSSES_WORDS = ("constant", "loss model", "spec")
+
+
+def losses_word(w) -> str | None:
+    """The JSON's ``losses``: which efficiencies decided (:data:`LOSSES_WORDS`), None without a
+    head and a pipe."""
+    if w is None or not math.isfinite(w.losses) or not math.isfinite(w.flow):
+        return None
+    return LOSSES_WORDS[int(w.losses)]
+
+
+def losses_words(w) -> str:
+    """Which efficiencies decided the water and the force, in a sentence (docs/water.md §2a)."""
+    model = w.model_force_efficiency * w.model_volumetric_efficiency
+    used = f"{w.force_efficiency:.3g} × {w.volumetric_efficiency:.3g}"
+    if w.losses == 2:
+        return f"efficiency: the spec's {used} (a measurement: the loss model is not consulted)"
+    if w.losses == 0:
+        off = abs(w.force_efficiency * w.volumetric_efficiency / model - 1.0)
+        return (
+            f"efficiency: the constants {used}; the loss model's {model:.3f} is {off:.1%} from "
+            f"their product, within {LOSS_SHARE:.0%} (docs/water.md §2a)"
+        )
+    constants = DEFAULT_EFFICIENCY * DEFAULT_VOLUMETRIC_EFFICIENCY
+    if not model > 0.0:
+        return (
+            f"efficiency: the loss model's {used}: at this rope speed the leak past the pistons is as "
+            "much as the pistons sweep, and no water comes up (docs/water.md §2a)"
+        )
+    return (
+        f"efficiency: the loss model's {used} = {model:.3f} (leakage and friction at this rope speed "
+        f"and bore); the constants' {constants:.4g} would be {abs(constants / model - 1.0):.1%} off "
+        "(docs/water.md §2a)"
+    )
+
+
+def pit_words(spec) -> str:
+    """The pit a design needs where its rocker pivot sits below the ground (D1 deeper than the axle
+    height), in a sentence; "" where it needs none or the axle height is not given."""
+    axle = spec.wheel.axle_height
+    if axle is None or spec.linkage.D1 <= axle:
+        return ""
+    return (
+        f"pit: the rocker pivot sits {spec.linkage.D1 - axle:.3f} m below the ground (D1 "
+        f"{spec.linkage.D1:g} m under an axle {axle:g} m high): dig a pit for it, lined and drained"
+    )
+
+
+def duty_words(w) -> str:
+    """The flow at the two duties (docs/water.md §6): all day, at the sustained power, and while
+    filling containers, at the power the field's discharges imply."""
+    return (
+        f"duties: all day ({w.sustained_power:g} W) {w.all_day_flow * L_PER_MIN:.1f} l/min at "
+        f"{w.all_day_cadence:.1f} turns a minute; filling containers ({w.filling_power:g} W) "
+        f"{w.filling_flow * L_PER_MIN:.1f} l/min at {w.filling_cadence:.1f} turns a minute"
+    )

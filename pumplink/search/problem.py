@@ -26,6 +26,8 @@ limit.  Constraints (all ``g >= 0``):
 * the crank arcs outside the dead bands are not empty (the peak is then defined); quasi-static
   model only: the flywheel's peak is defined for every crank-rocker, and the dead band plays no
   part in its verdict.
+* ``--objective flow``: no check of the verdict fails and, where the search varies the cadence or
+  the wheel radius, the cadence and the rope speed lie in their ranges (docs/models.md §4).
 
 Pure functions; the CLI renders the result.
 """
@@ -73,6 +75,12 @@ VARIABLE_UNITS = {
 #: The constraint ``--objective flow`` adds: no check of the verdict fails (its slack is minus the
 #: relative excess beyond the fail limits, pumplink.verdict.excess).
 VERDICT_CONSTRAINT = ("no check of the verdict fails", "relative")
+#: Where the search varies the cadence or the wheel radius, the same constraint also holds the
+#: cadence and the rope speed in their ranges (their checks only warn, and a search for water would
+#: otherwise run to the fastest wheel the other checks allow; docs/models.md §4, docs/optimize.md).
+SPEED_KEYS = ("operator.speed", "wheel.radius")
+SPEED_CHECKS = ("cadence", "rope_speed")
+SPEED_CONSTRAINT = "no check of the verdict fails, the cadence and the rope speed in range"
 #: The objectives: the verdict's peak force or the mean force (least), or the flow (most, with no
 #: check failing: ``--objective flow``).
 OBJECTIVES = ("peak", "mean", "flow")
@@ -125,6 +133,12 @@ class Problem:
         return self.objective == "flow" or self.robust is not None
 
     @property
+    def holds_speed(self) -> bool:
+        """The flow's constraint also holds the cadence and the rope speed in range: a flow search
+        that varies either (:data:`SPEED_KEYS`)."""
+        return self.objective == "flow" and any(k in self.names for k in SPEED_KEYS)
+
+    @property
     def flywheel(self) -> bool:
         """True when an energy model (flywheel or full dynamics) decides the peak: the spec gives
         inertia and --model does not ask for the quasi-static model."""
@@ -166,7 +180,8 @@ class Problem:
         fill = [{}, {}, {"lo": f"{gl:g}"}, {"hi": f"{gh:g}"}, {"lo": f"{sl:g}"}, {"hi": f"{sh:g}"}, {}]
         names = [name.format(**f) for (name, _), f in zip(CONSTRAINTS, fill)]
         names = names[:-1] if self.flywheel else names
-        names = names + [VERDICT_CONSTRAINT[0]] if self.objective == "flow" else names
+        verdict = SPEED_CONSTRAINT if self.holds_speed else VERDICT_CONSTRAINT[0]
+        names = names + [verdict] if self.objective == "flow" else names
         if self.robust is not None:
             r = self.robust
             names.append(
@@ -465,7 +480,9 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Candidates:
     slack = tm.slack
     if flow_objective:  # the most water [l/min] with no check failing (the verdict's slack)
         obj = -ev.water.flow * 60_000.0
-        slack = np.vstack([slack, -np.atleast_1d(excess(ev.verdict, True, INFEASIBLE_OBJECTIVE))])
+        warned = SPEED_CHECKS if problem.holds_speed else ()
+        over = excess(ev.verdict, True, INFEASIBLE_OBJECTIVE, warned)
+        slack = np.vstack([slack, -np.atleast_1d(over)])
     if problem.robust is not None:  # the builds: their first-order share over the target
         r = problem.robust
         met = np.all(slack >= 0, axis=0)  # the shares cost 6 evaluations a design: only where needed

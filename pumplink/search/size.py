@@ -38,19 +38,38 @@ from pumplink.studies.tolerance_study import Robust, RobustCheck, robust_check, 
 #: rope-pump rising mains are made of.  They are the nominal inch sizes, not measured bores: give
 #: your pipe's real bore with ``--pipes``.
 STANDARD_PIPES = (0.0127, 0.01905, 0.0254, 0.03175, 0.0381)
-#: What the search varies, with its bounds (spec units: m, kg, deg, deg/s).  The wheel is a tyre
-#: rim of 12" to 28" (radius 0.15-0.35 m) with up to 30 kg at its rim; the cadence 10 to 90 rpm;
-#: the axle height the pump paper's 0.40-0.70 m (outside it the verdict warns).
+#: The smallest rising main a rope piston is made for [m]: ½", the smallest nominal size of
+#: :data:`STANDARD_PIPES`.  A piston is a washer knotted on a 6 mm (1/4") rope (ropepump.com,
+#: "Operation, Maintenance and Repair"); in a ½" bore it leaves a 3.35 mm ring around the rope,
+#: in an 8 mm bore 1 mm.  The rope-pump manuals' tables of tube size by depth (University of Twente
+#: WOT manual, Tables 1-2; Arrakis P-model manual §1.8) could not be read here (docs/optimize.md).
+MIN_PIPE = 0.0127
+#: What the search varies, with its bounds (spec units: m, kg, deg, deg/s; docs/optimize.md, "Sizing
+#: the whole pump"):
+#: the cadence 10 to 90 turns a minute (the verdict holds it in the profile's range unless
+#: warnings are allowed); the wheel a tyre rim of 12" to 28" (radius 0.15-0.35 m) with up to
+#: 15 kg at its rim: the village wheel's 10 kg of two 20" bead rims and a rebar ring (ropepump.com,
+#: "Manual of experiences and tolerances", C.e; configs/village-10m.toml) and half as much ring
+#: again, what a workshop welds into a rim; the axle height the pump paper's 0.40-0.70 m (outside
+#: it the verdict warns); the handle 0.5-1.6 m, the rocker 0.10-0.40 m and the swing 30-100 deg
+#: (docs/optimize.md); the rocker pivot 0-1 m beyond the stand and 0.6 m above to 0.6 m below
+#: the axle, no deeper than the ground unless a pit is allowed (``allow_pit``).
 BOUNDS = {
     "operator.speed": (60.0, 540.0),
     "wheel.radius": (0.15, 0.35),
-    "wheel.mass": (1.0, 30.0),
+    "wheel.mass": (1.0, 15.0),
     "wheel.axle_height": (0.40, 0.70),
     "linkage.handle": (0.5, 1.6),
     "linkage.rocker": (0.10, 0.40),
     "linkage.swing": (30.0, 100.0),
     "linkage.L1": (0.0, 1.0),
     "linkage.D1": (-0.6, 0.6),
+}
+#: What ``--keep`` can hold at the base spec's value, and the varied keys each holds.
+KEEP = {
+    "wheel": ("wheel.radius", "wheel.mass"),
+    "pipe": (),
+    "handle": ("linkage.handle",),
 }
 #: What a kilogram of wheel costs in the objective [l/min]: where the operator's power caps the
 #: flow (Q*), many designs give the same water, and this picks the one with the lightest wheel
@@ -72,6 +91,9 @@ class SizeProblem:
     bounds: dict[str, tuple[float, float]] = field(default_factory=lambda: dict(BOUNDS))
     allow_warnings: bool = False
     robust: Robust | None = None  # at least this share of builds at these tolerances pass
+    allow_pit: bool = False  # the rocker pivot may sit below the ground (in a pit)
+    kept: tuple[str, ...] = ()  # what --keep holds at the base spec's value (KEEP's names)
+    held: tuple = ()  # (key, the base's value, the built-in design's) where the base differs
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -117,9 +139,20 @@ class SizeResult:
 def _values(problem: SizeProblem, pipe: float, x: np.ndarray) -> dict:
     """The spec values :func:`pumplink.evaluate.pump_designs` reads: x (variables, designs) on the
     varied keys, this pipe, the base spec elsewhere."""
-    # the wheel's mass is varied instead of its inertia
-    return {**spec_values(problem.spec), "load.pipe_diameter": pipe, "wheel.inertia": None,
+    # the wheel's mass is varied instead of its inertia (unless the wheel is kept as it is)
+    inertia = {} if "wheel" in problem.kept else {"wheel.inertia": None}
+    return {**spec_values(problem.spec), "load.pipe_diameter": pipe, **inertia,
             **dict(zip(problem.names, x))}  # fmt: skip
+
+
+def pit_depth(problem: SizeProblem, x: np.ndarray) -> np.ndarray:
+    """How far below the ground the rocker pivot of designs x sits [m] (D1 − axle height; ≤ 0: at
+    or above the ground), with the base spec's value of a key that is not varied."""
+    values = _values(problem, problem.pipes[0], x)
+    d1, axle = values.get("linkage.D1"), values.get("wheel.axle_height")
+    if d1 is None or axle is None:
+        return np.zeros(np.shape(x)[1:])
+    return np.asarray(d1, float) - np.asarray(axle, float)
 
 
 def _flow(problem: SizeProblem, pipe: float, x: np.ndarray) -> np.ndarray:
@@ -147,6 +180,8 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
             d = pump_designs(_values(problem, pipe, x))
             ev = evaluate(d, JUDGED, screen_parts=True)
             v = np.where(ev.feasible, excess(ev.verdict, problem.allow_warnings, INFEASIBLE), INFEASIBLE)
+            if not problem.allow_pit:  # the pivot no deeper than the ground: D1 <= axle height
+                v = v + np.maximum(pit_depth(problem, x), 0.0)
             if problem.robust is not None:  # the builds too: the first-order share's shortfall
                 v = v + shortfall(d, ev, problem.robust)
             cache[key] = v
@@ -205,7 +240,8 @@ def spec_of(problem: SizeProblem, pipe: float, x) -> PumpSpec:
         data.setdefault(section, {})[name] = round(float(v), digits.get(k, 3))
     data["load"] = {k: v for k, v in data["load"].items() if k != "rope_force"}
     data["load"]["pipe_diameter"] = pipe
-    data["wheel"].pop("inertia", None)
+    if "wheel" not in problem.kept:
+        data["wheel"].pop("inertia", None)
     data["name"] = f"{problem.spec.name} (sized)"
     return parse_spec(data, source="the sized design")
 
@@ -304,33 +340,104 @@ def problem_for(
     pipes=None,
     allow_warnings: bool = False,
     robust: Robust | None = None,
+    keep=(),
+    allow_pit: bool = False,
 ) -> SizeProblem:
     """A sizing problem from a base spec: ``head`` [m] and ``profile`` replace the spec's;
-    ``robust``: at least its share of builds at its tolerances must pass (docs/tolerance.md §5)."""
+    ``robust``: at least its share of builds at its tolerances must pass (docs/tolerance.md §5);
+    ``keep``: names of :data:`KEEP` held at the base spec's values (its wheel, its rising main, its
+    handle); ``allow_pit``: the rocker pivot may sit below the ground.
+
+    Raises
+    ------
+    SpecError : no head; a bore below :data:`MIN_PIPE`; something to keep the base does not give.
+    """
     data = spec_to_dict(spec)
     load = {k: v for k, v in data["load"].items() if k != "rope_force"}
     if head is not None:
         load["head"] = float(head)
+    keep = tuple(dict.fromkeys(keep))
+    unknown = [k for k in keep if k not in KEEP]
+    if unknown:
+        raise SpecError(f"--keep {','.join(unknown)}: choose from {', '.join(KEEP)} (e.g. --keep wheel,pipe)")
+    if "pipe" in keep:
+        if pipes is not None:
+            raise SpecError(
+                "--keep pipe holds the base spec's rising main; give --pipes or --keep pipe, not both"
+            )
+        if spec.load.pipe_diameter is None:
+            raise SpecError(
+                f"--keep pipe: {spec.name} gives no load.pipe_diameter to keep; give the spec of the "
+                "pump you have, or the bore with --pipes"
+            )
+        pipes = (spec.load.pipe_diameter,)
+    if "wheel" in keep and spec.wheel.mass is None and spec.wheel.inertia is None:
+        raise SpecError(
+            f"--keep wheel: {spec.name} gives neither wheel.mass nor wheel.inertia to keep; give the "
+            "spec of the pump you have (e.g. pumplink size configs/village-10m.toml --keep wheel)"
+        )
     load.setdefault("pipe_diameter", STANDARD_PIPES[0])
     data["load"] = load
     if profile is not None:
         data.setdefault("operator", {})["profile"] = profile
         data["operator"].pop("force_limit", None)  # the profile's, unless the user overrides it
-    data.setdefault("wheel", {}).setdefault("mass", 10.0)
-    data["wheel"].pop("inertia", None)
+    if "wheel" not in keep:
+        data.setdefault("wheel", {}).setdefault("mass", 10.0)
+        data["wheel"].pop("inertia", None)
     base = parse_spec(data, source="the sizing base")
     if base.load.head is None:
         raise SpecError("sizing needs the pumping head: give --head [m] or load.head in the spec")
     chosen = tuple(STANDARD_PIPES if pipes is None else pipes)
-    if not chosen or any(not (0.001 <= p <= 0.5) for p in chosen):
-        raise SpecError(f"--pipes {chosen}: each bore must be 0.001-0.5 m (e.g. --pipes 16,20,25mm)")
+    if not chosen or any(not (MIN_PIPE <= p <= 0.5) for p in chosen):
+        given = ", ".join(f"{p * 1000:g}" for p in chosen)
+        small = ", ".join(f"{p * 1000:g}" for p in chosen if p < MIN_PIPE)
+        why = f'; {small} mm is smaller than the ½" (12.7 mm) rope pistons are made for' if small else ""
+        raise SpecError(
+            f"--pipes {given} mm: each bore must be {MIN_PIPE * 1000:g}-500 mm{why} (e.g. --pipes "
+            "16,20,25mm; docs/optimize.md, Sizing the whole pump)"
+        )
     if robust is not None:  # the builds are judged as the design is: warnings fail unless allowed
         robust = replace(robust, strict=not allow_warnings)
-    return SizeProblem(base, chosen, dict(BOUNDS), allow_warnings, robust)
+    held_keys = {k for name in keep for k in KEEP[name]}
+    bounds = {k: v for k, v in BOUNDS.items() if k not in held_keys}
+    return SizeProblem(
+        base, chosen, bounds, allow_warnings, robust, allow_pit, keep, _differences(base, bounds)
+    )
+
+
+#: Spec keys :func:`_differences` leaves out: the well and the operator are the question, not the
+#: base; the wheel's mass, the load's pipe are varied or kept, and the name is a name.
+_NOT_HELD = (
+    "name",
+    "load.head",
+    "load.pipe_diameter",
+    "load.rope_force",
+    "operator.profile",
+    "operator.force_limit",
+)
+
+
+def _differences(base: PumpSpec, bounds) -> tuple:
+    """The base spec's values the search does not vary and that differ from the built-in design's
+    (the design ``pumplink size`` starts from without a spec): (key, base value, built-in value or
+    None), so that the output can say why two routes to the same well give two pumps."""
+    from pumplink.inputs.pump import default_spec
+
+    mine, builtin = spec_values(base), spec_values(default_spec())
+    out = []
+    for key in sorted(set(mine) | set(builtin)):
+        if key in bounds or key in _NOT_HELD or key == "wheel.inertia":
+            continue
+        a, b = mine.get(key), builtin.get(key)
+        if a != b and not (key == "wheel.mass" and "wheel.mass" in bounds):
+            out.append((key, a, b))
+    return tuple(out)
 
 
 __all__ = [
     "BOUNDS",
+    "KEEP",
+    "MIN_PIPE",
     "STANDARD_PIPES",
     "SizeProblem",
     "SizeResult",

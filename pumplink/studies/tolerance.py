@@ -155,8 +155,8 @@ def margins(ev: Evaluation, strict: bool = False) -> dict[str, np.ndarray]:
     def put(key, value, limit, relation):
         v = broadcast_column(value, n)
         lim = broadcast_column(limit, n)
-        with np.errstate(invalid="ignore"):
-            m = lim - v if relation == "<=" else v - lim
+        with np.errstate(invalid="ignore"):  # a range check (cadence, rope speed): per design's side
+            m = np.where(np.broadcast_to(np.asarray(relation) == "<=", (n,)), lim - v, v - lim)
         out[key] = np.where(feasible & ~np.isnan(m), m, -np.inf)
 
     d = ev.designs

@@ -637,15 +637,24 @@ def speeds_run(tmp_path_factory):
         assert x["power_W"] == pytest.approx(45 * 0.25 * math.radians(w), rel=1e-12)
         assert x["check_mean_force"] == x["check_peak_force"] == "pass"
     expected = []
-    for x in rows:
+    for x, w in zip(rows, (240, 360, 480)):
         fails = {"grip_speed"} if x["grip_speed_m_s"] > 4 else set()
         warns = {"grip_speed"} if 2.5 < x["grip_speed_m_s"] <= 4 else set()
         fails |= {"power"} if x["power_W"] > 150 else set()
         warns |= {"power"} if 75 < x["power_W"] <= 150 else set()
+        # the cadence (w / 6 turns a minute) warns outside 30-60, the rope (w in rad/s x 0.25 m)
+        # outside 0.6-1.8 m/s (docs/models.md §4)
+        warns |= {"cadence"} if not 30 <= w / 6 <= 60 else set()
+        warns |= {"rope_speed"} if not 0.6 <= math.radians(w) * 0.25 <= 1.8 else set()
         expected.append((fails, warns))
-    # hand: 2.19, 3.28, 4.38 m/s and 47, 71, 94 W: a clean pass, a grip-speed warning, and a failing
-    # grip speed with a power warning
-    assert expected == [(set(), set()), (set(), {"grip_speed"}), ({"grip_speed"}, {"power"})]
+    # hand: 2.19, 3.28, 4.38 m/s and 47, 71, 94 W, 40, 60, 80 turns a minute and a rope at 1.05,
+    # 1.57, 2.09 m/s: a clean pass, a grip-speed warning, and a failing grip speed with a power, a
+    # cadence and a rope-speed warning
+    assert expected == [
+        (set(), set()),
+        (set(), {"grip_speed"}),
+        ({"grip_speed"}, {"power", "cadence", "rope_speed"}),
+    ]
     assert [set(filter(None, x["failed"].split(";"))) for x in rows] == [e[0] for e in expected]
     assert [set(filter(None, x["warnings"].split(";"))) for x in rows] == [e[1] for e in expected]
     return p, rows

@@ -11,7 +11,6 @@ process, and the rows are counted in the CSV, the JSON, the table and the Parque
 
 from __future__ import annotations
 
-import contextlib
 import csv
 import io
 import json
@@ -22,8 +21,8 @@ from pathlib import Path
 import pyarrow.parquet as pq
 import pytest
 import tomli_w
+from in_process import run_main
 
-from pumplink import cli
 from pumplink.inputs.batch import PISTON_VARIABLE_KEYS, VARIABLE_KEYS
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -64,6 +63,8 @@ ROPE_VALUES = {
     "load.efficiency": [0.6, 0.7, 0.8],
     "load.volumetric_efficiency": [0.8, 0.85, 0.9],
     "load.moving_mass": [2.0, 3.0, 4.0],
+    "load.piston_clearance": [0.0003, 0.00035, 0.0004],
+    "load.piston_spacing": [0.8, 1.0, 1.2],
     "operator.force_limit": [90.0, 100.0, 110.0],
     "operator.sustained_power": [60.0, 70.0, 75.0],
     "operator.hour_power": [150.0, 160.0, 170.0],
@@ -71,6 +72,9 @@ ROPE_VALUES = {
     "operator.grip_height_max": [1.3, 1.35, 1.4],
     "operator.grip_speed_warn": [2.3, 2.4, 2.5],
     "operator.grip_speed_fail": [4.0, 4.5, 5.0],
+    "operator.cadence_min": [25.0, 30.0, 35.0],
+    "operator.cadence_max": [55.0, 60.0, 65.0],
+    "operator.filling_power": [70.0, 81.0, 90.0],
     "operator.speed": [340.0, 360.0, 380.0],
     "operator.dead_band": [15.0, 20.0, 25.0],
     "operator.speed_fluctuation": [0.1, 0.2, 0.3],
@@ -135,19 +139,6 @@ def piston_base(key: str) -> dict:
 CASES = [("rope", k, v) for k, v in ROPE_VALUES.items()] + [
     ("piston", k, v) for k, v in PISTON_VALUES.items()
 ]
-
-
-def run_main(*args) -> tuple[int, str, str]:
-    """The real entry point (``pumplink.cli.main``) in this process: exit code, stdout, stderr."""
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            cli.main([str(a) for a in args])
-        except SystemExit as exc:
-            code = exc.code
-        else:
-            code = 0
-    return code, out.getvalue(), err.getvalue()
 
 
 def batch_file(folder: Path, base: dict, key: str, values: list) -> Path:

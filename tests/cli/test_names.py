@@ -13,9 +13,6 @@ Cs; the 66 noncharacters U+FDD0..U+FDEF and U+xxFFFE, U+xxFFFF), not taken from 
 
 from __future__ import annotations
 
-import contextlib
-import io
-import signal
 import tomllib
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -24,8 +21,7 @@ import pytest
 import tomli_w
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-import pumplink.cli as cli
+from in_process import keep_process_state, run_main
 
 ROOT = Path(__file__).resolve().parents[2]
 PROTOTYPE = ROOT / "configs" / "prototype.toml"
@@ -50,25 +46,7 @@ REFUSED = st.one_of(
 
 @pytest.fixture(autouse=True)
 def _keep_process_state(monkeypatch):
-    """main() installs signal handlers and may point fd 1 at /dev/null: keep both from pytest."""
-    saved = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
-    monkeypatch.setattr(cli, "_quiet_stdout", lambda: None)
-    yield
-    for s, h in saved.items():
-        signal.signal(s, h)
-
-
-def run_main(*args) -> tuple[int, str, str]:
-    """The real entry point (``pumplink.cli.main``) in this process: exit code, stdout, stderr."""
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            cli.main([str(a) for a in args])
-        except SystemExit as exc:
-            code = exc.code
-        else:
-            code = 0
-    return code, out.getvalue(), err.getvalue()
+    yield from keep_process_state(monkeypatch)
 
 
 def write_input(folder: Path, name: str, kind: str) -> Path:
