@@ -26,6 +26,11 @@ limit gets:
 * ``pin_pressure``, ``handle_fatigue``, ``crank_fatigue``: with the spec's ``[parts]``, the pins'
   bearing pressure (warn above 12 MPa, fail above 30 MPa) and the fatigue safety factors of the
   handle and the crank (warn below 1.5, fail below 1); docs/workshop.md §2.
+* ``kick_back``: the grip's travel back when the handle is let go with water in the rising main;
+  fail above ``KICK_BACK_LIMIT_M`` (DGUV Vorschrift 54 § 6); docs/workshop.md §3.
+* ``holding_torque``: with a ``[ratchet]``, the torque it holds; fail below the column's.
+* ``pin_wear``: with ``[parts]``, the play the worst pin wears open in 6 million turns; warn above
+  the allowance (docs/workshop.md §5).
 """
 
 from __future__ import annotations
@@ -41,6 +46,7 @@ from pumplink.constants import (
     GRIP_SPEED_FAIL_M_S,
     GRIP_SPEED_WARN_M_S,
     HOUR_POWER_W,
+    KICK_BACK_LIMIT_M,
     LINK_ENERGY_LIMIT,
     MIN_TRANSMISSION_DEG,
     STROKE_LIMIT_M,
@@ -201,6 +207,9 @@ def assess(
     handle_fatigue=None,
     crank_fatigue=None,
     part_limits=((12.0, 30.0), (1.5, 1.0)),
+    kick_back=None,
+    holding_torque=None,
+    pin_wear=None,
 ) -> Verdict:
     """Decide the checks and the verdict.
 
@@ -225,6 +234,9 @@ def assess(
     pin_pressure : the pins' largest mean bearing pressure [MPa];  handle_fatigue, crank_fatigue :
         fatigue safety factors [-] (docs/workshop.md §2; given when the spec gives ``[parts]``).
     part_limits : ((warn, fail) of the pin pressure [MPa], (warn, fail) of a safety factor).
+    kick_back : the grip's travel back, let go at the worst moment [m] (docs/workshop.md §3).
+    holding_torque : (the ratchet's torque, the column's torque it must hold) [N m].
+    pin_wear : (the play the worst pin wears open in 6 million turns, the allowance) [mm].
 
     Optional checks are left out when their input is None.
     """
@@ -278,6 +290,14 @@ def assess(
     for key, value in (("handle_fatigue", handle_fatigue), ("crank_fatigue", crank_fatigue)):
         if value is not None:
             checks.append(check(key, value, ">=", "", feasible, warn=n_warn, fail=n_fail))
+    if kick_back is not None:
+        checks.append(check("kick_back", kick_back, "<=", "m", feasible, fail=KICK_BACK_LIMIT_M))
+    if holding_torque is not None:
+        checks.append(
+            check("holding_torque", holding_torque[0], ">=", "N·m", feasible, fail=holding_torque[1])
+        )
+    if pin_wear is not None:
+        checks.append(check("pin_wear", pin_wear[0], "<=", "mm", feasible, warn=pin_wear[1]))
     level = np.where(np.asarray(feasible, bool), PASS, FAIL)
     for c in checks:
         level = np.maximum(level, c.level)

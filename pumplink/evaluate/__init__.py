@@ -38,6 +38,7 @@ from pumplink.evaluate.designs import (
 )
 from pumplink.evaluate.piston import evaluate_piston
 from pumplink.evaluate.results import Evaluation, PistonEvaluation
+from pumplink.evaluate.service import Service, pin_life
 from pumplink.evaluate.water import Water
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
 from pumplink.models.choice import EnergyModel
@@ -109,11 +110,13 @@ __all__ = [
     "PistonDesigns",
     "PistonEvaluation",
     "PumpDesigns",
+    "Service",
     "Verdict",
     "Water",
     "check",
     "evaluate",
     "excess",
+    "pin_life",
     "piston_designs",
     "pump_designs",
     "rope_pump_flow",

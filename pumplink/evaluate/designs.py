@@ -24,6 +24,7 @@ from pumplink.constants import (
 )
 from pumplink.mechanisms.fourbar import FourBar
 from pumplink.models import load as _load
+from pumplink.models.wear import wear_rate as _wear_rate
 from pumplink.profiles import DEFAULT_PROFILE, operator_limits
 
 #: Spec keys that give the wheel's inertia (the flywheel or full dynamics can then decide).
@@ -59,7 +60,11 @@ class PumpDesigns:
     sustained_power, hour_power : the operator's power for hours and for an hour [W];
     grip_height_min, grip_height_max [m], grip_speed_warn, grip_speed_fail [m/s]: the operator
     profile's limits (:mod:`pumplink.profiles`, with the spec's own keys instead where given).
-    hours_per_day [h], litres_per_person_day [l]: how the water is used (the people it serves).
+    hours_per_day [h], litres_per_person_day [l]: how the water is used (the people it serves);
+    people : the people it serves (NaN: as many as its hours a day serve).
+    ratchet_torque [N m], ratchet_teeth [-]: the ``[ratchet]`` back-stop (NaN: none).
+    wear_rate [m^2/N], wear_surfaces [-], wear_allowance [m]: the pins' material pair
+    (:data:`pumplink.models.wear.PAIRS`, ``[parts] bush``) and the play they may wear open.
     """
 
     L1: Any
@@ -93,6 +98,12 @@ class PumpDesigns:
     grip_speed_fail: Any = DEFAULT_PROFILE.grip_speed_fail
     hours_per_day: Any = DEFAULT_DAILY_PUMPING_HOURS
     litres_per_person_day: Any = DEFAULT_LITRES_PER_PERSON_DAY
+    people: Any = np.nan
+    ratchet_torque: Any = np.nan
+    ratchet_teeth: Any = np.nan
+    wear_rate: Any = np.nan
+    wear_surfaces: Any = np.nan
+    wear_allowance: Any = np.nan
     arms_in_verdict: bool = False
     axle_height: Any = None
     linkage: FourBar | None = None
@@ -156,11 +167,24 @@ def pump_designs(values: Mapping[str, Any], speed=None) -> PumpDesigns:
         grip_speed_fail=limits.grip_speed_fail,
         hours_per_day=_or(value("use.hours_per_day"), DEFAULT_DAILY_PUMPING_HOURS),
         litres_per_person_day=_or(value("use.litres_per_person_day"), DEFAULT_LITRES_PER_PERSON_DAY),
+        people=_or(value("use.people"), np.nan),
+        ratchet_torque=_or(value("ratchet.torque"), np.nan),
+        ratchet_teeth=_or(value("ratchet.teeth"), np.nan),
+        **_wear(value),
         arms_in_verdict=bool(value("operator.arms_in_verdict")),
         axle_height=value("wheel.axle_height"),
         wheel_mass=_or(value("wheel.mass"), np.nan),
         parts=_part_sizes(value),
     )
+
+
+def _wear(value) -> dict[str, Any]:
+    """The pins' wear columns from ``[parts] bush`` and ``wear_allowance`` (NaN without ``[parts]``)."""
+    bush = value("parts.bush")
+    if bush is None:
+        return {}
+    rate, surfaces = _wear_rate(bush)
+    return dict(wear_rate=rate, wear_surfaces=surfaces, wear_allowance=value("parts.wear_allowance"))
 
 
 #: The keys of a spec's ``[parts]`` table.

@@ -58,6 +58,9 @@ CHECK_LABELS = {
     "pin_pressure": "pin bearing pressure",
     "handle_fatigue": "handle fatigue safety",
     "crank_fatigue": "crank fatigue safety",
+    "kick_back": "kick-back when let go",
+    "holding_torque": "ratchet's holding torque",
+    "pin_wear": "pin wear, 6 million turns",
 }
 
 
@@ -98,6 +101,8 @@ _CHECK_FORMAT = {
     "pin_pressure": "{:.1f}",
     "handle_fatigue": "{:.2f}",
     "crank_fatigue": "{:.2f}",
+    "holding_torque": "{:.1f}",
+    "pin_wear": "{:.3g}",
 }
 
 
@@ -142,6 +147,12 @@ CHECK_ADVICE = {
     "or a reinforcing sleeve there",
     "crank_fatigue": "the crank may crack at the axle: a thicker bar (rope-pump manuals report "
     '1/2" cranks failing after several years)',
+    "kick_back": "let go, the water column drives the wheel and the handle back: fit a ratchet on the "
+    "wheel's axle that holds the column (a [ratchet] table: its torque and teeth; docs/workshop.md §3)",
+    "holding_torque": "the ratchet cannot hold the water column: a stronger pawl and teeth, or a "
+    "freewheel rated for the column's torque",
+    "pin_wear": "the pins and bushes wear their play open before 6 million turns: grease them, fit "
+    'polyethylene bushes (parts.bush = "polyethylene"), a thicker pin or a longer bush',
 }
 #: The advice of the fatigue checks for how ``[parts]`` says the handle is joined at B
 #: (``handle_joint``) and the crank at the axle (``crank_joint``): docs/workshop.md §2.

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from pumplink.constants import GRAVITY
-from pumplink.evaluate import ORDER, PART_KEYS, PartSizes, motion
+from pumplink.evaluate import ORDER, PART_KEYS, PartSizes, motion, pin_life
 from pumplink.evaluate import parts as _parts
 from pumplink.studies.force import ForceResult
 
@@ -30,6 +30,8 @@ class Workshop:
         in the verdict too), False for the defaults, shown for information.
     release, release_free : the released handle with the pump's losses as friction and with none
         (:class:`pumplink.models.release.Release`), None without the wheel's inertia or a head.
+    life : the pins' life with ``parts`` (:class:`PinLife`; docs/workshop.md §5), None without a
+        flow (a rope force given: no turns a year from people).
     pin_pressure_limits : (warn, fail) [Pa], fatigue_limits : (warn, fail) [-]: the levels of the
         verdict's part checks (:mod:`pumplink.evaluate.parts`).
     """
@@ -40,6 +42,7 @@ class Workshop:
     parts_given: bool
     release: Any = None
     release_free: Any = None
+    life: Any = None
     pin_pressure_limits: tuple[float, float] = (_parts.PIN_PRESSURE_WARN, _parts.PIN_PRESSURE_FAIL)
     fatigue_limits: tuple[float, float] = (_parts.FATIGUE_WARN, _parts.FATIGUE_FAIL)
 
@@ -47,6 +50,31 @@ class Workshop:
     def needs_brake(self) -> bool:
         """True when the released wheel runs back (the handle swings back at speed)."""
         return bool(self.release is not None and self.release.reverses)
+
+
+@dataclass(frozen=True)
+class PinLife:
+    """The pins' life (docs/workshop.md §5): ``bush`` the material pair, ``allowance`` [m];
+    ``wear`` the play opened in 6 million turns [m]; ``turns`` until the allowance is worn, ``years``
+    at ``turns_per_day`` of the use."""
+
+    bush: str
+    allowance: float
+    wear: float
+    turns: float
+    years: float
+    turns_per_day: float
+
+
+def _pin_life(r: ForceResult, pressure: float, pin_diameter: float) -> PinLife | None:
+    """The pins' life at the worst joint's ``pressure`` [Pa] with the spec's parts or their defaults."""
+    sv = r.evaluation.service
+    if sv is None:
+        return None
+    sv = sv.design(0)
+    shop = r.design.spec.parts_or_defaults
+    wear, turns, years = pin_life(pressure, pin_diameter, shop.bush, shop.wear_allowance, sv.turns_per_year)
+    return PinLife(shop.bush, shop.wear_allowance, float(wear), float(turns), float(years), sv.turns_per_day)
 
 
 def _part_scene(r: ForceResult):
@@ -106,4 +134,5 @@ def workshop(r: ForceResult) -> Workshop | None:
         sizes = PartSizes(*(getattr(shop, k) for k in PART_KEYS))
     strength = _parts.strength(loads, sizes)
     both = release(r, found)
-    return Workshop(loads, strength, sizes, given, *(both or (None, None)))
+    life = _pin_life(r, strength.pin_pressure, sizes.pin_diameter)
+    return Workshop(loads, strength, sizes, given, *(both or (None, None)), life)
