@@ -69,7 +69,8 @@ class Service:
         )
 
 
-def service(columns: dict, n: int, synthesis, feasible, masses, flow, pin_pressure, pin_diameter) -> Service:
+def service(columns: dict, n: int, synthesis, feasible, masses, flow, pin_pressure, pin_diameter,
+            rocker_rate=None) -> Service:  # fmt: skip
     """:class:`Service` of ``n`` designs from their ``columns``, the synthesis and its
     ``feasible`` designs, the links' ``masses``, the ``flow`` [m^3/s] and the part checks' largest
     ``pin_pressure`` [MPa] on pins of ``pin_diameter`` [m] (None without ``[parts]``)."""
@@ -93,7 +94,7 @@ def service(columns: dict, n: int, synthesis, feasible, masses, flow, pin_pressu
         return _kickback.kick_back(
             synthesis.linkage.take(i), synthesis.dead_centre_extended[i], synthesis.dead_centre_folded[i],
             links, required[i], head[i], rw[i], c["inertia"][i], _release.column_inertia(head, pipe, rw)[i],
-            stop,
+            stop, rocker_rate=None if rocker_rate is None else np.asarray(rocker_rate, float)[i],
         )  # fmt: skip
 
     if ok.size:

@@ -50,18 +50,23 @@ import numpy as np
 from pumplink.constants import GRAVITY, KICK_BACK_ENDS
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.bracket import find_minimum
-from pumplink.mechanisms.fourbar import FourBar, kinematic_state
+from pumplink.mechanisms.fourbar import FourBar, peak_rocker_rate
+from pumplink.mechanisms.fourbar_kernel import loop_closure
 from pumplink.models import dynamics_terms as _dt
 from pumplink.models.conditions import Masses
 
-#: Stop angles per turn on which the window holding the most path is searched before it is refined.
-STOP_SAMPLES = 360
-#: Steps per crank turn of the march of (K.1) (RK4; the links' terms tabulated at twice as many
-#: angles, the steps' ends and middles).
-MARCH_STEPS = 360
+#: Stop angles per turn on which the window holding the most path is searched before it is refined
+#: (2°: the path over a window has a few extrema a turn, the rocker rate's two humps at each end).
+STOP_SAMPLES = 180
+#: Steps per crank turn of the march of (K.1) (RK4 on 4° steps; the links' terms tabulated at twice
+#: as many angles, the steps' ends and middles).  It runs only where the bound of
+#: :func:`reaches_end` cannot tell (heavy links on a light column, a wheel of no given mass).
+MARCH_STEPS = 90
 #: Most crank angle one march runs back [rad]: past it the run is cut there (a deep well on a tiny
 #: wheel: 200 m on 2 cm is 10,000 rad), its travel the path so far (a lower bound), ``end`` "limit".
 MARCH_LIMIT = 10_000.0
+#: Local maxima of the stop-angle grid refined (the largest is kept).
+PEAKS = 3
 #: Designs a block holds (a block's arrays: designs x STOP_SAMPLES, or designs x the table).
 BLOCK = 512
 #: How a run back ends (:data:`pumplink.constants.KICK_BACK_ENDS`): the column is empty, the
@@ -94,16 +99,27 @@ def _wrap(x):
 
 
 def _rocker(lk: FourBar, th):
-    return kinematic_state(lk, th).rocker_angle
+    """The rocker angle t4 at crank angles ``th`` [rad]: that of
+    :func:`pumplink.mechanisms.fourbar.kinematic_state` (the same operations), nothing else."""
+    with np.errstate(all="ignore"):
+        cs, sn = np.cos(th), np.sin(th)
+        _p1, _p2, _e2, t, q = loop_closure(lk, cs, sn)
+        c = lk.crank
+        dx, dy = lk.pivot_x - c * cs, lk.pivot_y - c * sn
+        bx = c * cs + t * dx - q * dy
+        by = c * sn + t * dy + q * dx
+        return np.arctan2(by - lk.pivot_y, bx - lk.pivot_x)
 
 
-def grip_path(lk: FourBar, dead_centre_extended, dead_centre_folded, start, stop):
+def grip_path(lk: FourBar, dead_centre_extended, dead_centre_folded, start, stop, at_dc=None):
     """The grip's path length [m] while the crank turns from ``start`` to ``stop`` >= start [rad]:
     H times the total variation of the rocker angle, a closed form between the dead centres where
-    the rocker reverses (broadcasts over designs and intervals)."""
+    the rocker reverses (broadcasts over designs and intervals).  ``at_dc``: the rocker's angles at
+    the two dead centres where already known [rad]."""
     start, stop = np.broadcast_arrays(np.asarray(start, float), np.asarray(stop, float))
     dce, dcf = (np.asarray(v, float) for v in (dead_centre_extended, dead_centre_folded))
-    at_dc = (_rocker(lk, dce), _rocker(lk, dcf))
+    if at_dc is None:
+        at_dc = (_rocker(lk, dce), _rocker(lk, dcf))
     swing = np.abs(_wrap(at_dc[0] - at_dc[1]))
     length = stop - start
     turns = np.floor(length / TWO_PI)
@@ -136,26 +152,32 @@ def widest_window(lk: FourBar, dead_centre_extended, dead_centre_folded, window,
         i = np.arange(s0, min(s0 + BLOCK, n))
         sub = lk.take(i)
         dce, dcf, w = dead_centre_extended[i], dead_centre_folded[i], window[i]
+        at_dc = tuple(_rocker(sub, x)[:, None] for x in (dce, dcf))
         col = (FourBar(*(v[:, None] for v in sub.parameters)), dce[:, None], dcf[:, None])
-        path = grip_path(*col, grid[None, :] - w[:, None], grid[None, :])
-        j = np.argmax(path, axis=1)
-        best = path[np.arange(i.size), j]
+        path = grip_path(*col, grid[None, :] - w[:, None], grid[None, :], at_dc)
+        # the grid's PEAKS largest local maxima (the path may have two near-equal humps), each refined
+        bump = (path >= np.roll(path, 1, axis=1)) & (path >= np.roll(path, -1, axis=1))
+        j = np.argsort(np.where(bump, path, -np.inf), axis=1)[:, -PEAKS:]  # (m, PEAKS)
+        best = np.take_along_axis(path, j, 1)
         step = TWO_PI / samples
         x2 = grid[j]
 
         def minus(x, *params):
             lk1 = FourBar(*params[:7])
-            return -grip_path(lk1, params[7], params[8], x - params[9], x)
+            return -grip_path(lk1, params[7], params[8], x - params[9], x, params[10:])
 
         res = find_minimum(
             minus,
             (x2 - step, x2, x2 + step),
-            args=(*sub.parameters, dce, dcf, w),
+            args=tuple(v[:, None] for v in (*sub.parameters, dce, dcf, w, *(a[:, 0] for a in at_dc))),
             tolerances=dict(xatol=1e-12, xrtol=0.0),
         )
-        better = res.success & (-res.f_x >= best)
-        out_path[i] = np.where(better, -res.f_x, best)
-        out_angle[i] = np.mod(np.where(better, res.x, x2), TWO_PI)
+        fx, rx = res.f_x.reshape(best.shape), res.x.reshape(best.shape)
+        ok = res.success.reshape(best.shape) & (-fx >= best)
+        value, where = np.where(ok, -fx, best), np.where(ok, rx, x2)
+        k = np.argmax(value, axis=1)[:, None]
+        out_path[i] = np.take_along_axis(value, k, 1)[:, 0]
+        out_angle[i] = np.mod(np.take_along_axis(where, k, 1)[:, 0], TWO_PI)
     return out_path, out_angle
 
 
@@ -165,12 +187,13 @@ def _masses(masses: Masses) -> tuple:
 
 def _column(masses: Masses) -> Masses:
     """The masses as columns (designs x 1)."""
-    return Masses(*(np.asarray(m, float)[:, None] for m in _masses(masses)))
+    return Masses(*(np.atleast_1d(np.asarray(m, float))[:, None] for m in _masses(masses)))
 
 
 def _table(lk: FourBar, masses: Masses, angles, gravity):
     """The links' reduced inertia I - J and dV/dt at ``angles`` (designs x k) [kg m^2, J/rad]."""
-    co = _dt.coefficients(FourBar(*(np.asarray(v, float)[:, None] for v in lk.parameters)), _column(masses))
+    co = _dt.coefficients(FourBar(*(np.atleast_1d(np.asarray(v, float))[:, None] for v in lk.parameters)),
+                          _column(masses))  # fmt: skip
     with np.errstate(all="ignore"):
         out = _dt.terms_from(co, angles, gravity, grip=False)
     return out[0], out[3]
@@ -255,9 +278,46 @@ def _hermite_root(k0, f0, k1, f1, h):
     return hi
 
 
+def weight_torque_bound(lk: FourBar, dead_centre_extended, dead_centre_folded, masses: Masses, rocker_rate,
+                        gravity=GRAVITY):  # fmt: skip
+    """An upper bound of the links' weight torque |dV/dt| over a turn [N m]: with the coupler's
+    centre at height (y_A + y_B)/2 and the handle's (a bar of length max(H, rocker) from O4) at
+    O4 + (arm/2) sin t4, |dV/dt| <= g (m_c (c + r C R) / 2 + (m_h arm / 2 + m_grip H) C R), R the
+    rocker's largest rate max|dt4/dt| and C the largest |cos t4| over the rocker's swing (1 where
+    the swing holds a horizontal rocker)."""
+    lo, hi = (_rocker(lk, np.asarray(x, float)) for x in (dead_centre_extended, dead_centre_folded))
+    a, b = np.minimum(lo, hi), np.maximum(lo, hi)
+    level = np.floor(b / np.pi) * np.pi >= a  # a multiple of pi (t4 = 0 or pi) inside the swing
+    cos = np.where(level, 1.0, np.maximum(np.abs(np.cos(a)), np.abs(np.cos(b))))
+    rate = np.asarray(rocker_rate, float) * 1.001  # the refined maximum, with room for its tolerance
+    arm = np.maximum(lk.handle, lk.rocker)
+    coupler = masses.coupler * (lk.crank + lk.rocker * cos * rate) / 2.0
+    handle = (masses.handle * arm / 2.0 + masses.grip * lk.handle) * cos * rate
+    return gravity * (coupler + handle)
+
+
+def reaches_end(column_torque, column_window, window, inertia, column_inertia, weight_bound):
+    """True where the run back surely reaches its window's end: K stays positive, by a bound.
+
+    With |V'| <= Vm the drive of (K.1) is at least g(phi) = M_col (1 - phi/Lc) - Vm, and the factor
+    exp(-int a) that discounts it is at least exp(-A), A = ln(J / (J - Jc L/Lc)) (I >= 0).  Where
+    g >= 0 over the window K > 0 throughout; else, with phi0 where g = 0, K(phi) >= exp(-A) P -
+    N(phi), P = (M_col - Vm) phi0 / 2 the gain before phi0 and N <= (M_col/Lc)(L - phi0)^2 / 2 the
+    loss after it: positive where exp(-A) P > N(L)."""
+    mcol, lc, w, jj, jc, vm = (np.asarray(v, float) for v in (column_torque, column_window, window, inertia,
+                                                              column_inertia, weight_bound))  # fmt: skip
+    with np.errstate(divide="ignore", invalid="ignore"):
+        phi0 = lc * (1.0 - vm / mcol)
+        rest = jj - jc * np.minimum(w / lc, 1.0)
+        discount = np.where(rest > 0.0, rest / jj, 0.0)  # exp(-A)
+        gain = 0.5 * (mcol - vm) * phi0
+        loss = 0.5 * mcol / lc * np.maximum(w - phi0, 0.0) ** 2
+        return (vm < mcol) & ((w <= phi0) | (discount * gain > loss))
+
+
 def kick_back(lk: FourBar, dead_centre_extended, dead_centre_folded, masses: Masses, column_torque,
               head, wheel_radius, inertia, column_inertia, pawl_window=None, gravity=GRAVITY,
-              samples=STOP_SAMPLES) -> KickBack:  # fmt: skip
+              samples=STOP_SAMPLES, rocker_rate=None) -> KickBack:  # fmt: skip
     """The kick-back of designs (1-D arrays over designs; the module docstring's method).
 
     Parameters
@@ -269,6 +329,8 @@ def kick_back(lk: FourBar, dead_centre_extended, dead_centre_folded, masses: Mas
         massless, the water alone);  column_inertia : Jc = rho head A rw^2 [kg m^2].
     pawl_window : 2 pi / teeth of a ratchet that holds the column [rad]: the run ends there;
         0 where one holds it with no play; NaN or None: no ratchet holds it.
+    rocker_rate : max|dt4/dt| [-] (:func:`pumplink.mechanisms.fourbar.peak_rocker_rate`; None:
+        computed): the bound of the links' weight torque that spares the march.
     """
     n = np.size(head)
 
@@ -293,9 +355,16 @@ def kick_back(lk: FourBar, dead_centre_extended, dead_centre_folded, masses: Mas
         sub = lk.take(go)
         path, ts = widest_window(sub, dce[go], dcf[go], window[go], samples)
         masses_go = Masses(*(m[go] for m in _masses(masses)))
-        args = (mcol[go, None], lc[go, None], jj[go, None], jc[go, None])
-        end_run, how = march(sub, masses_go, ts[:, None], window[go, None], *args, gravity=gravity)
-        end_run, how = end_run[:, 0], how[:, 0]
+        rate = peak_rocker_rate(sub) if rocker_rate is None else col(rocker_rate)[go]
+        vm = weight_torque_bound(sub, dce[go], dcf[go], masses_go, rate, gravity)
+        sure = reaches_end(mcol[go], lc[go], window[go], jj[go], jc[go], vm)
+        end_run, how = window[go].copy(), np.where(window[go] < lc[go], 1, 0)
+        m = np.nonzero(~sure)[0]
+        if m.size:  # the bound cannot tell: march from the stop angle of the widest window
+            args = (mcol[go][m, None], lc[go][m, None], jj[go][m, None], jc[go][m, None])
+            sub_m = Masses(*(x[m] for x in _masses(masses_go)))
+            e, h = march(sub.take(m), sub_m, ts[m, None], window[go][m, None], *args, gravity=gravity)
+            end_run[m], how[m] = e[:, 0], h[:, 0]
         short = how == 2
         travel[go], angle[go], run[go], end[go] = path, ts, window[go], how
         cut = how == 3
@@ -343,4 +412,13 @@ def _every_stop(lk, dce, dcf, masses, mcol, lc, jj, jc, window, gravity, samples
     return path[r, j], grid[j], end_run[r, j], how[r, j]
 
 
-__all__ = ["ENDS", "KickBack", "grip_path", "kick_back", "march", "widest_window"]
+__all__ = [
+    "ENDS",
+    "KickBack",
+    "grip_path",
+    "kick_back",
+    "march",
+    "reaches_end",
+    "weight_torque_bound",
+    "widest_window",
+]
