@@ -42,6 +42,7 @@ from pumplink.evaluate.service import Service, pin_life
 from pumplink.evaluate.water import Water
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
 from pumplink.models.choice import EnergyModel
+from pumplink.models.release import column_torque
 from pumplink.models.water import rope_pump_flow
 from pumplink.verdict import FAIL, OUTCOMES, PASS, RESULTS, WARN, Check, Verdict, check, excess
 
@@ -114,6 +115,7 @@ __all__ = [
     "Verdict",
     "Water",
     "check",
+    "column_torque",
     "evaluate",
     "excess",
     "pin_life",
