@@ -30,6 +30,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from pumplink.constants import LINK_MASS_PER_METRE
 from pumplink.evaluate import column_torque
 from pumplink.inputs.pump import PumpSpec
@@ -210,8 +212,8 @@ def bom(spec: PumpSpec, masses=None) -> Bom:
         )
     masses_given = masses is not None
     arm = max(handle.end, float(handle.holes[1]))  # the handle as the dynamics takes it: O4 to max(H, rocker)
-    dyn_coupler = float(masses.coupler) if masses_given else mpl * coupler.centre_distance
-    dyn_handle = float(masses.handle) if masses_given else mpl * arm
+    dyn_coupler = float(np.ravel(masses.coupler)[0]) if masses_given else mpl * coupler.centre_distance
+    dyn_handle = float(np.ravel(masses.handle)[0]) if masses_given else mpl * arm
     note = None
     if abs(mpl - per_metre) > SAME_MASS * per_metre:
         source = "linkage.mass_per_length" if spec.linkage.mass_per_length is not None else "its default"
