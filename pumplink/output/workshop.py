@@ -55,9 +55,24 @@ def workshop_row(w: Workshop | None) -> dict[str, Any] | None:
         "pin_pressure_at": st.pin,
         "handle_fatigue_safety": num(st.handle.safety),
         "crank_fatigue_safety": num(st.crank.safety),
+        "pin_life": pin_life_row(w.life),
         "release": release_row(None if w.release is None else (w.release, w.release_free)),
     }
     return out
+
+
+def pin_life_row(life) -> dict[str, Any] | None:
+    """The JSON of the pins' life (:class:`pumplink.studies.workshop.PinLife`, or None)."""
+    if life is None:
+        return None
+    return {
+        "bush": life.bush,
+        "wear_allowance_mm": num(life.allowance * 1000.0),
+        "wear_6m_turns_mm": num(life.wear * 1000.0),
+        "life_turns": num(life.turns),
+        "life_years": num(life.years),
+        "turns_per_day": num(life.turns_per_day),
+    }
 
 
 def release_row(both) -> dict[str, Any] | None:
@@ -114,7 +129,7 @@ def kick_back_words(sv) -> str | None:
         )
         return (
             f"released handle: the ratchet holds the water column ({sv.holding_torque:g} N·m for "
-            f"{column}); {catch} {rule}; without it the grip would run back {sv.kick_back_free:.1f} m"
+            f"{column}); {catch} {rule}; without it the grip would run back {sv.kick_back_free:,.1f} m"
         )
     weak = (
         f" (the ratchet's {sv.holding_torque:g} N·m does not hold it)"
@@ -129,7 +144,7 @@ def kick_back_words(sv) -> str | None:
     how = ends.get(KICK_BACK_ENDS[int(sv.kick_back_end)], "")
     return (
         f"released handle: NEEDS A RATCHET — let go at the worst moment, the water column drives the grip "
-        f"back {sv.kick_back:.1f} m {how} {rule}; a ratchet on the wheel's axle must hold {column}{weak}"
+        f"back {sv.kick_back:,.1f} m {how} {rule}; a ratchet on the wheel's axle must hold {column}{weak}"
     )
 
 
