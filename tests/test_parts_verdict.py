@@ -412,3 +412,39 @@ def test_the_fatigue_advice_says_how_parts_joins_them(joints, handle_words, cran
     assert handle_words in check_sentence(handle, r) and crank_words in check_sentence(crank, r)
     if joints["handle_joint"] == "lug":
         assert "pin hole" not in check_sentence(handle, r)
+
+
+# ----------------------------------------------------------------------------- the ratchet
+def _well(ratchet: dict | None):
+    """examples/well-12m-flywheel.toml, with ``ratchet`` as its [ratchet] table (None: none)."""
+    data = spec_to_dict(load_spec(ROOT / "examples" / "well-12m-flywheel.toml"))
+    if ratchet is not None:
+        data["ratchet"] = ratchet
+    return parse_spec(data)
+
+
+def test_the_12_m_well_fails_the_kick_back_without_a_ratchet_and_passes_it_with_one():
+    """Without a [ratchet] the 12 m example fails the kick-back (the column runs the grip back
+    metres: DGUV Vorschrift 54 allows 0.15 m), and a ratchet must hold its column's
+    rho g H (pi d^2/4) r_w = 1000 x 9.81 x 12 x pi 0.023^2/4 x 0.25 = 12.2274 N m; with one of 20 N m
+    and 36 teeth the same design passes both the kick-back and the ratchet's check; with 10 N m
+    (less than the column's) the ratchet's check fails and the kick-back is the column's again."""
+    column = 1000.0 * 9.81 * 12.0 * math.pi * 0.023**2 / 4 * 0.25
+    bare = force_analysis(_well(None), keep_samples=False).verdict
+    assert bare["kick_back"].result == "fail" and bare["kick_back"].value > 10.0
+    assert "holding_torque" not in {c.key for c in bare.checks}
+    held = force_analysis(_well({"torque": 20.0, "teeth": 36}), keep_samples=False)
+    v = held.verdict
+    assert v["kick_back"].result == "pass" and 0 < v["kick_back"].value <= 0.15
+    assert v["holding_torque"].result == "pass" and v["holding_torque"].fail_limit == pytest.approx(
+        column, rel=1e-12
+    )
+    sv = held.evaluation.service
+    assert float(sv.holding_torque_margin[0]) == pytest.approx(20.0 - column, rel=1e-12)
+    weak = force_analysis(_well({"torque": 10.0, "teeth": 36}), keep_samples=False).verdict
+    assert weak["holding_torque"].result == "fail"
+    assert weak["kick_back"].result == "fail" and weak["kick_back"].value == pytest.approx(
+        bare["kick_back"].value
+    )
+    free = force_analysis(_well({"torque": 20.0, "teeth": 0}), keep_samples=False).verdict
+    assert free["kick_back"].value == 0.0 and free["kick_back"].result == "pass"  # no play: holds at once

@@ -120,6 +120,8 @@ def limit_text(ch, limit) -> str:
         lo, hi = AXLE_HEIGHT_RANGE_M
         return f"<{lo:g}, >{hi:g} {ch.unit}"
     bad = ">" if ch.relation == "<=" else "<"
+    if ch.key == "holding_torque":  # the column's torque: to 0.1 N·m, as its value
+        return f"{bad} {limit:.1f} {ch.unit}"
     return f"{bad} {limit:g} {ch.unit}".rstrip()
 
 
@@ -154,6 +156,13 @@ CHECK_ADVICE = {
     "pin_wear": "the pins and bushes wear their play open before 6 million turns: grease them, fit "
     'polyethylene bushes (parts.bush = "polyethylene"), a thicker pin or a longer bush',
 }
+#: The kick-back's advice where the spec has a ratchet (it holds, but catches too late, or it does
+#: not hold: the holding-torque check says which).
+RATCHET_ADVICE = (
+    "the ratchet lets the handle run back too far before it holds: more teeth or pawls (each tooth lets "
+    "the grip run back its share of a turn), a freewheel with no play (teeth = 0), or one that holds the "
+    "column's torque"
+)
 #: The advice of the fatigue checks for how ``[parts]`` says the handle is joined at B
 #: (``handle_joint``) and the crank at the axle (``crank_joint``): docs/workshop.md §2.
 JOINT_ADVICE = {
@@ -185,6 +194,8 @@ def check_sentence(ch, r: ForceResult | None = None) -> str:
     side = ">" if ch.relation == "<=" else "<"
     val = check_value(ch)
     advice = check_advice(ch.key, ch.result, r.design.spec.parts if r is not None else None)
+    if ch.key == "kick_back" and r is not None and r.design.spec.ratchet is not None:
+        advice = RATCHET_ADVICE
     limit = f"{side} {lim:g} {ch.unit}".rstrip()
     return f"{check_label(ch, r)} is {val} ({limit}): {advice}".rstrip(": ")
 
