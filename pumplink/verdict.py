@@ -28,7 +28,7 @@ limit gets:
   handle and the crank (warn below 1.5, fail below 1); docs/workshop.md §2.
 * ``kick_back``: the grip's travel back when the handle is let go with water in the rising main;
   fail above ``KICK_BACK_LIMIT_M`` (DGUV Vorschrift 54 § 6); docs/workshop.md §3.
-* ``holding_torque``: with a ``[ratchet]``, the torque it holds; fail below the column's.
+* ``holding_torque``: with a ``[ratchet]``, the torque it holds over the column's; fail below 1.
 * ``pin_wear``: with ``[parts]``, the play the worst pin wears open in 6 million turns; warn above
   the allowance (docs/workshop.md §5).
 """
@@ -235,7 +235,8 @@ def assess(
         fatigue safety factors [-] (docs/workshop.md §2; given when the spec gives ``[parts]``).
     part_limits : ((warn, fail) of the pin pressure [MPa], (warn, fail) of a safety factor).
     kick_back : the grip's travel back, let go at the worst moment [m] (docs/workshop.md §3).
-    holding_torque : (the ratchet's torque, the column's torque it must hold) [N m].
+    holding_torque : (the ratchet's torque, the column's torque it must hold) [N m]: judged as their
+        ratio, fail below 1.
     pin_wear : (the play the worst pin wears open in 6 million turns, the allowance) [mm].
 
     Optional checks are left out when their input is None.
@@ -292,10 +293,11 @@ def assess(
             checks.append(check(key, value, ">=", "", feasible, warn=n_warn, fail=n_fail))
     if kick_back is not None:
         checks.append(check("kick_back", kick_back, "<=", "m", feasible, fail=KICK_BACK_LIMIT_M))
-    if holding_torque is not None:
-        checks.append(
-            check("holding_torque", holding_torque[0], ">=", "N·m", feasible, fail=holding_torque[1])
-        )
+    if holding_torque is not None:  # the ratchet's torque over the column's: its margin, fail below 1
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.asarray(holding_torque[0], float) / np.asarray(holding_torque[1], float)
+        checks.append(check("holding_torque", ratio, ">=", "", feasible, fail=1.0))
+
     if pin_wear is not None:
         checks.append(check("pin_wear", pin_wear[0], "<=", "mm", feasible, warn=pin_wear[1]))
     level = np.where(np.asarray(feasible, bool), PASS, FAIL)

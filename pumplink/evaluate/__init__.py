@@ -63,6 +63,7 @@ def evaluate(
     samples: int = 0,
     progress: Callable[[float], None] | None = None,
     screen_parts: bool = False,
+    fitted: bool = False,
 ) -> Evaluation | PistonEvaluation:
     """Evaluate designs: the stages ``want`` names (:data:`pumplink.evaluate.stages.STAGES`) and
     every stage they need.
@@ -80,11 +81,15 @@ def evaluate(
     screen_parts : judge the spec's ``[parts]`` only on designs no other check fails (a search,
         which drops failing designs anyway; the part checks are the costly ones): the others' part
         values are NaN, which fails, as they do already.
+    fitted : judge the designs as fitted with the back-stop their water column needs: where no
+        design has a ``[ratchet]`` the kick-back check is left out (a fitting answers it, not the
+        linkage: the searches, the speeds that pass and the builds of a tolerance study).
     """
     want = tuple(want)
     if isinstance(designs, PistonDesigns):
         return evaluate_piston(designs, judge="verdict" in want)
-    r = stages.Run(designs, model=model, samples=samples, progress=progress, screen_parts=screen_parts)
+    r = stages.Run(designs, model=model, samples=samples, progress=progress, screen_parts=screen_parts,
+                   fitted=fitted)  # fmt: skip
     return Evaluation(designs=designs, **stages.run(r, want))
 
 

@@ -70,7 +70,8 @@ class Run:
     model : a model key that decides every design giving the wheel's inertia (``--model``), or
     None for the least model that is enough;  samples : crank samples a turn for the sampled peak;
     progress : called with the fraction of that sweep done;  screen_parts : judge the part checks
-    only on designs no other check fails (a search drops the others anyway).
+    only on designs no other check fails (a search drops the others anyway);  fitted : leave the
+    kick-back out where no design has a ``[ratchet]`` (judged as fitted with the one it needs).
     """
 
     designs: PumpDesigns
@@ -78,6 +79,7 @@ class Run:
     samples: int = 0
     progress: Callable[[float], None] | None = None
     screen_parts: bool = False
+    fitted: bool = False
     filled: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -293,10 +295,11 @@ def parts(r: Run) -> dict[str, Any]:
 
 def service(r: Run) -> dict[str, Any]:
     """Safe to let go (the kick-back, the ratchet's torque), the pins' life and the field's checks
-    (docs/workshop.md §3, §5; docs/water.md §5)."""
+    (docs/workshop.md §3, §5; docs/water.md §5).  The pins' wear where the parts stage has run
+    before it (the verdict's evaluation; it runs first in :data:`STAGES`), NaN otherwise."""
     parts = r.designs.parts
     return dict(service=_service(
-        r.c, r.n, r["synthesis"], r["feasible"], r["masses"], r["water"].flow, r["pin_pressure"],
+        r.c, r.n, r["synthesis"], r["feasible"], r["masses"], r["water"].flow, r.filled.get("pin_pressure"),
         None if parts is None else np.broadcast_to(np.asarray(parts.pin_diameter, float), (r.n,)),
         r["rocker_rate"],
     ))  # fmt: skip
@@ -307,7 +310,8 @@ def _service_checks(r: Run) -> dict[str, Any]:
     torque where the spec has one, the pins' wear with ``[parts]``."""
     sv, c = r["service"], r.c
     out: dict[str, Any] = {}
-    if np.isfinite(sv.holding_torque_required).any():
+    ratchet = np.isfinite(sv.holding_torque).any()
+    if np.isfinite(sv.holding_torque_required).any() and (ratchet or not r.fitted):
         out["kick_back"] = sv.kick_back
     if np.isfinite(sv.holding_torque).any():
         out["holding_torque"] = (sv.holding_torque, sv.holding_torque_required)
@@ -354,7 +358,7 @@ STAGES = (
     Stage("motion", "model", "power grip_speed link_energy_share", motion),
     Stage("water", "", "water", water),
     Stage("parts", "mean_force peak motion", "pin_pressure handle_fatigue crank_fatigue", parts),
-    Stage("service", "model water parts", "service", service),
+    Stage("service", "model water", "service", service),
     Stage("verdict", "mean_force peak motion parts service", "verdict", verdict),
 )
 _BY_NAME = {s.name: s for s in STAGES}

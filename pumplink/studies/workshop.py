@@ -14,9 +14,19 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.constants import GRAVITY
-from pumplink.evaluate import ORDER, PART_KEYS, PartSizes, motion, pin_life
+from pumplink.constants import GRAVITY, KICK_BACK_LIMIT_M
+from pumplink.evaluate import (
+    ORDER,
+    PART_KEYS,
+    PartSizes,
+    column_torque,
+    evaluate,
+    motion,
+    pin_life,
+    pump_designs,
+)
 from pumplink.evaluate import parts as _parts
+from pumplink.inputs.pump import spec_values
 from pumplink.studies.force import ForceResult
 
 
@@ -136,3 +146,24 @@ def workshop(r: ForceResult) -> Workshop | None:
     both = release(r, found)
     life = _pin_life(r, strength.pin_pressure, sizes.pin_diameter)
     return Workshop(loads, strength, sizes, given, *(both or (None, None)), life)
+
+
+#: Teeth a ratchet wheel may have, for :func:`ratchet_needed` (the pawl catches once a tooth).
+TEETH = (12, 16, 18, 20, 24, 30, 36, 40, 48, 60, 72, 90, 120)
+
+
+def ratchet_needed(spec) -> dict | None:
+    """The ``[ratchet]`` a spec with a water column and none needs (docs/workshop.md §3): a torque
+    of the column's, to the next 0.1 N·m above it, and the fewest teeth of :data:`TEETH` that keep
+    the grip's kick-back within 0.15 m (0, a freewheel with no play, where none does); None where
+    the spec has a ratchet or no column."""
+    load = spec.load
+    if spec.ratchet is not None or load.head is None:
+        return None
+    need = float(column_torque(load.head, load.pipe_diameter, spec.wheel.radius))
+    torque = math.floor(need * 10.0) / 10.0 + 0.1
+    teeth = np.array(TEETH, float)
+    values = {**spec_values(spec), "ratchet.torque": torque, "ratchet.teeth": teeth}
+    kick = evaluate(pump_designs(values), ("service",)).service.kick_back
+    fit = np.nonzero(kick <= KICK_BACK_LIMIT_M)[0]
+    return {"torque": round(torque, 1), "teeth": int(teeth[fit[0]]) if fit.size else 0}
