@@ -81,9 +81,9 @@ def evaluate(
     screen_parts : judge the spec's ``[parts]`` only on designs no other check fails (a search,
         which drops failing designs anyway; the part checks are the costly ones): the others' part
         values are NaN, which fails, as they do already.
-    fitted : judge the designs as fitted with the back-stop their water column needs: where no
-        design has a ``[ratchet]`` the kick-back check is left out (a fitting answers it, not the
-        linkage: the searches, the speeds that pass and the builds of a tolerance study).
+    fitted : judge the designs as fitted with the ratchet their water column needs: the kick-back
+        and the ratchet's checks are left out (a fitting answers them, not the linkage: the
+        searches, the speeds that pass and the builds of a tolerance study).
     """
     want = tuple(want)
     if isinstance(designs, PistonDesigns):

@@ -71,7 +71,7 @@ class Run:
     None for the least model that is enough;  samples : crank samples a turn for the sampled peak;
     progress : called with the fraction of that sweep done;  screen_parts : judge the part checks
     only on designs no other check fails (a search drops the others anyway);  fitted : leave the
-    kick-back out where no design has a ``[ratchet]`` (judged as fitted with the one it needs).
+    kick-back and the ratchet's checks out (the linkage judged as fitted with the ratchet it needs).
     """
 
     designs: PumpDesigns
@@ -307,13 +307,12 @@ def service(r: Run) -> dict[str, Any]:
 
 def _service_checks(r: Run) -> dict[str, Any]:
     """The verdict's service checks: the kick-back where a head gives the column, the ratchet's
-    torque where the spec has one, the pins' wear with ``[parts]``."""
+    torque where the spec has one (neither ``fitted``), the pins' wear with ``[parts]``."""
     sv, c = r["service"], r.c
     out: dict[str, Any] = {}
-    ratchet = np.isfinite(sv.holding_torque).any()
-    if np.isfinite(sv.holding_torque_required).any() and (ratchet or not r.fitted):
+    if np.isfinite(sv.holding_torque_required).any() and not r.fitted:
         out["kick_back"] = sv.kick_back
-    if np.isfinite(sv.holding_torque).any():
+    if np.isfinite(sv.holding_torque).any() and not r.fitted:
         out["holding_torque"] = (sv.holding_torque, sv.holding_torque_required)
     if r["pin_pressure"] is not None:
         out["pin_wear"] = (1000.0 * sv.pin_wear, 1000.0 * c["wear_allowance"])
