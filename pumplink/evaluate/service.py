@@ -70,10 +70,11 @@ class Service:
 
 
 def service(columns: dict, n: int, synthesis, feasible, masses, flow, pin_pressure, pin_diameter,
-            rocker_rate=None) -> Service:  # fmt: skip
+            rocker_rate=None, kick: bool = True) -> Service:  # fmt: skip
     """:class:`Service` of ``n`` designs from their ``columns``, the synthesis and its
     ``feasible`` designs, the links' ``masses``, the ``flow`` [m^3/s] and the part checks' largest
-    ``pin_pressure`` [MPa] on pins of ``pin_diameter`` [m] (None without ``[parts]``)."""
+    ``pin_pressure`` [MPa] on pins of ``pin_diameter`` [m] (None without ``[parts]``);  ``kick``
+    False: the kick-back is not computed (NaN; a fitted evaluation does not judge it)."""
     c = columns
     nan = np.full(n, np.nan)
     head, pipe, rw = c["head"], c["pipe_diameter"], c["wheel_radius"]
@@ -85,7 +86,7 @@ def service(columns: dict, n: int, synthesis, feasible, masses, flow, pin_pressu
         pawl = np.where(holds, np.where(teeth > 0, TWO_PI / teeth, 0.0), np.nan)
     travel, angle, run, end, grid = nan.copy(), nan.copy(), nan.copy(), nan.copy(), np.zeros(n, bool)
     free = nan.copy()
-    ok = np.nonzero(np.asarray(feasible, bool) & np.isfinite(required))[0]
+    ok = np.nonzero(np.asarray(feasible, bool) & np.isfinite(required) & kick)[0]
 
     def kick_back(i, stop):
         links = Masses(

@@ -301,7 +301,7 @@ def service(r: Run) -> dict[str, Any]:
     return dict(service=_service(
         r.c, r.n, r["synthesis"], r["feasible"], r["masses"], r["water"].flow, r.filled.get("pin_pressure"),
         None if parts is None else np.broadcast_to(np.asarray(parts.pin_diameter, float), (r.n,)),
-        r["rocker_rate"],
+        r["rocker_rate"], not r.fitted,
     ))  # fmt: skip
 
 
