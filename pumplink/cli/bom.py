@@ -19,7 +19,7 @@ def bom(
 
     The coupler and the handle from the handle's tube, the crank from its
     round bar, the pins, the bushes they turn in, the lug, the wheel and the
-    ratchet: sizes from the spec's [parts] and [ratchet], else pumplink's
+    ratchet: sizes from the spec's \\[parts] and \\[ratchet], else pumplink's
     defaults; lengths from the drilling template (docs/workshop.md §4).
     CSV for a spreadsheet, JSON for other tools.
 

@@ -34,7 +34,7 @@ def template(
     """A 1:1 drilling template of each link (PDF, SVG or DXF).
 
     Hole centres, the distance between them in mm, hole diameter (the pins'
-    of [parts], default 12 mm; a cross and no hole where [parts] welds the
+    of \\[parts], default 12 mm; a cross and no hole where \\[parts] welds the
     joint: the crank to the axle, a lug to the handle), link name, and each
     hole's tolerance for --yield of the builds to pass (the critical holes,
     which need more care than a hand-drilled hole gets, ringed in red;
