@@ -85,3 +85,33 @@ def test_a_spec_whose_tube_is_not_its_mass_per_metre_is_told():
     data["linkage"]["mass_per_length"] = 1.0
     b = B.bom(parse_spec(data))
     assert b.tube_note is not None and "linkage.mass_per_length = 2.407" in b.tube_note
+
+
+@pytest.mark.parametrize("joints", [None, ("hole", "hole", 0.010), ("lug", "welded", 0.016)],
+                         ids=["as shipped", "hole-hole-10mm", "lug-welded-16mm"])  # fmt: skip
+def test_the_template_s_holes_take_the_bom_s_pins(joints):
+    """The village template's holes (pumplink template) and the BOM's pins: every joint drilled on
+    a link (the crank's O2 on the axle aside) or on the lug has a pin of the BOM, of the holes'
+    diameter, and every pin of the BOM goes through such a hole."""
+    from test_drawing import _with_joints
+
+    from pumplink.studies.drawing import parts
+
+    spec = _with_joints(VILLAGE, joints)
+    b = B.bom(spec)
+    pins = {i.part.removeprefix("pin "): i for i in b.items if i.part.startswith("pin ")}
+    holes = {}
+    for p in parts(spec):
+        for label, drilled in zip(p.hole_labels, p.drilled):
+            if drilled and label != "O2":  # O2: the axle, not a pin
+                holes.setdefault(label, set()).add(p.hole_diameter)
+    lug = next((i for i in b.items if i.part == "lug at B"), None)
+    if lug is not None:  # the lug's plates are drilled for pin B
+        assert spec.parts.handle_joint == "lug"
+        holes.setdefault("B", set()).add(float(re.search(r"drilled ([\d.]+) mm", lug.note)[1]) / 1000)
+    assert set(pins) == set(holes) == {"A", "B", "O4"}
+    for joint, item in pins.items():
+        diameter = float(re.fullmatch(r"Ø([\d.]+) mm .*", item.stock)[1]) / 1000
+        assert holes[joint] == {diameter}, joint
+        if joints is not None:
+            assert diameter == joints[2], joint  # the pins of the [parts] given

@@ -112,7 +112,8 @@ def test_the_kick_back_is_a_release_at_the_design_speed_by_an_independent_integr
     """The reported kick-back is what the independent integration gives for a release at the
     design speed: the release angle whose forward coast stops at the reported stop angle (found by
     brentq on the integration), then the run back to the column's end or the pawl, the grip's path
-    over it; no release among 12 over the turn kicks back further."""
+    over it; no release among 12 over the turn kicks back further.  The evaluation of the village
+    spec (its 24-tooth [ratchet]) reports that travel, and without the ratchet the column's."""
     r, syn, masses, _ref, tables = village
     window = math.inf if teeth is None else 2 * math.pi / teeth
     got = kb.kick_back(
@@ -138,6 +139,12 @@ def test_the_kick_back_is_a_release_at_the_design_speed_by_an_independent_integr
         assert got.end[0] == kb.ENDS.index("column empty") and travel > 9.0  # metres, not centimetres
     else:
         assert got.end[0] == kb.ENDS.index("pawl")
+    # what `pumplink force` reports for the village (its [ratchet] of 24 teeth): the same release
+    sv = r.evaluation.service
+    if teeth == 24:
+        assert float(sv.kick_back[0]) == pytest.approx(_path(tables, end, top), rel=1e-7)
+    if teeth is None:  # without it
+        assert float(sv.kick_back_free[0]) == pytest.approx(_path(tables, end, top), rel=1e-7)
 
 
 def test_the_march_stops_where_the_integration_does(village):
