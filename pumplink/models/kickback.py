@@ -52,7 +52,6 @@ from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.bracket import find_minimum
 from pumplink.mechanisms.fourbar import FourBar, peak_rocker_rate
 from pumplink.mechanisms.fourbar_kernel import loop_closure
-from pumplink.models import dynamics_terms as _dt
 from pumplink.models.conditions import Masses
 
 #: Stop angles per turn on which the window holding the most path is searched before it is refined
@@ -192,6 +191,8 @@ def _column(masses: Masses) -> Masses:
 
 def _table(lk: FourBar, masses: Masses, angles, gravity):
     """The links' reduced inertia I - J and dV/dt at ``angles`` (designs x k) [kg m^2, J/rad]."""
+    from pumplink.models import dynamics_terms as _dt  # only for the march: not loaded at startup
+
     co = _dt.coefficients(FourBar(*(np.atleast_1d(np.asarray(v, float))[:, None] for v in lk.parameters)),
                           _column(masses))  # fmt: skip
     with np.errstate(all="ignore"):
