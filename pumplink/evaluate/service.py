@@ -111,41 +111,41 @@ def service(columns: dict, n: int, synthesis, feasible, masses, flow, pin_pressu
         stopped = ok[np.isfinite(pawl[ok])]  # without the ratchet that holds: how far it would go
         if stopped.size:
             free[stopped] = kick_back(stopped, None).travel
-    per_turn = flow * TWO_PI / c["speed"]  # the water a crank turn delivers [m^3]
-    day = _wear.turns_per_day(
-        c["speed"], c["hours_per_day"], c["people"], c["litres_per_person_day"], per_turn
-    )
-    year = day * _wear.DAYS_PER_YEAR
-    wear = life = nan
-    if pin_pressure is not None:
-        per = _wear.wear_per_turn(np.asarray(pin_pressure, float) * 1e6, pin_diameter, c["wear_rate"],
-                                  c["wear_surfaces"])  # fmt: skip
-        wear = per * _wear.ENDURANCE_TURNS
-        with np.errstate(divide="ignore"):
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # a speed near 0: inf, NaN
+        per_turn = flow * TWO_PI / c["speed"]  # the water a crank turn delivers [m^3]
+        day = _wear.turns_per_day(
+            c["speed"], c["hours_per_day"], c["people"], c["litres_per_person_day"], per_turn
+        )
+        year = day * _wear.DAYS_PER_YEAR
+        wear = life = nan
+        if pin_pressure is not None:
+            per = _wear.wear_per_turn(np.asarray(pin_pressure, float) * 1e6, pin_diameter, c["wear_rate"],
+                                      c["wear_surfaces"])  # fmt: skip
+            wear = per * _wear.ENDURANCE_TURNS
             life = c["wear_allowance"] / per
-    fill = _wear.column_fill_turns(head, rw, c["volumetric_efficiency"])
-    return Service(
-        kick_back=travel,
-        kick_back_stop_angle=angle,
-        kick_back_run=run,
-        kick_back_end=end,
-        kick_back_grid=grid,
-        kick_back_free=free,
-        holding_torque_required=required,
-        holding_torque=declared,
-        holding_torque_margin=declared - required,
-        ratchet_teeth=teeth,
-        turns_per_day=day,
-        turns_per_year=year,
-        years_to_endurance=_wear.ENDURANCE_TURNS / year,
-        endurance_hours=_wear.ENDURANCE_TURNS / (c["speed"] / TWO_PI) / 3600.0,
-        pin_wear=np.broadcast_to(wear, (n,)),
-        pin_life_turns=np.broadcast_to(life, (n,)),
-        pin_life_years=np.broadcast_to(life, (n,)) / year,
-        wear_allowance=c["wear_allowance"],
-        column_fill_turns=fill,
-        column_fill_time=fill * TWO_PI / c["speed"],
-    )
+        fill = _wear.column_fill_turns(head, rw, c["volumetric_efficiency"])
+        return Service(
+            kick_back=travel,
+            kick_back_stop_angle=angle,
+            kick_back_run=run,
+            kick_back_end=end,
+            kick_back_grid=grid,
+            kick_back_free=free,
+            holding_torque_required=required,
+            holding_torque=declared,
+            holding_torque_margin=declared - required,
+            ratchet_teeth=teeth,
+            turns_per_day=day,
+            turns_per_year=year,
+            years_to_endurance=_wear.ENDURANCE_TURNS / year,
+            endurance_hours=_wear.ENDURANCE_TURNS / (c["speed"] / TWO_PI) / 3600.0,
+            pin_wear=np.broadcast_to(wear, (n,)),
+            pin_life_turns=np.broadcast_to(life, (n,)),
+            pin_life_years=np.broadcast_to(life, (n,)) / year,
+            wear_allowance=c["wear_allowance"],
+            column_fill_turns=fill,
+            column_fill_time=fill * TWO_PI / c["speed"],
+        )
 
 
 def pin_life(pressure, pin_diameter, bush: str, allowance, turns_per_year) -> tuple:
