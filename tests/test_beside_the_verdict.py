@@ -18,7 +18,9 @@ and, after a FAIL, the single changes that help most.  Each is checked here agai
   not the men's.
 
 The sized pumps (tests/data/sized-10m-*.toml) were written by ``pumplink size --head 10
---profile P --write`` (this checkout, seed 0).
+--profile P --write`` (this checkout, seed 0), with the ``[ratchet]`` size now writes for a water
+column (``pumplink.studies.workshop.ratchet_needed``) appended: without it every speed fails the
+kick-back, and the passing speeds (judged fitted with it) would not be the force command's.
 """
 
 from __future__ import annotations
