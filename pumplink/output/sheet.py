@@ -163,11 +163,16 @@ def write_sheet_pdf(fs, path, version: str = "") -> Path:
     def text(x, s, size, **kw):
         fig.text(x / width, y / height, s, fontsize=size, va="top", ha="left", **kw)
 
-    text(MARGIN, f"Field sheet: {fs.name}", TITLE, weight="bold")
-    y -= TITLE * 1.5 / 72.0
+    title_chars = int(0.85 * CHARS * BODY / TITLE)  # a long name wraps (bold letters are wider)
+    for row in textwrap.wrap(f"Field sheet: {fs.name}", title_chars):
+        text(MARGIN, row, TITLE, weight="bold")
+        y -= TITLE * 1.25 / 72.0
+    y -= TITLE * 0.25 / 72.0
     intro = f"What the built pump should do, and what to look at when it does not. Verdict: {fs.verdict}."
-    text(MARGIN, intro + (f" pumplink {version}." if version else ""), BODY, style="italic")
-    y -= 2 * line
+    for row in textwrap.wrap(intro + (f" pumplink {version}." if version else ""), CHARS):
+        text(MARGIN, row, BODY, style="italic")
+        y -= line
+    y -= line
     for heading, paragraphs in sections(fs):
         text(MARGIN, heading, HEAD, weight="bold")
         y -= HEAD * 1.45 / 72.0
@@ -177,7 +182,10 @@ def write_sheet_pdf(fs, path, version: str = "") -> Path:
                 y -= line
             y -= 0.35 * line
         y -= 0.6 * line
-    assert y >= MARGIN, f"the field sheet runs {MARGIN - y:.2f} in past its page"  # one page
+    if y < MARGIN:  # one page, or no sheet
+        raise SpecError(
+            f"the field sheet of {fs.name!r} runs {MARGIN - y:.2f} in past its A4 page; shorten the name"
+        )
     with atomic_write(path, binary=True) as f:
         fig.savefig(f, format="pdf")
     return path

@@ -67,3 +67,22 @@ def test_the_report_s_sheet_is_the_pdf_s(village_sheet):
     section = sheet_html(fs)
     for words in ("Expected: 35 turns in 40 s", "the ratchet must catch within 0.10 m", "1,899 h"):
         assert words in section and words in " ".join(text.split())
+
+
+def test_a_long_name_wraps_inside_the_page(village_sheet, tmp_path):
+    """A spec's name of the most characters a spec allows wraps over the title's lines: the page
+    stays one A4 page with everything inside its margins."""
+    from dataclasses import replace
+
+    from pumplink.inputs.toml import MAX_NAME_CHARS
+
+    fs, _ = village_sheet
+    name = ("Village well of the district's upper heights, hand pump " * 5)[:MAX_NAME_CHARS]
+    path = write_sheet_pdf(replace(fs, name=name), tmp_path / "long.pdf", "test")
+    pdf = pdfium.PdfDocument(str(path))
+    assert len(pdf) == 1
+    tp = pdf[0].get_textpage()
+    boxes = np.array([tp.get_charbox(i) for i in range(tp.count_chars())])
+    assert boxes[:, 0].min() >= 0.5 * 72 and boxes[:, 2].max() <= 595.28 - 0.5 * 72
+    assert boxes[:, 1].min() >= 0.5 * 72 and boxes[:, 3].max() <= 841.89 - 0.5 * 72
+    assert "hand pump" in " ".join(tp.get_text_range().split())
