@@ -28,7 +28,8 @@ class Service:
         ``[ratchet]`` where it holds the column (docs/workshop.md §3); kick_back_stop_angle [rad],
         kick_back_run [rad], kick_back_end (index into :data:`pumplink.models.kickback.ENDS`),
         kick_back_grid (True: the largest on a grid of stop angles);  kick_back_free : the same
-        without a back-stop [m] (the travel a ratchet must stop).
+        without a back-stop [m] (the travel a ratchet must stop; computed for a single design only,
+        NaN over many where a ratchet holds: the words of force and the report use it).
     holding_torque_required : the column's torque rho g head (pi d^2/4) rw [N m] a back-stop must
         hold;  holding_torque : the ``[ratchet]``'s [N m] (NaN: none);  holding_torque_margin : their
         difference [N m];  ratchet_teeth : [-] (NaN: none).
@@ -108,9 +109,10 @@ def service(columns: dict, n: int, synthesis, feasible, masses, flow, pin_pressu
             kb.marched_all,
         )
         free[ok] = travel[ok]
-        stopped = ok[np.isfinite(pawl[ok])]  # without the ratchet that holds: how far it would go
-        if stopped.size:
-            free[stopped] = kick_back(stopped, None).travel
+        # without the ratchet that holds: how far it would go, for one design's words (force, the
+        # report); over many designs (a batch, which has no column for it) not computed: NaN
+        held = ok[np.isfinite(pawl[ok])]
+        free[held] = kick_back(held, None).travel if n == 1 and held.size else np.nan
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # a speed near 0: inf, NaN
         per_turn = flow * TWO_PI / c["speed"]  # the water a crank turn delivers [m^3]
         day = _wear.turns_per_day(
