@@ -52,7 +52,7 @@ SOLVERS = {
         "minimize_scalar",
         "brentq",
         "solve_ivp",
-    },  # fmt: skip
+    },
     "force examples/piston-pump.toml": {"find_minimum"},
     "size": {"differential_evolution", "bracket.find_minimum"},
     # the passing speeds' ends are whole deg/s, settled by the verdict there (no solver of their

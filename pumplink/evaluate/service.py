@@ -9,10 +9,11 @@ columns and what the geometry, model, water and parts stages filled, with the ke
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 
+from pumplink.evaluate.water import one_design
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.models import Masses
 from pumplink.models import kickback as _kickback
@@ -64,10 +65,7 @@ class Service:
 
     def design(self, i: int) -> Service:
         """The quantities of design ``i`` alone (floats)."""
-        n = np.shape(self.kick_back)
-        return Service(
-            **{f.name: np.broadcast_to(np.asarray(getattr(self, f.name)), n)[i].item() for f in fields(self)}
-        )
+        return Service(**one_design(self, i, np.shape(self.kick_back)))
 
 
 def service(columns: dict, n: int, synthesis, feasible, masses, flow, pin_pressure, pin_diameter,
