@@ -61,6 +61,17 @@ GRIP_HEIGHT_RANGE_M = (0.90, 1.33)
 #: Longest comfortable horizontal grip stroke [m]: the pump paper's prototype (Delta theta = 60 deg,
 #: H = 1 m) has 1.0 m; a longer stroke makes a standing operator step or lean (warn).
 STROKE_LIMIT_M = 1.0
+#: Largest kick-back of a hand crank or lever under load, measured at the grip [m]: DGUV
+#: Vorschrift 54 (Winden, Hub- und Zuggeräte) § 6 Nr. 1 and its implementing note (docs/workshop.md §3).
+KICK_BACK_LIMIT_M = 0.15
+#: The torque ``size`` rates a ``[ratchet]`` for, as a multiple of the water column's it must hold:
+#: the links' weight and the pawl's impact when it catches come on top of the column's static
+#: torque (docs/workshop.md §3). A service factor of 2 is pumplink's choice, not a sourced figure.
+RATCHET_SERVICE_FACTOR = 2.0
+#: How a run back after letting go ends (pumplink.models.kickback): the column is empty, the
+#: ratchet's pawl catches, the wheel stops again (the links' weight), the march's limit, or a
+#: ratchet with no play holds the column at once.
+KICK_BACK_ENDS = ("column empty", "pawl", "stops", "limit", "held")
 #: Wheel-axle height range of the pump paper [m] (axle 40-70 cm above the ground).
 AXLE_HEIGHT_RANGE_M = (0.40, 0.70)
 #: Rope speed range [m/s] outside which the verdict warns: around the best rope speed of about

@@ -24,6 +24,10 @@ import numpy as np
 
 from pumplink.constants import EXTREMUM_ARGUMENT
 
+#: The kick-back's travel is a closed form at a refined stop angle (flat there: to rounding), or, where
+#: the run back ends early, a march of RK4 (docs/workshop.md §3): settled to this share.
+KICK_BACK_RTOL = 1e-6
+
 #: Factors from SI to the units shown: radians to degrees, m³/s to l/min and to m³/h.
 DEGREES, L_PER_MIN, M3_PER_H = 180.0 / np.pi, 60_000.0, 3_600.0
 
@@ -112,6 +116,38 @@ CATALOGUE = (
       check="cadence", headline=True),
     Q("rope_speed", "rope_speed", "m/s", "rope speed", "rope_speed_m_s", "rope_speed_m_s", check="rope_speed",
       headline=True),
+    Q("column_fill_turns", "service.column_fill_turns", "", "crank turns before water reaches the spout",
+      "column_fill_turns", "column_fill_turns", headline=True,
+      line="crank turns before water reaches the spout (an empty rising main): {:.1f}"),
+    Q("column_fill_time", "service.column_fill_time", "s", "time before water reaches the spout",
+      "column_fill_time_s", "column_fill_time_s"),
+    Q("kick_back", "service.kick_back", "m", "grip's kick-back, let go at the worst moment", "kick_back_m",
+      "kick_back_m", check="kick_back", rtol=KICK_BACK_RTOL),
+    Q("holding_torque_required", "service.holding_torque_required", "N·m",
+      "torque a ratchet must hold (the water column's)", "holding_torque_required_Nm",
+      "holding_torque_required_Nm", headline=True,
+      line="a ratchet must hold {:.2f} N·m (the water column's ρ·g·H·(π·d²/4)·r_w)"),
+    Q("holding_torque", "service.holding_torque", "N·m", "the ratchet's holding torque", "holding_torque_Nm",
+      "holding_torque_Nm", check="holding_torque"),
+    Q("holding_torque_margin", "service.holding_torque_margin", "N·m",
+      "the ratchet's torque less the column's", "holding_torque_margin_Nm", "holding_torque_margin_Nm"),
+    Q("crank_turns_per_day", "service.turns_per_day", "", "crank turns a day", "crank_turns_per_day",
+      "crank_turns_per_day"),
+    Q("crank_turns_per_year", "service.turns_per_year", "", "crank turns a year", "crank_turns_per_year",
+      "crank_turns_per_year"),
+    Q("pin_wear", "service.pin_wear", "mm", "play the worst pin wears open in 6 million turns",
+      "pin_wear_6m_turns_mm", "pin_wear_6m_turns_mm", scale=1000.0, check="pin_wear"),
+    Q("pin_life_turns", "service.pin_life_turns", "", "crank turns until the pins wear their allowance",
+      "pin_life_turns", "pin_life_turns"),
+    Q("pin_life_years", "service.pin_life_years", "years", "years until the pins wear their allowance",
+      "pin_life_years", "pin_life_years", headline=True,
+      line="pins and bushes wear their allowed play in {:.2g} years of the use"),
+    Q("years_to_6m_turns", "service.years_to_endurance", "years", "years of the use to 6 million turns",
+      "years_to_6m_turns", "years_to_6m_turns"),
+    Q("endurance_test_hours", "service.endurance_hours", "h",
+      "endurance test: hours to 6 million turns at the design cadence", "endurance_test_h",
+      "endurance_test_h", headline=True,
+      line="endurance test: 6 million turns at the design cadence take {:,.0f} h"),
     Q("grip_speed", "grip_speed", "m/s", "peak grip speed", column="grip_speed_m_s", check="grip_speed"),
     Q("stroke", "stroke", "m", "grip stroke", column="stroke_m", check="stroke"),
     Q("force_limit", "designs.force_limit", "N", "force limit", "force_limit_N", "force_limit_N"),

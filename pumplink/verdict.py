@@ -29,6 +29,11 @@ limit gets:
 * ``pin_pressure``, ``handle_fatigue``, ``crank_fatigue``: with the spec's ``[parts]``, the pins'
   bearing pressure (warn above 12 MPa, fail above 30 MPa) and the fatigue safety factors of the
   handle and the crank (warn below 1.5, fail below 1); docs/workshop.md §2.
+* ``kick_back``: the grip's travel back when the handle is let go with water in the rising main;
+  fail above ``KICK_BACK_LIMIT_M`` (DGUV Vorschrift 54 § 6); docs/workshop.md §3.
+* ``holding_torque``: with a ``[ratchet]``, the torque it holds over the column's; fail below 1.
+* ``pin_wear``: with ``[parts]``, the play the worst pin wears open in 6 million turns; warn above
+  the allowance (docs/workshop.md §5).
 """
 
 from __future__ import annotations
@@ -44,6 +49,7 @@ from pumplink.constants import (
     GRIP_SPEED_FAIL_M_S,
     GRIP_SPEED_WARN_M_S,
     HOUR_POWER_W,
+    KICK_BACK_LIMIT_M,
     LINK_ENERGY_LIMIT,
     MIN_TRANSMISSION_DEG,
     ROPE_SPEED_RANGE_M_S,
@@ -209,6 +215,9 @@ def assess(
     rope_speed=None,
     cadence_range=(30.0, 60.0),
     rope_speed_range=ROPE_SPEED_RANGE_M_S,
+    kick_back=None,
+    holding_torque=None,
+    pin_wear=None,
 ) -> Verdict:
     """Decide the checks and the verdict.
 
@@ -235,6 +244,10 @@ def assess(
     part_limits : ((warn, fail) of the pin pressure [MPa], (warn, fail) of a safety factor).
     cadence : wheel turns a minute [1/min];  rope_speed : ω̄ r_w [m/s] (a rope pump's).
     cadence_range : (fewest, most) turns a minute (the profile's);  rope_speed_range : [m/s].
+    kick_back : the grip's travel back, let go at the worst moment [m] (docs/workshop.md §3).
+    holding_torque : (the ratchet's torque, the column's torque it must hold) [N m]: judged as their
+        ratio, fail below 1.
+    pin_wear : (the play the worst pin wears open in 6 million turns, the allowance) [mm].
 
     Optional checks are left out when their input is None.
     """
@@ -292,6 +305,15 @@ def assess(
     for key, value in (("handle_fatigue", handle_fatigue), ("crank_fatigue", crank_fatigue)):
         if value is not None:
             checks.append(check(key, value, ">=", "", feasible, warn=n_warn, fail=n_fail))
+    if kick_back is not None:
+        checks.append(check("kick_back", kick_back, "<=", "m", feasible, fail=KICK_BACK_LIMIT_M))
+    if holding_torque is not None:  # the ratchet's torque over the column's: its margin, fail below 1
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.asarray(holding_torque[0], float) / np.asarray(holding_torque[1], float)
+        checks.append(check("holding_torque", ratio, ">=", "", feasible, fail=1.0))
+
+    if pin_wear is not None:
+        checks.append(check("pin_wear", pin_wear[0], "<=", "mm", feasible, warn=pin_wear[1]))
     level = np.where(np.asarray(feasible, bool), PASS, FAIL)
     for c in checks:
         level = np.maximum(level, c.level)

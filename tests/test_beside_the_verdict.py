@@ -20,7 +20,10 @@ and, after a FAIL, the single changes that help most.  Each is checked here agai
 The sized pumps (tests/data/sized-10m-*.toml) were written by ``pumplink size --head 10
 --profile P --write`` (this checkout, seed 0), the accessible one with ``--allow-warnings``: with the
 cadence held to 30-60 turns a minute no design at 10 m keeps a seated operator's grip below
-1.1 m/s (size says so), and the warnings are what this test looks beside.
+1.1 m/s (size says so), and the warnings are what this test looks beside.  Each carries the
+``[ratchet]`` size writes for a water column (``pumplink.studies.workshop.ratchet_needed``):
+without it every speed fails the kick-back, and the passing speeds (judged fitted with it) would
+not be the force command's.
 """
 
 from __future__ import annotations

@@ -230,8 +230,12 @@ def test_no_parts_table_no_part_checks():
 
 def test_the_searches_shortcut_gives_the_same_verdicts():
     """``screen_parts=True`` (the part checks only where no other check fails) changes no
-    design's outcome, and where it judges the parts their values are the full route's."""
-    spec = _spec({"pin_diameter": PIN, "pin_width": 0.0052, "crank_diameter": 0.0127})
+    design's outcome, and where it judges the parts their values are the full route's.
+    Polyethylene bushes with a wide wear allowance: dry steel on steel, or a polyethylene bore of
+    two tube walls, wears 0.5 mm open in every design (the pin-wear warning, docs/workshop.md §5),
+    which would leave no design passing clean."""
+    parts = {"pin_diameter": PIN, "pin_width": 0.0052, "crank_diameter": 0.0127}
+    spec = _spec({**parts, "bush": "polyethylene", "wear_allowance": 0.01})
     speeds = np.linspace(60.0, 900.0, 12)  # [deg/s], as in a spec
     forces = np.linspace(20.0, 120.0, 5)
     sp, fw = (a.ravel() for a in np.meshgrid(speeds, forces))
@@ -408,3 +412,56 @@ def test_the_fatigue_advice_says_how_parts_joins_them(joints, handle_words, cran
     assert handle_words in check_sentence(handle, r) and crank_words in check_sentence(crank, r)
     if joints["handle_joint"] == "lug":
         assert "pin hole" not in check_sentence(handle, r)
+
+
+# ----------------------------------------------------------------------------- the ratchet
+def _well(ratchet: dict | None):
+    """examples/well-12m-flywheel.toml, with ``ratchet`` as its [ratchet] table (None: none)."""
+    data = spec_to_dict(load_spec(ROOT / "examples" / "well-12m-flywheel.toml"))
+    if ratchet is not None:
+        data["ratchet"] = ratchet
+    return parse_spec(data)
+
+
+def test_the_12_m_well_fails_the_kick_back_without_a_ratchet_and_passes_it_with_one():
+    """Without a [ratchet] the 12 m example fails the kick-back (the column runs the grip back
+    metres: DGUV Vorschrift 54 allows 0.15 m), and a ratchet must hold its column's
+    rho g H (pi d^2/4) r_w = 1000 x 9.81 x 12 x pi 0.023^2/4 x 0.25 = 12.2274 N m; with one of 20 N m
+    and 36 teeth the same design passes both the kick-back and the ratchet's check; with 10 N m
+    (less than the column's) the ratchet's check fails and the kick-back is the column's again."""
+    column = 1000.0 * 9.81 * 12.0 * math.pi * 0.023**2 / 4 * 0.25
+    bare = force_analysis(_well(None), keep_samples=False).verdict
+    assert bare["kick_back"].result == "fail" and bare["kick_back"].value > 10.0
+    assert "holding_torque" not in {c.key for c in bare.checks}
+    held = force_analysis(_well({"torque": 20.0, "teeth": 36}), keep_samples=False)
+    v = held.verdict
+    assert v["kick_back"].result == "pass" and 0 < v["kick_back"].value <= 0.15
+    assert v["holding_torque"].result == "pass" and v["holding_torque"].fail_limit == 1.0
+    assert v["holding_torque"].value == pytest.approx(20.0 / column, rel=1e-12)  # the margin, judged
+    sv = held.evaluation.service
+    assert float(sv.holding_torque_margin[0]) == pytest.approx(20.0 - column, rel=1e-12)
+    weak = force_analysis(_well({"torque": 10.0, "teeth": 36}), keep_samples=False).verdict
+    assert weak["holding_torque"].result == "fail"
+    assert weak["kick_back"].result == "fail" and weak["kick_back"].value == pytest.approx(
+        bare["kick_back"].value
+    )
+    free = force_analysis(_well({"torque": 20.0, "teeth": 0}), keep_samples=False).verdict
+    assert free["kick_back"].value == 0.0 and free["kick_back"].result == "pass"  # no play: holds at once
+
+
+def test_the_ratchet_size_writes_has_twice_the_column_s_torque():
+    """``size`` rates the ``[ratchet]`` it writes for twice the water column's torque, up to the next
+    whole N·m (docs/workshop.md §3). The column by hand for the 12 m example (no ratchet): head
+    12 m, a 23 mm main, a 0.25 m wheel: 1000 · 9.81 · 12 · (π · 0.023² / 4) · 0.25 = 12.23 N·m,
+    twice that 24.46 N·m, so 25 N·m."""
+    import math
+
+    from pumplink.inputs import load
+    from pumplink.studies.workshop import ratchet_needed
+
+    spec = load("examples/well-12m-flywheel.toml")
+    head, bore, radius = spec.load.head, spec.load.pipe_diameter, spec.wheel.radius
+    column = 1000.0 * 9.81 * head * (math.pi * bore**2 / 4.0) * radius
+    got = ratchet_needed(spec)
+    assert column == pytest.approx(12.2274, abs=1e-4)
+    assert got["torque"] == 25.0

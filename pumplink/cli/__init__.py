@@ -152,6 +152,8 @@ from pumplink.cli import (  # noqa: E402, F401, I001 -- in the order of `pumplin
     tolerance,
     draw,
     template,
+    bom,
+    sheet,
     report,
     methods,
     transmission,

@@ -32,7 +32,7 @@ def init(
     The built-in prototype design, every key commented with its unit and allowed range, the
     operator profile (men; the limits each profile sets listed beside it), and the optional
     keys (axle height, wheel mass for the flywheel model, load from head and pipe, the
-    profile's limits, the [parts] and [use] tables with their defaults) commented out.  The
+    profile's limits, the \\[parts] and \\[use] tables with their defaults) commented out.  The
     design's name is the file's name.
 
     Example: [bold]pumplink init my-pump.toml[/] then edit it and run [bold]pumplink force my-pump.toml[/]

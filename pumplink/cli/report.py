@@ -21,7 +21,8 @@ def report(
     The spec, the synthesis table, the verdict with its model and checks
     against the operator profile's limits, the water it delivers and the people
     it serves, the force chart, the drawing, the loads on the parts with the
-    released handle and the cut list (images embedded; needs pumplink\\[plot]).
+    pins' life and the released handle, the cut list, the bill of materials
+    and the field sheet (images embedded; needs pumplink\\[plot]).
 
     Exit 0 if the design passes, 1 if it fails (the report is written
     either way) or no crank-rocker exists, 2 for bad input.
@@ -37,13 +38,16 @@ def report(
 
     from pumplink.inputs.pump import spec_to_dict
     from pumplink.output.report import report_html
+    from pumplink.studies.bom import bom
     from pumplink.studies.drawing import drawing
     from pumplink.studies.force import force_analysis, force_curve
+    from pumplink.studies.sheet import field_sheet
     from pumplink.studies.workshop import workshop
 
     s = load_specs([spec])[0]
     dr = drawing(s)
     r = force_analysis(s, keep_samples=False)
-    report_html(r, force_curve(r), dr, tomli_w.dumps(spec_to_dict(s)), out, shop=workshop(r))
+    report_html(r, force_curve(r), dr, tomli_w.dumps(spec_to_dict(s)), out, shop=workshop(r), bom=bom(s),
+                sheet=field_sheet(r))  # fmt: skip
     sys.stderr.write(f"wrote {out} ({r.outcome})\n")
     raise typer.Exit(0 if r.passed else 1)

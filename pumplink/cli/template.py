@@ -34,7 +34,7 @@ def template(
     """A 1:1 drilling template of each link (PDF, SVG or DXF).
 
     Hole centres, the distance between them in mm, hole diameter (the pins'
-    of [parts], default 12 mm; a cross and no hole where [parts] welds the
+    of \\[parts], default 12 mm; a cross and no hole where \\[parts] welds the
     joint: the crank to the axle, a lug to the handle), link name, and each
     hole's tolerance for --yield of the builds to pass (the critical holes,
     which need more care than a hand-drilled hole gets, ringed in red;
@@ -42,7 +42,9 @@ def template(
 
     PDF: links longer than the paper are tiled over several pages with
     numbered alignment marks; every page has a 100 mm scale bar to check the
-    printer did not scale it; page 1 has the cut list.  SVG: one 1:1 canvas.
+    printer did not scale it; page 1 has the cut list with the sizes to buy,
+    the pins, bushes and lug, and where the ratchet goes (pumplink bom).  SVG:
+    one 1:1 canvas.
     DXF (needs pumplink\\[dxf]): millimetres, one layer per link, for laser or
     CNC.  Exit 1 if the spec gives no crank-rocker.
 
@@ -56,12 +58,13 @@ def template(
     if out.suffix.lower() != ".dxf":
         pyplot()
     from pumplink.output.template import write_template
+    from pumplink.studies.bom import bom
     from pumplink.studies.drawing import drawing, tolerance_marks
 
     s = load_specs([spec])[0]
     dr = drawing(s)
     parts, marks = tolerance_marks(s, dr.parts, target)
-    pages = write_template(parts, out, paper.value, s.name, dr.tube_given, marks)
+    pages = write_template(parts, out, paper.value, s.name, dr.tube_given, marks, bom(s))
     sys.stderr.write(
         f"wrote {out}" + (f" ({pages} pages, {paper.value})" if out.suffix.lower() == ".pdf" else "") + "\n"
     )

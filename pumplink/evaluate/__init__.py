@@ -38,9 +38,11 @@ from pumplink.evaluate.designs import (
 )
 from pumplink.evaluate.piston import evaluate_piston
 from pumplink.evaluate.results import Evaluation, PistonEvaluation
+from pumplink.evaluate.service import Service, pin_life
 from pumplink.evaluate.water import Water
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
 from pumplink.models.choice import EnergyModel
+from pumplink.models.release import column_torque
 from pumplink.models.water import rope_pump_flow
 from pumplink.verdict import FAIL, OUTCOMES, PASS, RESULTS, WARN, Check, Verdict, check, excess
 
@@ -61,6 +63,7 @@ def evaluate(
     samples: int = 0,
     progress: Callable[[float], None] | None = None,
     screen_parts: bool = False,
+    fitted: bool = False,
 ) -> Evaluation | PistonEvaluation:
     """Evaluate designs: the stages ``want`` names (:data:`pumplink.evaluate.stages.STAGES`) and
     every stage they need.
@@ -78,11 +81,15 @@ def evaluate(
     screen_parts : judge the spec's ``[parts]`` only on designs no other check fails (a search,
         which drops failing designs anyway; the part checks are the costly ones): the others' part
         values are NaN, which fails, as they do already.
+    fitted : judge the designs as fitted with the ratchet their water column needs: the kick-back
+        and the ratchet's checks are left out (a fitting answers them, not the linkage: the
+        searches, the speeds that pass and the builds of a tolerance study).
     """
     want = tuple(want)
     if isinstance(designs, PistonDesigns):
         return evaluate_piston(designs, judge="verdict" in want)
-    r = stages.Run(designs, model=model, samples=samples, progress=progress, screen_parts=screen_parts)
+    r = stages.Run(designs, model=model, samples=samples, progress=progress, screen_parts=screen_parts,
+                   fitted=fitted)  # fmt: skip
     return Evaluation(designs=designs, **stages.run(r, want))
 
 
@@ -109,11 +116,14 @@ __all__ = [
     "PistonDesigns",
     "PistonEvaluation",
     "PumpDesigns",
+    "Service",
     "Verdict",
     "Water",
     "check",
+    "column_torque",
     "evaluate",
     "excess",
+    "pin_life",
     "piston_designs",
     "pump_designs",
     "rope_pump_flow",

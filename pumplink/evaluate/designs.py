@@ -26,6 +26,7 @@ from pumplink.constants import (
 from pumplink.mechanisms.fourbar import FourBar
 from pumplink.models import load as _load
 from pumplink.models import losses as _losses
+from pumplink.models.wear import wear_rate as _wear_rate
 from pumplink.profiles import DEFAULT_PROFILE, operator_limits
 
 #: Spec keys that give the wheel's inertia (the flywheel or full dynamics can then decide).
@@ -66,13 +67,17 @@ class PumpDesigns:
     sustained_power, hour_power : the operator's power for hours and for an hour [W];
     grip_height_min, grip_height_max [m], grip_speed_warn, grip_speed_fail [m/s]: the operator
     profile's limits (:mod:`pumplink.profiles`, with the spec's own keys instead where given).
-    hours_per_day [h], litres_per_person_day [l]: how the water is used (the people it serves).
+    hours_per_day [h], litres_per_person_day [l]: how the water is used (the people it serves);
+    people : the people it serves (NaN: as many as its hours a day serve).
     cadence_min, cadence_max [turns/min]: the profile's cadence range;  filling_power [W]: the
     operator's power while filling containers (the filling duty).
     losses : index into :data:`LOSSES`, which efficiencies ``force_efficiency`` and
     ``volumetric_efficiency`` are;  model_force_efficiency, model_volumetric_efficiency : the loss
     model's at the design's rope speed [-] (docs/water.md §2a; NaN without a head);
     piston_clearance, piston_spacing : [m], the loss model's pistons.
+    ratchet_torque [N m], ratchet_teeth [-]: the ``[ratchet]`` back-stop (NaN: none).
+    wear_rate [m^2/N], wear_surfaces [-], wear_allowance [m]: the pins' material pair
+    (:data:`pumplink.models.wear.PAIRS`, ``[parts] bush``) and the play they may wear open.
     """
 
     L1: Any
@@ -114,6 +119,12 @@ class PumpDesigns:
     model_volumetric_efficiency: Any = np.nan
     piston_clearance: Any = _losses.PISTON_CLEARANCE
     piston_spacing: Any = _losses.PISTON_SPACING
+    people: Any = np.nan
+    ratchet_torque: Any = np.nan
+    ratchet_teeth: Any = np.nan
+    wear_rate: Any = np.nan
+    wear_surfaces: Any = np.nan
+    wear_allowance: Any = np.nan
     arms_in_verdict: bool = False
     axle_height: Any = None
     linkage: FourBar | None = None
@@ -181,6 +192,10 @@ def pump_designs(values: Mapping[str, Any], speed=None) -> PumpDesigns:
         cadence_min=limits.cadence_range[0],
         cadence_max=limits.cadence_range[1],
         filling_power=limits.filling_power,
+        people=_or(value("use.people"), np.nan),
+        ratchet_torque=_or(value("ratchet.torque"), np.nan),
+        ratchet_teeth=_or(value("ratchet.teeth"), np.nan),
+        **_wear(value),
         arms_in_verdict=bool(value("operator.arms_in_verdict")),
         axle_height=value("wheel.axle_height"),
         wheel_mass=_or(value("wheel.mass"), np.nan),
@@ -223,6 +238,15 @@ def _efficiencies(value, speed) -> tuple:
         index = np.where(model, LOSSES.index("loss model"), LOSSES.index("constant"))
         force, volumetric = np.where(model, model_f, force), np.where(model, model_v, volumetric)
     return force, volumetric, index, model_f, model_v, clearance, spacing
+
+
+def _wear(value) -> dict[str, Any]:
+    """The pins' wear columns from ``[parts] bush`` and ``wear_allowance`` (NaN without ``[parts]``)."""
+    bush = value("parts.bush")
+    if bush is None:
+        return {}
+    rate, surfaces = _wear_rate(bush)
+    return dict(wear_rate=rate, wear_surfaces=surfaces, wear_allowance=value("parts.wear_allowance"))
 
 
 #: The keys of a spec's ``[parts]`` table.

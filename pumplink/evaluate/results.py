@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from pumplink.evaluate.designs import PistonDesigns, PumpDesigns
+from pumplink.evaluate.service import Service
 from pumplink.evaluate.water import Water
 from pumplink.models import ORDER
 from pumplink.verdict import Verdict
@@ -49,6 +50,8 @@ class Evaluation:
     water : :class:`pumplink.evaluate.water.Water` [water].
     pin_pressure [MPa], handle_fatigue, crank_fatigue [-] : the part checks' values (NaN where not
         judged) [parts].
+    service : :class:`pumplink.evaluate.service.Service`: the kick-back, the ratchet's torque, the
+        pins' life, the field's checks [service].
     verdict : :func:`pumplink.verdict.assess` [verdict].
     """
 
@@ -80,6 +83,7 @@ class Evaluation:
     pin_pressure: np.ndarray | None = None
     handle_fatigue: np.ndarray | None = None
     crank_fatigue: np.ndarray | None = None
+    service: Service | None = None
     verdict: Verdict | None = None
 
     def __len__(self) -> int:

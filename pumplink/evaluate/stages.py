@@ -21,6 +21,7 @@ motion                    power, grip_speed, link_energy_share,     docs/models.
                           cadence, rope_speed
 water                     water                                     docs/water.md
 parts                     pin_pressure, handle/crank_fatigue        docs/workshop.md §2
+service                   service (kick-back, pin life, field)      docs/workshop.md §3, §5
 verdict                   verdict                                   docs/models.md §4
 ========================  ========================================  ==============================
 
@@ -39,6 +40,7 @@ import numpy as np
 
 from pumplink.evaluate import parts as _parts
 from pumplink.evaluate.designs import PumpDesigns, columns
+from pumplink.evaluate.service import service as _service
 from pumplink.evaluate.water import water as _water
 from pumplink.mechanisms.fourbar import (
     FourBar,
@@ -69,7 +71,8 @@ class Run:
     model : a model key that decides every design giving the wheel's inertia (``--model``), or
     None for the least model that is enough;  samples : crank samples a turn for the sampled peak;
     progress : called with the fraction of that sweep done;  screen_parts : judge the part checks
-    only on designs no other check fails (a search drops the others anyway).
+    only on designs no other check fails (a search drops the others anyway);  fitted : leave the
+    kick-back and the ratchet's checks out (the linkage judged as fitted with the ratchet it needs).
     """
 
     designs: PumpDesigns
@@ -77,6 +80,7 @@ class Run:
     samples: int = 0
     progress: Callable[[float], None] | None = None
     screen_parts: bool = False
+    fitted: bool = False
     filled: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -292,12 +296,40 @@ def parts(r: Run) -> dict[str, Any]:
     )
 
 
+def service(r: Run) -> dict[str, Any]:
+    """Safe to let go (the kick-back, the ratchet's torque), the pins' life and the field's checks
+    (docs/workshop.md §3, §5; docs/water.md §5).  The pins' wear where the parts stage has run
+    before it (the verdict's evaluation; it runs first in :data:`STAGES`), NaN otherwise."""
+    parts = r.designs.parts
+    return dict(service=_service(
+        r.c, r.n, r["synthesis"], r["feasible"], r["masses"], r["water"].flow, r.filled.get("pin_pressure"),
+        None if parts is None else np.broadcast_to(np.asarray(parts.pin_diameter, float), (r.n,)),
+        r["rocker_rate"], not r.fitted,
+    ))  # fmt: skip
+
+
+def _service_checks(r: Run) -> dict[str, Any]:
+    """The verdict's service checks: the kick-back where a head gives the column, the ratchet's
+    torque where the spec has one (neither ``fitted``), the pins' wear with ``[parts]``."""
+    sv, c = r["service"], r.c
+    out: dict[str, Any] = {}
+    if np.isfinite(sv.holding_torque_required).any() and not r.fitted:
+        out["kick_back"] = sv.kick_back
+    if np.isfinite(sv.holding_torque).any() and not r.fitted:
+        out["holding_torque"] = (sv.holding_torque, sv.holding_torque_required)
+    if r["pin_pressure"] is not None:
+        out["pin_wear"] = (1000.0 * sv.pin_wear, 1000.0 * c["wear_allowance"])
+    return out
+
+
 def _assess(r: Run, with_parts: bool = False):
     """:func:`pumplink.verdict.assess` on what the stages filled, the profile's limits from the
     columns; the part checks only ``with_parts``."""
     c, syn = r.c, r["synthesis"]
     mu = np.minimum(syn.transmission_min, np.pi - np.asarray(syn.transmission_max))
     part_values = {k: r[k] for k in ("pin_pressure", "handle_fatigue", "crank_fatigue")} if with_parts else {}
+    if with_parts:
+        part_values.update(_service_checks(r))
     return assess(
         r["feasible"], r["mean_force"], r["peak_force"], c["force_limit"],
         link_energy_share=r["link_energy_share"], transmission_angle=np.degrees(mu), power=r["power"],
@@ -329,7 +361,8 @@ STAGES = (
     Stage("motion", "model", "power grip_speed link_energy_share cadence rope_speed", motion),
     Stage("water", "", "water", water),
     Stage("parts", "mean_force peak motion", "pin_pressure handle_fatigue crank_fatigue", parts),
-    Stage("verdict", "mean_force peak motion parts", "verdict", verdict),
+    Stage("service", "model water", "service", service),
+    Stage("verdict", "mean_force peak motion parts service", "verdict", verdict),
 )
 _BY_NAME = {s.name: s for s in STAGES}
 

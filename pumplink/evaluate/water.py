@@ -17,6 +17,13 @@ from pumplink.models import losses as _losses
 from pumplink.models import water as _kernels
 
 
+def one_design(group, i: int, n: tuple, dtype=None) -> dict:
+    """The fields of ``group`` (a dataclass of arrays over ``n`` designs, a value broadcast) for
+    design ``i`` alone, as Python scalars (``dtype``: each read as it first)."""
+    return {f.name: np.broadcast_to(np.asarray(getattr(group, f.name), dtype), n)[i].item()
+            for f in fields(group)}  # fmt: skip
+
+
 @dataclass(frozen=True)
 class Water:
     """The water a design delivers, and the most its operator could lift (arrays over designs,
@@ -62,13 +69,7 @@ class Water:
 
     def design(self, i: int) -> Water:
         """The water of design ``i`` alone (floats)."""
-        n = np.shape(self.flow)
-        return Water(
-            **{
-                f.name: float(np.broadcast_to(np.asarray(getattr(self, f.name), float), n)[i])
-                for f in fields(self)
-            }
-        )
+        return Water(**one_design(self, i, np.shape(self.flow), float))
 
 
 def water(flow, columns: dict, operator_power) -> Water:

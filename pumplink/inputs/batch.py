@@ -76,22 +76,28 @@ LINSPACE_DIGITS = 12
 _TOP_KEYS = ("name", "base", "vary")
 
 
-def _leaf_keys(model) -> tuple[str, ...]:
+def _leaf_fields(model) -> dict:
+    """{dotted key: its pydantic field} of every key of the model's tables."""
     import typing
 
-    keys = []
+    fields = {}
     for section, field in model.model_fields.items():
         annotation = field.annotation
         args = [a for a in typing.get_args(annotation) if a is not type(None)] or [annotation]
-        sub = getattr(args[0], "model_fields", None)
-        if sub:
-            keys.extend(f"{section}.{k}" for k in sub)
-    return tuple(keys)
+        for k, sub in (getattr(args[0], "model_fields", None) or {}).items():
+            fields[f"{section}.{k}"] = sub
+    return fields
+
+
+def _leaf_keys(model) -> tuple[str, ...]:
+    return tuple(_leaf_fields(model))
 
 
 #: Dotted spec paths that an axis may vary (every key of a spec's tables), by mechanism.
 VARIABLE_KEYS = _leaf_keys(PumpSpec)
 PISTON_VARIABLE_KEYS = _leaf_keys(PistonSpec)
+#: The keys that are counts (whole numbers: an axis's 24.0 is given as 24).
+INTEGER_KEYS = frozenset(k for k, f in _leaf_fields(PumpSpec).items() if f.annotation is int)
 
 
 @dataclass(frozen=True)
@@ -243,6 +249,8 @@ def _axis_values(key: str, raw: Any, where: str) -> np.ndarray:
 
 def _set(data: dict, key: str, value: float) -> dict:
     section, field = key.split(".")
+    if key in INTEGER_KEYS and float(value).is_integer():  # a count (ratchet.teeth): 24.0 is 24
+        value = int(value)
     out = dict(data)
     out[section] = {**out.get(section, {}), field: value}
     return out

@@ -344,6 +344,20 @@ class Parts(Section):
         "a weld toe, 3 at a drilled hole; 1: plain)",
     )
 
+    bush: Literal["steel", "polyethylene"] = Field(
+        default="steel",
+        description='what the pins turn in: "steel" (a welded steel bush or the drilled tube, the default) '
+        'or "polyethylene" (a PE bush in a steel sleeve): the wear coefficient of the pin life '
+        "(docs/workshop.md §5)",
+    )
+    wear_allowance: float = Field(
+        default=0.0005,
+        gt=0,
+        le=0.01,
+        description="radial play a joint may wear open before its pin and bush are replaced [m] "
+        "(default 0.0005)",
+    )
+
     @model_validator(mode="before")
     @classmethod
     def _notch_from_joint(cls, data: Any) -> Any:
@@ -367,7 +381,27 @@ class Parts(Section):
         return self
 
 
+class Ratchet(Section):
+    torque: float = Field(
+        gt=0,
+        le=10_000,
+        description="torque the ratchet (or another automatic back-stop on the wheel's axle) holds [N m]: "
+        "at least the water column's, rho g head (pi d^2/4) rw (docs/workshop.md §3)",
+    )
+    teeth: int = Field(
+        ge=0,
+        le=10_000,
+        description="places a turn of the wheel where its pawl catches (teeth x pawls, staggered); 0 for a "
+        "back-stop with no play (a freewheel, a sprag)",
+    )
+
+
 class Use(Section):
+    people: float | None = optional(
+        "people the pump serves (default: as many as its hours a day serve, docs/water.md §5)",
+        gt=0,
+        le=1_000_000,
+    )
     hours_per_day: float = Field(
         default=DEFAULT_DAILY_PUMPING_HOURS,
         gt=0,
@@ -398,9 +432,15 @@ class PumpSpec(Section):
         description="the [parts] table: pins, handle tube and crank bar; when given, the verdict checks "
         "pin bearing pressure and the handle's and crank's fatigue (docs/workshop.md)",
     )
+    ratchet: Ratchet | None = Field(
+        default=None,
+        description="the [ratchet] table: torque [N m], teeth; the back-stop that keeps the water column "
+        "from driving the handle back (docs/workshop.md §3)",
+    )
     use: Use = Field(
         default=Use(),
-        description="the [use] table: hours_per_day, litres_per_person_day (the people a pump serves)",
+        description="the [use] table: people, hours_per_day, litres_per_person_day (the people a pump "
+        "serves, the crank turns a day)",
     )
 
     @model_validator(mode="after")
@@ -593,9 +633,18 @@ dead_band = 20.0       # crank angle each side of a dead centre left to the whee
 # crank_diameter = {crank_diameter}  # crank, a round bar [m] (1/2")
 # crank_joint = "{crank_joint}"  # the crank at the axle: "welded", or "hole" (drilled and pinned)
 # crank_notch = {crank_notch}     # fatigue notch factor at the axle, 1-5 (default: 2 welded, 3 at a hole)
+# bush = "{bush}"        # what the pins turn in: "steel" or "polyethylene" (the pins' wear)
+# wear_allowance = {wear_allowance}  # radial play a joint may wear open [m], 0-0.01 (0 excluded)
+
+# The back-stop on the wheel's axle (docs/workshop.md §3): let go, the water column drives the wheel
+# and the handle back unless a ratchet holds it.  Without it the verdict fails the kick-back check.
+# [ratchet]
+# torque = 20.0        # torque it holds [N m], 0-10000 (0 excluded): at least the column's
+# teeth = 24           # places a turn where its pawl catches, 0-10000 (0: no play, a freewheel)
 
 # How the water is used, for the people a pump serves (docs/water.md); these are the defaults.
 # [use]
+#   (people = 250 would count the crank turns of 250 people; default: as many as its hours serve)
 # hours_per_day = {hours_per_day}     # hours a day the pump is worked [h], 0-24 (0 excluded)
 # litres_per_person_day = {litres_per_person_day}  # water each person needs a day [l] (WHO basic access)
 """

@@ -184,6 +184,7 @@ def describe(root: Any, err: dict) -> str:
         "dict_type",
     ):
         want = {
+            "int_type": "a whole number",
             "string_type": "text",
             "bool_type": "true or false",
             "list_type": "a list",

@@ -54,6 +54,9 @@ CHECK_KEYS = (
     "pin_pressure",
     "handle_fatigue",
     "crank_fatigue",
+    "kick_back",
+    "holding_torque",
+    "pin_wear",
 )
 CHECK_COLUMNS = tuple(f"check_{k}" for k in CHECK_KEYS)
 #: The numeric columns: the catalogue's batch columns (:data:`pumplink.quantities.CATALOGUE`), named

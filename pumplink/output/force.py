@@ -413,11 +413,17 @@ def render_study(st, fmt: str, summary: bool = False, strict: bool = False, out=
     side = out or (sys.stdout if fmt == "table" else sys.stderr)  # beside CSV: on standard error
     if st.why is not None:
         render_explain(st.effects, st.why, out=side, cadence=st.cadence, force_limit=r.force_limit)
-        render_workshop(st.workshop, out=side)
+        render_workshop(st.workshop, out=side, service=_service(r))
     if extra.get("verify") is not None:
         render_verify(extra["verify"], out=side)
     if st.release is not None and st.why is None:  # (else in the workshop's report)
-        console(side).print(release_line(st.release), markup=False)
+        console(side).print(release_line(st.release, _service(r)), markup=False)
+
+
+def _service(r: ForceResult):
+    """The design's :class:`pumplink.evaluate.service.Service` (None where it was not evaluated)."""
+    sv = None if r.evaluation is None else r.evaluation.service
+    return None if sv is None else sv.design(0)
 
 
 def explain_rows(effects) -> list[dict[str, Any]]:

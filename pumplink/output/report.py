@@ -1,8 +1,8 @@
 """The design report: one self-contained HTML file (images embedded as base64 PNG).
 
 Spec, synthesis table, verdict with its model and checks, the water it delivers and the people it
-serves, the force chart, the linkage drawing, the loads on the parts with the released handle, and
-the cut list.  Renderers only: every number
+serves, the force chart, the linkage drawing, the loads on the parts with the pins' life and the
+released handle, the cut list, the bill of materials and the field sheet.  Renderers only: every number
 comes from the library's results (:class:`pumplink.studies.force.ForceResult`,
 :class:`pumplink.studies.drawing.Drawing`, :class:`pumplink.studies.workshop.Workshop`).
 """
@@ -18,12 +18,20 @@ from pathlib import Path
 import numpy as np
 
 from pumplink.errors import SpecError
+from pumplink.output.bom import links_sentence
 from pumplink.output.charts import force_curve
 from pumplink.output.drawings import linkage_drawing
 from pumplink.output.formats import atomic_write, check_output, fmt
+from pumplink.output.sheet import sheet_html
 from pumplink.output.template import cut_list_rows
 from pumplink.output.words import check_label, model_line, water_lines
-from pumplink.output.workshop import load_rows, loads_title, parts_sentence, workshop_release_line
+from pumplink.output.workshop import (
+    load_rows,
+    loads_title,
+    parts_sentence,
+    pin_life_sentence,
+    workshop_release_line,
+)
 from pumplink.quantities import lines as quantity_lines
 
 REPORT_SUFFIXES = (".html", ".htm")
@@ -129,30 +137,46 @@ def water_html(r) -> str:
     return "".join(f'<p class="water">{html.escape(line)}</p>' for line in lines)
 
 
-def workshop_html(w) -> str:
+def _service(r):
+    sv = None if r.evaluation is None else r.evaluation.service
+    return None if sv is None else sv.design(0)
+
+
+def bom_html(b) -> str:
+    """The bill of materials (:func:`pumplink.studies.bom.bom`) as a table, with its notes."""
+    rows = [("part", "stock", "count", "cut", "mass", "note")]
+    for i in b.items:
+        cut = f"{i.length * 1000:.0f} mm" if math.isfinite(i.length) else ""
+        mass = f"{i.total_mass:.2f} kg" if math.isfinite(i.mass) else ""
+        rows.append((i.part, i.stock, i.count, cut, mass, i.note))
+    notes = [links_sentence(b), *(n for n in (b.tube_note, b.ratchet_note) if n is not None)]
+    return _table(rows, numeric=(2, 3, 4)) + "".join(f"<p>{html.escape(n)}.</p>" for n in notes)
+
+
+def workshop_html(w, service=None) -> str:
     """The workshop's view (:func:`pumplink.studies.workshop.workshop`): the peak loads on the
-    pins, the crank and the handle, what they mean for the parts and the released handle."""
+    pins, the crank and the handle, what they mean for the parts, the pins' life and the released
+    handle (``service``: the design's kick-back and ratchet)."""
     if w is None:
         return "<p>No crank-rocker: no loads to report.</p>"
     rows = [("where", "peak", "at crank"), *load_rows(w)]
-    line = workshop_release_line(w)
+    lines = [parts_sentence(w), pin_life_sentence(w), workshop_release_line(w, service)]
     return (
         f"<p>{html.escape(loads_title(w))}</p>"
         + _table(rows, numeric=(1, 2))
-        + f"<p>{html.escape(parts_sentence(w))}</p>"
-        + ("" if line is None else f"<p>{html.escape(line)}</p>")
+        + "".join(f"<p>{html.escape(line)}</p>" for line in lines if line is not None)
     )
 
 
-def report_html(r, curve, dr, spec_toml: str, path, shop=None) -> Path:
+def report_html(r, curve, dr, spec_toml: str, path, shop=None, bom=None, sheet=None) -> Path:
     """Write the report for one design (``r``: ForceResult, ``curve``: its ForceCurve, ``dr``:
-    its Drawing, ``spec_toml``: the spec as TOML text, ``shop``: its workshop view) to ``path``
-    atomically."""
+    its Drawing, ``spec_toml``: the spec as TOML text, ``shop``: its workshop view, ``bom``: its
+    bill of materials, ``sheet``: its field sheet) to ``path`` atomically."""
     path = check_report_path(path)
     name = html.escape(r.design.spec.name)
     force_png = _png(force_curve, r, curve)
     drawing_png = _png(lambda d, p: linkage_drawing(d, p), dr)
-    cut = cut_list_rows(dr.parts, dr.tube_given)
+    cut = cut_list_rows(dr.parts, dr.tube_given, bom)
     parts = [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
@@ -173,12 +197,24 @@ def report_html(r, curve, dr, spec_toml: str, path, shop=None) -> Path:
         "<h2>Drawing</h2>",
         f'<img alt="the linkage at its dead centres, dimensioned" src="data:image/png;base64,{drawing_png}">',
         "<h2>Loads on the parts</h2>",
-        workshop_html(shop),
+        workshop_html(shop, _service(r)),
         "<h2>Cut list</h2>",
         _table(cut, numeric=(2, 3, 5)),
         "<p>Hole centres and the 1:1 drilling template: <code>pumplink template SPEC</code>.</p>",
-        "</body></html>",
     ]
+    if bom is not None:
+        parts += [
+            "<h2>Bill of materials</h2>",
+            bom_html(bom),
+            "<p>As CSV: <code>pumplink bom SPEC -f csv</code>.</p>",
+        ]
+    if sheet is not None:
+        parts += [
+            '<h2 id="field-sheet">Field sheet</h2>',
+            sheet_html(sheet),
+            "<p>On one A4 page: <code>pumplink sheet SPEC --out sheet.pdf</code>.</p>",
+        ]
+    parts.append("</body></html>")
     with atomic_write(path) as f:
         f.write("\n".join(parts) + "\n")
     return path

@@ -37,7 +37,7 @@ FOOTER = 20.0
 ROW = 52.0
 OVERLAP = 20.0
 SCALE_BAR = (100.0, 4.0)
-CUT_LIST_HEIGHT = 34.0
+CUT_LIST_HEIGHT = 40.0
 DEFAULT_TUBE = "3/4-inch medium steel tube, 26.9 x 2.6 mm"
 #: The colour of the critical holes' rings and words.
 CRITICAL = "C3"
@@ -139,13 +139,19 @@ def layout(parts, paper: str) -> list[list[Tile]]:
     return pages
 
 
-def cut_list_rows(parts, tube_given: bool) -> list[tuple[str, ...]]:
-    """The cut list: link, holes, centre distance, cut length, tube, mass (text cells)."""
-    rows = [("link", "holes", "hole centres", "cut length", "tube", "mass")]
+def cut_list_rows(parts, tube_given: bool, bom=None) -> list[tuple[str, ...]]:
+    """The cut list: link, holes, centre distance, cut length, stock, mass (text cells); the stock
+    and the mass of the bill of materials where it is given (:class:`pumplink.studies.bom.Bom`: a
+    size to buy, the crank a round bar), else the tube's mass per metre."""
+    rows = [("link", "holes", "hole centres", "cut length", "stock" if bom is not None else "tube", "mass")]
+    stock = {} if bom is None else {i.part.split(" ")[0]: i for i in bom.items}
     for p in parts:
+        item = stock.get({"rocker-handle": "handle"}.get(p.key, p.key))
         tube = f"{p.mass_per_length:.2f} kg/m " + (
             "(linkage.mass_per_length)" if tube_given else DEFAULT_TUBE
         )
+        if item is not None:
+            tube = item.stock
         welded = [(WELDED[k], label) for k, label in zip(p.hole_kinds, p.hole_labels) if k in WELDED]
         holes = f"{sum(p.drilled)} x Ø{p.hole_diameter * 1000:g} mm" + "".join(
             f", {word} at {label}" for word, label in welded
@@ -157,10 +163,26 @@ def cut_list_rows(parts, tube_given: bool) -> list[tuple[str, ...]]:
                 f"{p.centre_distance * 1000:.1f} mm",
                 f"{p.cut_length * 1000:.0f} mm",
                 tube,
-                f"{p.mass:.2f} kg",
+                f"{(p.mass if item is None else item.mass):.2f} kg",
             )
         )
     return rows
+
+
+def bom_note(bom) -> str:
+    """The first page's note of what else to make or buy: the pins, bushes and lug of the bill of
+    materials (``pumplink bom``), and where the ratchet goes."""
+    rest = [i for i in bom.items if i.part not in ("coupler", "handle (rocker to grip)", "crank", "wheel")]
+    pins = [i for i in rest if i.part.startswith("pin ")]
+    words = []
+    if pins:
+        lengths = " / ".join(f"{i.length * 1000:.0f}" for i in pins)
+        words.append(f"pins {'/'.join(i.part[4:] for i in pins)}: {pins[0].stock}, {lengths} mm")
+    words += [f"{i.count} x {i.part}: {i.stock}, {i.length * 1000:.0f} mm" for i in rest
+              if not i.part.startswith("pin ") and i.part != "ratchet"]  # fmt: skip
+    if bom.ratchet_note is not None:
+        words.append(bom.ratchet_note)
+    return "also (pumplink bom): " + "; ".join(words)
 
 
 def _scale_bar(ax, x, y):
@@ -258,7 +280,7 @@ def _new_page(plt, W, H):
     return fig, ax
 
 
-def _page(plt, parts, page, k, n, paper, name, cut_rows, marks=None):
+def _page(plt, parts, page, k, n, paper, name, cut_rows, marks=None, note_text=None):
     from matplotlib.patches import Rectangle
 
     W, H = PAPERS[paper]
@@ -290,6 +312,13 @@ def _page(plt, parts, page, k, n, paper, name, cut_rows, marks=None):
         if marks is not None:
             note = ax.text(MARGIN + 5, top - 6 - 5 * len(cut_rows), marks_note(marks), fontsize=6.5, va="top")
             note.set_gid("tolerance-note")
+        if note_text:  # what else to make or buy, under the cut list: two lines at most
+            import textwrap
+
+            lines = textwrap.wrap(note_text, int((W - 2 * MARGIN - 10) / 1.15))  # ~1.15 mm a character
+            y = top - 6 - 5 * (len(cut_rows) + (marks is not None))
+            extra = ax.text(MARGIN + 5, y, "\n".join(lines[:2]), fontsize=6, va="top", linespacing=1.2)
+            extra.set_gid("bom-note")
         top -= CUT_LIST_HEIGHT
     x_left = MARGIN + 5
     for r, t in enumerate(page):
@@ -343,7 +372,7 @@ def _page(plt, parts, page, k, n, paper, name, cut_rows, marks=None):
     return fig
 
 
-def template_pdf(parts, path, paper: str, name: str, tube_given: bool, marks=None) -> int:
+def template_pdf(parts, path, paper: str, name: str, tube_given: bool, marks=None, bom=None) -> int:
     """Write the tiled PDF template (written to a temporary file, then renamed); returns pages."""
     plt = pyplot()
     from matplotlib.backends.backend_pdf import PdfPages
@@ -363,8 +392,9 @@ def template_pdf(parts, path, paper: str, name: str, tube_given: bool, marks=Non
                 len(pages),
                 paper,
                 name,
-                cut_list_rows(parts, tube_given) if k == 1 else None,
+                cut_list_rows(parts, tube_given, bom) if k == 1 else None,
                 marks if k == 1 else None,
+                bom_note(bom) if k == 1 and bom is not None else None,
             )
             pdf.savefig(fig)
             plt.close(fig)
@@ -461,13 +491,15 @@ def template_dxf(parts, path, name: str, marks=None) -> None:
         f.write(text.getvalue())
 
 
-def write_template(parts, path, paper: str, name: str, tube_given: bool, marks=None) -> int:
+def write_template(parts, path, paper: str, name: str, tube_given: bool, marks=None, bom=None) -> int:
     """The template in the format of ``path``'s extension; returns the number of pages (1 for SVG/DXF).
-    ``marks``: the tolerance notes (:class:`pumplink.studies.drawing.Marks`), with the parts'."""
+    ``marks``: the tolerance notes (:class:`pumplink.studies.drawing.Marks`), with the parts';
+    ``bom``: the bill of materials (:class:`pumplink.studies.bom.Bom`): the cut list's stock and a
+    note of the pins, bushes, lug and ratchet on the PDF's first page."""
     path = check_template_path(path)
     suffix = path.suffix.lower()
     if suffix == ".pdf":
-        return template_pdf(parts, path, paper, name, tube_given, marks)
+        return template_pdf(parts, path, paper, name, tube_given, marks, bom)
     if suffix == ".svg":
         template_svg(parts, path, name, marks)
     else:

@@ -65,6 +65,9 @@ CHECK_LABELS = {
     "pin_pressure": "pin bearing pressure",
     "handle_fatigue": "handle fatigue safety",
     "crank_fatigue": "crank fatigue safety",
+    "kick_back": "kick-back when let go",
+    "holding_torque": "ratchet's torque / column's",
+    "pin_wear": "pin wear, 6 million turns",
 }
 
 
@@ -105,6 +108,8 @@ _CHECK_FORMAT = {
     "pin_pressure": "{:.1f}",
     "handle_fatigue": "{:.2f}",
     "crank_fatigue": "{:.2f}",
+    "holding_torque": "{:.2f}",
+    "pin_wear": "{:.3g}",
 }
 
 
@@ -154,7 +159,20 @@ CHECK_ADVICE = {
     "or a reinforcing sleeve there",
     "crank_fatigue": "the crank may crack at the axle: a thicker bar (rope-pump manuals report "
     '1/2" cranks failing after several years)',
+    "kick_back": "let go, the water column drives the wheel and the handle back: fit a ratchet on the "
+    "wheel's axle that holds the column (a [ratchet] table: its torque and teeth; docs/workshop.md §3)",
+    "holding_torque": "the ratchet cannot hold the water column: a stronger pawl and teeth, or a "
+    "freewheel rated for the column's torque",
+    "pin_wear": "the pins and bushes wear their play open before 6 million turns: grease them, fit "
+    'polyethylene bushes (parts.bush = "polyethylene"), a thicker pin or a longer bush',
 }
+#: The kick-back's advice where the spec has a ratchet (it holds, but catches too late, or it does
+#: not hold: the holding-torque check says which).
+RATCHET_ADVICE = (
+    "the ratchet lets the handle run back too far before it holds: more teeth or pawls (each tooth lets "
+    "the grip run back its share of a turn), a freewheel with no play (teeth = 0), or one that holds the "
+    "column's torque"
+)
 #: The advice of the fatigue checks for how ``[parts]`` says the handle is joined at B
 #: (``handle_joint``) and the crank at the axle (``crank_joint``): docs/workshop.md §2.
 JOINT_ADVICE = {
@@ -186,6 +204,8 @@ def check_sentence(ch, r: ForceResult | None = None) -> str:
     side = ">" if ch.relation == "<=" else "<"
     val = check_value(ch)
     advice = check_advice(ch.key, ch.result, r.design.spec.parts if r is not None else None)
+    if ch.key == "kick_back" and r is not None and r.design.spec.ratchet is not None:
+        advice = RATCHET_ADVICE
     limit = f"{side} {lim:g} {ch.unit}".rstrip()
     return f"{check_label(ch, r)} is {val} ({limit}): {advice}".rstrip(": ")
 
@@ -228,12 +248,15 @@ def verdict_line(r: ForceResult, strict: bool = False, cadence=None) -> str:
         f"{check_label(ch, r)} {check_value(ch)} {limit_text(ch, ch.fail_limit)}" for ch in v.failures
     )
     hint = ""
+    fitting = any(ch.key in ("kick_back", "holding_torque") for ch in v.failures)
     if cadence is not None and cadence.bands:  # (:class:`pumplink.studies.speed.Cadence`)
         speeds = passing_words(cadence.bands, cadence.searched)
-        hint = f"; every check passes at a mean {speeds} (pumplink speed)"
+        every = "every check but the ratchet's" if fitting else "every check"
+        hint = f"; {every} passes at a mean {speeds} (pumplink speed)"
     elif cadence is not None:
         lo, hi = (math.degrees(v) for v in cadence.searched)
-        hint = f"; no mean speed from {lo:.0f} to {hi:.0f} deg/s passes every check"
+        every = "every check but the ratchet's" if fitting else "every check"
+        hint = f"; no mean speed from {lo:.0f} to {hi:.0f} deg/s passes {every}"
     return f"[bold red]VERDICT: FAIL[/] — {bad}{hint}"
 
 

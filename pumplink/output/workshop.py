@@ -10,7 +10,7 @@ import math
 import sys
 from typing import TYPE_CHECKING, Any
 
-from pumplink.constants import MODEL_WORDS, RELEASE_SETTLED
+from pumplink.constants import KICK_BACK_ENDS, KICK_BACK_LIMIT_M, MODEL_WORDS, RELEASE_SETTLED
 from pumplink.output.formats import console, deg, num, report_table
 from pumplink.output.precision import known_to
 
@@ -55,9 +55,24 @@ def workshop_row(w: Workshop | None) -> dict[str, Any] | None:
         "pin_pressure_at": st.pin,
         "handle_fatigue_safety": num(st.handle.safety),
         "crank_fatigue_safety": num(st.crank.safety),
+        "pin_life": pin_life_row(w.life),
         "release": release_row(None if w.release is None else (w.release, w.release_free)),
     }
     return out
+
+
+def pin_life_row(life) -> dict[str, Any] | None:
+    """The JSON of the pins' life (:class:`pumplink.studies.workshop.PinLife`, or None)."""
+    if life is None:
+        return None
+    return {
+        "bush": life.bush,
+        "wear_allowance_mm": num(life.allowance * 1000.0),
+        "wear_6m_turns_mm": num(life.wear * 1000.0),
+        "life_turns": num(life.turns),
+        "life_years": num(life.years),
+        "turns_per_day": num(life.turns_per_day),
+    }
 
 
 def release_row(both) -> dict[str, Any] | None:
@@ -93,26 +108,79 @@ def _early(r) -> str:
     }[r.end_reason]
 
 
-def release_line(both) -> str | None:
-    """The released handle in one line: 'needs a ratchet or brake' with its numbers, or None
-    (``both``: with and without losses, as :func:`pumplink.studies.workshop.release` gives them).
-    A simulation that stopped with the wheel still turning says so (STOPPED EARLY) and why."""
+def _held(sv) -> bool:
+    """The spec's ratchet holds the water column (``sv``: the design's Service)."""
+    return bool(math.isfinite(sv.holding_torque) and sv.holding_torque >= sv.holding_torque_required)
+
+
+def kick_back_words(sv) -> str | None:
+    """The kick-back and the ratchet in one sentence (``sv``: one design's
+    :class:`pumplink.evaluate.service.Service`), None without a water column."""
+    if sv is None or not math.isfinite(sv.kick_back):
+        return None
+    rule = f"({KICK_BACK_LIMIT_M:g} m allowed, DGUV Vorschrift 54 § 6)"
+    column = f"the water column's {sv.holding_torque_required:.1f} N·m"
+    if _held(sv):
+        catch = (
+            "it holds at once"
+            if sv.ratchet_teeth == 0
+            else f"let go at the worst moment, the grip kicks back {sv.kick_back:.2f} m before its pawl "
+            "catches"
+        )
+        return (
+            f"released handle: the ratchet holds the water column ({sv.holding_torque:g} N·m for "
+            f"{column}); {catch} {rule}; without it the grip would run back {sv.kick_back_free:,.1f} m"
+        )
+    weak = (
+        f" (the ratchet's {sv.holding_torque:g} N·m does not hold it)"
+        if math.isfinite(sv.holding_torque)
+        else ""
+    )
+    ends = {
+        "stops": "before the wheel stops again",
+        "limit": "so far",
+        "column empty": "before the column empties",
+    }
+    how = ends.get(KICK_BACK_ENDS[int(sv.kick_back_end)], "")
+    return (
+        f"released handle: NEEDS A RATCHET — let go at the worst moment, the water column drives the grip "
+        f"back {sv.kick_back:,.1f} m {how} {rule}; a ratchet on the wheel's axle must hold {column}{weak}"
+    )
+
+
+def release_line(both, service=None) -> str | None:
+    """The released handle in one line: the kick-back and the ratchet (``service``: the design's
+    :class:`pumplink.evaluate.service.Service`, as the verdict's check reads them), then how the
+    handle moves let go at full speed with its numbers, or None (``both``: with and without
+    losses, as :func:`pumplink.studies.workshop.release` gives them).  A simulation that stopped
+    with the wheel still turning says so (STOPPED EARLY) and why."""
     if both is None:
         return None
+    head = kick_back_words(service)
+    if head is not None and _held(service):
+        return head
     r, free = both
+    if head is not None:
+        return head + "; " + _full_speed(r, free)
+    return "released handle: " + _full_speed(r, free, needs=True)
+
+
+def _full_speed(r, free, needs: bool = False) -> str:
+    """The released handle let go at full speed (with the losses as friction, and without)."""
     bound = f"({free.peak_grip_speed:.1f} m/s if the pump had no losses)"
     if free.stopped_early and not r.stopped_early:  # (the other way round, r's words say it)
         bound = bound[:-1] + f", so far: that simulation STOPPED EARLY at {_early(free)})"
     if r.stopped_early and not r.reverses:
         return (
-            f"released handle: STOPPED EARLY — the simulation stopped at {_early(r)} with the wheel still "
-            f"turning forward {r.end_time:.2f} s after the operator lets go, so whether the column drives it "
-            f"back is not known; the grip's peak speed so far {r.peak_grip_speed:.1f} m/s {bound}"
+            f"STOPPED EARLY — let go at full speed, the simulation stopped at {_early(r)} with the wheel "
+            f"still turning forward {r.end_time:.2f} s after the operator lets go, so whether the column "
+            f"drives it back with the pump's losses as friction is not known; the grip's peak speed so "
+            f"far {r.peak_grip_speed:.1f} m/s {bound}"
         )
     if not r.reverses:
         return (
-            f"released handle: the wheel stops {r.stop_time:.2f} s after the operator lets go and the pump's "
-            "losses hold it: no backlash"
+            f"let go at full speed, the wheel stops in {r.stop_time:.2f} s and with all of the pump's losses "
+            "counted as friction they would hold it there (friction is not relied on)"
         )
     one = (
         ""
@@ -122,8 +190,9 @@ def release_line(both) -> str | None:
     end = "empties" if r.end_reason == "column empty" else "stops"
     if r.stopped_early:
         end = f"empties: the simulation STOPPED EARLY at {_early(r)}, {r.end_time:.2f} s after letting go"
+    lead = "NEEDS A RATCHET OR BRAKE — " if needs else ""
     return (
-        f"released handle: NEEDS A RATCHET OR BRAKE — let go at full speed, the wheel stops in "
+        f"{lead}let go at full speed, the wheel stops in "
         f"{r.stop_time:.2f} s and the water column drives it back; {one}and the grip reaches "
         f"{r.peak_grip_speed:.1f} m/s after {r.peak_time:.1f} s {bound} before the column {end}"
     )
@@ -164,11 +233,31 @@ def parts_sentence(w: Workshop) -> str:
     )
 
 
-def workshop_release_line(w: Workshop) -> str | None:
-    return release_line(None if w.release is None else (w.release, w.release_free))
+def pin_life_sentence(w: Workshop) -> str | None:
+    """The pins' life in one sentence (docs/workshop.md §5), None where it is not known."""
+    life = w.life
+    if life is None or not math.isfinite(life.turns):
+        return None
+    pair = {"steel": "steel bushes (dry)", "polyethylene": "polyethylene bushes"}[life.bush]
+    p = w.parts
+    years = (
+        f", {life.years:.2g} years at {life.turns_per_day:,.0f} turns a day"
+        if math.isfinite(life.years)
+        else ""
+    )
+    return (
+        f"pin life: at {w.strength.pin_pressure / 1e6:.1f} MPa, {p.pin_diameter * 1000:g} mm pins in {pair} "
+        f"open {life.wear * 1000:.3g} mm of play in 6 million turns (USAID's endurance tests); they wear the "
+        f"{life.allowance * 1000:g} mm allowed in {life.turns / 1e6:.2g} million turns{years} "
+        "(Archard's wear, docs/workshop.md §5)"
+    )
 
 
-def render_workshop(w: Workshop | None, out=None) -> None:
+def workshop_release_line(w: Workshop, service=None) -> str | None:
+    return release_line(None if w.release is None else (w.release, w.release_free), service)
+
+
+def render_workshop(w: Workshop | None, out=None, service=None) -> None:
     """The workshop's view as a table and sentences (after ``--explain``'s report)."""
     if w is None:
         return
@@ -181,6 +270,9 @@ def render_workshop(w: Workshop | None, out=None) -> None:
         t.add_row(*row)
     c.print(t)
     c.print(parts_sentence(w), markup=False)
-    line = workshop_release_line(w)
+    life = pin_life_sentence(w)
+    if life is not None:
+        c.print(life, markup=False)
+    line = workshop_release_line(w, service)
     if line is not None:
         c.print(line, markup=False)

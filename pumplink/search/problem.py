@@ -464,7 +464,7 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Candidates:
         want.append("peak")
     if not search:  # the quasi-static peak of every design, for the report
         want.append("dead_band_peak")
-    ev = evaluate(columns, want, model=problem.forced, screen_parts=True)
+    ev = evaluate(columns, want, model=problem.forced, screen_parts=True, fitted=True)
     tm = _terms(problem, x, ev.synthesis)
     ok = tm.ok
     nan = np.full(ok.shape, np.nan)

@@ -33,6 +33,7 @@ from pumplink.errors import SpecError
 from pumplink.evaluate import JUDGED, WARN, Evaluation, evaluate, excess, pump_designs, rope_pump_flow
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
 from pumplink.studies.tolerance_study import Robust, RobustCheck, robust_check, shortfall
+from pumplink.studies.workshop import ratchet_needed
 
 #: Nominal pipe bores searched by default [m]: ½", ¾", 1", 1¼" and 1½" (12.7-38.1 mm), the sizes
 #: rope-pump rising mains are made of.  They are the nominal inch sizes, not measured bores: give
@@ -178,7 +179,7 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
             if len(cache) > 8:
                 cache.clear()
             d = pump_designs(_values(problem, pipe, x))
-            ev = evaluate(d, JUDGED, screen_parts=True)
+            ev = evaluate(d, JUDGED, screen_parts=True, fitted=True)
             v = np.where(ev.feasible, excess(ev.verdict, problem.allow_warnings, INFEASIBLE), INFEASIBLE)
             if not problem.allow_pit:  # the pivot no deeper than the ground: D1 <= axle height
                 v = v + np.maximum(pit_depth(problem, x), 0.0)
@@ -208,7 +209,7 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
     )
     x = np.asarray(res.x, float)[:, None]
     spec = spec_of(problem, pipe, x[:, 0])
-    ev = evaluate(pump_designs(spec_values(spec)))
+    ev = evaluate(pump_designs(spec_values(spec)), fitted=True)
 
     def misses(spec, ev) -> tuple[float, float]:
         over = float(excess(ev.verdict, problem.allow_warnings, INFEASIBLE)[0])
@@ -226,7 +227,7 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
         data = spec_to_dict(spec)
         data["operator"]["speed"] = data["operator"]["speed"] - 1.0
         spec = parse_spec(data, source="the sized design")
-        ev = evaluate(pump_designs(spec_values(spec)))
+        ev = evaluate(pump_designs(spec_values(spec)), fitted=True)
     return Sized(pipe, spec, ev, float(ev.water.flow[0]), *misses(spec, ev)), count[0]
 
 
@@ -243,7 +244,9 @@ def spec_of(problem: SizeProblem, pipe: float, x) -> PumpSpec:
     if "wheel" not in problem.kept:
         data["wheel"].pop("inertia", None)
     data["name"] = f"{problem.spec.name} (sized)"
-    return parse_spec(data, source="the sized design")
+    spec = parse_spec(data, source="the sized design")
+    ratchet = ratchet_needed(spec)  # the back-stop its water column needs (docs/workshop.md §3)
+    return spec if ratchet is None else parse_spec({**data, "ratchet": ratchet}, source="the sized design")
 
 
 def size(problem: SizeProblem, seed: int = 0, progress=None, maxiter: int = 30) -> SizeResult:
@@ -322,7 +325,7 @@ def discharge(spec: PumpSpec, heads, allow_warnings: bool = False, speeds=None):
     out = []
     for h in heads:
         values = {**base, "load.head": float(h), "operator.speed": speeds}
-        ev = evaluate(pump_designs(values), JUDGED, screen_parts=True)
+        ev = evaluate(pump_designs(values), JUDGED, screen_parts=True, fitted=True)
         ok = np.asarray(ev.verdict.level) <= (WARN if allow_warnings else 0)
         ok = np.broadcast_to(ok, speeds.shape)
         if ok.any():

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pumplink.errors import SpecError
-from pumplink.evaluate import JUDGED, evaluate, excess, pump_designs
+from pumplink.evaluate import FAIL, JUDGED, Verdict, evaluate, excess, pump_designs
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
 from pumplink.studies.force import ForceResult
 
@@ -64,6 +64,17 @@ def _candidates(spec: PumpSpec, speed_deg: float):
     return out
 
 
+#: Checks that a fitting answers, not the linkage: the kick-back and the ratchet's torque (a
+#: [ratchet] on the wheel's axle, docs/workshop.md §3).  The knobs are not ranked on them.
+FITTINGS = ("kick_back", "holding_torque")
+
+
+def _ranked(v) -> tuple[int, float]:
+    """(level, excess) of a verdict (one design) on the checks other than :data:`FITTINGS`."""
+    kept = tuple(c for c in v.checks if c.key not in FITTINGS)
+    return max([0, *(int(c.level) for c in kept)]), excess(Verdict(kept, 0))
+
+
 def suggest(result: ForceResult, count: int = 2) -> list[Suggestion]:
     """The ``count`` single changes to the spec that help a failing design most.
 
@@ -72,9 +83,10 @@ def suggest(result: ForceResult, count: int = 2) -> list[Suggestion]:
     ``pumplink force --speed --model`` says of the changed spec).  The changes are ranked by the
     verdict they give, then by how far the failing checks remain beyond their limits (the sum of
     relative excesses).  Only changes that improve on the spec are returned, at most one per key.
-    Empty for a design that does not fail.
+    Empty for a design that does not fail, or fails only checks a fitting answers
+    (:data:`FITTINGS`: their own advice names the fitting).
     """
-    if result.verdict is None or result.passed:
+    if result.verdict is None or result.passed or _ranked(result.verdict)[0] < FAIL:
         return []
     spec, speed = result.design.spec, result.speed_deg_s
     found = _candidates(spec, speed)
@@ -86,13 +98,14 @@ def suggest(result: ForceResult, count: int = 2) -> list[Suggestion]:
     speeds = np.array([new if key == "operator.speed" else speed for key, _, _, new, _ in found])
     forced = None if result.effects is None or not result.effects.forced else result.model_key
     ev = evaluate(pump_designs(values, speeds), JUDGED, model=forced)
-    base = (int(result.verdict.level), excess(result.verdict))
+    base = _ranked(result.verdict)
     best: dict[str, Suggestion] = {}
     for i, (key, unit, old, new, _) in enumerate(found):
         if not ev.feasible[i]:
             continue
         v = ev.verdict.design(i)
-        s = Suggestion(key, old, new, unit, float(ev.peak_force[i]), v.outcome, int(v.level), excess(v),
+        rank = _ranked(v)
+        s = Suggestion(key, old, new, unit, float(ev.peak_force[i]), v.outcome, *rank,
                        tuple(c.key for c in v.failures))  # fmt: skip
         if (s.level, s.excess) < base and (
             key not in best or (s.level, s.excess) < (best[key].level, best[key].excess)

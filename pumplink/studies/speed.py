@@ -58,7 +58,7 @@ class Cadence:
 
 def _at_speeds(spec: PumpSpec, speeds_deg, model: str | None):
     return evaluate(pump_designs(spec_values(spec), np.asarray(speeds_deg, float)), JUDGED, model=model,
-                    screen_parts=True)  # fmt: skip
+                    screen_parts=True, fitted=True)  # fmt: skip
 
 
 def _tests(ev) -> np.ndarray:

@@ -253,7 +253,7 @@ def problem(
     InfeasibleDesign : the spec gives no crank-rocker (there is nothing to build).
     """
     designs = pump_designs(spec_values(spec))
-    ev = evaluate(designs, JUDGED, model=model)
+    ev = evaluate(designs, JUDGED, model=model, fitted=True)
     if not bool(ev.feasible[0]):
         raise InfeasibleDesign(f"{spec.name}: nothing to build, the spec gives no crank-rocker")
     nominal = FourBar(*(float(np.ravel(p)[0]) for p in ev.synthesis.linkage.parameters))
@@ -275,7 +275,7 @@ def offsets(prob: Problem, index: int, start: int, stop: int) -> np.ndarray:
 def evaluate_builds(prob: Problem, offs: np.ndarray) -> Evaluation:
     """The one evaluation of builds with these offsets (:func:`build`)."""
     lk, axle = build(prob.nominal, prob.axle_height, offs)
-    return evaluate(as_built(prob.designs, lk, axle), JUDGED, model=prob.model)
+    return evaluate(as_built(prob.designs, lk, axle), JUDGED, model=prob.model, fitted=True)
 
 
 # ----------------------------------------------------------------------------- first order
@@ -401,7 +401,7 @@ def first_order_shares(
     for i in range(p):
         params[i][i * rows.size : (i + 1) * rows.size] += step
     tiled = take(base, np.tile(np.arange(rows.size), p))
-    e = evaluate(as_built(tiled, FourBar(*params), np.tile(axle, p)), JUDGED, model=model)
+    e = evaluate(as_built(tiled, FourBar(*params), np.tile(axle, p)), JUDGED, model=model, fitted=True)
     m1 = margins(e, strict)
     mp = first_order_map()
     sigma = tol.sigma

@@ -14,9 +14,19 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.constants import GRAVITY
-from pumplink.evaluate import ORDER, PART_KEYS, PartSizes, motion
+from pumplink.constants import GRAVITY, KICK_BACK_LIMIT_M, RATCHET_SERVICE_FACTOR
+from pumplink.evaluate import (
+    ORDER,
+    PART_KEYS,
+    PartSizes,
+    column_torque,
+    evaluate,
+    motion,
+    pin_life,
+    pump_designs,
+)
 from pumplink.evaluate import parts as _parts
+from pumplink.inputs.pump import spec_values
 from pumplink.studies.force import ForceResult
 
 
@@ -30,6 +40,8 @@ class Workshop:
         in the verdict too), False for the defaults, shown for information.
     release, release_free : the released handle with the pump's losses as friction and with none
         (:class:`pumplink.models.release.Release`), None without the wheel's inertia or a head.
+    life : the pins' life with ``parts`` (:class:`PinLife`; docs/workshop.md §5), None without a
+        flow (a rope force given: no turns a year from people).
     pin_pressure_limits : (warn, fail) [Pa], fatigue_limits : (warn, fail) [-]: the levels of the
         verdict's part checks (:mod:`pumplink.evaluate.parts`).
     """
@@ -40,6 +52,7 @@ class Workshop:
     parts_given: bool
     release: Any = None
     release_free: Any = None
+    life: Any = None
     pin_pressure_limits: tuple[float, float] = (_parts.PIN_PRESSURE_WARN, _parts.PIN_PRESSURE_FAIL)
     fatigue_limits: tuple[float, float] = (_parts.FATIGUE_WARN, _parts.FATIGUE_FAIL)
 
@@ -47,6 +60,31 @@ class Workshop:
     def needs_brake(self) -> bool:
         """True when the released wheel runs back (the handle swings back at speed)."""
         return bool(self.release is not None and self.release.reverses)
+
+
+@dataclass(frozen=True)
+class PinLife:
+    """The pins' life (docs/workshop.md §5): ``bush`` the material pair, ``allowance`` [m];
+    ``wear`` the play opened in 6 million turns [m]; ``turns`` until the allowance is worn, ``years``
+    at ``turns_per_day`` of the use."""
+
+    bush: str
+    allowance: float
+    wear: float
+    turns: float
+    years: float
+    turns_per_day: float
+
+
+def _pin_life(r: ForceResult, pressure: float, pin_diameter: float) -> PinLife | None:
+    """The pins' life at the worst joint's ``pressure`` [Pa] with the spec's parts or their defaults."""
+    sv = r.evaluation.service
+    if sv is None:
+        return None
+    sv = sv.design(0)
+    shop = r.design.spec.parts_or_defaults
+    wear, turns, years = pin_life(pressure, pin_diameter, shop.bush, shop.wear_allowance, sv.turns_per_year)
+    return PinLife(shop.bush, shop.wear_allowance, float(wear), float(turns), float(years), sv.turns_per_day)
 
 
 def _part_scene(r: ForceResult):
@@ -106,4 +144,27 @@ def workshop(r: ForceResult) -> Workshop | None:
         sizes = PartSizes(*(getattr(shop, k) for k in PART_KEYS))
     strength = _parts.strength(loads, sizes)
     both = release(r, found)
-    return Workshop(loads, strength, sizes, given, *(both or (None, None)))
+    life = _pin_life(r, strength.pin_pressure, sizes.pin_diameter)
+    return Workshop(loads, strength, sizes, given, *(both or (None, None)), life)
+
+
+#: Teeth a ratchet wheel may have, for :func:`ratchet_needed` (the pawl catches once a tooth).
+TEETH = (12, 16, 18, 20, 24, 30, 36, 40, 48, 60, 72, 90, 120)
+
+
+def ratchet_needed(spec) -> dict | None:
+    """The ``[ratchet]`` a spec with a water column and none needs (docs/workshop.md §3): a torque
+    of :data:`~pumplink.constants.RATCHET_SERVICE_FACTOR` times the column's, up to the next whole
+    N·m, and the fewest teeth of :data:`TEETH` that keep
+    the grip's kick-back within 0.15 m (0, a freewheel with no play, where none does); None where
+    the spec has a ratchet or no column."""
+    load = spec.load
+    if spec.ratchet is not None or load.head is None:
+        return None
+    need = float(column_torque(load.head, load.pipe_diameter, spec.wheel.radius))
+    torque = float(math.ceil(RATCHET_SERVICE_FACTOR * need))
+    teeth = np.array(TEETH, float)
+    values = {**spec_values(spec), "ratchet.torque": torque, "ratchet.teeth": teeth}
+    kick = evaluate(pump_designs(values), ("service",)).service.kick_back
+    fit = np.nonzero(kick <= KICK_BACK_LIMIT_M)[0]
+    return {"torque": torque, "teeth": int(teeth[fit[0]]) if fit.size else 0}

@@ -442,7 +442,9 @@ def test_design_space_grid_slice_equals_force_analysis_exactly():
     """The real exploration grid (flywheel: its village base gives wheel.mass): a slice, from a
     start that is no chunk boundary, against force_analysis."""
     b = B.load_batch(GRID)
-    start, stop = 5000, 5250
+    # 8 m of head on the 0.8 m handle: the village's 24-tooth ratchet holds the kick-back within
+    # 0.15 m for some (on the 1.2 m handle it lets every one run back further: no pass to compare)
+    start, stop = 3000, 3250
     c = B.evaluate_chunk(b, start, stop, 360)
     assert c.flywheel.all() and (~c.feasible).any() and (c.feasible & ~c.passed).any() and c.passed.any()
     rng = random.Random(5)

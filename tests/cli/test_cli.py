@@ -1049,10 +1049,10 @@ def test_table_names_the_model_that_answered():
     # no speed passes (the grip is too fast where the force passes): the verdict line says so
     nowhere = "no mean speed from 60 to 1440 deg/s passes every check"
     assert (
-        "model: full dynamics, J = " in dyn and "VERDICT: FAIL" in dyn and nowhere in dyn.replace("\n", " ")
-    )
+        "model: full dynamics, J = " in dyn and "VERDICT: FAIL" in dyn and nowhere in " ".join(dyn.split())
+    )  # (the words joined over the wrapped lines, their trailing spaces too)
     fly = run("force", FLY, "--summary", "--model", "flywheel", cache=True).stdout
-    assert "model: flywheel, J = " in fly and "VERDICT: FAIL" in fly and nowhere in fly.replace("\n", " ")
+    assert "model: flywheel, J = " in fly and "VERDICT: FAIL" in fly and nowhere in " ".join(fly.split())
     qs = run("force", "--summary", cache=True).stdout
     assert "model: quasi-static + dead band" in qs and "give wheel.mass or wheel.inertia" in qs
 

@@ -107,7 +107,7 @@ def check_output(line: str, p: subprocess.CompletedProcess, cwd: Path, expected:
             return
         assert "VERDICT: FAIL" in p.stdout, line  # a mechanism that would jam: judged, exit 1
     table = re.search(r"(?:--format|-f) (?:json|csv|parquet)", line) is None
-    if not table or cmd in ("schema", "init", "draw", "template", "report") or cmd.startswith("-"):
+    if not table or cmd in ("schema", "init", "draw", "template", "report", "sheet") or cmd.startswith("-"):
         return
     # a newcomer's 80-column terminal (as tests/cli/test_80_columns.py, which leaves these out)
     for text in (p.stdout + p.stderr).splitlines():

@@ -127,7 +127,7 @@ def assert_same(command: str, documented_keys: set[str], emitted_keys: set[str])
 
 
 def test_the_list_covers_the_commands():
-    assert set(DOC) == {"synth", "force", "optimize", "batch"}
+    assert set(DOC) == {"synth", "force", "optimize", "batch", "bom"}
 
 
 def design_keys() -> set[str]:
@@ -251,7 +251,7 @@ def test_a_released_handle_that_stops_early_says_so(tmp_path):
     release = emitted("force", path, "--summary")["release"]
     assert (release["stopped_early"], release["end"]) == (True, "turn limit")
     text = run("force", path, "--summary")
-    line = text[text.index("released handle:") :].replace("\n", " ")
+    line = " ".join(text[text.index("released handle:") :].split())  # the wrapped lines joined
     assert "STOPPED EARLY" in line and "10,000 rad of crank" in line
 
 
@@ -262,6 +262,11 @@ def test_the_old_wrong_keys_are_gone_from_the_readme():
     assert "peak_crank_deg" not in leaves and "required_peak_force_N" not in leaves
     checks = {p.removeprefix("checks.") for p in DOC["force"] if p.startswith("checks.")}
     assert checks == {"key", "name", "value", "unit", "relation", "warn_limit", "fail_limit", "result"}
+
+
+def test_bom_keys():
+    doc = emitted("bom", "configs/village-10m.toml")
+    assert_same("bom", DOC["bom"], paths(doc))
 
 
 def test_optimize_keys():

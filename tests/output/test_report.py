@@ -99,17 +99,29 @@ def test_the_report_quotes_the_profile_s_limits_and_the_water(path, profile):
 
 
 def test_the_report_file_has_the_water_section(tmp_path):
-    """The whole report, images and all, on the women's well: the water section is in it."""
+    """The whole report, images and all, on the women's well: the water section, the bill of
+    materials and the field sheet are in it."""
     from pumplink.inputs.pump import load_spec
     from pumplink.output.charts import pyplot
+    from pumplink.output.report import bom_html
+    from pumplink.output.sheet import sheet_html
+    from pumplink.studies.bom import bom
     from pumplink.studies.drawing import drawing
     from pumplink.studies.force import force_curve
+    from pumplink.studies.sheet import field_sheet
     from pumplink.studies.workshop import workshop
 
     pyplot()
     spec = load_spec(ROOT / "configs" / "women-operators-6m.toml")
     r = force_analysis(spec, keep_samples=False)
-    out = report_html(r, force_curve(r), drawing(spec), "", tmp_path / "r.html", shop=workshop(r))
+    b, fs = bom(spec), field_sheet(r)
+    out = report_html(
+        r, force_curve(r), drawing(spec), "", tmp_path / "r.html", shop=workshop(r), bom=b, sheet=fs
+    )
     page = out.read_text(encoding="utf-8")
     assert "<h2>Water</h2>" in page and water_html(r) in page and verdict_html(r) in page
     assert "(operator profile: women)" in page and "a woman sustaining 60 W" in page
+    # the bill of materials and the field sheet, as their own renderers give them
+    assert "<h2>Bill of materials</h2>" in page and bom_html(b) in page
+    assert '<h2 id="field-sheet">Field sheet</h2>' in page and sheet_html(fs) in page
+    assert "the ratchet (24 teeth, 20 N·m) goes on the wheel&#x27;s axle O2" in page
