@@ -16,7 +16,7 @@ import sys
 import mpmath as mp
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from pumplink.errors import SpecError
@@ -156,6 +156,7 @@ def test_optimum_does_not_depend_on_the_scan_that_brackets_it():
     phi=st.floats(0.5, 179.5),
     tau=st.lists(st.floats(0.0, 2 * math.pi), min_size=50, max_size=50),
 )
+@example(K=3.0, phi=0.95, tau=[0.0] * 50)  # every point on a chord's end
 def test_which_extreme_binds_is_fixed_on_each_arc(K, phi, tau):
     """The claim the product's root finder rests on (``pumplink.mechanisms.crank_rocker``
     docstring): at every admissible point of the design circle, gamma_min < 180 deg - gamma_max
@@ -170,7 +171,10 @@ def test_which_extreme_binds_is_fixed_on_each_arc(K, phi, tau):
     for sgn in (-1, 1):
         ax, ay = R * np.cos(t), yc + sgn * R * math.cos(th) + R * np.sin(t)
         a1, a2 = np.hypot(ax + w, ay - yc), np.hypot(ax - w, ay - yc)
-        cosang = ((-w - ax) * (w - ax) + (yc - ay) ** 2) / (a1 * a2)
+        # tau = 0 or pi puts the point on a chord's end (a1 or a2 = 0: 0/0): not an admissible point,
+        # and the NaN it gives fails every comparison of ``ok`` below
+        with np.errstate(invalid="ignore", divide="ignore"):
+            cosang = ((-w - ax) * (w - ax) + (yc - ay) ** 2) / (a1 * a2)
         s1 = (-w - ax) * (-ay) - (yc - ay) * (-ax)
         s2 = (w - ax) * (-ay) - (yc - ay) * (-ax)
         ok = (s1 * s2 > 0) & (np.abs(cosang - math.cos(th)) < 1e-9) & (np.abs(a2 - a1) > 1e-9)
@@ -279,7 +283,10 @@ def test_optimum_beats_dense_brute_force_and_simulates_exactly(K, phi):
     for sgn in (-1, 1):
         ax, ay = R * np.cos(tau), yc + sgn * R * math.cos(th) + R * np.sin(tau)
         a1, a2 = np.hypot(ax + w, ay - yc), np.hypot(ax - w, ay - yc)
-        cosang = ((-w - ax) * (w - ax) + (yc - ay) ** 2) / (a1 * a2)
+        # tau = 0 or pi puts the point on a chord's end (a1 or a2 = 0: 0/0): not an admissible point,
+        # and the NaN it gives fails every comparison of ``ok`` below
+        with np.errstate(invalid="ignore", divide="ignore"):
+            cosang = ((-w - ax) * (w - ax) + (yc - ay) ** 2) / (a1 * a2)
         s1 = (-w - ax) * (-ay) - (yc - ay) * (-ax)
         s2 = (w - ax) * (-ay) - (yc - ay) * (-ax)
         ok = (a2 > a1) & (s1 * s2 > 0) & (np.abs(cosang - math.cos(th)) < 1e-9)
