@@ -53,6 +53,8 @@ from pumplink.constants import (
 
 #: Levels of a check or a verdict.
 PASS, WARN, FAIL = 0, 1, 2
+#: The part checks (with the spec's ``[parts]``; docs/workshop.md §2).
+PART_CHECKS = ("pin_pressure", "handle_fatigue", "crank_fatigue")
 #: A level's word in JSON/CSV (``result`` of a check).
 RESULTS = ("pass", "warn", "fail")
 #: A verdict's words, by level.
@@ -298,7 +300,7 @@ def assess(
     return Verdict(tuple(checks), _scalar(level))
 
 
-def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf, warned=()):
+def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf, warned=(), screened=()):
     """How far a verdict's checks lie beyond their limits, per design; 0 exactly where no check
     that counts is beyond its limit.  The searches rank designs by it.
 
@@ -311,7 +313,16 @@ def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf, war
     failing value counts more than any warning value of the same check (past f, b_w alone already
     exceeds (f − w) / |w|, and b_f > 0 adds to it).  A value that is not finite counts
     ``unbounded``.
+
+    ``screened``: keys of checks judged only on designs no other check fails (the part checks of a
+    search's evaluation, ``screen_parts``); where another check fails they were not judged (NaN)
+    and count nothing, the failing check already making the excess positive.  Counting their NaN
+    ``unbounded`` would rank every design that fails anything below one with no crank-rocker.
     """
+    other = np.full(np.shape(verdict.level), PASS)
+    for c in verdict.checks:
+        if c.key not in screened:
+            other = np.maximum(other, c.level)
     total = 0.0
     for c in verdict.checks:
         counts_warnings = not accept_warnings or c.key in warned
@@ -326,5 +337,8 @@ def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf, war
             lim = np.asarray(limit, float)
             with np.errstate(invalid="ignore", divide="ignore"):
                 beyond = beyond + np.maximum(sign * (v - lim), 0.0) / np.abs(lim)
-        total = total + np.where(np.isfinite(beyond), beyond, unbounded)
+        beyond = np.where(np.isfinite(beyond), beyond, unbounded)
+        if c.key in screened:
+            beyond = np.where(other == FAIL, 0.0, beyond)
+        total = total + beyond
     return _scalar(np.asarray(total, float))

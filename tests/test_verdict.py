@@ -13,7 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pumplink.verdict import assess, excess
+from pumplink.verdict import PART_CHECKS, assess, excess
 
 
 def test_pass_needs_feasible_and_every_fail_check():
@@ -156,6 +156,20 @@ def test_a_failing_value_ranks_worse_than_a_warning_one():
     assert excess(assess(True, 10.0, 103.0, 100.0), False) == pytest.approx(0.03, rel=1e-12)
     stroke = assess(True, 10.0, 10.0, 100.0, stroke=1.05)
     assert excess(stroke, False) == pytest.approx(0.05, rel=1e-12) and excess(stroke, True) == 0.0
+
+
+def test_parts_not_judged_where_another_check_fails_count_nothing():
+    """A search judges the part checks only where no other check fails (NaN elsewhere): there
+    they count nothing in ``screened`` mode, and the failing check (peak force 103 N against
+    100 N: 0.03 by hand) is the excess; where nothing else fails, a NaN part value is a real
+    failure and counts ``unbounded``."""
+    nan = math.nan
+    parts = dict(pin_pressure=nan, handle_fatigue=nan, crank_fatigue=nan)
+    failing = assess(True, 10.0, 103.0, 100.0, **parts)
+    assert excess(failing, True, 1e3) == pytest.approx(3e3 + 0.03, rel=1e-12)
+    assert excess(failing, True, 1e3, screened=PART_CHECKS) == pytest.approx(0.03, rel=1e-12)
+    clean = assess(True, 10.0, 90.0, 100.0, **parts)
+    assert excess(clean, True, 1e3, screened=PART_CHECKS) == 3e3
 
 
 # ~2 ms each

@@ -163,6 +163,20 @@ def test_a_three_quarter_inch_pipe_beats_the_half_inch_rope_speed_cap_at_15_m_fo
     assert result.best.flow * 60_000 > cap
 
 
+def test_a_base_spec_with_parts_searches_the_same_bores():
+    """configs/village-10m.toml gives [parts], whose checks a search judges only where nothing else
+    fails (NaN elsewhere).  Counting that NaN as unbounded ranked every design that failed anything
+    below one with no crank-rocker, and the ¾" search ended on one; now the base-spec route finds
+    the ¾" pump the built-in route does (above).  ~4 s."""
+    from pumplink.inputs.pump import load_spec
+    from pumplink.search import size as S
+
+    village = load_spec(ROOT / "configs" / "village-10m.toml")
+    result = S.size(S.problem_for(village, head=15.0, profile="women", pipes=[0.01905]))
+    assert result.found and int(result.best.evaluation.verdict.level[0]) == 0
+    assert result.best.flow * 60_000 > math.pi / 4 * 0.0127**2 * 1.8 * 60_000  # 13.68 l/min, above
+
+
 #: The spec keys that set each check's limits (the operator profile's, overridden).
 RELAX = {
     "mean_force": {"force_limit": 1.5},

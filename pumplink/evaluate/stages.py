@@ -55,7 +55,7 @@ from pumplink.models import load as _load
 from pumplink.models import quasi_static as _qs
 from pumplink.models import water as _water_kernels
 from pumplink.models.choice import energy_model
-from pumplink.verdict import FAIL, assess
+from pumplink.verdict import FAIL, PART_CHECKS, assess
 
 #: Designs swept together for the sampled peak: the kernel's temporaries (designs x samples)
 #: stay in the processor's cache.
@@ -297,7 +297,7 @@ def _assess(r: Run, with_parts: bool = False):
     columns; the part checks only ``with_parts``."""
     c, syn = r.c, r["synthesis"]
     mu = np.minimum(syn.transmission_min, np.pi - np.asarray(syn.transmission_max))
-    part_values = {k: r[k] for k in ("pin_pressure", "handle_fatigue", "crank_fatigue")} if with_parts else {}
+    part_values = {k: r[k] for k in PART_CHECKS} if with_parts else {}
     return assess(
         r["feasible"], r["mean_force"], r["peak_force"], c["force_limit"],
         link_energy_share=r["link_energy_share"], transmission_angle=np.degrees(mu), power=r["power"],

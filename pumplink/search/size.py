@@ -32,7 +32,16 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from pumplink.errors import SpecError
-from pumplink.evaluate import JUDGED, WARN, Evaluation, evaluate, excess, pump_designs, rope_pump_flow
+from pumplink.evaluate import (
+    JUDGED,
+    PART_CHECKS,
+    WARN,
+    Evaluation,
+    evaluate,
+    excess,
+    pump_designs,
+    rope_pump_flow,
+)
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
 from pumplink.studies.tolerance_study import Robust, RobustCheck, robust_check, shortfall
 
@@ -190,7 +199,8 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
                 cache.clear()
             d = pump_designs(_values(problem, pipe, x))
             ev = evaluate(d, JUDGED, screen_parts=True)
-            v = np.where(ev.feasible, excess(ev.verdict, problem.allow_warnings, INFEASIBLE), INFEASIBLE)
+            over = excess(ev.verdict, problem.allow_warnings, INFEASIBLE, screened=PART_CHECKS)
+            v = np.where(ev.feasible, over, INFEASIBLE)
             if not problem.allow_pit:  # the pivot no deeper than the ground: D1 <= axle height
                 v = v + np.maximum(pit_depth(problem, x), 0.0)
             if problem.robust is not None:  # the builds too: the first-order share's shortfall
