@@ -230,10 +230,15 @@ def verdict_line(r: ForceResult, strict: bool = False, cadence=None) -> str:
     hint = ""
     if cadence is not None and cadence.bands:  # (:class:`pumplink.studies.speed.Cadence`)
         speeds = passing_words(cadence.bands, cadence.searched)
-        hint = f"; every check passes at a mean {speeds} (pumplink speed)"
+        if cadence.clean_bands == cadence.bands:
+            hint = f"; every check passes at a mean {speeds} (pumplink speed)"
+        else:  # a check warns at some of these speeds: they pass the verdict, not every check
+            clean = passing_words(cadence.clean_bands, cadence.searched) if cadence.clean_bands else ""
+            clean = f", none warns {clean}" if clean else ", though a check warns at each"
+            hint = f"; no check fails at a mean {speeds}{clean} (pumplink speed)"
     elif cadence is not None:
         lo, hi = (math.degrees(v) for v in cadence.searched)
-        hint = f"; no mean speed from {lo:.0f} to {hi:.0f} deg/s passes every check"
+        hint = f"; some check fails at every mean speed from {lo:.0f} to {hi:.0f} deg/s"
     return f"[bold red]VERDICT: FAIL[/] — {bad}{hint}"
 
 
