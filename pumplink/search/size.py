@@ -89,11 +89,12 @@ WHEEL_MASS_COST = 0.005
 #: The decimals a workshop measures each varied key to (spec units: 1 deg/s, 0.1 kg, 0.1 deg;
 #: every other key 1 mm).
 ROUNDING = {"operator.speed": 0, "wheel.mass": 1, "linkage.swing": 1}
-#: The largest miss (:func:`pumplink.evaluate.excess`) the rounded design's repair (``_workshop``)
-#: tries to close.  A workshop unit moves a value by 0.1-1 % (1 deg/s of 300 deg/s, 1 mm of a
-#: 0.1-0.35 m length, 0.1 kg of 10 kg), so its 30 steps close a few per cent at most; the misses
-#: it closed at 15 m for women with a ¾" pipe (seeds 0-5) were 0.006-0.022, while a bore that
-#: cannot meet the limits misses by 0.17 or more (35 m, women).
+#: The largest miss of the search's best design, as found (its constraint: the excess of
+#: :func:`pumplink.evaluate.excess`, and a robust search's shortfall), that the repair of the
+#: rounded design (``_workshop``) tries to close.  A workshop unit moves a value by 0.1-1 %
+#: (1 deg/s of 300 deg/s, 1 mm of a 0.1-0.35 m length, 0.1 kg of 10 kg), so its 30 steps close a
+#: few per cent at most; the misses it closed at 15 m for women with a ¾" pipe (seeds 0-5) were
+#: 0.006-0.022, while a bore that cannot meet the limits misses by 0.17 or more (35 m, women).
 REPAIR_REACH = 0.05
 #: The constraint value of a design with no crank-rocker (differential evolution ranks them by it).
 INFEASIBLE = 1e3
@@ -235,7 +236,8 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
             return over, 0.0
         return over, float(shortfall(pump_designs(spec_values(spec)), ev, problem.robust)[0])
 
-    x = _workshop(problem, x, violation, objective)
+    if float(violation(x[:, None])[0]) <= REPAIR_REACH:  # rounding or a hair from the limits
+        x = _workshop(problem, x, violation, objective)
     spec = spec_of(problem, pipe, x)
     ev = evaluate(pump_designs(spec_values(spec)))
     return Sized(pipe, spec, ev, float(ev.water.flow[0]), *misses(spec, ev)), count[0]
@@ -252,8 +254,8 @@ def _workshop(problem: SizeProblem, x: np.ndarray, violation, objective, steps: 
     heavier wheel).  So each step tries every key one unit up and down, then, if none of those
     comes closer, every pair of keys: it takes a neighbour that meets the limits with the most
     water, else the one closest to meeting them (:func:`excess`), until one meets them or none
-    comes closer (the closest design is then returned as it is).  A design that misses by more
-    than :data:`REPAIR_REACH` is returned rounded: the steps cannot close such a miss."""
+    comes closer (the closest design is then returned as it is).  The caller repairs only a design
+    that misses by at most :data:`REPAIR_REACH`: the steps cannot close more."""
     names = problem.names
     unit = np.array([10.0 ** -ROUNDING.get(k, 3) for k in names])
     lower = np.array([problem.bounds[k][0] for k in names])
@@ -268,7 +270,7 @@ def _workshop(problem: SizeProblem, x: np.ndarray, violation, objective, steps: 
     here = lattice(x)
     miss = float(violation(here[:, None])[0])
     for _ in range(steps):
-        if miss == 0.0 or miss > REPAIR_REACH:
+        if miss == 0.0:
             break
         for moves in (single, pairs):
             near = np.array([lattice(np.clip(here + d, lower, upper)) for d in moves]).T
