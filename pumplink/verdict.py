@@ -59,6 +59,11 @@ from pumplink.constants import (
 
 #: Levels of a check or a verdict.
 PASS, WARN, FAIL = 0, 1, 2
+#: The part checks (with the spec's ``[parts]``; docs/workshop.md §2).
+PART_CHECKS = ("pin_pressure", "handle_fatigue", "crank_fatigue")
+#: The checks a search judges only where no other check fails (screened): the part checks and the
+#: pins' wear, which follows the pin pressure (docs/workshop.md §5).
+SCREENED_CHECKS = (*PART_CHECKS, "pin_wear")
 #: A level's word in JSON/CSV (``result`` of a check).
 RESULTS = ("pass", "warn", "fail")
 #: A verdict's words, by level.
@@ -320,24 +325,45 @@ def assess(
     return Verdict(tuple(checks), _scalar(level))
 
 
-def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf, warned=()):
-    """How far a verdict's checks lie beyond their limits: per design, the sum over the checks that
-    fail (``accept_warnings``) or that warn or fail (otherwise) of the relative distance beyond the
-    limit they break (the fail limit for a failure, else the warn limit); 0 exactly where none
-    does.  A value that is not finite counts ``unbounded``.  ``warned``: keys of checks whose
-    warnings count even where warnings are accepted.  The searches rank designs by it."""
+def excess(verdict: Verdict, accept_warnings: bool = True, unbounded=np.inf, warned=(), screened=()):
+    """How far a verdict's checks lie beyond their limits, per design; 0 exactly where no check
+    that counts is beyond its limit.  The searches rank designs by it.
+
+    For one check with value v, warn limit w and fail limit f (relation '<='; '>=' mirrors it),
+    the relative distances beyond them are b_w = max(v − w, 0) / |w| and b_f = max(v − f, 0) / |f|.
+    Where the check's warnings count (``accept_warnings`` False, or its key in ``warned``) it adds
+    b_w + b_f; where only failures count, b_f.  A check with no warn limit adds b_f, one with no
+    fail limit b_w (nothing where its warnings do not count).  Each term is continuous and
+    non-decreasing in v, so the excess never drops as a value moves away from its limits: a
+    failing value counts more than any warning value of the same check (past f, b_w alone already
+    exceeds (f − w) / |w|, and b_f > 0 adds to it).  A value that is not finite counts
+    ``unbounded``.
+
+    ``screened``: keys of checks judged only on designs no other check fails (the part checks of a
+    search's evaluation, ``screen_parts``); where another check fails they were not judged (NaN)
+    and count nothing, the failing check already making the excess positive.  Counting their NaN
+    ``unbounded`` would rank every design that fails anything below one with no crank-rocker.
+    """
+    other = np.full(np.shape(verdict.level), PASS)
+    for c in verdict.checks:
+        if c.key not in screened:
+            other = np.maximum(other, c.level)
     total = 0.0
     for c in verdict.checks:
-        level = np.asarray(c.level)
-        if c.warn_limit is None and c.fail_limit is None:
+        counts_warnings = not accept_warnings or c.key in warned
+        limits = [c.fail_limit] + ([c.warn_limit] if counts_warnings else [])
+        limits = [lim for lim in limits if lim is not None]
+        if not limits:
             continue
-        warn = c.fail_limit if c.warn_limit is None else c.warn_limit
-        fail = c.warn_limit if c.fail_limit is None else c.fail_limit
-        lim = np.where(level == FAIL, np.asarray(fail, float), np.asarray(warn, float))
         v = np.asarray(c.value, float)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            beyond = np.where(np.asarray(c.relation) == "<=", v - lim, lim - v) / np.abs(lim)
-        beyond = np.where(np.isfinite(beyond), np.maximum(beyond, 0.0), unbounded)
-        counted = level == FAIL if accept_warnings and c.key not in warned else level >= WARN
-        total = total + np.where(counted, beyond, 0.0)
+        sign = np.where(np.asarray(c.relation) == "<=", 1.0, -1.0)
+        beyond = 0.0
+        for limit in limits:
+            lim = np.asarray(limit, float)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                beyond = beyond + np.maximum(sign * (v - lim), 0.0) / np.abs(lim)
+        beyond = np.where(np.isfinite(beyond), beyond, unbounded)
+        if c.key in screened:
+            beyond = np.where(other == FAIL, 0.0, beyond)
+        total = total + beyond
     return _scalar(np.asarray(total, float))

@@ -2,7 +2,7 @@
 operator profile, and for the pumps ``pumplink size`` writes for each profile.
 
 ``pumplink force --explain`` (:func:`pumplink.studies.design.study`) prints, beside its verdict,
-the speeds at which every check passes, the best cadence, the model-choice report's power limits
+the speeds at which no check fails, the best cadence, the model-choice report's power limits
 and, after a FAIL, the single changes that help most.  Each is checked here against the verdict of
 ``force`` itself (:func:`pumplink.studies.force.force_analysis`, the same as
 ``pumplink force --speed S --model M`` on the same or the changed spec):

@@ -91,3 +91,23 @@ def test_a_flow_search_that_varies_the_speed_keeps_the_cadence_and_rope_in_range
     assert slack[0] == pytest.approx(-hand, rel=1e-9) and slack[1] == 0.0
     linkage = P.make_problem(spec, {"swing": (30.0, 100.0)}, objective="flow")
     assert linkage.constraint_names()[-1] == "no check of the verdict fails"
+
+
+def test_speeds_where_the_cadence_warns_are_not_said_to_pass_every_check(monkeypatch):
+    """configs/women-operators-6m.toml at 300 deg/s fails its peak force; the verdict line names
+    the faster speeds where no check fails.  Above 60 turns a minute (360 deg/s, by hand: 60 x 6)
+    the cadence warns there, so the words are "no check fails" with the clean band ending at
+    360 deg/s, never "every check passes"."""
+    from pathlib import Path
+
+    from in_process import keep_process_state, run_main
+
+    spec = Path(__file__).resolve().parents[1] / "configs" / "women-operators-6m.toml"
+    state = keep_process_state(monkeypatch)
+    next(state)
+    code, out, _ = run_main("force", spec, "--speed", "300", "--summary")
+    next(state, None)
+    line = " ".join(out.split())
+    assert code == 1 and "VERDICT: FAIL" in line and "every check passes" not in line
+    assert f"none warns from 358 to {AIT_FASTEST * 6:.0f} deg/s" in line
+    assert "; no check fails at a mean from 358 to " in line

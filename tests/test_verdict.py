@@ -13,7 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pumplink.verdict import assess
+from pumplink.verdict import PART_CHECKS, assess, excess
 
 
 def test_pass_needs_feasible_and_every_fail_check():
@@ -128,6 +128,60 @@ def test_arrays_decide_as_each_design_alone(rows):
         assert bool(many.passed[i]) is one.passed
         for cm, c1 in zip(many.checks, one.checks):
             assert bool(cm.passed[i]) is c1.passed
+
+
+def _grip(speed, **kw):
+    """The verdict of one design whose only check beyond a limit can be the grip's speed (warn
+    2.1 m/s, fail 3.3 m/s: the women's profile)."""
+    return assess(True, 10.0, 10.0, 100.0, grip_speed=speed, grip_speed_limits=(2.1, 3.3), **kw)
+
+
+def test_a_failing_value_ranks_worse_than_a_warning_one():
+    """The searches rank designs by excess: a grip speed just past its fail limit must count more
+    than one just under it.  By hand (docs of pumplink.verdict.excess): where warnings count,
+    (v - 2.1)/2.1 + max(v - 3.3, 0)/3.3; where they do not, max(v - 3.3, 0)/3.3."""
+    warning, failing = _grip(3.29), _grip(3.31)
+    assert warning["grip_speed"].result == "warn" and failing["grip_speed"].result == "fail"
+    assert excess(warning, False) == pytest.approx(1.19 / 2.1, rel=1e-12)
+    assert excess(failing, False) == pytest.approx(1.21 / 2.1 + 0.01 / 3.3, rel=1e-12)
+    assert excess(failing, False) > excess(warning, False)
+    # a key in ``warned`` counts its warnings even where warnings are accepted
+    assert excess(failing, True, warned=("grip_speed",)) > excess(warning, True, warned=("grip_speed",))
+    assert excess(warning, True, warned=("grip_speed",)) == pytest.approx(1.19 / 2.1, rel=1e-12)
+    # where only failures count, a warning is 0 and a failure its distance beyond the fail limit
+    assert excess(warning, True) == 0.0
+    assert excess(failing, True) == pytest.approx(0.01 / 3.3, rel=1e-12)
+    # a check with only a fail limit (the peak force, 100 N), and one with only a warn limit
+    # (the stroke, 1 m): the distance beyond the one limit
+    assert excess(assess(True, 10.0, 103.0, 100.0), False) == pytest.approx(0.03, rel=1e-12)
+    stroke = assess(True, 10.0, 10.0, 100.0, stroke=1.05)
+    assert excess(stroke, False) == pytest.approx(0.05, rel=1e-12) and excess(stroke, True) == 0.0
+
+
+def test_parts_not_judged_where_another_check_fails_count_nothing():
+    """A search judges the part checks only where no other check fails (NaN elsewhere): there
+    they count nothing in ``screened`` mode, and the failing check (peak force 103 N against
+    100 N: 0.03 by hand) is the excess; where nothing else fails, a NaN part value is a real
+    failure and counts ``unbounded``."""
+    nan = math.nan
+    parts = dict(pin_pressure=nan, handle_fatigue=nan, crank_fatigue=nan)
+    failing = assess(True, 10.0, 103.0, 100.0, **parts)
+    assert excess(failing, True, 1e3) == pytest.approx(3e3 + 0.03, rel=1e-12)
+    assert excess(failing, True, 1e3, screened=PART_CHECKS) == pytest.approx(0.03, rel=1e-12)
+    clean = assess(True, 10.0, 90.0, 100.0, **parts)
+    assert excess(clean, True, 1e3, screened=PART_CHECKS) == 3e3
+
+
+# ~2 ms each
+@settings(max_examples=100)
+@given(st.floats(0.0, 6.0), st.floats(0.0, 6.0), st.booleans())
+def test_excess_never_drops_as_a_value_moves_beyond_its_limits(a, b, accept_warnings):
+    low, high = sorted((a, b))
+    assert excess(_grip(low), accept_warnings) <= excess(_grip(high), accept_warnings)
+    # the transmission angle ('>=': warn below 45 deg, fail below 30 deg): the lower, the worse
+    angles = (15.0 * low, 15.0 * high)
+    lo, hi = (excess(assess(True, 10.0, 10.0, 100.0, transmission_angle=g), accept_warnings) for g in angles)
+    assert hi <= lo
 
 
 def test_every_command_decides_through_assess(monkeypatch, tmp_path):

@@ -130,6 +130,53 @@ def test_size_finds_a_pump_that_force_passes_with_the_same_water(tmp_path):
         assert row[key] == pytest.approx(0.75 * 0.87 * power / (9810.0 * 8.0) * 60_000, rel=1e-12)
 
 
+@pytest.mark.parametrize("seed, limit", [(10, "peak_force"), (11, "grip_height")])
+def test_the_rounded_design_meets_a_limit_a_slower_wheel_does_not_help(seed, limit):
+    """The search's optimum touches its limits, and rounding it to workshop figures can step over
+    one.  For these two starts (8 m, 1" pipe, men) the limit stepped over is the flywheel's peak
+    force (a slower wheel stores less energy: the peak rises) and the grip's height (the cadence
+    does not move it), so slowing the cadence, the old repair, gave up 30 deg/s later with no
+    design; stepping each workshop figure back finds one with the optimum's water (share >= 0.99
+    of Q*, the cadence's 1 deg/s rounding).  ~1.2 s each."""
+    from pumplink.inputs.pump import default_spec
+    from pumplink.search import size as S
+
+    result = S.size(S.problem_for(default_spec(), head=8.0, pipes=[0.0254]), seed=seed)
+    assert result.found and int(result.best.evaluation.verdict.level[0]) == 0
+    assert limit in result.binding and "power" in result.binding
+    assert float(result.best.evaluation.water.share[0]) >= 0.99
+
+
+def test_a_three_quarter_inch_pipe_beats_the_half_inch_rope_speed_cap_at_15_m_for_women():
+    """At 15 m for a woman the ½" pipe is held by the rope's 1.8 m/s (docs/water.md §2a): even with
+    no leakage (eta_v = 1) its flow cannot pass (pi/4) 0.0127² m² x 1.8 m/s = 13.68 l/min (by
+    hand).  A ¾" pipe meets the limits with more water; the search's best design misses them by a
+    hair (cadence, grip speed and peak force all bind) and the workshop steps close the miss.
+    ~2 s."""
+    from pumplink.inputs.pump import default_spec
+    from pumplink.search import size as S
+
+    cap = math.pi / 4 * 0.0127**2 * 1.8 * 60_000
+    assert cap == pytest.approx(13.68, abs=0.005)
+    result = S.size(S.problem_for(default_spec(), head=15.0, profile="women", pipes=[0.01905]))
+    assert result.found and int(result.best.evaluation.verdict.level[0]) == 0
+    assert result.best.flow * 60_000 > cap
+
+
+def test_a_base_spec_with_parts_searches_the_same_bores():
+    """configs/village-10m.toml gives [parts], whose checks a search judges only where nothing else
+    fails (NaN elsewhere).  Counting that NaN as unbounded ranked every design that failed anything
+    below one with no crank-rocker, and the ¾" search ended on one; now the base-spec route finds
+    the ¾" pump the built-in route does (above).  ~4 s."""
+    from pumplink.inputs.pump import load_spec
+    from pumplink.search import size as S
+
+    village = load_spec(ROOT / "configs" / "village-10m.toml")
+    result = S.size(S.problem_for(village, head=15.0, profile="women", pipes=[0.01905]))
+    assert result.found and int(result.best.evaluation.verdict.level[0]) == 0
+    assert result.best.flow * 60_000 > math.pi / 4 * 0.0127**2 * 1.8 * 60_000  # 13.68 l/min, above
+
+
 #: The spec keys that set each check's limits (the operator profile's, overridden).
 RELAX = {
     "mean_force": {"force_limit": 1.5},

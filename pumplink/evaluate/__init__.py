@@ -44,7 +44,19 @@ from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
 from pumplink.models.choice import EnergyModel
 from pumplink.models.release import column_torque
 from pumplink.models.water import rope_pump_flow
-from pumplink.verdict import FAIL, OUTCOMES, PASS, RESULTS, WARN, Check, Verdict, check, excess
+from pumplink.verdict import (
+    FAIL,
+    OUTCOMES,
+    PART_CHECKS,
+    PASS,
+    RESULTS,
+    SCREENED_CHECKS,
+    WARN,
+    Check,
+    Verdict,
+    check,
+    excess,
+)
 
 #: The words of each model, by index into :data:`ORDER` (reports, the model column).
 MODEL_LABELS = tuple(MODELS[k].label for k in ORDER)
@@ -103,6 +115,8 @@ __all__ = [
     "MODEL_LABELS",
     "ORDER",
     "OUTCOMES",
+    "PART_CHECKS",
+    "SCREENED_CHECKS",
     "PART_KEYS",
     "PASS",
     "QUASI_STATIC",

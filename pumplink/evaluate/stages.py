@@ -57,7 +57,7 @@ from pumplink.models import load as _load
 from pumplink.models import quasi_static as _qs
 from pumplink.models import water as _water_kernels
 from pumplink.models.choice import energy_model
-from pumplink.verdict import FAIL, assess
+from pumplink.verdict import FAIL, PART_CHECKS, assess
 
 #: Designs swept together for the sampled peak: the kernel's temporaries (designs x samples)
 #: stay in the processor's cache.
@@ -327,7 +327,7 @@ def _assess(r: Run, with_parts: bool = False):
     columns; the part checks only ``with_parts``."""
     c, syn = r.c, r["synthesis"]
     mu = np.minimum(syn.transmission_min, np.pi - np.asarray(syn.transmission_max))
-    part_values = {k: r[k] for k in ("pin_pressure", "handle_fatigue", "crank_fatigue")} if with_parts else {}
+    part_values = {k: r[k] for k in PART_CHECKS} if with_parts else {}
     if with_parts:
         part_values.update(_service_checks(r))
     return assess(

@@ -47,6 +47,7 @@ from pumplink.evaluate import (
     JUDGED,
     MODELS,
     QUASI_STATIC,
+    SCREENED_CHECKS,
     PumpDesigns,
     evaluate,
     excess,
@@ -481,7 +482,7 @@ def evaluate_designs(problem: Problem, x, search: bool = False) -> Candidates:
     if flow_objective:  # the most water [l/min] with no check failing (the verdict's slack)
         obj = -ev.water.flow * 60_000.0
         warned = SPEED_CHECKS if problem.holds_speed else ()
-        over = excess(ev.verdict, True, INFEASIBLE_OBJECTIVE, warned)
+        over = excess(ev.verdict, True, INFEASIBLE_OBJECTIVE, warned, screened=SCREENED_CHECKS)
         slack = np.vstack([slack, -np.atleast_1d(over)])
     if problem.robust is not None:  # the builds: their first-order share over the target
         r = problem.robust
