@@ -245,9 +245,17 @@ def test_registered_capabilities_hold_at_danger_points(name, kind, data):
     assert np.all(np.isfinite(got.force[ok]))
     err = _rel(got.force[ok], truth[ok])
     assert np.all(err <= allowed(name, kind, delta[ok])), (name, kind, angles[ok], err, delta[ok])
-    assert np.all(err <= m.tolerance[kind]), (name, kind, angles[ok], err)  # the registry's promise
-    if m.handles[kind] in ("exact", "accurate"):
-        assert not got.failed.any(), (name, kind, angles[got.failed])
+    # a danger point within 1 deg of a dead centre (the range of the near-dead-centre points drawn
+    # by _danger_angles) is also a near-dead-centre point: the weaker of the two promises governs
+    # there (a rocker perpendicular at 1e-5 rad of its swing's end sits 0.4 deg from a dead centre)
+    dead = np.array([syn.dead_centre_extended, syn.dead_centre_folded])
+    gap = np.abs(np.mod(np.asarray(angles)[:, None] - dead[None, :] + np.pi, 2 * np.pi) - np.pi).min(axis=1)
+    near = (gap <= np.radians(1.0)) & (kind not in (NEAR_DEAD_CENTRE, DEAD_CENTRE))
+    tolerance = np.where(near, max(m.tolerance[kind], m.tolerance[NEAR_DEAD_CENTRE]), m.tolerance[kind])
+    assert np.all(err <= tolerance[ok]), (name, kind, angles[ok], err)  # the registry's promise
+    promised = {"exact", "accurate"}
+    must = np.where(near, m.handles[NEAR_DEAD_CENTRE] in promised, m.handles[kind] in promised)
+    assert not got.failed[must].any(), (name, kind, angles[got.failed & must])
     if kind == DEAD_CENTRE and name != "reference":  # a finite force there would be made up
         assert flagged.all()
 
