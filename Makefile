@@ -55,31 +55,21 @@ test: $(VENV)/.stamp-test
 # each also appends its figures to $(BENCH_OUT) (benchmarks/_record.py), and the last step prints
 # them all in one table with their targets (benchmarks/summary.py).
 BENCH_OUT := $(CURDIR)/build/bench.jsonl
-# The code before the one-evaluation restructure, installed beside this one for the side-by-side
-# grid benchmark (benchmarks/bench_grid_baseline.py); built from this repository's own history.
-BASE_COMMIT := 2cf593a
-BASE_DIR := build/base-$(BASE_COMMIT)
-$(BASE_DIR)/.venv/.stamp:
-	rm -rf $(BASE_DIR) && mkdir -p build
+# Earlier code of this repository, installed beside this one for the side-by-side benchmarks, each
+# a detached worktree of its commit with its own venv (built from this repository's own history):
+# 2cf593a, before the one-evaluation restructure (the grid, benchmarks/bench_grid_baseline.py);
+# 94c2ab6, before full dynamics and the part checks were computed for many designs at once (the
+# part-check, tolerance and sizing commands, benchmarks/bench_parts.py).
+BASE_COMMITS := 2cf593a 94c2ab6
+build/base-%/.venv/.stamp:
+	rm -rf build/base-$* && mkdir -p build
 	git worktree prune
-	git worktree add --detach $(BASE_DIR) $(BASE_COMMIT)
-	$(PYTHON) -m venv $(BASE_DIR)/.venv
-	$(BASE_DIR)/.venv/bin/python -m pip install --quiet $(BASE_DIR)
+	git worktree add --detach build/base-$* $*
+	$(PYTHON) -m venv build/base-$*/.venv
+	build/base-$*/.venv/bin/python -m pip install --quiet build/base-$*
 	touch $@
 
-# The code before full dynamics and the part checks were computed for many designs at once, installed
-# the same way, for the side-by-side part-check, tolerance and sizing benchmark (benchmarks/bench_parts.py).
-BASE2_COMMIT := 94c2ab6
-BASE2_DIR := build/base-$(BASE2_COMMIT)
-$(BASE2_DIR)/.venv/.stamp:
-	rm -rf $(BASE2_DIR) && mkdir -p build
-	git worktree prune
-	git worktree add --detach $(BASE2_DIR) $(BASE2_COMMIT)
-	$(PYTHON) -m venv $(BASE2_DIR)/.venv
-	$(BASE2_DIR)/.venv/bin/python -m pip install --quiet $(BASE2_DIR)
-	touch $@
-
-bench: $(VENV)/.stamp-bench $(BASE_DIR)/.venv/.stamp $(BASE2_DIR)/.venv/.stamp
+bench: $(VENV)/.stamp-bench $(foreach c,$(BASE_COMMITS),build/base-$(c)/.venv/.stamp)
 	$(BIN)/python -m compileall -q pumplink
 	@mkdir -p $(dir $(BENCH_OUT)) && rm -f $(BENCH_OUT)
 	@for b in benchmarks/bench_*.py; do echo "== $$b"; \
