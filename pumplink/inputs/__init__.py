@@ -19,11 +19,8 @@ def load(path: str | Path):
     ------
     SpecError : an unreadable file, invalid TOML, a batch file, or an invalid spec.
     """
-    from pumplink.inputs.piston import parse_piston
-    from pumplink.inputs.pump import spec_from_file_data
-    from pumplink.inputs.toml import is_piston_data, read_toml, spec_name
+    from pumplink.inputs.piston import PistonSpec
+    from pumplink.inputs.pump import PumpSpec
+    from pumplink.inputs.toml import read_spec
 
-    data = read_toml(path)
-    if is_piston_data(data):
-        return parse_piston(spec_name(data, path), source=str(path))
-    return spec_from_file_data(data, path)
+    return read_spec(path, PumpSpec, PistonSpec)

@@ -39,8 +39,15 @@ import numpy as np
 
 from pumplink.errors import SpecError, bad_character, shown
 from pumplink.inputs.piston import PistonSpec, parse_piston
-from pumplink.inputs.pump import PumpSpec, parse_spec, spec_from_file_data, spec_to_dict
-from pumplink.inputs.toml import MAX_NAME_CHARS, is_piston_data, read_toml, spec_name
+from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict
+from pumplink.inputs.toml import (
+    MAX_NAME_CHARS,
+    is_piston_data,
+    read_spec,
+    read_toml,
+    spec_name,
+    validate_spec,
+)
 
 #: Checks ``--fail-on`` can select (the default selects all three, as ``pumplink force`` does).
 #: ``peak`` is the verdict's peak: the flywheel's least peak force where the variant gives
@@ -358,10 +365,7 @@ def parse_batch(data: Any, source: str, folder: Path | None = None, stem: str | 
 
 def load_any_spec(path: str | Path) -> PumpSpec | PistonSpec:
     """A rope-pump or piston-pump spec file (decided by its ``mechanism`` key)."""
-    data = read_toml(path)
-    if is_piston_data(data):
-        return parse_piston(spec_name(data, path), source=str(path))
-    return spec_from_file_data(data, path)
+    return read_spec(path, PumpSpec, PistonSpec)
 
 
 def spec_batch(spec: PumpSpec | PistonSpec, source: str) -> Batch:
@@ -386,9 +390,7 @@ def load_batch(path: str | Path) -> Batch:
     data = read_toml(path, "a TOML spec or batch")
     if is_batch_mapping(data):
         return parse_batch(data, str(path), path.parent, path.stem)
-    if is_piston_data(data):
-        return spec_batch(parse_piston(spec_name(data, path), source=str(path)), str(path))
-    return spec_batch(spec_from_file_data(data, path), str(path))
+    return spec_batch(validate_spec(spec_name(data, path), str(path), PumpSpec, PistonSpec), str(path))
 
 
 def load_inputs(paths: Sequence[str | Path]) -> list[Batch]:

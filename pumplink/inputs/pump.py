@@ -19,8 +19,7 @@ from pumplink.constants import (
     DEFAULT_LITRES_PER_PERSON_DAY,
     DEFAULT_SPEED_FLUCTUATION,
 )
-from pumplink.errors import SpecError
-from pumplink.inputs.toml import MAX_NAME_CHARS, Section, optional, read_toml, spec_name, validate
+from pumplink.inputs.toml import MAX_NAME_CHARS, Section, optional, read_spec, validate_spec
 from pumplink.models import load as _load
 from pumplink.profiles import DEFAULT_PROFILE, PROFILES, OperatorProfile, operator_limits
 
@@ -512,17 +511,7 @@ def parse_spec(data: Any, source: str = "spec") -> PumpSpec:
     SpecError
         One sentence per problem (the first in the message, the count of the others after it).
     """
-    if not isinstance(data, dict) or not data:
-        raise SpecError(
-            f"{source}: empty spec; expected [wheel], [linkage], [load] "
-            "(write an example with `pumplink init`)"
-        )
-    if "mechanism" in data:
-        raise SpecError(
-            f"{source}: a piston-pump spec (mechanism = {data['mechanism']!r}) runs through "
-            "`pumplink force` and `pumplink batch` only (docs/piston-pump.md)"
-        )
-    return validate(PumpSpec, data, source)
+    return validate_spec(data, source, PumpSpec)
 
 
 def spec_values(spec) -> dict[str, Any]:
@@ -537,26 +526,16 @@ def spec_values(spec) -> dict[str, Any]:
     return out
 
 
-def spec_from_file_data(data: Any, path: str | Path) -> PumpSpec:
-    """Validate the mapping read from ``path``; the name defaults to the file stem."""
-    path = Path(path)
-    if isinstance(data, dict) and ("vary" in data or "base" in data):
-        raise SpecError(
-            f"{path}: this is a batch file (it has "
-            f"{'vary' if 'vary' in data else 'base'}); run it with `pumplink batch {path}`"
-        )
-    return parse_spec(spec_name(data, path), source=str(path))
-
-
 def load_spec(path: str | Path) -> PumpSpec:
-    """Read and validate a TOML spec file; the name defaults to the file stem.
+    """Read and validate a rope pump's TOML spec file (:func:`pumplink.inputs.toml.read_spec`);
+    the name defaults to the file stem.
 
     Raises
     ------
     SpecError
-        Unreadable file, invalid TOML, or an invalid spec.
+        Unreadable file, invalid TOML, a batch file, a piston pump, or an invalid spec.
     """
-    return spec_from_file_data(read_toml(path), path)
+    return read_spec(path, PumpSpec)
 
 
 def spec_to_dict(spec: PumpSpec) -> dict[str, Any]:

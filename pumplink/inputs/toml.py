@@ -393,6 +393,41 @@ def is_piston_data(data: Any) -> bool:
     return isinstance(data, dict) and "mechanism" in data
 
 
+#: What a rope-pump spec's file must hold, said when it is empty.
+EMPTY_SPEC = "empty spec; expected [wheel], [linkage], [load] (write an example with `pumplink init`)"
+
+
+def validate_spec(data: Any, source: str, pump: type[Section], piston: type[Section] | None = None):
+    """A spec mapping validated once as the pump it describes: a piston pump (``piston``) where it
+    names a mechanism (:func:`is_piston_data`) and ``piston`` is given, else a rope pump
+    (``pump``); :class:`~pumplink.errors.SpecError` for an empty mapping, a piston pump where only
+    rope pumps are read, or the first problem :func:`validate` finds."""
+    if piston is not None and is_piston_data(data):
+        return validate(piston, data, source)
+    if not isinstance(data, dict) or not data:
+        raise SpecError(f"{source}: {EMPTY_SPEC}")
+    if "mechanism" in data:
+        raise SpecError(
+            f"{source}: a piston-pump spec (mechanism = {data['mechanism']!r}) runs through "
+            "`pumplink force` and `pumplink batch` only (docs/piston-pump.md)"
+        )
+    return validate(pump, data, source)
+
+
+def read_spec(path: str | Path, pump: type[Section], piston: type[Section] | None = None):
+    """Read a spec file once and validate it (:func:`validate_spec`): the one loader of pump
+    specs.  The name defaults to the file's stem (:func:`spec_name`); a batch file is named as
+    such, with the command that runs it."""
+    data = spec_name(read_toml(path), path)
+    piston_pump = piston is not None and is_piston_data(data)
+    if isinstance(data, dict) and ("vary" in data or "base" in data) and not piston_pump:
+        raise SpecError(
+            f"{path}: this is a batch file (it has {'vary' if 'vary' in data else 'base'}); run it with "
+            f"`pumplink batch {path}`"
+        )
+    return validate_spec(data, str(path), pump, piston)
+
+
 def batch_base(data: dict, path: Path) -> Any:
     """The mapping a batch file's ``base`` names (read from its TOML file), else ``base`` as given."""
     base = data.get("base")
