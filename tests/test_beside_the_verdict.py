@@ -114,7 +114,7 @@ def _check_explain(st, profile: str | None) -> None:
 @pytest.mark.parametrize(("path", "profile"), CASES)
 def test_figures_beside_the_verdict_agree_with_it(path, profile):
     spec = with_profile(path, profile)
-    st = study(spec, keep_samples=False, samples=0, explain=True)
+    st = study(force_analysis(spec, keep_samples=False, samples=0), explain=True)
     if not st.result.design.feasible:
         return
     _check_explain(st, profile)
@@ -131,7 +131,7 @@ def test_advice_is_judged_at_the_verdicts_speed_and_model(speed, model):
     what ``force`` says of the changed spec at that speed and model (it quoted the spec's own
     speed and the least model that is enough)."""
     spec = load_spec(WELL)
-    st = study(spec, speed, keep_samples=False, samples=0, model=model)
+    st = study(force_analysis(spec, speed, keep_samples=False, samples=0, model=model))
     assert not st.result.passed and st.advice
     _check_advice(spec, st)
     assert st.cadence is not None and not st.cadence.bands  # no speed passes: the line says so

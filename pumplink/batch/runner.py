@@ -32,7 +32,6 @@ from pumplink.evaluate import (
     pump_designs,
 )
 from pumplink.inputs.batch import CRANK_SLIDER, FOUR_BAR, Batch, axis_indices
-from pumplink.inputs.pump import spec_values
 from pumplink.malloc import tune_malloc
 from pumplink.mechanisms import crank_slider as cs
 from pumplink.mechanisms.fourbar import infeasibility_reason
@@ -221,7 +220,7 @@ def batch_values(batch: Batch, cols: dict[str, np.ndarray], n: int | None = None
             return np.full(n, float(v))
         return v
 
-    return {**{k: per_variant(v) for k, v in spec_values(batch.spec).items()}, **cols}
+    return {**{k: per_variant(v) for k, v in batch.spec.values.items()}, **cols}
 
 
 def evaluate_chunk(

@@ -98,6 +98,7 @@ def force(
 
     from pumplink.output.force import render_study
     from pumplink.studies.design import study
+    from pumplink.studies.force import force_analysis
 
     if at and any(not math.isfinite(a) for a in at):
         raise SpecError(
@@ -129,8 +130,9 @@ def force(
             advance(k - done[0])
             done[0] = k
 
-        st = study(s, speed, samples, at_deg=at or None, keep_samples=not summary, progress=tick,
-                   model=model_key(model), explain=explain, verify=verify)  # fmt: skip
+        r = force_analysis(s, speed, samples, at_deg=at or None, keep_samples=not summary, progress=tick,
+                           model=model_key(model))  # fmt: skip
+    st = study(r, explain=explain, verify=verify)  # what --explain and --verify add, after the sweep
     render_study(st, fmt.value, summary=summary, strict=strict)
     result = st.result
     if plot is not None and result.design.feasible:

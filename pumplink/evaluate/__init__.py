@@ -24,9 +24,6 @@ Pure functions on floats and numpy arrays; SI units, radians.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
-
-from pumplink.evaluate import stages
 from pumplink.evaluate.designs import (
     INERTIA_KEYS,
     PART_KEYS,
@@ -36,9 +33,9 @@ from pumplink.evaluate.designs import (
     piston_designs,
     pump_designs,
 )
-from pumplink.evaluate.piston import evaluate_piston
 from pumplink.evaluate.results import Evaluation, PistonEvaluation
 from pumplink.evaluate.service import Service, pin_life
+from pumplink.evaluate.stages import JUDGED, REPORTED, evaluate
 from pumplink.evaluate.water import Water
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC
 from pumplink.models.choice import EnergyModel
@@ -60,51 +57,6 @@ from pumplink.verdict import (
 
 #: The words of each model, by index into :data:`ORDER` (reports, the model column).
 MODEL_LABELS = tuple(MODELS[k].label for k in ORDER)
-#: What a search needs: the checks and the verdict (with the water, which it maximises).
-JUDGED = ("verdict", "water")
-#: What a report shows besides: the quasi-static peak of every design and the flywheel's slowest
-#: passing speed.
-REPORTED = (*JUDGED, "dead_band_peak", "passing_speed")
-
-
-def evaluate(
-    designs: PumpDesigns | PistonDesigns,
-    want: Iterable[str] = REPORTED,
-    *,
-    model: str | None = None,
-    samples: int = 0,
-    progress: Callable[[float], None] | None = None,
-    screen_parts: bool = False,
-    fitted: bool = False,
-) -> Evaluation | PistonEvaluation:
-    """Evaluate designs: the stages ``want`` names (:data:`pumplink.evaluate.stages.STAGES`) and
-    every stage they need.
-
-    Parameters
-    ----------
-    designs : rope pumps (:class:`PumpDesigns`) or piston pumps (:class:`PistonDesigns`, which are
-        judged whole whenever ``want`` holds "verdict").
-    want : stage names; :data:`JUDGED` for the verdict, :data:`REPORTED` (default) for what a report
-        shows; add "effort" for the operator's least peak effort and "sampled_peak" for a sweep.
-    model : a model key that decides every design giving the wheel's inertia (``--model``); default
-        the least model that is enough, per design (docs/models.md §3).
-    samples : crank samples per revolution of the "sampled_peak" stage; ``progress`` is given the
-        fraction of that sweep done.
-    screen_parts : judge the spec's ``[parts]`` only on designs no other check fails (a search,
-        which drops failing designs anyway; the part checks are the costly ones): the others' part
-        values are NaN, which fails, as they do already.
-    fitted : judge the designs as fitted with the ratchet their water column needs: the kick-back
-        and the ratchet's checks are left out (a fitting answers them, not the linkage: the
-        searches, the speeds that pass and the builds of a tolerance study).
-    """
-    want = tuple(want)
-    if isinstance(designs, PistonDesigns):
-        return evaluate_piston(designs, judge="verdict" in want)
-    r = stages.Run(designs, model=model, samples=samples, progress=progress, screen_parts=screen_parts,
-                   fitted=fitted)  # fmt: skip
-    return Evaluation(designs=designs, **stages.run(r, want))
-
-
 __all__ = [
     "DYNAMICS",
     "FAIL",

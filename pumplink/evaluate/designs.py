@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, fields
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -131,6 +132,12 @@ class PumpDesigns:
     wheel_mass: Any = np.nan
     parts: Any = None
 
+    @cached_property
+    def columns(self) -> tuple[int, dict[str, np.ndarray]]:
+        """The number of designs and their numeric fields as 1-D float arrays of that length
+        (:func:`design_columns`), worked out once."""
+        return design_columns(self)
+
 
 def _or(value, default):
     return default if value is None else value
@@ -143,7 +150,7 @@ def pump_designs(values: Mapping[str, Any], speed=None) -> PumpDesigns:
     ----------
     values : a spec key's value by its dotted name (``values["linkage.swing"]``) in spec units
         (degrees, deg/s): a float, an array over designs, or None (or absent) where the key is not
-        given (:func:`pumplink.inputs.pump.spec_values`).
+        given (the spec's ``values``, :func:`pumplink.inputs.pump.spec_values`).
     speed : mean wheel speed [deg/s] instead of ``operator.speed`` (a float or an array).
     """
     value = values.get
@@ -318,6 +325,12 @@ class PistonDesigns:
     hours_per_day: Any = DEFAULT_DAILY_PUMPING_HOURS
     litres_per_person_day: Any = DEFAULT_LITRES_PER_PERSON_DAY
 
+    @cached_property
+    def columns(self) -> tuple[int, dict[str, np.ndarray]]:
+        """The number of designs and their numeric fields as 1-D float arrays of that length
+        (:func:`design_columns`), worked out once."""
+        return design_columns(self)
+
 
 def piston_designs(values: Mapping[str, Any], speed=None) -> PistonDesigns:
     """The columns of piston pumps from their spec values (``values`` as in :func:`pump_designs`)."""
@@ -349,7 +362,7 @@ def piston_designs(values: Mapping[str, Any], speed=None) -> PistonDesigns:
     )
 
 
-def columns(designs) -> tuple[int, dict[str, np.ndarray]]:
+def design_columns(designs) -> tuple[int, dict[str, np.ndarray]]:
     """The designs' numeric fields as 1-D float arrays of one length (the number of designs).
 
     The number of designs is that of every input that can vary, the axle height and the parts'

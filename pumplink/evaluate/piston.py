@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from pumplink.evaluate.designs import PistonDesigns, columns
+from pumplink.evaluate.designs import PistonDesigns
 from pumplink.evaluate.results import PistonEvaluation
 from pumplink.evaluate.water import water
 from pumplink.mechanisms import crank_slider as cs
@@ -23,7 +23,7 @@ def evaluate_piston(designs: PistonDesigns, judge: bool = True) -> PistonEvaluat
     from pumplink.models import flywheel as _fw
     from pumplink.models import piston as _pm
 
-    n, c = columns(designs)
+    n, c = designs.columns
     r, rod, e, handle, load = c["crank"], c["rod"], c["offset"], c["handle"], c["load_force"]
     feasible = np.asarray(cs.turns_fully(r, rod, e), bool)
     out = {k: np.full(n, np.nan) for k in ("stroke", "ratio", "pressure", "mean", "peak", "angle", "least")}

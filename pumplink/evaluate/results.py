@@ -46,7 +46,7 @@ class Evaluation:
         wheel's top speed [m/s];  link_energy_share : the flywheel's neglected link energy / its
         band [%] (0 where the flywheel does not decide; None where it decides nowhere);
         cadence : wheel turns a minute [1/min];  rope_speed : ω̄ r_w [m/s] [motion];
-        rocker_rate from [rate].
+        rocker_rate from [geometry].
     water : :class:`pumplink.evaluate.water.Water` [water].
     pin_pressure [MPa], handle_fatigue, crank_fatigue [-] : the part checks' values (NaN where not
         judged) [parts].

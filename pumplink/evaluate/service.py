@@ -15,8 +15,6 @@ import numpy as np
 
 from pumplink.evaluate.water import one_design
 from pumplink.mechanisms.angles import TWO_PI
-from pumplink.models import Masses
-from pumplink.models import kickback as _kickback
 from pumplink.models import release as _release
 from pumplink.models import wear as _wear
 
@@ -68,62 +66,46 @@ class Service:
         return Service(**one_design(self, i, np.shape(self.kick_back)))
 
 
-def service(columns: dict, n: int, synthesis, feasible, masses, flow, pin_pressure, pin_diameter,
-            rocker_rate=None, kick: bool = True) -> Service:  # fmt: skip
-    """:class:`Service` of ``n`` designs from their ``columns``, the synthesis and its
-    ``feasible`` designs, the links' ``masses``, the ``flow`` [m^3/s] and the part checks' largest
-    ``pin_pressure`` [MPa] on pins of ``pin_diameter`` [m] (None without ``[parts]``);  ``kick``
-    False: the kick-back is not computed (NaN; a fitted evaluation does not judge it)."""
-    c = columns
-    nan = np.full(n, np.nan)
-    head, pipe, rw = c["head"], c["pipe_diameter"], c["wheel_radius"]
-    required = _release.column_torque(head, pipe, rw)
-    declared = c["ratchet_torque"]
-    holds = declared >= required
-    teeth = c["ratchet_teeth"]
+#: The design columns :func:`service` reads (the handle's length is not among them: the
+#: kick-back, which needs the linkage, comes in worked out, :func:`pumplink.models.kickback.kick_back`).
+SERVICE_KEYS = ("head", "pipe_diameter", "wheel_radius", "speed", "ratchet_torque", "ratchet_teeth",
+                "hours_per_day", "people", "litres_per_person_day", "wear_rate", "wear_surfaces",
+                "wear_allowance", "volumetric_efficiency")  # fmt: skip
+
+
+def pawl_windows(head, pipe_diameter, wheel_radius, ratchet_torque, ratchet_teeth) -> tuple:
+    """The water column's torque a back-stop must hold, ρ g H (π d²/4) r_w [N m], and the pawl's
+    window 2π / teeth [rad] of a ``[ratchet]`` whose torque [N m] holds it (0 with no play; NaN
+    where none holds it) (docs/workshop.md §3)."""
+    required = _release.column_torque(head, pipe_diameter, wheel_radius)
+    holds = ratchet_torque >= required
     with np.errstate(divide="ignore"):
-        pawl = np.where(holds, np.where(teeth > 0, TWO_PI / teeth, 0.0), np.nan)
-    travel, angle, run, end, grid = nan.copy(), nan.copy(), nan.copy(), nan.copy(), np.zeros(n, bool)
-    free = nan.copy()
-    ok = np.nonzero(np.asarray(feasible, bool) & np.isfinite(required) & kick)[0]
+        return required, np.where(holds, np.where(ratchet_teeth > 0, TWO_PI / ratchet_teeth, 0.0), np.nan)
 
-    def kick_back(i, stop):
-        links = Masses(
-            *(np.broadcast_to(np.asarray(m, float), (n,))[i] for m in (masses.coupler, masses.handle))
-        )
-        return _kickback.kick_back(
-            synthesis.linkage.take(i), synthesis.dead_centre_extended[i], synthesis.dead_centre_folded[i],
-            links, required[i], head[i], rw[i], c["inertia"][i], _release.column_inertia(head, pipe, rw)[i],
-            stop, rocker_rate=None if rocker_rate is None else np.asarray(rocker_rate, float)[i],
-        )  # fmt: skip
 
-    if ok.size:
-        kb = kick_back(ok, pawl[ok])
-        travel[ok], angle[ok], run[ok], end[ok], grid[ok] = (
-            kb.travel,
-            kb.stop_angle,
-            kb.run,
-            kb.end,
-            kb.marched_all,
-        )
-        free[ok] = travel[ok]
-        # without the ratchet that holds: how far it would go, for one design's words (force, the
-        # report); over many designs (a batch, which has no column for it) not computed: NaN
-        held = ok[np.isfinite(pawl[ok])]
-        free[held] = kick_back(held, None).travel if n == 1 and held.size else np.nan
+def service(columns: dict, n: int, kick, flow, pin_pressure, pin_diameter) -> Service:
+    """:class:`Service` of ``n`` designs from their ``columns`` (:data:`SERVICE_KEYS`), the
+    ``kick`` of :func:`pumplink.models.kickback.kick_back` over them (travel, stop angle, run,
+    end, grid and the travel without a back-stop; NaN where not worked out), the ``flow``
+    [m^3/s] and the part checks' largest ``pin_pressure`` [MPa] on pins of ``pin_diameter`` [m]
+    (None without ``[parts]``)."""
+    c = columns
+    required = _release.column_torque(c["head"], c["pipe_diameter"], c["wheel_radius"])
+    declared, teeth = c["ratchet_torque"], c["ratchet_teeth"]
+    travel, angle, run, end, grid, free = kick
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # a speed near 0: inf, NaN
         per_turn = flow * TWO_PI / c["speed"]  # the water a crank turn delivers [m^3]
         day = _wear.turns_per_day(
             c["speed"], c["hours_per_day"], c["people"], c["litres_per_person_day"], per_turn
         )
         year = day * _wear.DAYS_PER_YEAR
-        wear = life = nan
+        wear = life = np.nan
         if pin_pressure is not None:
             per = _wear.wear_per_turn(np.asarray(pin_pressure, float) * 1e6, pin_diameter, c["wear_rate"],
                                       c["wear_surfaces"])  # fmt: skip
             wear = per * _wear.ENDURANCE_TURNS
             life = c["wear_allowance"] / per
-        fill = _wear.column_fill_turns(head, rw, c["volumetric_efficiency"])
+        fill = _wear.column_fill_turns(c["head"], c["wheel_radius"], c["volumetric_efficiency"])
         return Service(
             kick_back=travel,
             kick_back_stop_angle=angle,

@@ -8,8 +8,8 @@ that the asked-for ones need, in the order of :data:`STAGES` (learn from pvlib's
 ========================  ========================================  ==============================
 stage                     fills                                     source
 ========================  ========================================  ==============================
-geometry                  synthesis, feasible, stroke, heights      Eq. (1)-(2) of the pump paper
-rate                      rocker_rate (max|dθ4/dθ2|)                docs/models.md §4
+geometry                  synthesis, feasible, stroke, heights,     Eq. (1)-(2) of the pump paper,
+                          rocker_rate (max|dθ4/dθ2|)                docs/models.md §4
 mean_force                mean_force                                docs/physics.md §4
 model                     model_index, energy, least_peak_force     docs/models.md §2-3
 dead_band_peak            the quasi-static peak of every design     docs/models.md §1
@@ -32,29 +32,25 @@ Which model can solve a design is read from the registry's requirements
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from pumplink.evaluate import parts as _parts
-from pumplink.evaluate.designs import PumpDesigns, columns
-from pumplink.evaluate.service import service as _service
+from pumplink.evaluate import service as _service
+from pumplink.evaluate.designs import PistonDesigns, PumpDesigns
+from pumplink.evaluate.piston import evaluate_piston
+from pumplink.evaluate.results import Evaluation, PistonEvaluation
+from pumplink.evaluate.water import WATER_KEYS
 from pumplink.evaluate.water import water as _water
-from pumplink.mechanisms.fourbar import (
-    FourBar,
-    analyse,
-    built_grip,
-    grip_heights,
-    grip_stroke,
-    peak_rocker_rate,
-    per_design,
-    synthesize,
-)
+from pumplink.mechanisms.fourbar import pump_geometry
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC, Conditions, Masses
+from pumplink.models import kickback as _kickback
 from pumplink.models import load as _load
 from pumplink.models import quasi_static as _qs
+from pumplink.models import release as _release
 from pumplink.models import water as _water_kernels
 from pumplink.models.choice import energy_model
 from pumplink.verdict import FAIL, PART_CHECKS, assess
@@ -84,7 +80,7 @@ class Run:
     filled: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        self.n, self.c = columns(self.designs)
+        self.n, self.c = self.designs.columns
 
     def __getitem__(self, name: str):
         return self.filled[name]
@@ -108,25 +104,14 @@ class Stage:
 # ----------------------------------------------------------------------------- the stages
 def geometry(r: Run) -> dict[str, Any]:
     """The dead-centre synthesis (Eq. 1-2 of the pump paper), or the linkage as built (a workshop's
-    holes: analysed, not re-synthesised); the grip's stroke and heights (docs/physics.md §1)."""
-    c, built, axle = r.c, r.designs.linkage, r.designs.axle_height
-    if built is None:
-        syn = synthesize(c["L1"], c["D1"], c["b"], c["rocker"], c["swing"], c["handle"])
-        handle, rocker = c["handle"], c["rocker"]
-        stroke = grip_stroke(handle, c["swing"])
-        heights = None if axle is None else grip_heights(axle, c["D1"], handle, c["swing"])
-    else:
-        _, params = per_design(built, c["wheel_torque"])
-        built = FourBar(*params[:7])
-        syn = analyse(built)
-        handle, rocker = built.handle, built.rocker
-        ends = (syn.rocker_angle_extended, syn.rocker_angle_folded)
-        stroke = built_grip(0.0, built.pivot_y, handle, *ends)[0]
-        heights = None if axle is None else built_grip(axle, built.pivot_y, handle, *ends)[1:]
-    feasible = np.asarray(syn.feasible, bool)
-    return dict(
-        synthesis=syn, feasible=feasible, handle=handle, rocker=rocker, stroke=stroke, grip_height=heights
-    )
+    holes: analysed, not re-synthesised); the grip's stroke and heights (docs/physics.md §1); the
+    rocker's largest rate max|dθ4/dθ2|: the grip's peak speed per unit wheel speed and handle
+    (docs/models.md §4), and the arms' largest kinetic energy (§3).  One kernel call
+    (:func:`pumplink.mechanisms.fourbar.pump_geometry`)."""
+    c = r.c
+    g = pump_geometry(c["L1"], c["D1"], c["b"], c["rocker"], c["swing"], c["handle"], r.designs.axle_height,
+                      built=r.designs.linkage, designs=r.n)  # fmt: skip
+    return dict(g._asdict(), feasible=np.asarray(g.synthesis.feasible, bool))
 
 
 def mean_force(r: Run) -> dict[str, Any]:
@@ -145,16 +130,6 @@ def _solvable(r: Run, key: str) -> np.ndarray:
         if need in r.c:
             given &= ~np.isnan(r.c[need])
     return given
-
-
-def rate(r: Run) -> dict[str, Any]:
-    """The rocker's largest rate max|dθ4/dθ2| of each feasible design: the grip's peak speed per
-    unit wheel speed and handle (docs/models.md §4), and the arms' largest kinetic energy (§3)."""
-    out = np.full(r.n, np.nan)
-    ok = r.rows(r["feasible"])
-    if ok.size:
-        out[ok] = _peak_rocker_rate(r["synthesis"].linkage.take(ok))
-    return dict(rocker_rate=out)
 
 
 def model(r: Run) -> dict[str, Any]:
@@ -194,7 +169,7 @@ def _dead_band_peaks(r: Run, where) -> dict[str, Any]:
     i = r.rows(where)
     if i.size:
         peak[i], angle[i] = _qs.dead_band_peak_force(
-            syn.linkage.take(i), syn.dead_centre_extended[i], syn.dead_centre_folded[i], c["dead_band"][i],
+            syn.linkage[i], syn.dead_centre_extended[i], syn.dead_centre_folded[i], c["dead_band"][i],
             c["wheel_torque"][i],
         )  # fmt: skip
     return dict(dead_band_peak_force=peak, dead_band_peak_angle=angle)
@@ -219,7 +194,7 @@ def sampled_peak(r: Run) -> dict[str, Any]:
     for s0 in range(0, ok.size if r.samples else 0, SUB_DESIGNS):
         s = ok[s0 : s0 + SUB_DESIGNS]
         out[s] = _qs.sampled_peak(
-            syn.linkage.take(s), r.samples, c["wheel_torque"][s], syn.dead_centre_extended[s],
+            syn.linkage[s], r.samples, c["wheel_torque"][s], syn.dead_centre_extended[s],
             syn.dead_centre_folded[s], c["dead_band"][s], progress=r.progress,
         )  # fmt: skip
     return dict(sampled_peak=out)
@@ -234,7 +209,7 @@ def passing_speed(r: Run) -> dict[str, Any]:
 
         syn, c = r["synthesis"], r.c
         out[i] = _fw.min_passing_speed(
-            syn.linkage.take(i), syn.dead_centre_extended[i], syn.dead_centre_folded[i],
+            syn.linkage[i], syn.dead_centre_extended[i], syn.dead_centre_folded[i],
             c["wheel_torque"][i], c["force_limit"][i], c["inertia"][i], c["speed_fluctuation"][i],
         )  # fmt: skip
     return dict(min_passing_speed=out)
@@ -250,7 +225,7 @@ def effort(r: Run) -> dict[str, Any]:
         arms = Masses(*(np.broadcast_to(v, (r.n,))[i] for v in (m.coupler, m.handle, c["arm_mass"])))
         cond = Conditions(c["speed"][i], c["dead_band"][i], c["inertia"][i], c["speed_fluctuation"][i], arms)
         out[i] = MODELS[DYNAMICS].peak_force(
-            syn.linkage.take(i), syn.dead_centre_extended[i], syn.dead_centre_folded[i],
+            syn.linkage[i], syn.dead_centre_extended[i], syn.dead_centre_folded[i],
             c["wheel_torque"][i], cond,
         )  # fmt: skip
     return dict(effort_peak_force=out)
@@ -279,7 +254,8 @@ def water(r: Run) -> dict[str, Any]:
     c = r.c
     flow = _water_kernels.rope_pump_flow(c["pipe_diameter"], c["speed"], c["wheel_radius"],
                                          c["volumetric_efficiency"])  # fmt: skip
-    return dict(water=_water(flow, c, c["wheel_torque"] * c["speed"]))
+    read = {k: c[k] for k in WATER_KEYS if k in c}  # what the water depends on, and no more
+    return dict(water=_water(flow, read, c["wheel_torque"] * c["speed"]))
 
 
 def parts(r: Run) -> dict[str, Any]:
@@ -300,12 +276,50 @@ def service(r: Run) -> dict[str, Any]:
     """Safe to let go (the kick-back, the ratchet's torque), the pins' life and the field's checks
     (docs/workshop.md §3, §5; docs/water.md §5).  The pins' wear where the parts stage has run
     before it (the verdict's evaluation; it runs first in :data:`STAGES`), NaN otherwise."""
-    parts = r.designs.parts
-    return dict(service=_service(
-        r.c, r.n, r["synthesis"], r["feasible"], r["masses"], r["water"].flow, r.filled.get("pin_pressure"),
-        None if parts is None else np.broadcast_to(np.asarray(parts.pin_diameter, float), (r.n,)),
-        r["rocker_rate"], not r.fitted,
+    parts, c = r.designs.parts, r.c
+    pins = None if parts is None else np.broadcast_to(np.asarray(parts.pin_diameter, float), (r.n,))
+    return dict(service=_service.service(
+        {k: c[k] for k in _service.SERVICE_KEYS}, r.n, _kick_back(r), r["water"].flow,
+        r.filled.get("pin_pressure"), pins,
     ))  # fmt: skip
+
+
+def _kick_back(r: Run) -> tuple:
+    """The kick-back of each design whose head gives a water column (not ``fitted``;
+    :func:`pumplink.models.kickback.kick_back`, docs/workshop.md §3): the grip's travel back, the
+    stop angle, the run, how it ends and whether a grid decided, with the ``[ratchet]`` that
+    holds; and, for one design, the travel without it.  One call: the designs a ratchet holds are
+    asked again without it beside the others."""
+    c, n, syn, m = r.c, r.n, r["synthesis"], r["masses"]
+    required, pawl = _service.pawl_windows(
+        c["head"], c["pipe_diameter"], c["wheel_radius"], c["ratchet_torque"], c["ratchet_teeth"]
+    )
+    travel, angle, run, end = (np.full(n, np.nan) for _ in range(4))
+    grid = np.zeros(n, bool)
+    ok = r.rows(np.asarray(r["feasible"], bool) & np.isfinite(required) & (not r.fitted))
+    held = ok[np.isfinite(pawl[ok])] if n == 1 else ok[:0]  # without it: one design's words only
+    free = np.full(n, np.nan)
+    if ok.size:
+        rows = np.concatenate([ok, held])
+        stops = np.concatenate([pawl[ok], np.full(held.size, np.nan)])
+        masses = Masses(*(np.broadcast_to(np.asarray(v, float), (n,))[rows] for v in (m.coupler, m.handle)))
+        column = _release.column_inertia(c["head"], c["pipe_diameter"], c["wheel_radius"])
+        kb = _kickback.kick_back(
+            syn.linkage[rows], syn.dead_centre_extended[rows], syn.dead_centre_folded[rows], masses,
+            required[rows], c["head"][rows], c["wheel_radius"][rows], c["inertia"][rows], column[rows], stops,
+            rocker_rate=np.asarray(r["rocker_rate"], float)[rows],
+        )  # fmt: skip
+        k = ok.size
+        travel[ok], angle[ok], run[ok], end[ok], grid[ok] = (
+            kb.travel[:k],
+            kb.stop_angle[:k],
+            kb.run[:k],
+            kb.end[:k],
+            kb.marched_all[:k],
+        )
+        free[ok] = travel[ok]
+        free[held] = kb.travel[k:]
+    return travel, angle, run, end, grid, free
 
 
 def _service_checks(r: Run) -> dict[str, Any]:
@@ -349,10 +363,9 @@ def verdict(r: Run) -> dict[str, Any]:
 
 #: The stages in the order they run: name, the stages it needs, the fields it fills, its function.
 STAGES = (
-    Stage("geometry", "", "synthesis feasible handle rocker stroke grip_height", geometry),
+    Stage("geometry", "", "synthesis feasible handle rocker stroke grip_height rocker_rate", geometry),
     Stage("mean_force", "geometry", "mean_force", mean_force),
-    Stage("rate", "geometry", "rocker_rate", rate),
-    Stage("model", "rate", "model_index energy least_peak_force masses", model),
+    Stage("model", "geometry", "model_index energy least_peak_force masses", model),
     Stage("dead_band_peak", "geometry", "dead_band_peak_force dead_band_peak_angle", dead_band_peak),
     Stage("peak", "model", "peak_force", peak),
     Stage("sampled_peak", "geometry", "sampled_peak", sampled_peak),
@@ -389,26 +402,49 @@ def run(r: Run, want) -> dict[str, Any]:
     return r.filled
 
 
-#: Odd 64-bit multipliers that hash a design's seven four-bar parameters (their bits) to one word.
-_HASH = np.array([0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9, 0xD6E8FEB86659FD93,
-                  0xFF51AFD7ED558CCD, 0xC4CEB9FE1A85EC53, 0x94D049BB133111EB], dtype=np.uint64)  # fmt: skip
+#: What a search needs: the checks and the verdict (with the water, which it maximises).
+JUDGED = ("verdict", "water")
+#: What a report shows besides: the quasi-static peak of every design and the flywheel's slowest
+#: passing speed.
+REPORTED = (*JUDGED, "dead_band_peak", "passing_speed")
 
 
-def _peak_rocker_rate(lk: FourBar) -> np.ndarray:
-    """:func:`pumplink.mechanisms.fourbar.peak_rocker_rate` of designs (1-D arrays), solved once
-    per distinct linkage: it depends on the geometry alone, and a grid that varies the load or
-    the speed repeats each geometry many times (the same values, computed once).  Distinct
-    linkages are found by a hash of their parameters' bits, checked row by row."""
-    geom = np.ascontiguousarray(np.stack([np.asarray(v, float) for v in lk.parameters], axis=1))
-    if geom.shape[0] < 2:
-        return np.atleast_1d(peak_rocker_rate(lk))
-    with np.errstate(over="ignore"):
-        key = (geom.view(np.uint64) * _HASH).sum(axis=1, dtype=np.uint64)
-    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
-    inverse = inverse.ravel()
-    if first.size == geom.shape[0] or not np.array_equal(geom[first][inverse], geom):
-        return peak_rocker_rate(lk)  # all distinct, or a hash collision: every design on its own
-    return peak_rocker_rate(FourBar(*geom[first].T))[inverse]
+def evaluate(
+    designs: PumpDesigns | PistonDesigns,
+    want: Iterable[str] = REPORTED,
+    *,
+    model: str | None = None,
+    samples: int = 0,
+    progress: Callable[[float], None] | None = None,
+    screen_parts: bool = False,
+    fitted: bool = False,
+) -> Evaluation | PistonEvaluation:
+    """Evaluate designs: the stages ``want`` names (:data:`STAGES`) and
+    every stage they need.
+
+    Parameters
+    ----------
+    designs : rope pumps (:class:`PumpDesigns`) or piston pumps (:class:`PistonDesigns`, which are
+        judged whole whenever ``want`` holds "verdict").
+    want : stage names; :data:`JUDGED` for the verdict, :data:`REPORTED` (default) for what a report
+        shows; add "effort" for the operator's least peak effort and "sampled_peak" for a sweep.
+    model : a model key that decides every design giving the wheel's inertia (``--model``); default
+        the least model that is enough, per design (docs/models.md §3).
+    samples : crank samples per revolution of the "sampled_peak" stage; ``progress`` is given the
+        fraction of that sweep done.
+    screen_parts : judge the spec's ``[parts]`` only on designs no other check fails (a search,
+        which drops failing designs anyway; the part checks are the costly ones): the others' part
+        values are NaN, which fails, as they do already.
+    fitted : judge the designs as fitted with the ratchet their water column needs: the kick-back
+        and the ratchet's checks are left out (a fitting answers them, not the linkage: the
+        searches, the speeds that pass and the builds of a tolerance study).
+    """
+    want = tuple(want)
+    if isinstance(designs, PistonDesigns):
+        return evaluate_piston(designs, judge="verdict" in want)
+    r = Run(designs, model=model, samples=samples, progress=progress, screen_parts=screen_parts,
+                   fitted=fitted)  # fmt: skip
+    return Evaluation(designs=designs, **run(r, want))
 
 
-__all__ = ["QUASI_STATIC", "STAGES", "Run", "Stage", "plan", "run"]
+__all__ = ["JUDGED", "QUASI_STATIC", "REPORTED", "STAGES", "Run", "Stage", "evaluate", "plan", "run"]

@@ -72,6 +72,13 @@ class Water:
         return Water(**one_design(self, i, np.shape(self.flow), float))
 
 
+#: The design columns :func:`water` reads (a piston pump's lack the rope pump's own).
+WATER_KEYS = ("head", "speed", "pipe_diameter", "wheel_radius", "sustained_power", "filling_power",
+              "force_efficiency", "volumetric_efficiency", "model_force_efficiency",
+              "model_volumetric_efficiency", "losses", "piston_clearance", "piston_spacing", "hours_per_day",
+              "litres_per_person_day")  # fmt: skip
+
+
 def water(flow, columns: dict, operator_power) -> Water:
     """:class:`Water` from the flow [m³/s], the operator's power Mw ω̄ [W] and the design columns
     (head, the operator's sustained power, the pump's efficiencies, how the water is used)."""

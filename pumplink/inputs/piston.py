@@ -22,7 +22,7 @@ from typing import Any, Literal
 from pydantic import Field, model_validator
 
 from pumplink.constants import DEFAULT_SPEED_FLUCTUATION
-from pumplink.inputs.pump import HOUR_POWER, SUSTAINED_POWER, Use, limits_in_order
+from pumplink.inputs.pump import HOUR_POWER, SUSTAINED_POWER, Use, limits_in_order, spec_values
 from pumplink.inputs.toml import Section, optional, read_toml, spec_name, validate
 from pumplink.models import load as _load
 from pumplink.profiles import operator_limits
@@ -93,6 +93,11 @@ class PistonSpec(Section):
     operator: PistonOperator
     wheel: Flywheel | None = None
     use: Use = Use()
+
+    @property
+    def values(self) -> dict[str, Any]:
+        """The spec's values by dotted key (:func:`pumplink.inputs.pump.spec_values`)."""
+        return spec_values(self)
 
     @property
     def gives_inertia(self) -> bool:

@@ -454,6 +454,11 @@ class PumpSpec(Section):
         return self
 
     @property
+    def values(self) -> dict[str, Any]:
+        """The spec's values by dotted key (:func:`spec_values`): what the evaluation reads."""
+        return spec_values(self)
+
+    @property
     def parts_or_defaults(self) -> Parts:
         """The parts the workshop builds: the spec's ``[parts]``, or their defaults (the pins' diameter
         linkage.hole_diameter where the spec gives it), which the verdict does not judge

@@ -30,6 +30,7 @@ kernel of the hot path).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -75,9 +76,12 @@ class FourBar:
         """The seven parameters in field order (pivot_x, pivot_y, crank, coupler, rocker, handle, branch)."""
         return (self.pivot_x, self.pivot_y, self.crank, self.coupler, self.rocker, self.handle, self.branch)
 
-    def take(self, idx) -> FourBar:
-        """The designs ``idx`` of a four-bar held as arrays over designs."""
+    def __getitem__(self, idx) -> FourBar:
+        """The designs ``idx`` of a four-bar held as arrays over designs (``lk[i]``, indexed as
+        numpy indexes each parameter)."""
         return FourBar(*(np.asarray(v)[idx] for v in self.parameters))
+
+    take = __getitem__
 
 
 def per_design(lk: FourBar, *extra):
@@ -469,6 +473,77 @@ def built_grip(axle_height, pivot_y, handle, rocker_angle_extended, rocker_angle
     top = np.where((a <= 0.5 * np.pi) & (b >= 0.5 * np.pi), 1.0, np.maximum(np.sin(a), np.sin(b)))
     pivot = np.asarray(axle_height, float) + pivot_y
     return stroke, pivot + handle * ends, pivot + handle * top
+
+
+#: Odd 64-bit multipliers that hash a design's seven four-bar parameters (their bits) to one word.
+_HASH = np.array([0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9, 0xD6E8FEB86659FD93,
+                  0xFF51AFD7ED558CCD, 0xC4CEB9FE1A85EC53, 0x94D049BB133111EB], dtype=np.uint64)  # fmt: skip
+
+
+def distinct_peak_rocker_rate(lk: FourBar) -> np.ndarray:
+    """:func:`peak_rocker_rate` of designs (1-D arrays), solved once
+    per distinct linkage: it depends on the geometry alone, and a grid that varies the load or
+    the speed repeats each geometry many times (the same values, computed once).  Distinct
+    linkages are found by a hash of their parameters' bits, checked row by row."""
+    geom = np.ascontiguousarray(np.stack([np.asarray(v, float) for v in lk.parameters], axis=1))
+    if geom.shape[0] < 2:
+        return np.atleast_1d(peak_rocker_rate(lk))
+    with np.errstate(over="ignore"):
+        key = (geom.view(np.uint64) * _HASH).sum(axis=1, dtype=np.uint64)
+    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+    inverse = inverse.ravel()
+    if first.size == geom.shape[0] or not np.array_equal(geom[first][inverse], geom):
+        return peak_rocker_rate(lk)  # all distinct, or a hash collision: every design on its own
+    return peak_rocker_rate(FourBar(*geom[first].T))[inverse]
+
+
+class Geometry(NamedTuple):
+    """What the geometry of pump designs gives (:func:`pump_geometry`): the synthesis (or the
+    analysis of a built linkage), the handle H and rocker lengths [m], the grip's horizontal
+    stroke [m] and its lowest and highest heights above the ground (None without an axle
+    height) [m], and the rocker's largest rate max|dθ4/dθ2| of each feasible design [-] (NaN
+    elsewhere; docs/models.md §4)."""
+
+    synthesis: Synthesis
+    handle: np.ndarray | float
+    rocker: np.ndarray | float
+    stroke: np.ndarray | float
+    grip_height: tuple | None
+    rocker_rate: np.ndarray
+
+
+def pump_geometry(L1, D1, b, rocker, swing, handle, axle_height=None, built: FourBar | None = None,
+                  designs: int | None = None) -> Geometry:  # fmt: skip
+    """The geometry of pump designs: the dead-centre synthesis of the spec's L1, D1, b, rocker,
+    swing and handle (Eq. 1-2 of the pump paper, :func:`synthesize`) with the grip's stroke
+    S = 2 H sin(swing/2) and heights (docs/physics.md §1, §4); or, for a ``built`` linkage (a
+    workshop's holes), its analysis (:func:`analyse`: not re-synthesised), over ``designs``
+    designs, with the grip's stroke and heights between the rocker's extreme angles
+    (:func:`built_grip`); and the rocker's largest rate of each feasible design
+    (:func:`distinct_peak_rocker_rate`).  Arrays broadcast over designs; ``axle_height`` None: no
+    heights."""
+    if built is None:
+        syn = synthesize(L1, D1, b, rocker, swing, handle)
+        stroke = grip_stroke(handle, swing)
+        heights = None if axle_height is None else grip_heights(axle_height, D1, handle, swing)
+        return Geometry(syn, handle, rocker, stroke, heights, _rates(syn))
+    _, params = per_design(built, np.zeros(designs or 1))
+    built = FourBar(*params[:7])
+    syn = analyse(built)
+    ends = (syn.rocker_angle_extended, syn.rocker_angle_folded)
+    stroke = built_grip(0.0, built.pivot_y, built.handle, *ends)[0]
+    heights = None if axle_height is None else built_grip(axle_height, built.pivot_y, built.handle, *ends)[1:]
+    return Geometry(syn, built.handle, built.rocker, stroke, heights, _rates(syn))
+
+
+def _rates(syn: Synthesis) -> np.ndarray:
+    """:func:`distinct_peak_rocker_rate` of the feasible designs (NaN elsewhere), as 1-D arrays."""
+    feasible = np.atleast_1d(np.asarray(syn.feasible, bool))
+    out = np.full(feasible.shape, np.nan)
+    ok = np.nonzero(feasible)[0]
+    if ok.size:
+        out[ok] = distinct_peak_rocker_rate(FourBar(*(np.atleast_1d(v) for v in syn.linkage.parameters))[ok])
+    return out
 
 
 def infeasibility_reason(code, L1, D1, b, swing) -> str | None:

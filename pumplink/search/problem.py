@@ -53,7 +53,7 @@ from pumplink.evaluate import (
     excess,
     pump_designs,
 )
-from pumplink.inputs.pump import PumpSpec, spec_values
+from pumplink.inputs.pump import PumpSpec
 from pumplink.mechanisms.fourbar import CHANGE_POINT_MARGIN, grip_heights, grip_stroke, synthesize
 from pumplink.studies.tolerance import first_order_shares
 from pumplink.studies.tolerance_study import Robust
@@ -157,12 +157,12 @@ class Problem:
     @property
     def force_limit(self) -> float:
         """The operator's force limit [N] (the profile's, or the spec's)."""
-        return float(pump_designs(spec_values(self.spec)).force_limit)
+        return float(pump_designs(self.spec.values).force_limit)
 
     @property
     def inertia(self) -> float | None:
         """J about the wheel axle [kg m^2] (None: the spec gives no inertia)."""
-        return float(pump_designs(spec_values(self.spec)).inertia) if self.spec.gives_inertia else None
+        return float(pump_designs(self.spec.values).inertia) if self.spec.gives_inertia else None
 
     @property
     def model(self) -> str:
@@ -343,7 +343,7 @@ def make_problem(
         raise SpecError("--vary load.pipe_diameter needs load.head [m] in the spec (not load.rope_force)")
     if (
         spec.gives_inertia
-        and float(pump_designs(spec_values(spec)).inertia) == 0.0
+        and float(pump_designs(spec.values).inertia) == 0.0
         and objective == "peak"
         and model == FLYWHEEL
     ):
@@ -440,7 +440,7 @@ def designs(problem: Problem, x) -> PumpDesigns:
     """The evaluation's columns for x of shape (variables, designs): the varied linkage keys, the
     rest of the spec fixed."""
     p = _columns(problem, x)
-    values = spec_values(problem.spec)
+    values = problem.spec.values
     if "wheel.mass" in problem.names:
         values["wheel.inertia"] = None  # the wheel's mass is varied instead
     values.update({k if "." in k else f"linkage.{k}": v for k, v in p.items()})

@@ -42,7 +42,7 @@ from pumplink.evaluate import (
     pump_designs,
     rope_pump_flow,
 )
-from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
+from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict
 from pumplink.studies.tolerance_study import Robust, RobustCheck, robust_check, shortfall
 from pumplink.studies.workshop import ratchet_needed
 
@@ -163,7 +163,7 @@ def _values(problem: SizeProblem, pipe: float, x: np.ndarray) -> dict:
     varied keys, this pipe, the base spec elsewhere."""
     # the wheel's mass is varied instead of its inertia (unless the wheel is kept as it is)
     inertia = {} if "wheel" in problem.kept else {"wheel.inertia": None}
-    return {**spec_values(problem.spec), "load.pipe_diameter": pipe, **inertia,
+    return {**problem.spec.values, "load.pipe_diameter": pipe, **inertia,
             **dict(zip(problem.names, x))}  # fmt: skip
 
 
@@ -235,12 +235,12 @@ def size_pipe(problem: SizeProblem, pipe: float, seed: int = 0, maxiter: int = 3
         over = float(excess(ev.verdict, problem.allow_warnings, INFEASIBLE)[0])
         if problem.robust is None:
             return over, 0.0
-        return over, float(shortfall(pump_designs(spec_values(spec)), ev, problem.robust)[0])
+        return over, float(shortfall(pump_designs(spec.values), ev, problem.robust)[0])
 
     if float(violation(x[:, None])[0]) <= REPAIR_REACH:  # rounding or a hair from the limits
         x = _workshop(problem, x, violation, objective)
     spec = spec_of(problem, pipe, x)
-    ev = evaluate(pump_designs(spec_values(spec)), fitted=True)
+    ev = evaluate(pump_designs(spec.values), fitted=True)
     return Sized(pipe, spec, ev, float(ev.water.flow[0]), *misses(spec, ev)), count[0]
 
 
@@ -360,7 +360,7 @@ def _binding(problem: SizeProblem, best: Sized) -> tuple[str, ...]:
         slack[c.key] = gap / abs(float(lim))
         if abs(gap) <= BINDING_SHARE * abs(float(lim)):
             out.append(c.key)
-    values = spec_values(best.spec)
+    values = best.spec.values
     for k, (lo, hi) in problem.bounds.items():
         x = values.get(k)
         if x is not None and min(abs(x - lo), abs(hi - x)) <= 1e-3 * (hi - lo):
@@ -376,7 +376,7 @@ def discharge(spec: PumpSpec, heads, allow_warnings: bool = False, speeds=None):
     still passes without warnings (or failures, with ``allow_warnings``), on a grid of cadences,
     and the flow there [m³/s] (NaN, NaN where no cadence passes)."""
     speeds = np.arange(30.0, 721.0, 5.0) if speeds is None else np.asarray(speeds, float)
-    base = spec_values(spec)
+    base = spec.values
     out = []
     for h in heads:
         values = {**base, "load.head": float(h), "operator.speed": speeds}
@@ -481,7 +481,7 @@ def _differences(base: PumpSpec, bounds) -> tuple:
     None), so that the output can say why two routes to the same well give two pumps."""
     from pumplink.inputs.pump import default_spec
 
-    mine, builtin = spec_values(base), spec_values(default_spec())
+    mine, builtin = base.values, default_spec().values
     out = []
     for key in sorted(set(mine) | set(builtin)):
         if key in bounds or key in _NOT_HELD or key == "wheel.inertia":

@@ -15,7 +15,7 @@ import numpy as np
 from pumplink.constants import DANGER, DEAD_CENTRE, NEAR_DEAD_CENTRE, UNIFORM
 from pumplink.errors import InfeasibleDesign
 from pumplink.evaluate import QUASI_STATIC, PumpDesigns, evaluate, motion, pump_designs
-from pumplink.inputs.pump import PumpSpec, spec_values
+from pumplink.inputs.pump import PumpSpec
 from pumplink.mechanisms.angles import crank_grid
 from pumplink.mechanisms.fourbar import FourBar, kinematic_state
 from pumplink.studies.methods import DANGER_KINDS, METHODS, MethodResult, danger_points
@@ -223,7 +223,7 @@ def method_study(spec: PumpSpec, names, samples: int, repeats: int, advance=None
     ------
     InfeasibleDesign : no crank-rocker for this spec.
     """
-    designs = pump_designs(spec_values(spec))
+    designs = pump_designs(spec.values)
     ev = evaluate(designs, ("mean_force",), model=QUASI_STATIC)
     if not ev.feasible[0]:
         from pumplink.studies.force import design

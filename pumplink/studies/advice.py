@@ -9,7 +9,7 @@ import numpy as np
 
 from pumplink.errors import SpecError
 from pumplink.evaluate import FAIL, JUDGED, Verdict, evaluate, excess, pump_designs
-from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict, spec_values
+from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict
 from pumplink.studies.force import ForceResult
 
 
@@ -93,8 +93,8 @@ def suggest(result: ForceResult, count: int = 2) -> list[Suggestion]:
     if not found:
         return []
     changed = {key for key, *_ in found}
-    each = [spec_values(s) for *_, s in found]
-    values = {**spec_values(spec), **{k: np.array([v[k] for v in each], float) for k in changed}}
+    each = [s.values for *_, s in found]
+    values = {**spec.values, **{k: np.array([v[k] for v in each], float) for k in changed}}
     speeds = np.array([new if key == "operator.speed" else speed for key, _, _, new, _ in found])
     forced = None if result.effects is None or not result.effects.forced else result.model_key
     ev = evaluate(pump_designs(values, speeds), JUDGED, model=forced)

@@ -11,9 +11,8 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from pumplink.inputs.pump import PumpSpec
 from pumplink.studies.advice import Suggestion, suggest
-from pumplink.studies.force import ForceResult, force_analysis
+from pumplink.studies.force import ForceResult
 from pumplink.studies.speed import Cadence, cadence
 
 #: The checks whose result changes with the wheel's speed: after one of them fails, the speeds
@@ -58,25 +57,14 @@ class DesignStudy:
         return self.check is None or bool(self.check.agrees)
 
 
-def study(
-    spec: PumpSpec,
-    speed_deg_s: float | None = None,
-    samples: int = 360,
-    at_deg=None,
-    keep_samples: bool = True,
-    progress=None,
-    model: str | None = None,
-    explain: bool = False,
-    verify: bool = False,
-) -> DesignStudy:
-    """``pumplink force`` of one spec: :func:`pumplink.studies.force.force_analysis` (its
-    parameters) and what ``explain`` and ``verify`` add (:class:`DesignStudy`)."""
+def study(r: ForceResult, explain: bool = False, verify: bool = False) -> DesignStudy:
+    """``pumplink force`` of one spec: its force analysis ``r``
+    (:func:`pumplink.studies.force.force_analysis`, the verdict's evaluation) and what ``explain``
+    and ``verify`` add (:class:`DesignStudy`)."""
     from pumplink.studies import explain as _explain
     from pumplink.studies import verify as _verify
     from pumplink.studies import workshop as _workshop
 
-    r = force_analysis(spec, speed_deg_s, samples, at_deg=at_deg, keep_samples=keep_samples,
-                       progress=progress, model=model)  # fmt: skip
     if not r.design.feasible:
         return DesignStudy(result=r, explained=explain, verified=verify)
     out: dict[str, Any] = dict(explained=explain, verified=verify)
@@ -88,7 +76,7 @@ def study(
     else:
         out["release"] = _workshop.release(r)
     failed_on_speed = any(c.key in SPEED_CHECKS for c in r.verdict.failures)
-    if spec.gives_inertia and (explain or failed_on_speed):
+    if r.design.spec.gives_inertia and (explain or failed_on_speed):
         out["cadence"] = cadence(r)
     if verify and not r.flywheel:
         out["check"] = _verify.verify_quasi_static(r)

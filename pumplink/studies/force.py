@@ -34,7 +34,7 @@ from pumplink.evaluate import (
     motion,
     pump_designs,
 )
-from pumplink.inputs.pump import PumpSpec, spec_values
+from pumplink.inputs.pump import PumpSpec
 from pumplink.mechanisms.fourbar import State, Synthesis, infeasibility_reason, kinematic_state, synthesize
 
 #: Crank angles of the curve a force chart draws (0.05 deg steps, both ends).
@@ -326,7 +326,7 @@ def force_analysis(
             "or wheel.inertia [kg m^2] to the spec"
         )
     ev = evaluate(
-        pump_designs(spec_values(spec), speed_deg),
+        pump_designs(spec.values, speed_deg),
         (*REPORTED, "effort", "sampled_peak"),
         model=model,
         samples=samples if at_deg is None else 0,

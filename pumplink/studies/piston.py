@@ -17,7 +17,6 @@ import numpy as np
 from pumplink.constants import PERMISSIBLE_PRESSURE_SLIDING_DEG
 from pumplink.evaluate import FLYWHEEL, ORDER, Verdict, Water, evaluate, motion, piston_designs
 from pumplink.inputs.piston import PistonSpec
-from pumplink.inputs.pump import spec_values
 from pumplink.mechanisms import crank_slider as cs
 
 
@@ -98,7 +97,7 @@ def force_analysis(
     r, rod, e = cr.crank, cr.rod, cr.offset
     speed_deg = float(op.speed if speed_deg_s is None else speed_deg_s)
     w = math.radians(speed_deg)
-    ev = evaluate(piston_designs(spec_values(spec), speed_deg))
+    ev = evaluate(piston_designs(spec.values, speed_deg))
     load = float(ev.designs.load_force)
     inertia = float(ev.designs.inertia) if spec.gives_inertia else None
     model = ORDER[int(ev.model_index[0])]

@@ -17,7 +17,7 @@ import numpy as np
 
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.evaluate import DYNAMICS, FLYWHEEL, JUDGED, Evaluation, Verdict, evaluate, motion, pump_designs
-from pumplink.inputs.pump import PumpSpec, spec_values
+from pumplink.inputs.pump import PumpSpec
 from pumplink.studies.force import Design, ForceResult, design, force_analysis
 
 #: Mean speeds [deg/s] searched for the best cadence and the passing speeds (10 to 240 rpm), and
@@ -57,7 +57,7 @@ class Cadence:
 
 
 def _at_speeds(spec: PumpSpec, speeds_deg, model: str | None):
-    return evaluate(pump_designs(spec_values(spec), np.asarray(speeds_deg, float)), JUDGED, model=model,
+    return evaluate(pump_designs(spec.values, np.asarray(speeds_deg, float)), JUDGED, model=model,
                     screen_parts=True, fitted=True)  # fmt: skip
 
 
@@ -295,7 +295,7 @@ def speed_sweep(
     if not d.feasible:
         raise InfeasibleDesign(f"{spec.name}: {d.error}")
     given = np.asarray(speeds_deg_s, float)
-    designs = pump_designs(spec_values(spec), given)
+    designs = pump_designs(spec.values, given)
     ev = evaluate(designs, (*JUDGED, "effort"), model=model)
     # the least peak force of each energy model at every speed (the chart's curves)
     fly, hand = (evaluate(designs, ("model",), model=key).least_peak_force for key in (FLYWHEEL, DYNAMICS))

@@ -37,7 +37,7 @@ import numpy as np
 from pumplink.constants import AXLE_HEIGHT_RANGE_M
 from pumplink.errors import InfeasibleDesign, SpecError
 from pumplink.evaluate import JUDGED, PASS, WARN, Evaluation, PumpDesigns, evaluate, pump_designs
-from pumplink.inputs.pump import PumpSpec, spec_values
+from pumplink.inputs.pump import PumpSpec
 from pumplink.mechanisms.fourbar import FourBar
 from pumplink.studies.builds import (
     DIMENSIONS,
@@ -252,7 +252,7 @@ def problem(
     ------
     InfeasibleDesign : the spec gives no crank-rocker (there is nothing to build).
     """
-    designs = pump_designs(spec_values(spec))
+    designs = pump_designs(spec.values)
     ev = evaluate(designs, JUDGED, model=model, fitted=True)
     if not bool(ev.feasible[0]):
         raise InfeasibleDesign(f"{spec.name}: nothing to build, the spec gives no crank-rocker")

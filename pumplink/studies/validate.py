@@ -17,7 +17,7 @@ import numpy as np
 
 from pumplink.evaluate import evaluate, pump_designs
 from pumplink.field import DISCHARGES, LEFT_OUT, PUMP, TOLERANCE, Discharge
-from pumplink.inputs.pump import parse_spec, spec_values
+from pumplink.inputs.pump import parse_spec
 
 
 @dataclass(frozen=True)
@@ -65,7 +65,7 @@ def predict(d: Discharge, pump=None, filling_power: float | None = None) -> Vali
     if filling_power is not None:
         data["operator"]["filling_power"] = filling_power
     spec = parse_spec(data, source=f"the pump for {d.source}")
-    w = evaluate(pump_designs(spec_values(spec)), ("water",)).water.design(0)
+    w = evaluate(pump_designs(spec.values), ("water",)).water.design(0)
     flow, cadence, power = (
         (w.filling_flow, w.filling_cadence, w.filling_power)
         if d.duty == "filling"

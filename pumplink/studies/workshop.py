@@ -26,7 +26,6 @@ from pumplink.evaluate import (
     pump_designs,
 )
 from pumplink.evaluate import parts as _parts
-from pumplink.inputs.pump import spec_values
 from pumplink.studies.force import ForceResult
 
 
@@ -164,7 +163,7 @@ def ratchet_needed(spec) -> dict | None:
     need = float(column_torque(load.head, load.pipe_diameter, spec.wheel.radius))
     torque = float(math.ceil(RATCHET_SERVICE_FACTOR * need))
     teeth = np.array(TEETH, float)
-    values = {**spec_values(spec), "ratchet.torque": torque, "ratchet.teeth": teeth}
+    values = {**spec.values, "ratchet.torque": torque, "ratchet.teeth": teeth}
     kick = evaluate(pump_designs(values), ("service",)).service.kick_back
     fit = np.nonzero(kick <= KICK_BACK_LIMIT_M)[0]
     return {"torque": torque, "teeth": int(teeth[fit[0]]) if fit.size else 0}
