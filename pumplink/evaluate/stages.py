@@ -38,7 +38,6 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.evaluate import parts as _parts
 from pumplink.evaluate.designs import PumpDesigns, columns
 from pumplink.evaluate.service import service as _service
 from pumplink.evaluate.water import water as _water
@@ -54,6 +53,7 @@ from pumplink.mechanisms.fourbar import (
 )
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC, Conditions, Masses
 from pumplink.models import load as _load
+from pumplink.models import parts as _parts
 from pumplink.models import quasi_static as _qs
 from pumplink.models import water as _water_kernels
 from pumplink.models.choice import energy_model
