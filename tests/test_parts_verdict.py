@@ -118,7 +118,7 @@ def test_pin_pressure_levels_at_the_documented_limits(hand_peak, pressure, level
         assert not r.verdict.passed
 
 
-#: Samples a turn of the fatigue cycle: pumplink.evaluate.parts.CYCLE_SAMPLES, the method's
+#: Samples a turn of the fatigue cycle: pumplink.models.parts.CYCLE_SAMPLES, the method's
 #: definition (docs/workshop.md §2: the moments' amplitude and mean over the cycle), restated.
 CYCLE = 1440
 

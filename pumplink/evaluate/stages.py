@@ -38,7 +38,6 @@ from typing import Any
 
 import numpy as np
 
-from pumplink.evaluate import parts as _parts
 from pumplink.evaluate import service as _service
 from pumplink.evaluate.designs import PistonDesigns, PumpDesigns
 from pumplink.evaluate.piston import evaluate_piston
@@ -49,6 +48,7 @@ from pumplink.mechanisms.fourbar import pump_geometry
 from pumplink.models import DYNAMICS, FLYWHEEL, MODELS, ORDER, QUASI_STATIC, Conditions, Masses
 from pumplink.models import kickback as _kickback
 from pumplink.models import load as _load
+from pumplink.models import parts as _parts
 from pumplink.models import quasi_static as _qs
 from pumplink.models import release as _release
 from pumplink.models import water as _water_kernels

@@ -1,11 +1,11 @@
 """The part checks' two routes: many designs at once (the verdict's, ``evaluate`` with
 ``[parts]``) and one design in depth (``force --explain``'s workshop view).
 
-The vector route (:func:`pumplink.evaluate.parts.dynamics_strength`: the full-dynamics scenes of a
+The vector route (:func:`pumplink.models.parts.dynamics_strength`: the full-dynamics scenes of a
 block of designs, the joint forces along their motions on the cycle, the peaks by
 :func:`pumplink.models.joints.cycle_peak_loads`) must give what the one-design route
-(:func:`pumplink.evaluate.parts.scene`, :func:`~pumplink.evaluate.parts.part_loads` and
-:func:`~pumplink.evaluate.parts.strength`) gives each design on its own.  The expected values are
+(:func:`pumplink.models.parts.scene`, :func:`~pumplink.models.parts.part_loads` and
+:func:`~pumplink.models.parts.strength`) gives each design on its own.  The expected values are
 the one-design route's, design by design; the two run the same operations on the same values,
 so they are asked to agree bit for bit, whatever the other designs of the block.
 """
@@ -19,11 +19,11 @@ import pytest
 
 from pumplink.constants import GRAVITY
 from pumplink.evaluate import evaluate, pump_designs
-from pumplink.evaluate import parts as P
 from pumplink.inputs.pump import load_spec, spec_values
 from pumplink.mechanisms.fourbar import FourBar
 from pumplink.models import DYNAMICS, ORDER, Masses
 from pumplink.models import joints as J
+from pumplink.models import parts as P
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -125,7 +125,7 @@ def test_a_designs_peaks_do_not_depend_on_its_block(village_variants):
 
 
 def _cycle(sc):
-    """The crank angles of :func:`pumplink.evaluate.parts.part_loads`' cycle of a scene."""
+    """The crank angles of :func:`pumplink.models.parts.part_loads`' cycle of a scene."""
     jumps = np.add.outer(
         [sc.dead_centre_extended, sc.dead_centre_folded], [-J.JUMP_OFFSET, J.JUMP_OFFSET]
     ).ravel()
