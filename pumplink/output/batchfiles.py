@@ -236,10 +236,11 @@ def csv_text(batch: Batch, c: Chunk, vkeys: Sequence[str]) -> str:
     text["reason"] = [cache[r] if r in cache else cache.setdefault(r, _csv_cell(r)) for r in c.reason]
     for col in ("feasible", "pass"):
         text[col] = [bools[x] for x in text[col]]
-    for col in ("model", "verdict"):
-        text[col] = [_csv_cell(x) for x in text[col]]
+    for col in ("model", "verdict"):  # a few words, each quoted once
+        cells = {x: _csv_cell(x) for x in set(text[col])}
+        text[col] = [cells[x] for x in text[col]]
     cols += [_csv_floats(numbers[k]) if k in numbers else text[k] for k in FIXED_COLUMNS]
-    return "".join(line + "\n" for line in map(",".join, zip(*cols)))
+    return "\n".join(map(",".join, zip(*cols))) + "\n" if n else ""
 
 
 def json_text(batch: Batch, c: Chunk) -> str:
