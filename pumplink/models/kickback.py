@@ -100,10 +100,14 @@ def _wrap(x):
     the kick-back's); numpy's remainder elsewhere (NaN, inf, far angles).
     """
     a = x + np.pi
+    if np.ndim(a) and a.size:
+        low, high = a.min(), a.max()  # NaN if any is
+        if 0.0 <= low and high < TWO_PI:  # the rocker's angle differences, as a rule: a itself
+            return a - np.pi
+        if -TWO_PI <= low and high < 2.0 * TWO_PI:
+            return ((a - TWO_PI * (a >= TWO_PI)) + TWO_PI * (a < 0.0)) - np.pi
     far = ~((a >= -TWO_PI) & (a < 2.0 * TWO_PI))
-    if np.ndim(a) == 0 or far.any():
-        return np.where(far, np.mod(a, TWO_PI), (a - TWO_PI * (a >= TWO_PI)) + TWO_PI * (a < 0.0)) - np.pi
-    return ((a - TWO_PI * (a >= TWO_PI)) + TWO_PI * (a < 0.0)) - np.pi
+    return np.where(far, np.mod(a, TWO_PI), (a - TWO_PI * (a >= TWO_PI)) + TWO_PI * (a < 0.0)) - np.pi
 
 
 def _rocker(lk: FourBar, th):

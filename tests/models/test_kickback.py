@@ -268,22 +268,32 @@ def test_the_widest_window_holds_the_most_path_of_a_dense_search():
 def test_the_wrap_is_numpys_remainder_bit_for_bit():
     """The kick-back's angle wrap skips fmod where it can; it must give np.mod(x + pi, 2 pi) - pi to
     the bit (the kick-back's digits are printed in full): on differences of angles and the edges of
-    its shortcut (x + pi at 0, 2 pi, 4 pi, -2 pi and floats either side), alone (the shortcut) and
-    with far angles, NaN and inf beside them (numpy's remainder), and one at a time."""
+    its shortcuts (x + pi at 0, 2 pi, 4 pi, -2 pi and floats either side), alone (the shortcuts:
+    all in [0, 2 pi), all in [-2 pi, 4 pi)) and with far angles, NaN and inf beside them (numpy's
+    remainder), and one at a time."""
     rng = np.random.default_rng(3)
     two_pi = 2 * math.pi
     edges = np.array([0.0, two_pi, 2 * two_pi, -two_pi]) - math.pi
-    spread = np.ldexp(np.arange(-8.0, 9.0), -50)  # a few floats either side of each edge
-    close = (edges[:, None] + spread[None, :] * np.maximum(np.abs(edges), 1.0)[:, None]).ravel()
+    close = [edges]
+    for way in (np.inf, -np.inf):  # the floats next to each edge, four either side
+        v = edges
+        for _ in range(4):
+            v = np.nextafter(v, way)
+            close.append(v)
+    close = np.concatenate(close)
     x = np.concatenate([rng.uniform(-two_pi, two_pi, 100_000), close, -math.pi - np.array([1e-17, 5e-324])])
     a = x + math.pi
     near = x[(a >= -two_pi) & (a < 2 * two_pi)]  # the shortcut's range, and its edges in it
     assert {0.0, two_pi, -two_pi} <= set((near + math.pi).tolist())
-    assert near.size > 100_050 and 2 * two_pi - 1e-14 < np.max(near + math.pi) < 2 * two_pi
+    assert near.size > 100_020 and 2 * two_pi - 1e-14 < np.max(near + math.pi) < 2 * two_pi
     far = np.array(
         [edges[2], np.nextafter(-3 * math.pi, -np.inf), np.nan, np.inf, -np.inf, 1e300, -1e300, 40.0, -40.0]
     )
-    for x in (near, np.concatenate([near, far])):
+    inner = near[(near + math.pi >= 0.0) & (near + math.pi < two_pi)]  # x + pi itself
+    assert 0.0 in (inner + math.pi).tolist() and np.max(inner + math.pi) > two_pi - 1e-14
+    # each float next to an edge beside angles well inside: which shortcut holds is decided at the edge
+    beside = [np.append(inner[:1000], v) for v in np.concatenate([close, far])]
+    for x in (inner, near, np.concatenate([near, far]), *beside):
         with np.errstate(invalid="ignore"):
             want = np.mod(x + math.pi, two_pi) - math.pi
             assert kb._wrap(x).tobytes() == want.tobytes()
