@@ -54,13 +54,10 @@ TASK_SAMPLES = 3_000_000
 SUB_DESIGNS = 128
 
 
-#: Most designs per chunk, and per call of the flywheel kernel, for variants that give inertia: a
-#: variant of the village well costs ~0.1 ms through every stage with full dynamics (a chunk ~0.2
-#: s), ~1 ms with its [parts] checked; the kernels cut their arrays into cache-sized blocks
-#: themselves.  Each chunk pays the searches' iterations once (the kick-back's and the peak
-#: forces' brackets, the least peak force's passes): 2048 designs a chunk instead of 1024 took
-#: 7-10 % less CPU over 10,000 village variants.
-FLYWHEEL_DESIGNS = 2048
+#: Most designs per chunk, and per call of the flywheel kernel, for variants that give inertia:
+#: the least peak force costs ~0.5 ms per design (a chunk ~0.5 s) and its temporaries are
+#: (designs x ~430 nodes) arrays.
+FLYWHEEL_DESIGNS = 1024
 
 
 class _Judged:
