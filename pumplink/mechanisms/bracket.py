@@ -47,6 +47,28 @@ class Minimum:
     nfev: np.ndarray
 
 
+def _check(s, xatol, xrtol, fatol, frtol):
+    """Stop flags, status codes and x tolerances of the brackets ``s`` (:func:`find_minimum`'s
+    array), whose ends are swapped in place so that (x2, x3) is the larger interval; as scipy's
+    ``check_termination``: an invalid bracket, a non-finite value, converged (Eqs. (8)-(11))."""
+    (x1, x2, x3), (f1, f2, f3) = s
+    invalid = (f2 > f1) | (f2 > f3)  # no minimiser returned
+    finite = np.isfinite(x1 + x2 + x3 + f1 + f2 + f3)
+    code = np.where(invalid, INVALID_BRACKET, np.where(finite, CONVERGED, NONFINITE)).astype(np.int32)
+    failed = code != CONVERGED
+    if failed.any():  # no minimiser: x2 and f2 NaN, as scipy's (the steps below see them so)
+        s[:, 1] = np.where(failed, np.nan, s[:, 1])
+    swap = np.abs(x3 - x2) < np.abs(x2 - x1)  # (x2, x3) is the larger interval
+    if swap.any():
+        s[:, ::2] = np.where(swap, s[:, ::-2], s[:, ::2])  # x1 <-> x3 and f1 <-> f3
+        (x1, x2, x3), (f1, f2, f3) = s
+    xtol = np.abs(x2) * xrtol + xatol  # Eq. (8)
+    done = np.abs(x3 - x2) <= 2 * xtol  # Eq. (9)
+    ftol = np.abs(f2) * frtol + fatol  # Eq. (10)
+    done |= (f1 - 2 * f2 + f3) <= 2 * ftol  # Eq. (11)
+    return done | failed, code, xtol
+
+
 def find_minimum(f, init, /, *, args=(), tolerances=None, maxiter=100) -> Minimum:
     """Minimise the elementwise function ``f`` on each bracket ``init = (x1, x2, x3)``.
 
@@ -75,55 +97,33 @@ def find_minimum(f, init, /, *, args=(), tolerances=None, maxiter=100) -> Minimu
     fs = [np.asarray(f(x, *args), float).reshape(-1) for x in xs]
     xs = [x.reshape(-1) for x in xs]
     args = [np.array(a).reshape(-1) for a in args]
-    order = np.argsort(np.stack(xs), axis=0)  # x1 < x2 < x3
-    x1, x2, x3 = np.take_along_axis(np.stack(xs), order, axis=0)
-    f1, f2, f3 = np.take_along_axis(np.stack(fs), order, axis=0)
-    q0 = x3.copy()  # "At the start, q0 is set at x3" (after Eq. (7))
+    # the bracket as one array: s[0] the points x1 < x2 < x3, s[1] their values, s[:, i] point i
+    order = np.argsort(np.stack(xs), axis=0)
+    s = np.stack([np.take_along_axis(np.stack(v), order, axis=0) for v in (xs, fs)])
+    q0 = s[0, 2].copy()  # "At the start, q0 is set at x3" (after Eq. (7))
+    # arguments of one type ride in one array: one gather drops the finished problems' rows
+    together = len(args) > 1 and len({a.dtype for a in args}) == 1
+    held = np.stack(args) if together else args
 
-    n = x1.size
+    n = s.shape[2]
     out_x, out_f = np.zeros(n), np.zeros(n)
     out_status = np.full(n, 1, dtype=np.int32)
     out_nit, out_nfev = np.zeros(n, dtype=np.int32), np.zeros(n, dtype=np.int32)
     active = np.arange(n)
-    status = np.full(n, 1, dtype=np.int32)
     nit, nfev = 0, 3
-
-    def check(x1, x2, x3, f1, f2, f3, status):
-        """Stop flags and the (possibly swapped) bracket; as scipy's ``check_termination``."""
-        stop = np.zeros(x1.shape, dtype=bool)
-        bad = (f2 > f1) | (f2 > f3)  # invalid bracket: no minimiser returned
-        x2, f2 = np.where(bad, np.nan, x2), np.where(bad, np.nan, f2)
-        stop |= bad
-        status = np.where(bad, INVALID_BRACKET, status)
-        bad = ~(np.isfinite(x1 + x2 + x3 + f1 + f2 + f3) | stop)
-        x2, f2 = np.where(bad, np.nan, x2), np.where(bad, np.nan, f2)
-        stop |= bad
-        status = np.where(bad, NONFINITE, status)
-        swap = np.abs(x3 - x2) < np.abs(x2 - x1)  # (x2, x3) is the larger interval
-        x1, x3 = np.where(swap, x3, x1), np.where(swap, x1, x3)
-        f1, f3 = np.where(swap, f3, f1), np.where(swap, f1, f3)
-        xtol = np.abs(x2) * xrtol + xatol  # Eq. (8)
-        done = np.abs(x3 - x2) <= 2 * xtol  # Eq. (9)
-        ftol = np.abs(f2) * frtol + fatol  # Eq. (10)
-        done |= (f1 - 2 * f2 + f3) <= 2 * ftol  # Eq. (11)
-        done &= ~stop
-        status = np.where(done, CONVERGED, status)
-        return stop | done, (x1, x2, x3, f1, f2, f3, status, xtol)
-
-    stop, (x1, x2, x3, f1, f2, f3, status, xtol) = check(x1, x2, x3, f1, f2, f3, status)
+    stop, code, xtol = _check(s, xatol, xrtol, fatol, frtol)
     while True:
         if stop.any():  # record the finished problems, keep iterating the others
             idx = active[stop]
-            out_x[idx], out_f[idx], out_status[idx] = x2[stop], f2[stop], status[stop]
+            out_x[idx], out_f[idx] = s[0, 1, stop], s[1, 1, stop]  # NaN where it failed
+            out_status[idx] = code[stop]
             out_nit[idx], out_nfev[idx] = nit, nfev
-            keep = ~stop
-            active = active[keep]
-            x1, x2, x3, f1, f2, f3, status, xtol, q0 = (
-                v[keep] for v in (x1, x2, x3, f1, f2, f3, status, xtol, q0)
-            )
-            args = [a[keep] for a in args]
+            keep = np.nonzero(~stop)[0]
+            active, s, xtol, q0 = active[keep], s.take(keep, axis=2), xtol[keep], q0[keep]
+            held = held.take(keep, axis=1) if together else [a[keep] for a in held]
         if not active.size or nit >= maxiter:
             break
+        (x1, x2, x3), (f1, f2, f3) = s
         x21, x32 = x2 - x1, x3 - x2
         with np.errstate(divide="ignore", invalid="ignore"):
             a, b = x21 * (f3 - f2), x32 * (f1 - f2)
@@ -133,22 +133,24 @@ def find_minimum(f, init, /, *, args=(), tolerances=None, maxiter=100) -> Minimu
         near = np.abs(q1 - x2) <= xtol  # too close to x2: step xtol into the larger interval
         x = np.where(accept, np.where(near, x2 + np.sign(x32) * xtol, q1), x2 + (2 - _PHI) * x32)
         q0 = q1
-        fx = np.asarray(f(x, *args), float).reshape(-1)
+        fx = np.asarray(f(x, *held), float).reshape(-1)
         nfev += 1
         right = np.sign(x - x2) == np.sign(x3 - x2)  # the new point is on x3's side of x2
         higher = fx > f2
-        x1, f1, x2, f2, x3, f3 = (
-            np.where(right & ~higher, x2, np.where(~right & higher, x, x1)),
-            np.where(right & ~higher, f2, np.where(~right & higher, fx, f1)),
-            np.where(higher, x2, x),
-            np.where(higher, f2, fx),
-            np.where(right & higher, x, np.where(~right & ~higher, x2, x3)),
-            np.where(right & higher, fx, np.where(~right & ~higher, f2, f3)),
+        new = np.stack([x, fx])  # (x, f(x))
+        p1, p2, p3 = s[:, 0], s[:, 1], s[:, 2]
+        s = np.stack(
+            [
+                np.where(right & ~higher, p2, np.where(~right & higher, new, p1)),
+                np.where(higher, p2, new),
+                np.where(right & higher, new, np.where(~right & ~higher, p2, p3)),
+            ],
+            axis=1,
         )
         nit += 1
-        stop, (x1, x2, x3, f1, f2, f3, status, xtol) = check(x1, x2, x3, f1, f2, f3, status)
+        stop, code, xtol = _check(s, xatol, xrtol, fatol, frtol)
     if active.size:  # the iteration limit
-        out_x[active], out_f[active], out_status[active] = x2, f2, MAXITER
+        out_x[active], out_f[active], out_status[active] = s[0, 1], s[1, 1], MAXITER
         out_nit[active], out_nfev[active] = nit, nfev
 
     def shaped(v):

@@ -315,7 +315,11 @@ def _extrema(pb: DynamicsProblem, lam, rows):
     # the four functions, maxima turned into minima (times -kind): upper - Q, -(lower - Q),
     # -(lower - P), upper - P; and -kind times their drift (a for Q, b for P)
     au, al = up + m, low + m
-    f = np.stack([au - lg, al - lg, al + lg, au + lg])
+    f = np.empty((4,) + x.shape)  # written in place: no stacked copy
+    np.subtract(au, lg, out=f[0])
+    np.subtract(al, lg, out=f[1])
+    np.add(al, lg, out=f[2])
+    np.add(au, lg, out=f[3])
     np.negative(f[1:3], out=f[1:3])
     kd = np.stack([-a, a, b, -b])
     ext = np.empty(f.shape, bool)

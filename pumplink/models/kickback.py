@@ -38,7 +38,8 @@ The travel
     not (heavy links on a light column), every stop angle of the grid is marched and the largest
     path taken.
 
-Vectorised over designs (blocks bound the memory); SI units, radians.
+Vectorised over designs (the grid of stop angles in blocks of designs that stay in the cache); SI
+units, radians.
 """
 
 from __future__ import annotations
@@ -66,8 +67,6 @@ MARCH_STEPS = 90
 MARCH_LIMIT = 10_000.0
 #: Local maxima of the stop-angle grid refined (the largest is kept).
 PEAKS = 3
-#: Designs a block holds (a block's arrays: designs x STOP_SAMPLES, or designs x the table).
-BLOCK = 512
 #: How a run back ends (:data:`pumplink.constants.KICK_BACK_ENDS`): the column is empty, the
 #: ratchet's pawl catches (within a tooth), the wheel stops again (the links' weight against the
 #: column), or the march's limit; "held" where a ratchet with no play holds the column at once.
@@ -93,8 +92,22 @@ class KickBack:
 
 
 def _wrap(x):
-    """An angle difference in [-pi, pi)."""
-    return np.mod(x + np.pi, TWO_PI) - np.pi
+    """An angle difference in [-pi, pi): ``np.mod(x + pi, 2 pi) - pi`` bit for bit.
+
+    Where a = x + pi lies in [-2 pi, 4 pi) (every difference of two angles in [-pi, pi], the
+    rocker's) the remainder is a, a + 2 pi or a - 2 pi, each as numpy's remainder gives it (its
+    fmod is exact, and so is a - 2 pi there, by Sterbenz's lemma) without fmod's cost (a third of
+    the kick-back's); numpy's remainder elsewhere (NaN, inf, far angles).
+    """
+    a = x + np.pi
+    if np.ndim(a) and a.size:
+        low, high = a.min(), a.max()  # NaN if any is
+        if 0.0 <= low and high < TWO_PI:  # the rocker's angle differences, as a rule: a itself
+            return a - np.pi
+        if -TWO_PI <= low and high < 2.0 * TWO_PI:
+            return ((a - TWO_PI * (a >= TWO_PI)) + TWO_PI * (a < 0.0)) - np.pi
+    far = ~((a >= -TWO_PI) & (a < 2.0 * TWO_PI))
+    return np.where(far, np.mod(a, TWO_PI), (a - TWO_PI * (a >= TWO_PI)) + TWO_PI * (a < 0.0)) - np.pi
 
 
 def _rocker(lk: FourBar, th):
@@ -139,45 +152,118 @@ def grip_path(lk: FourBar, dead_centre_extended, dead_centre_folded, start, stop
     return lk.handle * (2.0 * swing * turns + partial)
 
 
+def _closure(lk: FourBar) -> tuple:
+    """The per-design constants of :func:`_rocker`'s loop closure, computed once (the same
+    expressions as :func:`pumplink.mechanisms.fourbar_kernel.loop_closure`, so the same rounding):
+    px, py, crank, |O4|^2 + crank^2, 2 crank, (coupler^2 - rocker^2) / 2, coupler^2, coupler,
+    rocker^2, branch."""
+    px, py, c, k, r = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker
+    return px, py, c, px * px + py * py + c * c, 2.0 * c, 0.5 * (k * k - r * r), k * k, k, r * r, lk.branch
+
+
+def _rocker_from(co, cs, sn):
+    """:func:`_rocker` from the constants of :func:`_closure` and the crank directions (cs, sn)
+    (arrays): the same operations in the same order, so the same bits."""
+    px, py, c, o2, c2, hkr, kk, k, rr, branch = co
+    p1 = cs * px + sn * py
+    e2 = o2 - c2 * p1
+    t = 0.5 + hkr / e2
+    ek = np.sqrt(e2) + k
+    e_k = (e2 - kk) / ek
+    # (e + k)**2 of coupler_height: numpy squares arrays (ek * ek, correctly rounded)
+    q = branch * (np.sqrt((rr - e_k * e_k) * (ek * ek - rr)) / (2.0 * e2))
+    ccs, csn = c * cs, c * sn
+    dx, dy = px - ccs, py - csn
+    bx = ccs + t * dx - q * dy
+    by = csn + t * dy + q * dx
+    return np.arctan2(by - py, bx - px)
+
+
+def _window_path(co, handle, two_swing, dce, dcf, at_dce, at_dcf, start, stop, t_b):
+    """:func:`grip_path` from ``start`` to ``stop`` (arrays) of designs given by the constants of
+    :func:`_closure`, H, 2 swing, their dead centres and the rocker's angles there, with the
+    rocker's angle at ``stop`` known (``t_b``): the same operations, so the same bits."""
+    length = stop - start
+    turns = np.floor(length / TWO_PI)
+    a = stop - (length - turns * TWO_PI)  # the partial turn [a, stop], shorter than 2 pi
+    t_a = _rocker_from(co, np.cos(a), np.sin(a))
+    # the dead centres inside (a, stop): the rocker reverses there
+    x = dce + TWO_PI * np.ceil((a - dce) / TWO_PI)
+    inside_e = x < stop
+    inner_e = np.where(inside_e, x, stop)
+    x = dcf + TWO_PI * np.ceil((a - dcf) / TWO_PI)
+    inside_f = x < stop
+    first = inner_e <= np.where(inside_f, x, stop)
+    value_e = np.where(inside_e, at_dce, t_b)
+    value_f = np.where(inside_f, at_dcf, t_b)
+    v1 = np.where(first, value_e, value_f)
+    v2 = np.where(first, value_f, value_e)
+    partial = np.abs(_wrap(v1 - t_a)) + np.abs(_wrap(v2 - v1)) + np.abs(_wrap(t_b - v2))
+    return handle * (two_swing * turns + partial)
+
+
+#: Designs whose grid of stop angles :func:`widest_window` evaluates at once (designs x
+#: STOP_SAMPLES arrays of ~90 kB: they stay in the processor's cache).
+GRID_DESIGNS = 64
+
+
 def widest_window(lk: FourBar, dead_centre_extended, dead_centre_folded, window, samples=STOP_SAMPLES):
     """The stop angle ts whose window [ts - window, ts] holds the most grip path, and that path:
     (path [m], ts [rad]) over designs (1-D arrays), on ``samples`` stop angles a turn refined by
     Chandrupatla's bracket (the path is smooth in ts: its derivative H (|t4'(ts)| - |t4'(ts -
-    window)|) is continuous, t4' vanishing at the dead centres)."""
+    window)|) is continuous, t4' vanishing at the dead centres).
+
+    The path at a stop angle is :func:`grip_path`'s, computed by the same operations from the
+    per-design constants of the loop closure (:func:`_closure`), the rocker's angles at the grid's
+    stop angles from one cos and sin of the grid."""
     n = np.size(window)
     out_path, out_angle = np.empty(n), np.empty(n)
+    if n == 0:
+        return out_path, out_angle
     grid = np.arange(samples) * (TWO_PI / samples)
-    for s0 in range(0, n, BLOCK):
-        i = np.arange(s0, min(s0 + BLOCK, n))
-        sub = lk.take(i)
-        dce, dcf, w = dead_centre_extended[i], dead_centre_folded[i], window[i]
-        at_dc = tuple(_rocker(sub, x)[:, None] for x in (dce, dcf))
-        col = (FourBar(*(v[:, None] for v in sub.parameters)), dce[:, None], dcf[:, None])
-        path = grip_path(*col, grid[None, :] - w[:, None], grid[None, :], at_dc)
-        # the grid's PEAKS largest local maxima (the path may have two near-equal humps), each refined
-        bump = (path >= np.roll(path, 1, axis=1)) & (path >= np.roll(path, -1, axis=1))
-        j = np.argsort(np.where(bump, path, -np.inf), axis=1)[:, -PEAKS:]  # (m, PEAKS)
-        best = np.take_along_axis(path, j, 1)
-        step = TWO_PI / samples
-        x2 = grid[j]
-
-        def minus(x, *params):
-            lk1 = FourBar(*params[:7])
-            return -grip_path(lk1, params[7], params[8], x - params[9], x, params[10:])
-
-        res = find_minimum(
-            minus,
-            (x2 - step, x2, x2 + step),
-            args=tuple(v[:, None] for v in (*sub.parameters, dce, dcf, w, *(a[:, 0] for a in at_dc))),
-            tolerances=dict(xatol=1e-12, xrtol=0.0),
-        )
-        fx, rx = res.f_x.reshape(best.shape), res.x.reshape(best.shape)
-        ok = res.success.reshape(best.shape) & (-fx >= best)
-        value, where = np.where(ok, -fx, best), np.where(ok, rx, x2)
-        k = np.argmax(value, axis=1)[:, None]
-        out_path[i] = np.take_along_axis(value, k, 1)[:, 0]
-        out_angle[i] = np.mod(np.take_along_axis(where, k, 1)[:, 0], TWO_PI)
+    cos_grid, sin_grid = np.cos(grid), np.sin(grid)
+    step = TWO_PI / samples
+    dce, dcf = (np.asarray(v, float) for v in (dead_centre_extended, dead_centre_folded))
+    w = np.asarray(window, float)
+    with np.errstate(all="ignore"):
+        co = _closure(lk)
+        at_dce, at_dcf = _rocker(lk, dce), _rocker(lk, dcf)
+        # per design: the closure's constants, H, 2 swing (grip_path's), the dead centres, the
+        # rocker there and the window, one row each
+        table = np.stack(np.broadcast_arrays(*co, lk.handle, 2.0 * np.abs(_wrap(at_dce - at_dcf)), dce, dcf,
+                                             at_dce, at_dcf, w))  # fmt: skip
+        path = np.empty((n, samples))
+        for s0 in range(0, n, GRID_DESIGNS):
+            rows = table[:, s0 : s0 + GRID_DESIGNS, None]
+            t_b = _rocker_from(rows[:10], cos_grid, sin_grid)
+            path[s0 : s0 + GRID_DESIGNS] = _window_path(rows[:10], *rows[10:16], grid - rows[16], grid, t_b)
+    # the grid's PEAKS largest local maxima (the path may have two near-equal humps), each refined
+    bump = (path >= np.roll(path, 1, axis=1)) & (path >= np.roll(path, -1, axis=1))
+    j = np.argsort(np.where(bump, path, -np.inf), axis=1)[:, -PEAKS:]  # (n, PEAKS)
+    best = np.take_along_axis(path, j, 1)
+    x2 = grid[j]
+    res = find_minimum(
+        lambda x, design: _minus_path(x, design, table),
+        (x2 - step, x2, x2 + step),
+        args=(np.broadcast_to(np.arange(n)[:, None], j.shape),),
+        tolerances=dict(xatol=1e-12, xrtol=0.0),
+    )
+    fx, rx = res.f_x.reshape(best.shape), res.x.reshape(best.shape)
+    ok = res.success.reshape(best.shape) & (-fx >= best)
+    value, where = np.where(ok, -fx, best), np.where(ok, rx, x2)
+    k = np.argmax(value, axis=1)[:, None]
+    out_path[:] = np.take_along_axis(value, k, 1)[:, 0]
+    out_angle[:] = np.mod(np.take_along_axis(where, k, 1)[:, 0], TWO_PI)
     return out_path, out_angle
+
+
+def _minus_path(x, design, table):
+    """Minus the path over the window ending at stop angles ``x`` of designs ``design`` (indices
+    into the columns of ``table``, :func:`widest_window`'s), for the bracket's minimisation."""
+    rows = table.take(design.astype(np.intp), axis=1)
+    with np.errstate(all="ignore"):
+        t_b = _rocker_from(rows[:10], np.cos(x), np.sin(x))
+        return -_window_path(rows[:10], *rows[10:16], x - rows[16], x, t_b)
 
 
 def _masses(masses: Masses) -> tuple:

@@ -158,3 +158,39 @@ def test_shapes_follow_the_broadcast():
     assert np.ndim(one.x) == 0 and abs(float(one.x) - 0.5) < 1e-7
     grid = find_minimum(f, (0.0, 0.4, 1.0), args=(np.full((2, 3), 0.5),))
     assert grid.x.shape == (2, 3) and grid.success.shape == (2, 3)
+
+
+@pytest.mark.parametrize("seed", [5, 6])
+def test_the_iterates_are_scipys_bit_for_bit(seed):
+    """Not only the answers: every problem takes scipy's steps, so the minimiser, its value and the
+    iteration and evaluation counts are scipy's to the bit (the peak-rate and force problems above,
+    400 designs each, and a bumpy function with random tolerances) - the numbers pumplink prints in
+    full are refined here."""
+    geom, dce, dcf = _designs(400, seed)
+    step = 2 * np.pi / 180
+    theta = np.arange(180) * step
+    mid = theta[np.argmin(_neg_abs_rate(theta[None, :], *(p[:, None] for p in geom)), axis=1)]
+    # the least |F| on each stroke, as test_force_kernel_problems_match_scipy poses it
+    plus = np.mod(dcf - dce, 2 * np.pi)
+    both = tuple(np.concatenate([g, g]) for g in geom)
+    arc = (
+        np.concatenate([dce, dcf])[:, None]
+        + np.concatenate([plus, 2 * np.pi - plus])[:, None] * np.linspace(0.0, 1.0, 97)[1:-1]
+    )
+    j, k = np.argmin(_abs_force(arc, *(g[:, None] for g in both)), axis=1), np.arange(arc.shape[0])
+    rng = np.random.default_rng(seed)
+    c, p = rng.uniform(-1, 1, 300), rng.uniform(1.1, 4.0, 300)
+    bumpy = lambda x, c, p: np.abs(x - c) ** p + 0.1 * np.sin(7 * x)  # noqa: E731
+    problems = [
+        (_neg_abs_rate, (mid - step, mid, mid + step), geom, TIGHT),
+        (_abs_force, (arc[k, j - 1], arc[k, j], arc[k, j + 1]), both, TIGHT),
+        (bumpy, (np.full(300, -1.5), rng.uniform(-0.5, 0.5, 300), np.full(300, 1.7)), (c, p),
+         dict(xatol=10 ** rng.uniform(-14, -3), xrtol=0.0)),
+    ]  # fmt: skip
+    for f, init, args, tol in problems:
+        ours = find_minimum(f, init, args=args, tolerances=tol)
+        theirs = elementwise.find_minimum(f, init, args=args, tolerances=tol)
+        for name in ("x", "f_x", "status", "nit", "nfev"):
+            a, b = np.asarray(getattr(ours, name)), np.asarray(getattr(theirs, name))
+            assert a.astype(float).tobytes() == b.astype(float).tobytes(), name
+        assert np.count_nonzero(ours.success) >= 200  # the bumpy one: some brackets are invalid
