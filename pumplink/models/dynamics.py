@@ -25,11 +25,12 @@ from pumplink.models import flywheel as _fw
 from pumplink.models import quasi_static as _qs
 from pumplink.models.conditions import Masses
 from pumplink.models.dynamics_solver import least_peak_force, problem, refined_points, solve
-from pumplink.models.dynamics_terms import coefficients, point_terms, terms, terms_from
+from pumplink.models.dynamics_terms import Terms, coefficients, point_terms, terms, terms_from
 from pumplink.models.grip_travel import (
     GAUSS_LEGENDRE_NODES,
     GAUSS_LEGENDRE_WEIGHTS,
     TRAVEL_INTEGRATION_ARC,
+    grip_position,
     grip_rate,
     travel_parts,
 )
@@ -454,7 +455,8 @@ def scenes(
 
 
 #: Points a design up to which :func:`_profiles` counts the points before each angle column by
-#: column (two comparisons a point), beyond which all at once (a (D, K, points) comparison).
+#: column (two comparisons a point, counted in bytes), beyond which all at once (a (D, K, points)
+#: comparison).
 _COUNT_BY_COLUMN = 12
 
 
@@ -465,13 +467,64 @@ def _profiles(scs: Scenes, crank_angle):
     any order; NaN sorts last, as a comparison leaves it out)."""
     th = np.asarray(crank_angle, float)
     fp, mw = scs.least_peak_force, scs.wheel_torque
-    phi = np.mod(th - scs.dead_centre_extended, TWO_PI)
-    base, local = travel_parts(phi, *scs.travel)
+    phi = _past_extended(th, scs.dead_centre_extended)
+    with np.errstate(all="ignore"):  # as terms(closure=True), and the grip's Px at the same angles
+        out = terms_from(
+            coefficients(scs.linkage, scs.masses), th, scs.gravity, grip=False, fly_x=True, closure=True
+        )
+    tm = Terms(*out[:6], out[7])
+    base, local = travel_parts(phi, *scs.travel, grip_x=_grip_x(scs, th, phi, out[6]))
     g_phi = base + local
-    tm = terms(scs.linkage, th, scs.masses, scs.gravity, closure=True)
     i = scs.inertia + tm.inertia
     up = tm.potential + 0.5 * i * scs.max_speed_squared
     dup = tm.potential_rate + 0.5 * tm.inertia_rate * scs.max_speed_squared
+    past, future = _minima(scs, phi)
+    # fp g - Mw phi + past and -fp g - Mw phi + future: (-fp) g - Mw phi is -(fp g + Mw phi), bit
+    # for bit (rounding is symmetric)
+    fp_g, mw_phi = fp * g_phi, mw * phi
+    push, brake = fp_g - mw_phi + past, future - (fp_g + mw_phi)
+    # the three candidates' minimum and the first that takes it (NaN: the first NaN), as
+    # np.min and np.argmin over them stacked give them
+    e = np.minimum(np.minimum(push, up), brake)
+    regime = np.where(np.isnan(push) | (push == e), 1, np.where(np.isnan(up) | (up == e), 0, -1))
+    return e, regime, dup, tm.potential, i, tm.grip_rate, tm
+
+
+def _past_extended(th, dead_centre_extended):
+    """np.mod(th - dce, 2 pi) [rad]: where every difference is within a turn, its remainder is the
+    difference itself, plus 2 pi where negative (np.mod's exact fmod and its one sign correction,
+    +0 for a zero), without the general remainder's cost."""
+    r = th - dead_centre_extended
+    if not (r.min(initial=0.0) > -TWO_PI and r.max(initial=0.0) < TWO_PI):  # NaN fails too
+        return np.mod(r, TWO_PI)
+    np.add(r, TWO_PI, out=r, where=r < 0)
+    r += 0.0  # -0 as +0
+    return r
+
+
+def _grip_x(scs: Scenes, th, phi, grip_x):
+    """The grip's Px [m] at crank angles dce + phi (D, K), as
+    :func:`pumplink.models.grip_travel.grip_position` gives it there, from ``grip_x``, Px at
+    ``th`` from the terms' loop closure (the same operations): where dce + phi rounds to th itself
+    (phi = th - dce exactly: th at or past dce, within twice it) that is the value; elsewhere
+    (dce + phi is th + 2 pi, rounded) the position is found anew, on the rows and the span of
+    columns that hold such angles.  ``grip_x`` is overwritten."""
+    at = scs.dead_centre_extended + phi
+    same = at == th
+    rows = np.nonzero(~same.all(axis=1))[0]
+    if rows.size == 0:
+        return grip_x
+    cols = np.nonzero(~same[rows].all(axis=0))[0]
+    span = slice(cols[0], cols[-1] + 1)
+    found = grip_position(at[rows, span], *(v[rows] for v in scs.travel[:7]))
+    grip_x[rows, span] = np.where(same[rows, span], grip_x[rows, span], found)
+    return grip_x
+
+
+def _minima(scs: Scenes, phi):
+    """The past and future minima of :func:`_profile` at phi (D, K) [rad]: the least upper - Q
+    over t in (phi - 2 pi, phi) and upper - P over (phi, phi + 2 pi) [J], from the running minima
+    of both sides of the sorted points taken at the count of points before phi."""
     x, a, b, al, de = _point_margins(scs)
     inf = np.full((x.shape[0], 1), np.inf)
 
@@ -481,26 +534,20 @@ def _profiles(scs: Scenes, crank_angle):
     def after(v):  # [k]: the minimum of v over the points from the k-th on
         return np.minimum.accumulate(np.concatenate([v, inf], axis=1)[:, ::-1], axis=1)[:, ::-1]
 
-    def at(v, k):
-        return np.take_along_axis(v, k, axis=1)
-
-    if x.shape[1] <= _COUNT_BY_COLUMN:  # a few points a design: counted column by column
-        below = np.zeros(phi.shape, np.intp)  # points with x < phi
-        upto = np.zeros(phi.shape, np.intp)  # points with x <= phi
+    if x.shape[1] <= _COUNT_BY_COLUMN:  # a few points a design: counted column by column, in bytes
+        below = np.zeros(phi.shape, np.int8)  # points with x < phi
+        upto = np.zeros(phi.shape, np.int8)  # points with x <= phi
         for j in range(x.shape[1]):
             below += x[:, j : j + 1] < phi
             upto += x[:, j : j + 1] <= phi
     else:  # many: all at once
         below = np.count_nonzero(x[:, None, :] < phi[..., None], axis=-1)
         upto = np.count_nonzero(x[:, None, :] <= phi[..., None], axis=-1)
-    past = np.minimum(at(before(al), below), at(after(al + a), below))  # t in (phi - 2 pi, phi)
-    future = np.minimum(at(before(de - b), upto), at(after(de), upto))  # t in (phi, phi + 2 pi)
-    push, brake = fp * g_phi - mw * phi + past, -fp * g_phi - mw * phi + future
-    # the three candidates' minimum and the first that takes it (NaN: the first NaN), as
-    # np.min and np.argmin over them stacked give them
-    e = np.minimum(np.minimum(push, up), brake)
-    regime = np.where(np.isnan(push) | (push == e), 1, np.where(np.isnan(up) | (up == e), 0, -1))
-    return e, regime, dup, tm.potential, i, tm.grip_rate, tm
+    # the minimum of the two sides' minima at a count is the minimum at the count of the two
+    # sides' minima (one look-up each)
+    past = np.take_along_axis(np.minimum(before(al), after(al + a)), below, axis=1)  # t in (phi - 2 pi, phi)
+    future = np.take_along_axis(np.minimum(before(de - b), after(de)), upto, axis=1)  # t in (phi, phi + 2 pi)
+    return past, future
 
 
 def regime(sc: Scene, crank_angle):

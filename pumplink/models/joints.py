@@ -191,20 +191,22 @@ def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weigh
     vx, vy = ay, -ax  # V = -dA/dt
     h3 = (vx * rx + vy * ry) / s
     h4 = (vx * ux + vy * uy) / s
-    qx = ax + h3 * h3 * ux - h4 * h4 * rx  # R = -d2A/dt2 + h3^2 u - h4^2 r
-    qy = ay + h3 * h3 * uy - h4 * h4 * ry
+    h33, h44 = h3 * h3, h4 * h4  # each square once (the same values wherever it is used)
+    qx = ax + h33 * ux - h44 * rx  # R = -d2A/dt2 + h3^2 u - h4^2 r
+    qy = ay + h33 * uy - h44 * ry
     d3 = (qx * rx + qy * ry) / s
     d4 = (qx * ux + qy * uy) / s
     w2 = w * w
     w3, w4 = h3 * w, h4 * w
+    w33, w44 = w3 * w3, w4 * w4
     a3 = h3 * acc + d3 * w2  # coupler's angular acceleration
     a4 = h4 * acc + d4 * w2  # handle's
     # accelerations: A on the crank; the coupler's centre A + u/2; points s e on the handle
     aax, aay = -ay * acc - ax * w2, ax * acc - ay * w2
-    gcx = aax - 0.5 * (a3 * uy + w3 * w3 * ux)
-    gcy = aay + 0.5 * (a3 * ux - w3 * w3 * uy)
+    gcx = aax - 0.5 * (a3 * uy + w33 * ux)
+    gcy = aay + 0.5 * (a3 * ux - w33 * uy)
     ex, ey = rx / r, ry / r  # the handle's direction
-    ptx, pty = -a4 * ey - w4 * w4 * ex, a4 * ex - w4 * w4 * ey  # acceleration per metre along it
+    ptx, pty = -a4 * ey - w44 * ex, a4 * ex - w44 * ey  # acceleration per metre along it
     arm = np.maximum(hh, r)  # the handle bar's length (docs/models.md §3a)
     i_c = mc * k * k / 12.0
     i_o4 = mh * arm * arm / 3.0 + mp * hh * hh
@@ -214,8 +216,9 @@ def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weigh
     fcx, fcy = mc * gcx, mc * (gcy + gravity)  # m_c (a_Gc - g)
     m_c = i_c * a3 + 0.5 * (ux * fcy - uy * fcx)
     # [[-ry, rx], [-uy, ux]] R_B = [m_h, m_c], determinant -s
-    bx_ = (m_h * ux - rx * m_c) / -s
-    by_ = (uy * m_h - ry * m_c) / -s
+    minus_s = -s
+    bx_ = (m_h * ux - rx * m_c) / minus_s
+    by_ = (uy * m_h - ry * m_c) / minus_s
     ax_, ay_ = fcx - bx_, fcy - by_  # (J1): R_A = m_c (a_Gc - g) - R_B
     # (J2): R_O4 = R_B - F ex + m_h (a_Gh - g) + m_p (a_P - g)
     lever = 0.5 * mh * arm + mp * hh  # first moment of the handle's masses about O4
@@ -231,7 +234,9 @@ def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weigh
     fix = m1 * 0.5 * r * ptx - ox_
     fiy = m1 * (0.5 * r * pty + gravity) - oy_
     moment = m1 * r * r / 3.0 * a4 - (rx * fiy - ry * fix) + 0.5 * r * ex * m1 * gravity
-    moment = np.where(hh >= r, moment, np.nan)  # a grip inside the rocker: no section beyond B
+    outside = hh >= r  # a grip inside the rocker: no section beyond B
+    if not np.all(outside):
+        moment = np.where(outside, moment, np.nan)
     # the crank's root carries the pin force's moment about the axle: crank_moment = -torque
     crank_axial = (
         -(ax_ * cs + ay_ * sn) if axial else None
@@ -240,18 +245,20 @@ def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weigh
     return ax_, ay_, bx_, by_, ox_, oy_, wx_, wy_, torque, crank_axial, moment, handle_axial
 
 
-def motion_loads(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0, fatigue=True):
+def motion_loads(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0, fatigue=True,
+                 out=None):  # fmt: skip
     """The loads a peak search and a fatigue check read along a :class:`Motion`, without the force
-    vectors of :func:`motion_forces` (the same values): :func:`six_loads`, shape (6, ...), and,
-    with ``fatigue``, the handle's and the crank's bending moments and axial forces (a tuple
-    ``(handle_moment, handle_axial, crank_moment, crank_axial)``; else None)."""
+    vectors of :func:`motion_forces` (the same values): :func:`six_loads`, shape (6, ...) (written
+    into ``out`` where given), and, with ``fatigue``, the handle's and the crank's bending
+    moments and axial forces (a tuple ``(handle_moment, handle_axial, crank_moment,
+    crank_axial)``; else None)."""
     with np.errstate(all="ignore"):  # a non-assemblable linkage gives NaN, by design
         ax_, ay_, bx_, by_, ox_, oy_, wx_, wy_, torque, crank_axial, moment, handle_axial = _joint_forces(
             lk, *(np.asarray(v, float) for v in (motion.crank_angle, motion.crank_speed,
                                                  motion.crank_acceleration, motion.operator_force)),
             motion.masses, gravity, rope_pull, wheel_weight, motion.closure, fatigue,
         )  # fmt: skip
-        out = np.empty((6,) + np.shape(torque))
+        out = np.empty((6,) + np.shape(torque)) if out is None else out
         for i, (x, y) in enumerate(((wx_, wy_), (ax_, ay_), (bx_, by_), (ox_, oy_))):  # JOINTS' order
             np.hypot(x, y, out=out[i])
         np.abs(torque, out=out[4])  # |crank moment| = |-torque|
@@ -579,7 +586,8 @@ def cycle_peak_loads(loads_at: Callable, grid, loads):
         (R, k), returning their :func:`six_loads`, shape (6, R, k).
     grid : (D, K) crank angles [rad] in [0, 2 pi): at least :data:`PEAK_GRID_PER_RAD` a radian,
         with the nodes :data:`JUMP_OFFSET` either side of each point where the loads may jump.
-    loads : (6, D, K), :func:`six_loads` of the joint forces at ``grid``.
+    loads : (6, D, K), :func:`six_loads` of the joint forces at ``grid`` (where the grid is sorted,
+        its NaN are overwritten with -inf).
 
     Returns
     -------
@@ -588,7 +596,8 @@ def cycle_peak_loads(loads_at: Callable, grid, loads):
     grid = np.asarray(grid, float)
     n, m = grid.shape
     if (grid[:, 1:] >= grid[:, :-1]).all():  # sorted already (a stable sort leaves it as it is)
-        vals = _finite_or_floor(loads)  # (6, D, K)
+        vals = loads  # (6, D, K), NaN as -inf in place
+        np.copyto(vals, -np.inf, where=np.isnan(vals))
     else:
         order = np.argsort(grid, axis=1, kind="stable")
         grid = np.take_along_axis(grid, order, axis=1)
@@ -597,7 +606,11 @@ def cycle_peak_loads(loads_at: Callable, grid, loads):
     best = np.take_along_axis(vals, j[..., None], 2)[..., 0]
     design = np.arange(n)[None, :]
     where = grid[design, j]
-    a, b = grid[design, np.maximum(j - 1, 0)], grid[design, np.minimum(j + 1, m - 1)]
+    left, right = np.maximum(j - 1, 0), np.minimum(j + 1, m - 1)
+    a, b = grid[design, left], grid[design, right]
+    # each load's value at its bracket's ends, points met already (on the grid, then in a zoom)
+    at_a = np.take_along_axis(vals, left[..., None], 2)[..., 0]
+    at_b = np.take_along_axis(vals, right[..., None], 2)[..., 0]
     live = np.isfinite(best) & (0.0 <= a) & (b <= TWO_PI) & (b > a)  # neighbours on the arc
     steps = np.linspace(0.0, 1.0, ZOOM_POINTS)
     slot = np.full((6, n), -1)
@@ -609,17 +622,32 @@ def cycle_peak_loads(loads_at: Callable, grid, loads):
         own = first == load
         slot[load[own], dd[own]] = np.arange(np.count_nonzero(own))
         pick = slot[first, dd]  # the zoom's points of each live load
-        lo = a[load[own], dd[own]]
-        x = lo[:, None] + (b[load[own], dd[own]] - lo)[:, None] * steps  # (U, ZOOM_POINTS)
-        v = _finite_or_floor(loads_at(dd[own], x))[load, pick]  # load i at its own points
+        lo, hi = a[load[own], dd[own]], b[load[own], dd[own]]
+        x = lo[:, None] + (hi - lo)[:, None] * steps  # (U, ZOOM_POINTS)
+        # load i at its own points: the first point is the bracket's lower end (lo + 0), the last
+        # its upper end where lo + (hi - lo) rounds to hi (all but brackets next to 0): their
+        # values are known, the points between are computed
+        v = np.empty((load.size, ZOOM_POINTS))
+        v[:, 0], v[:, -1] = at_a[load, dd], at_b[load, dd]
+        v[:, 1:-1] = _finite_or_floor(loads_at(dd[own], x[:, 1:-1])[load, pick])
+        anew = np.nonzero(x[:, -1] != hi)[0]
+        if anew.size:
+            row = np.full(hi.size, -1)
+            row[anew] = np.arange(anew.size)
+            these = row[pick] >= 0
+            last = _finite_or_floor(loads_at(dd[own][anew], x[anew, -1:])[:, :, 0])
+            v[these, -1] = last[load[these], row[pick[these]]]
         k = np.argmax(v, axis=1)
         top = v[np.arange(load.size), k]
         xs = x[pick]
         up = top > best[load, dd]
         best[load[up], dd[up]] = top[up]
         where[load[up], dd[up]] = xs[np.arange(load.size), k][up]
-        a[load, dd] = xs[np.arange(load.size), np.maximum(k - 1, 0)]
-        b[load, dd] = xs[np.arange(load.size), np.minimum(k + 1, ZOOM_POINTS - 1)]
+        below, above = np.maximum(k - 1, 0), np.minimum(k + 1, ZOOM_POINTS - 1)
+        a[load, dd] = xs[np.arange(load.size), below]
+        b[load, dd] = xs[np.arange(load.size), above]
+        at_a[load, dd] = v[np.arange(load.size), below]
+        at_b[load, dd] = v[np.arange(load.size), above]
         live[load, dd] = (b[load, dd] - a[load, dd]) > REFINE_XTOL
     return np.where(best == -np.inf, np.nan, best), np.mod(where, TWO_PI)
 

@@ -85,13 +85,7 @@ def part_loads(
         motion_of = _joints.dynamics_motion if model == DYNAMICS else _joints.flywheel_motion
         # the cycle, with the one-sided nodes at the dead centres (where the push reverses), is the
         # peak search's starting grid: the motion is computed once on it
-        jumps = np.add.outer(
-            [scene.dead_centre_extended, scene.dead_centre_folded],
-            [-_joints.JUMP_OFFSET, _joints.JUMP_OFFSET],
-        ).ravel()
-        th = np.sort(
-            np.mod(np.concatenate([np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES), jumps]), TWO_PI)
-        )
+        th = cycle_angles(np.array([scene.dead_centre_extended]), np.array([scene.dead_centre_folded]))[0]
         cycle = _joints.motion_forces(scene.linkage, motion_of(scene, th), GRAVITY, rope_pull, wheel_weight)
         peaks = _joints.scene_peaks(scene, motion_of, GRAVITY, rope_pull, wheel_weight, cycle=(th, cycle))
         # the fatigue cycle holds the reported peak moments' crank angles too
@@ -107,6 +101,27 @@ def part_loads(
     cycle = quasi_static_cycle(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque,
                                rope_pull, wheel_weight, at)  # fmt: skip
     return PartLoads(peaks, cycle, model)
+
+
+def cycle_angles(dead_centre_extended, dead_centre_folded):
+    """The crank angles [rad] of the energy models' cycle of designs (arrays (n,)): CYCLE_SAMPLES
+    a turn and the nodes :data:`pumplink.models.joints.JUMP_OFFSET` either side of both dead
+    centres (where the push reverses), in [0, 2 pi) and sorted, shape (n, CYCLE_SAMPLES + 4).
+    The turn's angles are in order already: the four nodes are merged into them (the values a
+    sort of all of them gives)."""
+    turn = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
+    ends = np.stack([dead_centre_extended, dead_centre_folded], axis=1)
+    nodes = np.sort(np.mod((ends[:, :, None] + [-_joints.JUMP_OFFSET, _joints.JUMP_OFFSET]).reshape(-1, 4),
+                           TWO_PI), axis=1)  # fmt: skip
+    n = nodes.shape[0]
+    # node j goes after the turn's angles up to it and the nodes before it
+    at = np.searchsorted(turn, nodes, side="right") + np.arange(4)
+    is_node = np.zeros((n, CYCLE_SAMPLES + 4), bool)
+    np.put_along_axis(is_node, at, True, axis=1)
+    out = np.empty((n, CYCLE_SAMPLES + 4))
+    out[is_node] = nodes.ravel()
+    out[~is_node] = np.broadcast_to(turn, (n, CYCLE_SAMPLES)).ravel()
+    return out
 
 
 def quasi_static_cycle(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull=0.0,
@@ -187,15 +202,12 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
         return np.broadcast_to(np.asarray(v, float), (n,))[:, None]
 
     rope, weight = column(rope_pull), column(wheel_weight)
-    ends = np.concatenate([column(dead_centre_extended), column(dead_centre_folded)], axis=1)
-    jumps = (ends[:, :, None] + np.array([-_joints.JUMP_OFFSET, _joints.JUMP_OFFSET])).reshape(n, 4)
-    turn = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
-    th = np.sort(np.mod(np.concatenate([np.broadcast_to(turn, (n, CYCLE_SAMPLES)), jumps], axis=1), TWO_PI))
+    th = cycle_angles(column(dead_centre_extended)[:, 0], column(dead_centre_folded)[:, 0])
 
-    def loads_at(rows, angles, fatigue=False):
+    def loads_at(rows, angles, fatigue=False, out=None):
         sub = scs.take(rows)
         motion = _joints.dynamics_motion(sub, angles)
-        return _joints.motion_loads(sub.linkage, motion, GRAVITY, rope[rows], weight[rows], fatigue)
+        return _joints.motion_loads(sub.linkage, motion, GRAVITY, rope[rows], weight[rows], fatigue, out)
 
     def six_at(rows, angles):
         return loads_at(rows, angles)[0]
@@ -207,8 +219,8 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     six = np.empty((6, n, k))
     fatigue = _Cycle(*(np.empty((n, k + 2)) for _ in _Cycle._fields))
     for s in range(0, n, CYCLE_ROWS):
-        rows = every[s : s + CYCLE_ROWS]
-        six[:, rows], read = loads_at(rows, th[rows], fatigue=True)
+        rows = slice(s, s + CYCLE_ROWS)
+        read = loads_at(every[rows], th[rows], fatigue=True, out=six[:, rows])[1]
         for v, r in zip(fatigue, read, strict=True):
             v[rows, :k] = r
     value, angle = _joints.cycle_peak_loads(six_at, th, six)
@@ -435,6 +447,7 @@ __all__ = [
     "PIN_PRESSURE_WARN",
     "PartLoads",
     "Strength",
+    "cycle_angles",
     "part_loads",
     "quasi_static_cycle",
     "quasi_static_strength",

@@ -16,6 +16,7 @@ Expected values never come from the code under test:
 
 import math
 import pathlib
+import types
 
 import mpmath
 import numpy as np
@@ -360,3 +361,77 @@ def test_quasi_static_peaks_outside_the_dead_band(village):
         assert mags[i].max() >= pk.force[i] * (1 - 1e-4)
     # the coupler is a two-force member without masses: the same force at A and B
     assert pk.force[1] == pytest.approx(pk.force[2], rel=1e-12)
+
+
+# A bracket [LOW, HIGH] whose last zoom point LOW + (HIGH - LOW) * 1.0 does not round to HIGH (found
+# by a search over random pairs; asserted below): the zoom computes that point anew.
+LOW, HIGH = 0.0015813037591417738, 0.010117432431816264
+#: That point: the first load has a spike there (only a zoom that computes it sees it).
+SPIKE = LOW + (HIGH - LOW) * 1.0
+
+
+def _bumps(centres, widths, heights, step):
+    """Six loads of crank angles: Gaussian bumps (a load with NaN beyond 5 rad, where it is not
+    defined; the first load with a spike at :data:`SPIKE`), one row of parameters per design, and
+    for the last design a fourth load that only a search which reads its brackets' upper ends
+    finds: spikes on the grid nodes ``step`` (3) and the next (2.5), and between the first zoom's
+    last two points of the bracket around them a bump of 4 on a point of the next zoom, far
+    narrower than the zoom's spacing."""
+    a, j, b = step
+    steps = np.linspace(0.0, 1.0, J.ZOOM_POINTS)
+    x = a + (b - a) * steps  # the first zoom's points; the bump on the middle one of the next
+    hidden = (x[-2] + (x[-1] - x[-2]) * steps)[J.ZOOM_POINTS // 2]
+
+    def six(rows, th):
+        th = np.asarray(th, float)
+        c, w, h = (np.asarray(v, float)[rows][:, :, None] for v in (centres, widths, heights))
+        out = h * np.exp(-(((th[:, None, :] - c) / w) ** 2))  # (R, 6, K)
+        out[:, 5] = np.where(th > 5.0, np.nan, out[:, 5])
+        out[:, 0] += np.where(th == SPIKE, 100.0, 0.0)
+        last = np.asarray(rows) == len(centres) - 1
+        steps = np.where(th == j, 3.0, np.where(th == b, 2.5, 4.0 * np.exp(-(((th - hidden) / 1e-9) ** 2))))
+        out[last, 3] = steps[last]
+        return out.transpose(1, 0, 2)
+
+    return six
+
+
+def test_cycle_peaks_are_each_designs_own_search():
+    """:func:`pumplink.models.joints.cycle_peak_loads` (many designs; the zooms' end points taken
+    from the points met before) gives :func:`~pumplink.models.joints.peak_joint_forces` of each
+    design on its own (every zoom point computed), bit for bit: on loads with peaks inside a cell,
+    two loads sharing a bracket, a load undefined on part of the turn, and a bracket whose last zoom
+    point does not round to its upper end."""
+    assert SPIKE != HIGH  # the case this test is for
+    turn = np.arange(1440) * (2 * np.pi / 1440)
+    trap = np.sort(np.concatenate([turn[(turn < LOW) | (turn > HIGH)], [LOW, 0.5 * (LOW + HIGH), HIGH]]))
+    assert trap.size == turn.size + 1
+    grid = np.stack([trap, np.sort(np.append(turn + 1e-4, 1.0)), np.sort(np.append(turn, 4.00005))])
+    centres = np.array([
+        [0.5 * (LOW + HIGH) + 1e-4, 0.5 * (LOW + HIGH) + 1e-4, 2.0, 3.1, 4.4, 1.0],
+        [1.234567, 1.234567, 6.2, 0.3, 2.5, 5.5],
+        [3.3, 0.01, 4.0, 4.0001, 6.27, 4.9],
+    ])  # fmt: skip
+    widths = np.full((3, 6), 0.05)
+    heights = np.array(
+        [[10.0, 5.0, 3.0, 2.0, 1.0, 4.0], [7.0, 3.0, 2.0, 1.0, 9.0, 6.0], [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]]
+    )
+    six = _bumps(centres, widths, heights, grid[2, 916:919])  # the node 4.00005 off the middle
+    value, angle = J.cycle_peak_loads(six, grid, six(np.arange(3), grid))
+
+    for d in range(3):
+
+        def forces(th, d=d):
+            v = six(np.array([d]), np.asarray(th, float)[None, :])[:, 0]
+            zero = np.zeros_like(v[0])
+            return types.SimpleNamespace(
+                **{name: (v[i], zero) for i, name in enumerate(J.JOINTS)},
+                crank_moment=v[4],
+                handle_moment=v[5],
+            )
+
+        want = J.peak_joint_forces(forces, nodes=(grid[d], forces(grid[d])))
+        np.testing.assert_array_equal(value[:4, d], want.force)
+        np.testing.assert_array_equal(angle[:4, d], want.angle)
+        np.testing.assert_array_equal(value[4:, d], [want.crank_moment[0], want.handle_moment[0]])
+        np.testing.assert_array_equal(angle[4:, d], [want.crank_moment[1], want.handle_moment[1]])
