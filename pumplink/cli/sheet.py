@@ -54,9 +54,9 @@ def sheet(
     r = force_analysis(s, keep_samples=False)
     builds = None
     if hole is not None:
-        from pumplink.studies.tolerance import tolerances
+        from pumplink.studies.tolerance import problem, tolerances
         from pumplink.studies.tolerance_study import study
 
-        builds = study(s, tolerances(parse_length(hole, "--hole")), samples)
+        builds = study(problem(s, tolerances(parse_length(hole, "--hole")), samples))
     write_sheet_pdf(field_sheet(r, builds), out, __version__)
     sys.stderr.write(f"wrote {out} (one A4 page; {r.outcome})\n")

@@ -36,7 +36,6 @@ from pumplink.studies.tolerance import (
     evaluate_builds,
     first_order_shares,
     offsets,
-    problem,
     sensitivities,
 )
 
@@ -282,21 +281,11 @@ def summarize(
     )
 
 
-def study(
-    spec: PumpSpec,
-    tol: Tolerances,
-    samples: int = 10_000,
-    seed: int = 0,
-    model: str | None = None,
-    strict: bool = False,
-    target: float = 0.95,
-    mapper: Callable | None = None,
-    progress: Callable[[int], None] | None = None,
-    keep: bool = False,
-) -> Result:
-    """A design's builds at these tolerances: the Monte Carlo (on ``mapper``, the batch engine's,
-    or in this process), the first order and the allocation."""
-    prob = problem(spec, tol, samples, seed, model, strict)
+def study(prob: Problem, target: float = 0.95, mapper: Callable | None = None,
+          progress: Callable[[int], None] | None = None, keep: bool = False) -> Result:  # fmt: skip
+    """A design's builds at these tolerances (``prob``, :func:`pumplink.studies.tolerance.problem`):
+    the Monte Carlo (on ``mapper``, the batch engine's, or in this process), the first order and
+    the allocation."""
     return summarize(prob, run_chunks(prob, mapper), target, progress, keep)
 
 
