@@ -215,7 +215,25 @@ def widest_window(lk: FourBar, dead_centre_extended, dead_centre_folded, window,
 
     The path at a stop angle is :func:`grip_path`'s, computed by the same operations from the
     per-design constants of the loop closure (:func:`_closure`), the rocker's angles at the grid's
-    stop angles from one cos and sin of the grid."""
+    stop angles from one cos and sin of the grid.  Designs that pose the same search (the same
+    linkage, dead centres and window, bit for bit: a grid's variants that differ in the head, the
+    pipe or the wheel only) are searched once."""
+    dce, dcf, w = (np.asarray(v, float) for v in (dead_centre_extended, dead_centre_folded, window))
+    if np.size(w) > 1:
+        key = np.stack(
+            np.broadcast_arrays(*(np.asarray(v, float) for v in lk.parameters), dce, dcf, w), axis=1
+        )
+        _, first, inverse = np.unique(key.view(np.int64), axis=0, return_index=True, return_inverse=True)
+        if first.size < np.size(w):
+            sub = FourBar(*(v[first] for v in key.T[:7]))
+            path, angle = _widest_window(sub, key[first, 7], key[first, 8], key[first, 9], samples)
+            inverse = inverse.ravel()
+            return path[inverse], angle[inverse]
+    return _widest_window(lk, dce, dcf, w, samples)
+
+
+def _widest_window(lk: FourBar, dead_centre_extended, dead_centre_folded, window, samples):
+    """:func:`widest_window` of every design given (no two alike as a rule)."""
     n = np.size(window)
     out_path, out_angle = np.empty(n), np.empty(n)
     if n == 0:
