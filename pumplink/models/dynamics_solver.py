@@ -145,16 +145,38 @@ def _problem_of(arrays, gravity) -> DynamicsProblem:
         kin = (0.5 * w_hi**2, 0.5 * w_lo**2)
         xe, xf = grip_position(np.stack([dce, dcf]), *geom)  # both dead centres in one call
         stroke = np.abs(xf - xe)
-        nodes, plus = crank_nodes(dce, dcf, GRID, CLUSTER)
-        tm = terms_from([v[:, None] for v in co], dce[:, None] + nodes, gravity, rates=False)
-        i = j[:, None] + tm[0]
-        up = tm[2] + i * kin[0][:, None]  # Eq. (8) of pumplink.models.dynamics_terms
-        lo = tm[2] + i * kin[1][:, None]
+        # the links' terms and the grip's travel at the nodes depend on the linkage and the masses
+        # only: designs alike in those (a grid's variants that differ in the load or the wheel) share
+        # them, computed once (the same operations per design, so the same values)
+        first, inverse = _alike(*geom, dce, dcf, mc, mh, ma)
+        u = slice(None) if first is None else first
+        nodes, plus = crank_nodes(dce[u], dcf[u], GRID, CLUSTER)
+        tm = terms_from([v[u, None] for v in co], dce[u, None] + nodes, gravity, rates=False)
+        base, local = node_travel(nodes, plus[:, None], tm[5], xe[u, None], xf[u, None], stroke[u, None])
+        inertia, potential = tm[0], tm[2]
+        if first is not None:
+            per_kind = (nodes, plus, inertia, potential, base, local)
+            nodes, plus, inertia, potential, base, local = (v.take(inverse, axis=0) for v in per_kind)
+        i = j[:, None] + inertia
+        up = potential + i * kin[0][:, None]  # Eq. (8) of pumplink.models.dynamics_terms
+        lo = potential + i * kin[1][:, None]
         dm = np.stack(np.broadcast_arrays(*co, mw, dce, *kin, j))
-        base, local = node_travel(nodes, plus[:, None], tm[5], xe[:, None], xf[:, None], stroke[:, None])
     prep = Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
     travel = [v[:, None] for v in prep.args()]
     return DynamicsProblem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, dm, travel)
+
+
+def _alike(*columns):
+    """(first, inverse) of the designs' rows of ``columns`` (1-D arrays over designs) alike bit for
+    bit: ``first`` the index of one design of each kind, ``inverse`` each design's kind; (None,
+    None) where fewer than a quarter of them repeat another (then computing per kind does not pay)."""
+    key = np.stack(np.broadcast_arrays(*(np.asarray(v, float) for v in columns)), axis=1)
+    if key.shape[0] < 2:
+        return None, None
+    _, first, inverse = np.unique(key.view(np.int64), axis=0, return_index=True, return_inverse=True)
+    if first.size > 0.75 * key.shape[0]:
+        return None, None
+    return first, inverse.ravel()
 
 
 # The pairs of (C1)-(C2) in the form the sweeps use (docs/models.md §3a).  At the points x of a row
