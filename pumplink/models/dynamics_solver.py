@@ -29,6 +29,7 @@ import numpy as np
 from pumplink.constants import GRAVITY
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.fourbar import FourBar, per_design
+from pumplink.mechanisms.fourbar_kernel import alike_designs
 from pumplink.models import flywheel_solver as _fs
 from pumplink.models import quasi_static as _qs
 from pumplink.models.conditions import Masses
@@ -148,7 +149,7 @@ def _problem_of(arrays, gravity) -> DynamicsProblem:
         # the links' terms and the grip's travel at the nodes depend on the linkage and the masses
         # only: designs alike in those (a grid's variants that differ in the load or the wheel) share
         # them, computed once (the same operations per design, so the same values)
-        first, inverse = _alike(*geom, dce, dcf, mc, mh, ma)
+        first, inverse = alike_designs(*geom, dce, dcf, mc, mh, ma)
         u = slice(None) if first is None else first
         nodes, plus = crank_nodes(dce[u], dcf[u], GRID, CLUSTER)
         tm = terms_from([v[u, None] for v in co], dce[u, None] + nodes, gravity, rates=False)
@@ -164,19 +165,6 @@ def _problem_of(arrays, gravity) -> DynamicsProblem:
     prep = Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
     travel = [v[:, None] for v in prep.args()]
     return DynamicsProblem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, dm, travel)
-
-
-def _alike(*columns):
-    """(first, inverse) of the designs' rows of ``columns`` (1-D arrays over designs) alike bit for
-    bit: ``first`` the index of one design of each kind, ``inverse`` each design's kind; (None,
-    None) where fewer than a quarter of them repeat another (then computing per kind does not pay)."""
-    key = np.stack(np.broadcast_arrays(*(np.asarray(v, float) for v in columns)), axis=1)
-    if key.shape[0] < 2:
-        return None, None
-    _, first, inverse = np.unique(key.view(np.int64), axis=0, return_index=True, return_inverse=True)
-    if first.size > 0.75 * key.shape[0]:
-        return None, None
-    return first, inverse.ravel()
 
 
 # The pairs of (C1)-(C2) in the form the sweeps use (docs/models.md §3a).  At the points x of a row

@@ -52,7 +52,7 @@ from pumplink.constants import GRAVITY, KICK_BACK_ENDS
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.bracket import find_minimum
 from pumplink.mechanisms.fourbar import FourBar, peak_rocker_rate
-from pumplink.mechanisms.fourbar_kernel import loop_closure
+from pumplink.mechanisms.fourbar_kernel import alike_designs, loop_closure
 from pumplink.models.conditions import Masses
 
 #: Stop angles per turn on which the window holding the most path is searched before it is refined
@@ -219,16 +219,12 @@ def widest_window(lk: FourBar, dead_centre_extended, dead_centre_folded, window,
     linkage, dead centres and window, bit for bit: a grid's variants that differ in the head, the
     pipe or the wheel only) are searched once."""
     dce, dcf, w = (np.asarray(v, float) for v in (dead_centre_extended, dead_centre_folded, window))
-    if np.size(w) > 1:
-        key = np.stack(
-            np.broadcast_arrays(*(np.asarray(v, float) for v in lk.parameters), dce, dcf, w), axis=1
-        )
-        _, first, inverse = np.unique(key.view(np.int64), axis=0, return_index=True, return_inverse=True)
-        if first.size < np.size(w):
-            sub = FourBar(*(v[first] for v in key.T[:7]))
-            path, angle = _widest_window(sub, key[first, 7], key[first, 8], key[first, 9], samples)
-            inverse = inverse.ravel()
-            return path[inverse], angle[inverse]
+    first, kind = alike_designs(*lk.parameters, dce, dcf, w) if np.ndim(w) == 1 else (None, None)
+    if first is not None:
+        sub = FourBar(*(np.broadcast_to(np.asarray(v, float), w.shape)[first] for v in lk.parameters))
+        wide = (np.broadcast_to(v, w.shape)[first] for v in (dce, dcf, w))
+        path, angle = _widest_window(sub, *wide, samples)
+        return path[kind], angle[kind]
     return _widest_window(lk, dce, dcf, w, samples)
 
 

@@ -242,11 +242,9 @@ def test_designs_alike_share_their_terms_to_the_same_bits(monkeypatch):
     load = (rng.uniform(8.0, 14.0, n), rng.uniform(0.5, 1.5, n), np.radians(rng.uniform(200, 500, n)), 0.2)
     shared = ds.least_peak_force(lk, dce, dcf, *load[:2], ms, *load[2:])
     kinds = len(set(zip(which.tolist(), heavy.tolist())))
-    assert (
-        kinds < 0.75 * n
-        and ds._alike(*lk.parameters, dce, dcf, ms.coupler, ms.handle, ms.grip)[0].size == kinds
-    )
-    monkeypatch.setattr(ds, "_alike", lambda *columns: (None, None))
+    first, _ = ds.alike_designs(*lk.parameters, dce, dcf, ms.coupler, ms.handle, ms.grip)
+    assert kinds < 0.75 * n and first.size == kinds
+    monkeypatch.setattr(ds, "alike_designs", lambda *columns: (None, None))
     alone = ds.least_peak_force(lk, dce, dcf, *load[:2], ms, *load[2:])
     assert np.isfinite(shared).all() and shared.tobytes() == alone.tobytes()
 
