@@ -69,20 +69,34 @@ def coupler_height(e2, k, r):
     return np.sqrt((r * r - e_k * e_k) * ((e + k) ** 2 - r * r)) / (2.0 * e2)
 
 
+#: Odd 64-bit multipliers that hash a design's values (their bits) to one word (splitmix64's).
+_HASH = np.array([0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9, 0x94D049BB133111EB, 0xC2B2AE3D27D4EB4F,
+                  0x165667B19E3779F9, 0xD6E8FEB86659FD93, 0xFF51AFD7ED558CCD, 0xC4CEB9FE1A85EC53,
+                  0x87C37B91114253D5, 0x4CF5AD432745937F, 0x52DCE729DA3ED78F, 0x2545F4914F6CDD1D],
+                 dtype=np.uint64)  # fmt: skip
+
+
 def alike_designs(*columns):
     """(first, kind) of designs alike bit for bit in ``columns`` (1-D arrays over designs, or
-    scalars): ``first`` the index of one design of each kind, ``kind`` each design's index into
-    ``first``; (None, None) where more than three quarters of the designs are of kinds of their own
-    (computing per kind would not pay).  A grid's variants that differ only in the load or the
-    wheel are alike in their linkage: a kernel of the linkage alone runs once per kind (the same
-    operations per design, so the same values)."""
-    key = np.stack(np.broadcast_arrays(*(np.asarray(v, float) for v in columns)), axis=1)
-    if key.ndim != 2 or key.shape[0] < 2:
+    scalars; at most 12): ``first`` the index of one design of each kind, ``kind`` each design's
+    index into ``first``; (None, None) where more than three quarters of the designs are of kinds
+    of their own (computing per kind would not pay).  A grid's variants that differ only in the
+    load or the wheel are alike in their linkage: a kernel of the linkage alone runs once per kind
+    (the same operations per design, so the same values).  Kinds are found by a hash of the values'
+    bits and checked row by row (a collision: (None, None))."""
+    rows = np.ascontiguousarray(
+        np.stack(np.broadcast_arrays(*(np.asarray(v, float) for v in columns)), axis=1)
+    )
+    if rows.ndim != 2 or rows.shape[0] < 2:
         return None, None
-    _, first, kind = np.unique(key.view(np.int64), axis=0, return_index=True, return_inverse=True)
-    if first.size > 0.75 * key.shape[0]:
+    bits = rows.view(np.uint64)
+    with np.errstate(over="ignore"):
+        key = (bits * _HASH[: bits.shape[1]]).sum(axis=1, dtype=np.uint64)
+    _, first, kind = np.unique(key, return_index=True, return_inverse=True)
+    kind = kind.ravel()
+    if first.size > 0.75 * bits.shape[0] or not np.array_equal(bits[first][kind], bits):
         return None, None
-    return first, kind.ravel()
+    return first, kind
 
 
 def kernel_work(shape) -> np.ndarray:
