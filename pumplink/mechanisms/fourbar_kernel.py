@@ -69,16 +69,24 @@ def coupler_height(e2, k, r):
     return np.sqrt((r * r - e_k * e_k) * ((e + k) ** 2 - r * r)) / (2.0 * e2)
 
 
-#: Odd 64-bit multipliers that hash a design's values (their bits) to one word (splitmix64's).
-_HASH = np.array([0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9, 0x94D049BB133111EB, 0xC2B2AE3D27D4EB4F,
-                  0x165667B19E3779F9, 0xD6E8FEB86659FD93, 0xFF51AFD7ED558CCD, 0xC4CEB9FE1A85EC53,
-                  0x87C37B91114253D5, 0x4CF5AD432745937F, 0x52DCE729DA3ED78F, 0x2545F4914F6CDD1D],
-                 dtype=np.uint64)  # fmt: skip
+def _multipliers(n: int) -> np.ndarray:
+    """``n`` odd 64-bit words from splitmix64's sequence (seed 0), to hash a design's values."""
+    mask, x, out = (1 << 64) - 1, 0, []
+    for _ in range(n):
+        x = (x + 0x9E3779B97F4A7C15) & mask
+        z = ((x ^ (x >> 30)) * 0xBF58476D1CE4E5B9) & mask
+        z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & mask
+        out.append((z ^ (z >> 31)) | 1)
+    return np.array(out, dtype=np.uint64)
+
+
+#: Multipliers that hash a design's values (their bits) to one word: at most 32 values a design.
+_HASH = _multipliers(32)
 
 
 def alike_designs(*columns):
     """(first, kind) of designs alike bit for bit in ``columns`` (1-D arrays over designs, or
-    scalars; at most 12): ``first`` the index of one design of each kind, ``kind`` each design's
+    scalars; at most 32): ``first`` the index of one design of each kind, ``kind`` each design's
     index into ``first``; (None, None) where more than three quarters of the designs are of kinds
     of their own (computing per kind would not pay).  A grid's variants that differ only in the
     load or the wheel are alike in their linkage: a kernel of the linkage alone runs once per kind

@@ -215,5 +215,5 @@ def test_alike_designs_are_alike_bit_for_bit(monkeypatch):
     )
     assert all(len({want[i] for i in np.nonzero(kind == k)[0]}) == 1 for k in range(first.size))
     assert fk.alike_designs(*rng.uniform(size=(3, 40))) == (None, None)  # all distinct
-    monkeypatch.setattr(fk, "_HASH", np.zeros(12, np.uint64))  # every key the same
+    monkeypatch.setattr(fk, "_HASH", np.zeros(32, np.uint64))  # every key the same
     assert fk.alike_designs(*rows.T) == (None, None)

@@ -249,6 +249,30 @@ def test_designs_alike_share_their_terms_to_the_same_bits(monkeypatch):
     assert np.isfinite(shared).all() and shared.tobytes() == alone.tobytes()
 
 
+def test_terms_of_designs_alike_at_shared_angles_are_the_same_bits(monkeypatch):
+    """terms_from on designs as columns at shared crank angles (the model choice's sizes) computes
+    designs alike bit for bit once; every term must be the one computed design by design: 6
+    linkages (3 and the same with a swing 1e-5 deg larger) of two tubes' masses, 8 rows each,
+    shuffled, 360 angles, against the call without the sharing."""
+    from pumplink.mechanisms.fourbar import FourBar, synthesize
+
+    rng = np.random.default_rng(9)
+    frame = [np.tile(rng.uniform(a, b, 3), 2) for a, b in ((0.3, 0.6), (0.0, 0.3), (0.0, 0.15), (0.12, 0.25))]
+    syn = synthesize(*frame, np.radians(np.tile(rng.uniform(40, 70, 3), 2) + np.repeat([0.0, 1e-5], 3)), 0.9)
+    which = rng.permutation(np.repeat(np.arange(6), 8))
+    lk = syn.linkage.take(which)
+    col = FourBar(*(np.asarray(v, float)[:, None] for v in lk.parameters))
+    heavy = (np.arange(which.size) % 2 == 0)[:, None]
+    co = dt.coefficients(col, dt.bar_masses(col, np.where(heavy, 2.0, 1.56), np.where(heavy, 3.0, 0.0)))
+    th = np.arange(360) * (2 * math.pi / 360)
+    first, _ = dt.alike_designs(*(v[:, 0] for v in co if np.ndim(v) == 2))
+    assert first is not None and first.size == 12
+    shared = dt.terms_from(co, th, GRAVITY, fly_x=True)
+    monkeypatch.setattr(dt, "alike_designs", lambda *columns: (None, None))
+    alone = dt.terms_from(co, th, GRAVITY, fly_x=True)
+    assert all(a.tobytes() == b.tobytes() and a.shape == (which.size, 360) for a, b in zip(shared, alone))
+
+
 # ----------------------------------------------------------------------------- time domain
 def test_solve_ivp_confirms_the_profile_and_rejects_a_weaker_operator():
     """At Fp* the reported profile, integrated open loop, is periodic inside the band at the mean
