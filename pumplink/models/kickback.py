@@ -188,7 +188,8 @@ def _window_path(co, handle, two_swing, dc, at_dc, start, stop, t_b=None):
     turns = np.floor(length / TWO_PI)
     a = stop - (length - turns * TWO_PI)  # the partial turn [a, stop], shorter than 2 pi
     if t_b is None:
-        ends = np.stack(np.broadcast_arrays(a, stop))
+        ends = np.empty((2,) + np.broadcast_shapes(np.shape(a), np.shape(stop)))
+        ends[0], ends[1] = a, stop
         t_a, t_b = _rocker_from(co, np.cos(ends), np.sin(ends))
     else:
         t_a = _rocker_from(co, np.cos(a), np.sin(a))
@@ -199,7 +200,11 @@ def _window_path(co, handle, two_swing, dc, at_dc, start, stop, t_b=None):
     value = np.where(inside, at_dc, t_b)
     v1 = np.where(first, value[0], value[1])
     v2 = np.where(first, value[1], value[0])
-    turn = np.abs(_wrap(np.stack([v1 - t_a, v2 - v1, t_b - v2])))
+    turn = np.empty((3,) + v1.shape)
+    np.subtract(v1, t_a, out=turn[0])
+    np.subtract(v2, v1, out=turn[1])
+    np.subtract(t_b, v2, out=turn[2])
+    turn = np.abs(_wrap(turn))
     return handle * (two_swing * turns + (turn[0] + turn[1] + turn[2]))
 
 
