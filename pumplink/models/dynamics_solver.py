@@ -338,8 +338,9 @@ def _extrema(pb: DynamicsProblem, lam, rows):
     # the neighbours across the period: f(x - 2 pi) = f(x) + drift (times -kind)
     ext[:, :, 0] = (f[:, :, 0] <= f[:, :, -1] - kd) & (f[:, :, 0] < f[:, :, 1])
     ext[:, :, -1] = (f[:, :, -1] <= f[:, :, -2]) & (f[:, :, -1] < f[:, :, 0] + kd)
-    fam, d, k = np.nonzero(ext)
-    at = d * x.shape[1] + k  # flat index into (R, M)
+    at = np.flatnonzero(ext)  # as np.nonzero(ext), in its order: (family, row, node) of each
+    fam, at = np.divmod(at, x.size)  # flat index into (R, M)
+    d, k = np.divmod(at, x.shape[1])
     node = x.take(at)
     lo = np.where(k > 0, x.take(at - 1), x.take(at - k + last) - TWO_PI)
     hi = np.where(k < last, x.take(np.minimum(at + 1, x.size - 1)), x.take(at - k) + TWO_PI)
