@@ -137,16 +137,14 @@ def find_minimum(f, init, /, *, args=(), tolerances=None, maxiter=100) -> Minimu
         nfev += 1
         right = np.sign(x - x2) == np.sign(x3 - x2)  # the new point is on x3's side of x2
         higher = fx > f2
-        new = np.stack([x, fx])  # (x, f(x))
+        new = np.empty((2, x.size))  # (x, f(x))
+        new[0], new[1] = x, fx
         p1, p2, p3 = s[:, 0], s[:, 1], s[:, 2]
-        s = np.stack(
-            [
-                np.where(right & ~higher, p2, np.where(~right & higher, new, p1)),
-                np.where(higher, p2, new),
-                np.where(right & higher, new, np.where(~right & ~higher, p2, p3)),
-            ],
-            axis=1,
-        )
+        nxt = np.empty_like(s)
+        nxt[:, 0] = np.where(right & ~higher, p2, np.where(~right & higher, new, p1))
+        nxt[:, 1] = np.where(higher, p2, new)
+        nxt[:, 2] = np.where(right & higher, new, np.where(~right & ~higher, p2, p3))
+        s = nxt
         nit += 1
         stop, code, xtol = _check(s, xatol, xrtol, fatol, frtol)
     if active.size:  # the iteration limit

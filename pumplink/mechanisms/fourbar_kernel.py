@@ -69,6 +69,44 @@ def coupler_height(e2, k, r):
     return np.sqrt((r * r - e_k * e_k) * ((e + k) ** 2 - r * r)) / (2.0 * e2)
 
 
+def _multipliers(n: int) -> np.ndarray:
+    """``n`` odd 64-bit words from splitmix64's sequence (seed 0), to hash a design's values."""
+    mask, x, out = (1 << 64) - 1, 0, []
+    for _ in range(n):
+        x = (x + 0x9E3779B97F4A7C15) & mask
+        z = ((x ^ (x >> 30)) * 0xBF58476D1CE4E5B9) & mask
+        z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & mask
+        out.append((z ^ (z >> 31)) | 1)
+    return np.array(out, dtype=np.uint64)
+
+
+#: Multipliers that hash a design's values (their bits) to one word: at most 32 values a design.
+_HASH = _multipliers(32)
+
+
+def alike_designs(*columns):
+    """(first, kind) of designs alike bit for bit in ``columns`` (1-D arrays over designs, or
+    scalars; at most 32): ``first`` the index of one design of each kind, ``kind`` each design's
+    index into ``first``; (None, None) where more than three quarters of the designs are of kinds
+    of their own (computing per kind would not pay).  A grid's variants that differ only in the
+    load or the wheel are alike in their linkage: a kernel of the linkage alone runs once per kind
+    (the same operations per design, so the same values).  Kinds are found by a hash of the values'
+    bits and checked row by row (a collision: (None, None))."""
+    rows = np.ascontiguousarray(
+        np.stack(np.broadcast_arrays(*(np.asarray(v, float) for v in columns)), axis=1)
+    )
+    if rows.ndim != 2 or rows.shape[0] < 2:
+        return None, None
+    bits = rows.view(np.uint64)
+    with np.errstate(over="ignore"):
+        key = (bits * _HASH[: bits.shape[1]]).sum(axis=1, dtype=np.uint64)
+    _, first, kind = np.unique(key, return_index=True, return_inverse=True)
+    kind = kind.ravel()
+    if first.size > 0.75 * bits.shape[0] or not np.array_equal(bits[first][kind], bits):
+        return None, None
+    return first, kind
+
+
 def kernel_work(shape) -> np.ndarray:
     """Scratch memory for :func:`force_kernel` at a result shape (reuse it across chunks)."""
     return np.empty((9,) + tuple(shape))
@@ -111,11 +149,24 @@ def force_kernel(lk: FourBar, cs, sn, wheel_torque, work: np.ndarray | None = No
 
 
 def _force_into(lk: FourBar, cs, sn, wheel_torque, work, shape):
+    f = np.empty(shape)
+    bx, by, p2 = _geometry_into(lk, cs, sn, work, f)
+    f *= wheel_torque * lk.rocker / (lk.handle * lk.crank)
+    f /= by
+    f /= p2  # Eq. (3) by virtual work: F = Mw / (dPx/dt2)
+    by += lk.pivot_y
+    np.abs(p2, out=p2)
+    np.copyto(f, np.nan, where=p2 <= SINGULAR_SIN * lk.coupler)  # exactly at a dead centre
+    return bx, by, f
+
+
+def _geometry_into(lk: FourBar, cs, sn, work, f):
+    """Everything of :func:`force_kernel` that the wheel torque does not enter: B's x, Ry = By -
+    O4y and w = (A x u) / crank in the scratch rows (returned), q e^2 in ``f``."""
     # Every step writes into the scratch rows (f doubles as a temporary until the end), so no
-    # array is allocated except the returned force.
+    # array is allocated.
     px, py, c, k, r = lk.pivot_x, lk.pivot_y, lk.crank, lk.coupler, lk.rocker
     p1, p2, e2, t, q, dx, dy, bx, by = work
-    f = np.empty(shape)
     np.multiply(cs, px, out=p1)
     np.multiply(sn, py, out=f)
     p1 += f  # P1 = dir . O4
@@ -157,10 +208,29 @@ def _force_into(lk: FourBar, cs, sn, wheel_torque, work, shape):
     np.multiply(t, p2, out=p2)
     p2 += p1  # w = (A x u) / crank
     np.multiply(q, e2, out=f)
-    f *= wheel_torque * r / (lk.handle * c)
-    f /= by
-    f /= p2  # Eq. (3) by virtual work: F = Mw / (dPx/dt2)
-    by += py
-    np.abs(p2, out=p2)
-    np.copyto(f, np.nan, where=p2 <= SINGULAR_SIN * k)  # exactly at a dead centre
-    return bx, by, f
+    return bx, by, p2
+
+
+def force_parts(lk: FourBar, cs, sn):
+    """The parts of :func:`force_kernel`'s force that the wheel torque does not enter, at crank
+    directions (cs, sn): (q e^2, Ry, w), new arrays; :func:`force_of_parts` gives the force of a
+    wheel torque from them with the same operations, so the same bits (designs alike in their
+    geometry share the parts whatever their loads)."""
+    shape = np.broadcast_shapes(np.shape(cs), *(np.shape(v) for v in lk.parameters))
+    work = kernel_work(shape)
+    qe2 = np.empty(shape)
+    with np.errstate(all="ignore"):
+        _bx, ry, w = _geometry_into(lk, cs, sn, work, qe2)
+    return qe2, ry.copy(), w.copy()
+
+
+def force_of_parts(lk: FourBar, parts, wheel_torque):
+    """The force of :func:`force_kernel` [N] from :func:`force_parts`' parts (each broadcast with
+    ``lk`` and ``wheel_torque``): the same operations in the same order."""
+    qe2, ry, w = parts
+    with np.errstate(all="ignore"):
+        f = qe2 * (wheel_torque * lk.rocker / (lk.handle * lk.crank))
+        f /= ry
+        f /= w
+        np.copyto(f, np.nan, where=np.abs(w) <= SINGULAR_SIN * lk.coupler)
+    return f

@@ -29,6 +29,7 @@ import numpy as np
 from pumplink.constants import GRAVITY
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.fourbar import FourBar, per_design
+from pumplink.mechanisms.fourbar_kernel import alike_designs
 from pumplink.models import flywheel_solver as _fs
 from pumplink.models import quasi_static as _qs
 from pumplink.models.conditions import Masses
@@ -145,13 +146,22 @@ def _problem_of(arrays, gravity) -> DynamicsProblem:
         kin = (0.5 * w_hi**2, 0.5 * w_lo**2)
         xe, xf = grip_position(np.stack([dce, dcf]), *geom)  # both dead centres in one call
         stroke = np.abs(xf - xe)
-        nodes, plus = crank_nodes(dce, dcf, GRID, CLUSTER)
-        tm = terms_from([v[:, None] for v in co], dce[:, None] + nodes, gravity, rates=False)
-        i = j[:, None] + tm[0]
-        up = tm[2] + i * kin[0][:, None]  # Eq. (8) of pumplink.models.dynamics_terms
-        lo = tm[2] + i * kin[1][:, None]
+        # the links' terms and the grip's travel at the nodes depend on the linkage and the masses
+        # only: designs alike in those (a grid's variants that differ in the load or the wheel) share
+        # them, computed once (the same operations per design, so the same values)
+        first, inverse = alike_designs(*geom, dce, dcf, mc, mh, ma)
+        u = slice(None) if first is None else first
+        nodes, plus = crank_nodes(dce[u], dcf[u], GRID, CLUSTER)
+        tm = terms_from([v[u, None] for v in co], dce[u, None] + nodes, gravity, rates=False)
+        base, local = node_travel(nodes, plus[:, None], tm[5], xe[u, None], xf[u, None], stroke[u, None])
+        inertia, potential = tm[0], tm[2]
+        if first is not None:
+            per_kind = (nodes, plus, inertia, potential, base, local)
+            nodes, plus, inertia, potential, base, local = (v.take(inverse, axis=0) for v in per_kind)
+        i = j[:, None] + inertia
+        up = potential + i * kin[0][:, None]  # Eq. (8) of pumplink.models.dynamics_terms
+        lo = potential + i * kin[1][:, None]
         dm = np.stack(np.broadcast_arrays(*co, mw, dce, *kin, j))
-        base, local = node_travel(nodes, plus[:, None], tm[5], xe[:, None], xf[:, None], stroke[:, None])
     prep = Prepared(tuple(geom), dce, plus, xe, xf, stroke, mw, nodes, base, local)
     travel = [v[:, None] for v in prep.args()]
     return DynamicsProblem(prep, lk1, j, ms, w_lo, w_hi, gravity, mw, stroke, up, lo, dm, travel)
@@ -328,8 +338,9 @@ def _extrema(pb: DynamicsProblem, lam, rows):
     # the neighbours across the period: f(x - 2 pi) = f(x) + drift (times -kind)
     ext[:, :, 0] = (f[:, :, 0] <= f[:, :, -1] - kd) & (f[:, :, 0] < f[:, :, 1])
     ext[:, :, -1] = (f[:, :, -1] <= f[:, :, -2]) & (f[:, :, -1] < f[:, :, 0] + kd)
-    fam, d, k = np.nonzero(ext)
-    at = d * x.shape[1] + k  # flat index into (R, M)
+    at = np.flatnonzero(ext)  # as np.nonzero(ext), in its order: (family, row, node) of each
+    fam, at = np.divmod(at, x.size)  # flat index into (R, M)
+    d, k = np.divmod(at, x.shape[1])
     node = x.take(at)
     lo = np.where(k > 0, x.take(at - 1), x.take(at - k + last) - TWO_PI)
     hi = np.where(k < last, x.take(np.minimum(at + 1, x.size - 1)), x.take(at - k) + TWO_PI)

@@ -36,6 +36,7 @@ import numpy as np
 
 from pumplink.constants import GRAVITY
 from pumplink.mechanisms.fourbar import FourBar
+from pumplink.mechanisms.fourbar_kernel import alike_designs
 from pumplink.models.conditions import Masses
 
 
@@ -135,6 +136,21 @@ def terms_from(
     :func:`point_terms`, the same operations in the same order, without numpy's per-call cost.
     ``closure``: an eighth value, the loop closure (:attr:`Terms.closure`).
     """
+    if lib is np and not closure and np.ndim(th) == 1 and all(np.ndim(v) in (0, 2) for v in co):
+        # designs (rows of column constants) at the same angles: those alike bit for bit (a grid's
+        # variants that differ in the load or the speed) are computed once, the same values
+        columns = [v[:, 0] for v in co if np.ndim(v) == 2 and np.shape(v)[1] == 1]
+        first, kind = alike_designs(*columns) if columns else (None, None)
+        if first is not None:
+            out = _terms_from(
+                [v[first] if np.ndim(v) else v for v in co], th, gravity, rates, values, fly_x, grip
+            )
+            return tuple(None if v is None else v.take(kind, axis=0) for v in out)
+    return _terms_from(co, th, gravity, rates, values, fly_x, grip, lib, closure)
+
+
+def _terms_from(co, th, gravity, rates=True, values=True, fly_x=False, grip=True, lib=np, closure=False):
+    """The body of :func:`terms_from` (its arguments as there)."""
     px, py, c, o2, c2, hkr, kk, k, rr, branch, mc, ic, i4, lever, mpy, hr, nhr = co
     cs, sn = lib.cos(th), lib.sin(th)
     # the loop closure of pumplink.mechanisms.fourbar_kernel.loop_closure (t, q), written out

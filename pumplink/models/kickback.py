@@ -52,7 +52,7 @@ from pumplink.constants import GRAVITY, KICK_BACK_ENDS
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.bracket import find_minimum
 from pumplink.mechanisms.fourbar import FourBar, peak_rocker_rate
-from pumplink.mechanisms.fourbar_kernel import loop_closure
+from pumplink.mechanisms.fourbar_kernel import alike_designs, loop_closure
 from pumplink.models.conditions import Masses
 
 #: Stop angles per turn on which the window holding the most path is searched before it is refined
@@ -179,27 +179,33 @@ def _rocker_from(co, cs, sn):
     return np.arctan2(by - py, bx - px)
 
 
-def _window_path(co, handle, two_swing, dce, dcf, at_dce, at_dcf, start, stop, t_b):
+def _window_path(co, handle, two_swing, dc, at_dc, start, stop, t_b=None):
     """:func:`grip_path` from ``start`` to ``stop`` (arrays) of designs given by the constants of
-    :func:`_closure`, H, 2 swing, their dead centres and the rocker's angles there, with the
-    rocker's angle at ``stop`` known (``t_b``): the same operations, so the same bits."""
+    :func:`_closure`, H, 2 swing, their dead centres (extended, folded) stacked and the rocker's
+    angles there, with the rocker's angle at ``stop`` where known (``t_b``; else found beside the
+    one at the partial turn's start, in one call): the same operations, so the same bits."""
     length = stop - start
     turns = np.floor(length / TWO_PI)
     a = stop - (length - turns * TWO_PI)  # the partial turn [a, stop], shorter than 2 pi
-    t_a = _rocker_from(co, np.cos(a), np.sin(a))
+    if t_b is None:
+        ends = np.empty((2,) + np.broadcast_shapes(np.shape(a), np.shape(stop)))
+        ends[0], ends[1] = a, stop
+        t_a, t_b = _rocker_from(co, np.cos(ends), np.sin(ends))
+    else:
+        t_a = _rocker_from(co, np.cos(a), np.sin(a))
     # the dead centres inside (a, stop): the rocker reverses there
-    x = dce + TWO_PI * np.ceil((a - dce) / TWO_PI)
-    inside_e = x < stop
-    inner_e = np.where(inside_e, x, stop)
-    x = dcf + TWO_PI * np.ceil((a - dcf) / TWO_PI)
-    inside_f = x < stop
-    first = inner_e <= np.where(inside_f, x, stop)
-    value_e = np.where(inside_e, at_dce, t_b)
-    value_f = np.where(inside_f, at_dcf, t_b)
-    v1 = np.where(first, value_e, value_f)
-    v2 = np.where(first, value_f, value_e)
-    partial = np.abs(_wrap(v1 - t_a)) + np.abs(_wrap(v2 - v1)) + np.abs(_wrap(t_b - v2))
-    return handle * (two_swing * turns + partial)
+    x = dc + TWO_PI * np.ceil((a - dc) / TWO_PI)
+    inside = x < stop
+    first = np.where(inside[0], x[0], stop) <= np.where(inside[1], x[1], stop)
+    value = np.where(inside, at_dc, t_b)
+    v1 = np.where(first, value[0], value[1])
+    v2 = np.where(first, value[1], value[0])
+    turn = np.empty((3,) + v1.shape)
+    np.subtract(v1, t_a, out=turn[0])
+    np.subtract(v2, v1, out=turn[1])
+    np.subtract(t_b, v2, out=turn[2])
+    turn = np.abs(_wrap(turn))
+    return handle * (two_swing * turns + (turn[0] + turn[1] + turn[2]))
 
 
 #: Designs whose grid of stop angles :func:`widest_window` evaluates at once (designs x
@@ -215,7 +221,21 @@ def widest_window(lk: FourBar, dead_centre_extended, dead_centre_folded, window,
 
     The path at a stop angle is :func:`grip_path`'s, computed by the same operations from the
     per-design constants of the loop closure (:func:`_closure`), the rocker's angles at the grid's
-    stop angles from one cos and sin of the grid."""
+    stop angles from one cos and sin of the grid.  Designs that pose the same search (the same
+    linkage, dead centres and window, bit for bit: a grid's variants that differ in the head, the
+    pipe or the wheel only) are searched once."""
+    dce, dcf, w = (np.asarray(v, float) for v in (dead_centre_extended, dead_centre_folded, window))
+    first, kind = alike_designs(*lk.parameters, dce, dcf, w) if np.ndim(w) == 1 else (None, None)
+    if first is not None:
+        sub = FourBar(*(np.broadcast_to(np.asarray(v, float), w.shape)[first] for v in lk.parameters))
+        wide = (np.broadcast_to(v, w.shape)[first] for v in (dce, dcf, w))
+        path, angle = _widest_window(sub, *wide, samples)
+        return path[kind], angle[kind]
+    return _widest_window(lk, dce, dcf, w, samples)
+
+
+def _widest_window(lk: FourBar, dead_centre_extended, dead_centre_folded, window, samples):
+    """:func:`widest_window` of every design given (no two alike as a rule)."""
     n = np.size(window)
     out_path, out_angle = np.empty(n), np.empty(n)
     if n == 0:
@@ -236,7 +256,9 @@ def widest_window(lk: FourBar, dead_centre_extended, dead_centre_folded, window,
         for s0 in range(0, n, GRID_DESIGNS):
             rows = table[:, s0 : s0 + GRID_DESIGNS, None]
             t_b = _rocker_from(rows[:10], cos_grid, sin_grid)
-            path[s0 : s0 + GRID_DESIGNS] = _window_path(rows[:10], *rows[10:16], grid - rows[16], grid, t_b)
+            path[s0 : s0 + GRID_DESIGNS] = _window_path(
+                rows[:10], rows[10], rows[11], rows[12:14], rows[14:16], grid - rows[16], grid, t_b
+            )
     # the grid's PEAKS largest local maxima (the path may have two near-equal humps), each refined
     bump = (path >= np.roll(path, 1, axis=1)) & (path >= np.roll(path, -1, axis=1))
     j = np.argsort(np.where(bump, path, -np.inf), axis=1)[:, -PEAKS:]  # (n, PEAKS)
@@ -262,8 +284,7 @@ def _minus_path(x, design, table):
     into the columns of ``table``, :func:`widest_window`'s), for the bracket's minimisation."""
     rows = table.take(design.astype(np.intp), axis=1)
     with np.errstate(all="ignore"):
-        t_b = _rocker_from(rows[:10], np.cos(x), np.sin(x))
-        return -_window_path(rows[:10], *rows[10:16], x - rows[16], x, t_b)
+        return -_window_path(rows[:10], rows[10], rows[11], rows[12:14], rows[14:16], x - rows[16], x)
 
 
 def _masses(masses: Masses) -> tuple:

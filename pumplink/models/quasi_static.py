@@ -12,7 +12,13 @@ import numpy as np
 from pumplink.mechanisms.angles import TWO_PI, angular_distance, offset_table, shifted_directions
 from pumplink.mechanisms.bracket import find_minimum
 from pumplink.mechanisms.fourbar import FourBar, per_design
-from pumplink.mechanisms.fourbar_kernel import force_kernel, kernel_work
+from pumplink.mechanisms.fourbar_kernel import (
+    alike_designs,
+    force_kernel,
+    force_of_parts,
+    force_parts,
+    kernel_work,
+)
 
 #: Points per dead-band window on which the exact peak search starts (independent of the
 #: user's --samples); the best interior point is then refined by a bracketing minimiser.
@@ -88,9 +94,24 @@ def dead_band_peak_force(lk: FourBar, dead_centre_extended, dead_centre_folded, 
     theta = start[..., None] + np.maximum(length, 0.0)[..., None] * s  # (D, 2, M)
     g3 = [p[:, None, None] for p in geom]
     val = np.empty_like(theta)
+    # designs alike in linkage, dead centres and band (a grid's variants that differ in the load)
+    # share the parts of the force the wheel torque does not enter, computed once per kind
+    first, kind = alike_designs(*geom[:7], dce, dcf, band)
+    if first is not None:
+        parts = np.empty((3,) + (first.size,) + theta.shape[1:])
+        for u0 in range(0, first.size, GRID_DESIGNS):  # cache-sized blocks: same values, faster
+            u = first[u0 : u0 + GRID_DESIGNS]
+            th = theta[u]
+            parts[:, u0 : u0 + GRID_DESIGNS] = force_parts(
+                FourBar(*(p[u] for p in g3[:7])), np.cos(th), np.sin(th)
+            )
     for d0 in range(0, theta.shape[0], GRID_DESIGNS):  # cache-sized blocks: same values, faster
         d = slice(d0, d0 + GRID_DESIGNS)
-        val[d] = _abs_force(theta[d], *(p[d] for p in g3))
+        if first is None:
+            val[d] = _abs_force(theta[d], *(p[d] for p in g3))
+        else:
+            own = parts.take(kind[d], axis=1)
+            val[d] = np.abs(force_of_parts(FourBar(*(p[d] for p in g3[:7])), own, g3[7][d]))
     val = np.where(np.isnan(val), np.inf, val)  # a window reaching a dead centre (dead_band = 0): infinite
     val = np.where(length[..., None] >= 0, val, -np.inf)  # an empty window contributes nothing
     j = np.argmax(val, axis=-1)  # (D, 2)
@@ -171,6 +192,10 @@ def sampled_peak(
     g3 = [p[:, None, None] for p in geom]
     best = np.full(n_designs, -np.inf)
     work = None
+    # designs alike in linkage, dead centres and band (a grid's variants that differ in the load)
+    # share the parts of the force the wheel torque does not enter, computed once per kind
+    first, kind = alike_designs(*geom[:7], dce, dcf, band)
+    shared = None if first is None else FourBar(*(p[first] for p in g3[:7]))
     width = int(count.max())
     span = SWEEP_BLOCK  # samples per window per pass: a power of two, so a pass stays in one block
     while span > 1 and span * 2 * n_designs > SAMPLE_BLOCK:
@@ -180,10 +205,15 @@ def sampled_peak(
         size = min(span, width - m0)
         off = m0 + np.arange(size)
         e0 = m0 % SWEEP_BLOCK
-        cs, sn = shifted_directions((j0 + (m0 - e0)) * step, table, e0, size)  # (D, 2, size)
-        if work is None or work.shape[1:] != cs.shape:
-            work = kernel_work(cs.shape)  # scratch reused across passes
-        f = np.abs(force_kernel(FourBar(*g3[:7]), cs, sn, g3[7], work)[2])
+        if shared is None:
+            cs, sn = shifted_directions((j0 + (m0 - e0)) * step, table, e0, size)  # (D, 2, size)
+            if work is None or work.shape[1:] != cs.shape:
+                work = kernel_work(cs.shape)  # scratch reused across passes
+            f = np.abs(force_kernel(FourBar(*g3[:7]), cs, sn, g3[7], work)[2])
+        else:
+            cs, sn = shifted_directions((j0[first] + (m0 - e0)) * step, table, e0, size)  # (kinds, 2, size)
+            parts = np.stack(force_parts(shared, cs, sn)).take(kind, axis=1)
+            f = np.abs(force_of_parts(FourBar(*g3[:7]), parts, g3[7]))
         f[(off >= count[..., None]) | np.isnan(f)] = -np.inf  # beyond the window; a dead centre
         np.maximum(best, f.max(axis=(1, 2)), out=best)
         if progress is not None:

@@ -218,6 +218,61 @@ def test_vectorised_equals_one_at_a_time():
         assert many[i] == pytest.approx(one, rel=1e-12)
 
 
+def test_designs_alike_share_their_terms_to_the_same_bits(monkeypatch):
+    """The least peak force computes the links' terms and the grip's travel at the grid nodes once
+    for designs alike in linkage and masses (a grid's variants that differ in the load or the
+    wheel); every force must be the one computed design by design: 60 designs, 15 linkages (8 and
+    the same with a swing 1e-5 deg larger, feasible ones) of two tubes' masses under 4 loads,
+    wheels and speeds each, shuffled, against the same call with the sharing turned off."""
+    from pumplink.mechanisms.fourbar import synthesize
+
+    rng = np.random.default_rng(4)
+    m = 8
+    frame = [np.tile(rng.uniform(a, b, m), 2) for a, b in ((0.3, 0.6), (0.0, 0.3), (0.0, 0.15), (0.12, 0.25))]
+    swing = np.radians(np.tile(rng.uniform(40, 70, m), 2) + np.repeat([0.0, 1e-5], m))
+    syn = synthesize(*frame, swing, 0.9)
+    ok = np.nonzero(syn.reason == 0)[0][:15]
+    assert ok.size == 15
+    which = rng.permutation(np.repeat(ok, 4))
+    n = which.size
+    lk = syn.linkage.take(which)
+    dce, dcf = syn.dead_centre_extended[which], syn.dead_centre_folded[which]
+    heavy = np.arange(n) % 2 == 0  # two tubes: each linkage with two masses
+    ms = dt.bar_masses(lk, np.where(heavy, 2.0, 1.56), 0.0)
+    load = (rng.uniform(8.0, 14.0, n), rng.uniform(0.5, 1.5, n), np.radians(rng.uniform(200, 500, n)), 0.2)
+    shared = ds.least_peak_force(lk, dce, dcf, *load[:2], ms, *load[2:])
+    kinds = len(set(zip(which.tolist(), heavy.tolist())))
+    first, _ = ds.alike_designs(*lk.parameters, dce, dcf, ms.coupler, ms.handle, ms.grip)
+    assert kinds < 0.75 * n and first.size == kinds
+    monkeypatch.setattr(ds, "alike_designs", lambda *columns: (None, None))
+    alone = ds.least_peak_force(lk, dce, dcf, *load[:2], ms, *load[2:])
+    assert np.isfinite(shared).all() and shared.tobytes() == alone.tobytes()
+
+
+def test_terms_of_designs_alike_at_shared_angles_are_the_same_bits(monkeypatch):
+    """terms_from on designs as columns at shared crank angles (the model choice's sizes) computes
+    designs alike bit for bit once; every term must be the one computed design by design: 6
+    linkages (3 and the same with a swing 1e-5 deg larger) of two tubes' masses, 8 rows each,
+    shuffled, 360 angles, against the call without the sharing."""
+    from pumplink.mechanisms.fourbar import FourBar, synthesize
+
+    rng = np.random.default_rng(9)
+    frame = [np.tile(rng.uniform(a, b, 3), 2) for a, b in ((0.3, 0.6), (0.0, 0.3), (0.0, 0.15), (0.12, 0.25))]
+    syn = synthesize(*frame, np.radians(np.tile(rng.uniform(40, 70, 3), 2) + np.repeat([0.0, 1e-5], 3)), 0.9)
+    which = rng.permutation(np.repeat(np.arange(6), 8))
+    lk = syn.linkage.take(which)
+    col = FourBar(*(np.asarray(v, float)[:, None] for v in lk.parameters))
+    heavy = (np.arange(which.size) % 2 == 0)[:, None]
+    co = dt.coefficients(col, dt.bar_masses(col, np.where(heavy, 2.0, 1.56), np.where(heavy, 3.0, 0.0)))
+    th = np.arange(360) * (2 * math.pi / 360)
+    first, _ = dt.alike_designs(*(v[:, 0] for v in co if np.ndim(v) == 2))
+    assert first is not None and first.size == 12
+    shared = dt.terms_from(co, th, GRAVITY, fly_x=True)
+    monkeypatch.setattr(dt, "alike_designs", lambda *columns: (None, None))
+    alone = dt.terms_from(co, th, GRAVITY, fly_x=True)
+    assert all(a.tobytes() == b.tobytes() and a.shape == (which.size, 360) for a, b in zip(shared, alone))
+
+
 # ----------------------------------------------------------------------------- time domain
 def test_solve_ivp_confirms_the_profile_and_rejects_a_weaker_operator():
     """At Fp* the reported profile, integrated open loop, is periodic inside the band at the mean

@@ -299,3 +299,30 @@ def test_the_wrap_is_numpys_remainder_bit_for_bit():
             assert kb._wrap(x).tobytes() == want.tobytes()
             for v, w in zip(x[-30:], want[-30:]):
                 assert np.float64(kb._wrap(v)).tobytes() == np.float64(w).tobytes()
+
+
+def test_designs_alike_are_searched_once_to_the_same_bits():
+    """widest_window searches designs that pose the same search once (a grid's variants that differ
+    only in the head share it); each design must still get the bits it gets searched alone: 12
+    random linkages and the same with a swing 1e-5 deg larger (not alike: a few um apart), each 1-5
+    times over, with a tooth's window and a column's, shuffled."""
+    rng = np.random.default_rng(8)
+    m = 30
+    drawn = (rng.uniform(0.2, 0.8, m), rng.uniform(-0.1, 0.4, m), rng.uniform(0.0, 0.2, m),
+             rng.uniform(0.1, 0.4, m), rng.uniform(0.6, 1.2, m))  # fmt: skip
+    frame = [np.tile(v, 2) for v in drawn]
+    swing = np.radians(np.tile(rng.uniform(30, 80, m), 2) + np.repeat([0.0, 1e-5], m))
+    syn = synthesize(*frame[:4], swing, frame[4])
+    ok = np.nonzero(syn.reason[:m] == 0)[0][:12]
+    ok = np.concatenate([ok, ok + m])
+    which = rng.permutation(np.concatenate([np.repeat(ok, rng.integers(1, 6, ok.size))] * 2))
+    window = np.where(np.arange(which.size) < which.size // 2, 2 * math.pi / 24, 40.0)[
+        rng.permutation(which.size)
+    ]
+    lk, dce, dcf = syn.linkage.take(which), syn.dead_centre_extended[which], syn.dead_centre_folded[which]
+    path, ts = kb.widest_window(lk, dce, dcf, window)
+    kinds = len({(int(i), float(v)) for i, v in zip(which, window)})
+    assert kb.alike_designs(*lk.parameters, dce, dcf, window)[0].size == kinds < 0.75 * which.size  # shared
+    for i in range(which.size):
+        alone = kb.widest_window(lk.take([i]), dce[[i]], dcf[[i]], window[[i]])
+        assert (path[i], ts[i]) == (alone[0][0], alone[1][0])
