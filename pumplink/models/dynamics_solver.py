@@ -15,9 +15,8 @@ P + running min of (upper - P) over the next one), is one.  Both are linear in F
 peak force is a fractional programme over pairs of crank angles, solved by Dinkelbach's iteration
 on grid nodes (plus nodes clustered at the dead centres), then with every local extremum of the
 four functions upper - Q, lower - Q, lower - P, upper - P refined by a bracketing root search on
-their derivatives (analytic: I', V' from the acceleration analysis).
-
-Pure functions on floats / arrays over designs; SI units, radians.
+their derivatives (analytic: I', V' from the acceleration analysis).  Pure functions on floats /
+arrays over designs; SI units, radians.
 """
 
 from __future__ import annotations
