@@ -36,7 +36,7 @@ import numpy as np
 
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.bracket import find_minimum
-from pumplink.mechanisms.fourbar_kernel import SINGULAR_SIN, coupler_height, loop_closure
+from pumplink.mechanisms.fourbar_kernel import SINGULAR_SIN, alike_designs, coupler_height, loop_closure
 
 #: Reason codes for infeasible designs (0 = feasible).
 FEASIBLE = 0
@@ -475,26 +475,15 @@ def built_grip(axle_height, pivot_y, handle, rocker_angle_extended, rocker_angle
     return stroke, pivot + handle * ends, pivot + handle * top
 
 
-#: Odd 64-bit multipliers that hash a design's seven four-bar parameters (their bits) to one word.
-_HASH = np.array([0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9, 0xD6E8FEB86659FD93,
-                  0xFF51AFD7ED558CCD, 0xC4CEB9FE1A85EC53, 0x94D049BB133111EB], dtype=np.uint64)  # fmt: skip
-
-
 def distinct_peak_rocker_rate(lk: FourBar) -> np.ndarray:
-    """:func:`peak_rocker_rate` of designs (1-D arrays), solved once
-    per distinct linkage: it depends on the geometry alone, and a grid that varies the load or
-    the speed repeats each geometry many times (the same values, computed once).  Distinct
-    linkages are found by a hash of their parameters' bits, checked row by row."""
-    geom = np.ascontiguousarray(np.stack([np.asarray(v, float) for v in lk.parameters], axis=1))
-    if geom.shape[0] < 2:
+    """:func:`peak_rocker_rate` of designs (1-D arrays), solved once per kind of linkage alike bit
+    for bit (:func:`pumplink.mechanisms.fourbar_kernel.alike_designs`): it depends on the geometry
+    alone, and a grid that varies the load or the speed repeats each geometry many times (the same
+    values, computed once)."""
+    first, kind = alike_designs(*lk.parameters)
+    if first is None:  # one design, mostly distinct ones, or a hash collision: each on its own
         return np.atleast_1d(peak_rocker_rate(lk))
-    with np.errstate(over="ignore"):
-        key = (geom.view(np.uint64) * _HASH).sum(axis=1, dtype=np.uint64)
-    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
-    inverse = inverse.ravel()
-    if first.size == geom.shape[0] or not np.array_equal(geom[first][inverse], geom):
-        return peak_rocker_rate(lk)  # all distinct, or a hash collision: every design on its own
-    return peak_rocker_rate(FourBar(*geom[first].T))[inverse]
+    return peak_rocker_rate(lk[first])[kind]
 
 
 class Geometry(NamedTuple):
