@@ -96,12 +96,17 @@ def travel_parts(
     local = np.sign(s) * np.abs(x - ref)
     near = np.abs(s) < TRAVEL_INTEGRATION_ARC
     if integrate and np.any(near):
-        geom = [np.broadcast_to(v, s.shape)[near] for v in (px, py, crank, coupler, rocker, handle, branch)]
-        dc = np.broadcast_to(np.where(at_fold, dce + plus, dce), s.shape)[near]
-        sn = s[near]
+        at = np.nonzero(near) if near.ndim else near  # the few angles near a dead centre, found once
+
+        def pick(v):
+            return np.broadcast_to(v, s.shape)[at]
+
+        geom = [pick(v) for v in (px, py, crank, coupler, rocker, handle, branch)]
+        dc = np.where(pick(at_fold), pick(dce) + pick(plus), pick(dce))
+        sn = s[at]
         t = 0.5 * sn[..., None] * (1.0 + GAUSS_LEGENDRE_NODES)  # nodes on (0, s)
         g = grip_rate(dc[..., None] + t, *(v[..., None] for v in geom))
-        local[near] = 0.5 * sn * (np.abs(g) * GAUSS_LEGENDRE_WEIGHTS).sum(axis=-1)  # not @: no BLAS threads
+        local[at] = 0.5 * sn * (np.abs(g) * GAUSS_LEGENDRE_WEIGHTS).sum(axis=-1)  # not @: no BLAS threads
     return base, local
 
 
