@@ -26,6 +26,7 @@ from pumplink.constants import (
 from pumplink.mechanisms.fourbar import FourBar
 from pumplink.models import load as _load
 from pumplink.models import losses as _losses
+from pumplink.models.parts import PART_KEYS
 from pumplink.models.wear import wear_rate as _wear_rate
 from pumplink.profiles import DEFAULT_PROFILE, operator_limits
 
@@ -247,18 +248,6 @@ def _wear(value) -> dict[str, Any]:
         return {}
     rate, surfaces = _wear_rate(bush)
     return dict(wear_rate=rate, wear_surfaces=surfaces, wear_allowance=value("parts.wear_allowance"))
-
-
-#: The keys of a spec's ``[parts]`` table.
-PART_KEYS = (
-    "pin_diameter",
-    "pin_width",
-    "handle_diameter",
-    "handle_wall",
-    "handle_notch",
-    "crank_diameter",
-    "crank_notch",
-)
 
 
 @dataclass(frozen=True)

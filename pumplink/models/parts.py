@@ -38,10 +38,10 @@ CYCLE_SAMPLES = 1440
 #: a fatigue safety factor warns below 1.5 and fails below 1.
 PIN_PRESSURE_WARN, PIN_PRESSURE_FAIL = _strength.PIN_PRESSURE_ALTERNATING, _strength.PIN_PRESSURE_STATIC
 FATIGUE_WARN, FATIGUE_FAIL = 1.5, 1.0
-#: The part sizes the checks read, attributes of the sizes given (the spec's ``[parts]``,
-#: docs/workshop.md §2): the pins' diameter and bearing width, the handle tube's diameter, wall and
-#: notch factor, the crank bar's diameter and notch factor [m; -].
-SIZE_KEYS = (
+#: The part sizes the checks read, attributes of the sizes given (the keys of a spec's ``[parts]``
+#: table, docs/workshop.md §2): the pins' diameter and bearing width, the handle tube's diameter,
+#: wall and notch factor, the crank bar's diameter and notch factor [m; -].
+PART_KEYS = (
     "pin_diameter",
     "pin_width",
     "handle_diameter",
@@ -165,7 +165,7 @@ def quasi_static_strength(lk, dead_centre_extended, dead_centre_folded, dead_ban
                           wheel_weight, parts) -> Strength:  # fmt: skip
     """:func:`strength` of many designs under the quasi-static model at once: ``lk`` with
     parameters of shape (n,), the other values of shape (n,) and ``parts`` columns
-    (the attributes :data:`SIZE_KEYS`); the peaks by
+    (the attributes :data:`PART_KEYS`); the peaks by
     :func:`pumplink.models.joints.quasi_static_peak_loads`."""
     value, angle = _joints.quasi_static_peak_loads(
         lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull, wheel_weight
@@ -189,7 +189,7 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     """:func:`strength` of :func:`part_loads` for many designs under full dynamics at once: ``lk``
     with parameters of shape (n,), the other values of shape (n,) (``force`` each design's finite
     least peak force, ``masses`` the links' without the operator's arms) and ``parts`` columns
-    (the attributes :data:`SIZE_KEYS`).  The scenes are :func:`pumplink.models.dynamics.scenes`,
+    (the attributes :data:`PART_KEYS`).  The scenes are :func:`pumplink.models.dynamics.scenes`,
     the cycle and its peaks those of :func:`part_loads` (:func:`pumplink.models.joints.cycle_peak_loads`):
     the same operations on the same values per design (tests/models/test_part_routes.py)."""
     from pumplink.models import dynamics as _dy
@@ -304,40 +304,19 @@ def _strength_of(peak_force, cycle, parts, n) -> Strength:
     return Strength(np.take_along_axis(pressure, k[None], 0)[0], pin, handle, crank, (se_handle, se_crank))
 
 
-def scene(
-    lk,
-    dead_centre_extended,
-    dead_centre_folded,
-    wheel_torque,
-    inertia,
-    masses: Masses,
-    speed,
-    delta,
-    force,
-    model,
-):
+def scene(lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses: Masses, speed, delta,
+          force, model):  # fmt: skip
     """The energy model's scene of one design solved at ``force`` (its least peak force), for
     the motion the loads are taken along; None for the quasi-static model."""
+    design = (lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia)
     if model == DYNAMICS:
         from pumplink.models import dynamics as _dy
 
-        return _dy.scene(
-            lk,
-            dead_centre_extended,
-            dead_centre_folded,
-            wheel_torque,
-            inertia,
-            masses,
-            speed,
-            delta,
-            force=force,
-        )
+        return _dy.scene(*design, masses, speed, delta, force=force)
     if model == FLYWHEEL:
         from pumplink.models import flywheel as _fw
 
-        return _fw.scene(
-            lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, speed, delta, solved=force
-        )
+        return _fw.scene(*design, speed, delta, solved=force)
     return None
 
 
@@ -351,7 +330,7 @@ def part_checks(syn, c, sizes, index, least, masses, judged) -> dict:
         centres, arrays over designs).
     c : the design columns by name (``dead_band``, ``wheel_torque``, ``inertia``, ``speed``,
         ``speed_fluctuation``, ``rope_force``, ``wheel_mass``; arrays over designs or scalars).
-    sizes : the part sizes, the attributes :data:`SIZE_KEYS` [m; notch factors -] (scalars or
+    sizes : the part sizes, the attributes :data:`PART_KEYS` [m; notch factors -] (scalars or
         arrays over designs: the spec's ``[parts]``).
     index : the deciding model of each design, an index into :data:`pumplink.models.ORDER`;
         least : its least peak force [N];  masses : the links' (:class:`pumplink.models.Masses`;
@@ -373,7 +352,7 @@ def part_checks(syn, c, sizes, index, least, masses, judged) -> dict:
     def part_sizes(rows):
         """The part sizes of designs ``rows`` (an index: arrays; one design: numpy floats)."""
         return SimpleNamespace(
-            **{k: np.broadcast_to(np.asarray(getattr(sizes, k), float), (n,))[rows] for k in SIZE_KEYS}
+            **{k: np.broadcast_to(np.asarray(getattr(sizes, k), float), (n,))[rows] for k in PART_KEYS}
         )
 
     def columns(block, keys):
@@ -438,7 +417,7 @@ __all__ = [
     "CYCLE_SAMPLES",
     "PART_BLOCK",
     "SCENE_BLOCK",
-    "SIZE_KEYS",
+    "PART_KEYS",
     "dynamics_strength",
     "part_checks",
     "FATIGUE_FAIL",
