@@ -204,10 +204,12 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     rope, weight = column(rope_pull), column(wheel_weight)
     th = cycle_angles(column(dead_centre_extended)[:, 0], column(dead_centre_folded)[:, 0])
 
-    def loads_at(rows, angles, fatigue=False, out=None):
+    def loads_at(rows, angles, fatigue=False, out=None, squares=False):
         sub = scs.take(rows)
         motion = _joints.dynamics_motion(sub, angles)
-        return _joints.motion_loads(sub.linkage, motion, GRAVITY, rope[rows], weight[rows], fatigue, out)
+        return _joints.motion_loads(
+            sub.linkage, motion, GRAVITY, rope[rows], weight[rows], fatigue, out, squares
+        )
 
     def six_at(rows, angles):
         return loads_at(rows, angles)[0]
@@ -220,9 +222,16 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     fatigue = _Cycle(*(np.empty((n, k + 2)) for _ in _Cycle._fields))
     for s in range(0, n, CYCLE_ROWS):
         rows = slice(s, s + CYCLE_ROWS)
-        read = loads_at(every[rows], th[rows], fatigue=True, out=six[:, rows])[1]
+        read = loads_at(every[rows], th[rows], fatigue=True, out=six[:, rows], squares=True)[1]
         for v, r in zip(fatigue, read, strict=True):
             v[rows, :k] = r
+    # the joints' magnitudes where the peak search reads them (np.hypot costs as much as the rest
+    # of the joint forces): at the angles their squares rank near the top and those angles'
+    # neighbours; the others hold -inf, below every load, as NaN does for the search
+    at = _joints.peak_candidates(six[:4])
+    exact = six_at(every, np.take_along_axis(th, at, axis=1))[:4]
+    six[:4] = -np.inf
+    np.put_along_axis(six[:4], np.broadcast_to(at, exact.shape), exact, axis=2)
     value, angle = _joints.cycle_peak_loads(six_at, th, six)
     for v, r in zip(fatigue, loads_at(every, angle[4:6].T, fatigue=True)[1], strict=True):
         v[:, k:] = r
