@@ -491,8 +491,12 @@ def _profiles(scs: Scenes, crank_angle):
     # the three candidates' minimum and the first that takes it (NaN: the first NaN), as
     # np.min and np.argmin over them stacked give them
     e = np.minimum(np.minimum(push, up), brake)
-    regime = np.where(np.isnan(push) | (push == e), 1, np.where(np.isnan(up) | (up == e), 0, -1))
+    regime = np.where(np.isnan(push) | (push == e), _PUSH, np.where(np.isnan(up) | (up == e), _RIDE, _BRAKE))
     return e, regime, dup, tm.potential, i, tm.grip_rate, tm
+
+
+#: The regimes as bytes (an array of them is an eighth of one of int64).
+_PUSH, _RIDE, _BRAKE = np.int8(1), np.int8(0), np.int8(-1)
 
 
 def _past_extended(th, dead_centre_extended):

@@ -83,8 +83,9 @@ def travel_parts(
     p = phi if first else phi - turns * TWO_PI
     # nearest dead centre: 0 (extended), plus (folded) or 2 pi (extended, next turn)
     to_fold = p - plus
-    at_fold = np.abs(to_fold) <= np.minimum(p, TWO_PI - p)
-    s = np.where(at_fold, to_fold, np.where(p <= TWO_PI - p, p, p - TWO_PI))  # signed offset from it
+    back = TWO_PI - p
+    at_fold = np.abs(to_fold) <= np.minimum(p, back)
+    s = np.where(at_fold, to_fold, np.where(p <= back, p, p - TWO_PI))  # signed offset from it
     base = np.where(at_fold, stroke, np.where(s >= 0, 0.0, 2.0 * stroke))
     if not first or not np.isfinite(stroke).all():  # else 2 S turns is 0 and adds nothing
         base = base + 2.0 * stroke * turns
