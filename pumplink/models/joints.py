@@ -253,7 +253,7 @@ def motion_loads(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, wh
     moments and axial forces (a tuple ``(handle_moment, handle_axial, crank_moment,
     crank_axial)``; else None).  ``squares``: the four joints' x^2 + y^2 instead of their
     magnitudes (np.hypot where that is NaN: inf where a component is), to rank them by
-    (:func:`peak_candidates`)."""
+    (:func:`pumplink.models.parts.peak_candidates`)."""
     with np.errstate(all="ignore"):  # a non-assemblable linkage gives NaN, by design
         ax_, ay_, bx_, by_, ox_, oy_, wx_, wy_, torque, crank_axial, moment, handle_axial = _joint_forces(
             lk, *(np.asarray(v, float) for v in (motion.crank_angle, motion.crank_speed,
@@ -658,33 +658,6 @@ def cycle_peak_loads(loads_at: Callable, grid, loads):
         at_b[load, dd] = v[np.arange(load.size), above]
         live[load, dd] = (b[load, dd] - a[load, dd]) > REFINE_XTOL
     return np.where(best == -np.inf, np.nan, best), np.mod(where, TWO_PI)
-
-
-#: Relative margin below the largest squared magnitude of a joint over a cycle within which a crank
-#: angle may hold its largest magnitude: x^2 + y^2 is within 4e-16 of |R|^2 and np.hypot within
-#: an ulp of |R|, so an angle whose np.hypot equals the largest is within 2e-15 of the largest square.
-PEAK_MARGIN = 1e-9
-
-
-def peak_candidates(squares):
-    """Where the four joints' magnitudes may peak over a cycle, from their squares x^2 + y^2
-    (:func:`motion_loads` with ``squares``; shape (4, D, K)): the crank angles whose square is
-    within :data:`PEAK_MARGIN` of its joint's largest and their neighbours (the bracket the peak
-    search zooms into), all that :func:`cycle_peak_loads` reads of a joint.  Returns the indices
-    (D, C) of the angles that any joint needs, a design's first repeated where it needs fewer
-    than C (an index into the angles of each design)."""
-    top = np.fmax.reduce(squares, axis=2)  # NaN only where a joint is NaN over the whole cycle
-    with np.errstate(invalid="ignore"):
-        near = squares >= (top * (1.0 - PEAK_MARGIN))[..., None]
-    need = near.copy()
-    need[..., 1:] |= near[..., :-1]
-    need[..., :-1] |= near[..., 1:]
-    need = need.any(axis=0)  # (D, K)
-    count = np.count_nonzero(need, axis=1)
-    row, col = np.nonzero(need)  # in order, row by row
-    at = np.zeros((need.shape[0], max(int(count.max(initial=0)), 1)), np.intp)
-    at[row, np.arange(row.size) - np.repeat(np.cumsum(count) - count, count)] = col
-    return np.where(np.arange(at.shape[1]) < count[:, None], at, at[:, :1])
 
 
 def scene_peaks(scene, motion_of: Callable, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0, cycle=None):

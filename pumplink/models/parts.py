@@ -228,7 +228,7 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     # the joints' magnitudes where the peak search reads them (np.hypot costs as much as the rest
     # of the joint forces): at the angles their squares rank near the top and those angles'
     # neighbours; the others hold -inf, below every load, as NaN does for the search
-    at = _joints.peak_candidates(six[:4])
+    at = peak_candidates(six[:4])
     exact = six_at(every, np.take_along_axis(th, at, axis=1))[:4]
     six[:4] = -np.inf
     np.put_along_axis(six[:4], np.broadcast_to(at, exact.shape), exact, axis=2)
@@ -236,6 +236,34 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     for v, r in zip(fatigue, loads_at(every, angle[4:6].T, fatigue=True)[1], strict=True):
         v[:, k:] = r
     return _strength_of(value[:4], fatigue, parts, n)
+
+
+#: Relative margin below the largest squared magnitude of a joint over a cycle within which a crank
+#: angle may hold its largest magnitude: x^2 + y^2 is within 4e-16 of |R|^2 and np.hypot within
+#: an ulp of |R|, so an angle whose np.hypot equals the largest is within 2e-15 of the largest square.
+PEAK_MARGIN = 1e-9
+
+
+def peak_candidates(squares):
+    """Where the four joints' magnitudes may peak over a cycle, from their squares x^2 + y^2
+    (:func:`pumplink.models.joints.motion_loads` with ``squares``; shape (4, D, K)): the crank
+    angles whose square is within :data:`PEAK_MARGIN` of its joint's largest and their neighbours
+    (the bracket the peak search zooms into), all that
+    :func:`pumplink.models.joints.cycle_peak_loads` reads of a joint.  Returns the indices (D, C)
+    of the angles that any joint needs, a design's first repeated where it needs fewer than C (an
+    index into the angles of each design)."""
+    top = np.fmax.reduce(squares, axis=2)  # NaN only where a joint is NaN over the whole cycle
+    with np.errstate(invalid="ignore"):
+        near = squares >= (top * (1.0 - PEAK_MARGIN))[..., None]
+    need = near.copy()
+    need[..., 1:] |= near[..., :-1]
+    need[..., :-1] |= near[..., 1:]
+    need = need.any(axis=0)  # (D, K)
+    count = np.count_nonzero(need, axis=1)
+    row, col = np.nonzero(need)  # in order, row by row
+    at = np.zeros((need.shape[0], max(int(count.max(initial=0)), 1)), np.intp)
+    at[row, np.arange(row.size) - np.repeat(np.cumsum(count) - count, count)] = col
+    return np.where(np.arange(at.shape[1]) < count[:, None], at, at[:, :1])
 
 
 class _Cycle(NamedTuple):
@@ -429,6 +457,7 @@ __all__ = [
     "PART_KEYS",
     "dynamics_strength",
     "part_checks",
+    "peak_candidates",
     "FATIGUE_FAIL",
     "FATIGUE_WARN",
     "PIN_PRESSURE_FAIL",
