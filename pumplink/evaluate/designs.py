@@ -27,7 +27,7 @@ from pumplink.constants import (
 from pumplink.mechanisms.fourbar import FourBar
 from pumplink.models import load as _load
 from pumplink.models import losses as _losses
-from pumplink.models.parts import SIZE_KEYS
+from pumplink.models.parts import PART_KEYS
 from pumplink.models.wear import wear_rate as _wear_rate
 from pumplink.profiles import DEFAULT_PROFILE, operator_limits
 
@@ -255,10 +255,6 @@ def _wear(value) -> dict[str, Any]:
         return {}
     rate, surfaces = _wear_rate(bush)
     return dict(wear_rate=rate, wear_surfaces=surfaces, wear_allowance=value("parts.wear_allowance"))
-
-
-#: The keys of a spec's ``[parts]`` table: the sizes the part checks read.
-PART_KEYS = SIZE_KEYS
 
 
 @dataclass(frozen=True)

@@ -12,32 +12,16 @@ import numpy as np
 
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.models import Masses
-from pumplink.models.parts import (
-    CYCLE_SAMPLES,
-    FATIGUE_FAIL,
-    FATIGUE_WARN,
-    PIN_PRESSURE_FAIL,
-    PIN_PRESSURE_WARN,
-    PartLoads,
-    Strength,
-    part_loads,
-    scene,
-    strength,
-)
-
-__all__ = [
-    "CYCLE_SAMPLES",
-    "FATIGUE_FAIL",
-    "FATIGUE_WARN",
-    "PIN_PRESSURE_FAIL",
-    "PIN_PRESSURE_WARN",
-    "PartLoads",
-    "Strength",
-    "part_loads",
-    "released",
-    "scene",
-    "strength",
-]
+from pumplink.models.parts import CYCLE_SAMPLES
+from pumplink.models.parts import FATIGUE_FAIL as FATIGUE_FAIL
+from pumplink.models.parts import FATIGUE_WARN as FATIGUE_WARN
+from pumplink.models.parts import PIN_PRESSURE_FAIL as PIN_PRESSURE_FAIL
+from pumplink.models.parts import PIN_PRESSURE_WARN as PIN_PRESSURE_WARN
+from pumplink.models.parts import PartLoads as PartLoads
+from pumplink.models.parts import Strength as Strength
+from pumplink.models.parts import part_loads as part_loads
+from pumplink.models.parts import scene as scene
+from pumplink.models.parts import strength as strength
 
 
 def released(

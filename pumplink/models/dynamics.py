@@ -25,7 +25,7 @@ from pumplink.models import flywheel as _fw
 from pumplink.models import quasi_static as _qs
 from pumplink.models.conditions import Masses
 from pumplink.models.dynamics_solver import least_peak_force, problem, refined_points, solve
-from pumplink.models.dynamics_terms import Terms, coefficients, point_terms, terms, terms_from
+from pumplink.models.dynamics_terms import Terms, coefficients, point_terms, terms_from
 from pumplink.models.grip_travel import (
     GAUSS_LEGENDRE_NODES,
     GAUSS_LEGENDRE_WEIGHTS,
@@ -265,23 +265,38 @@ def _point_margins(sc: Scene):
 
 
 def _profile(sc: Scene, crank_angle):
-    """Energy e, regime (-1 brake, 0 ride, +1 push), upper, its rate, V, I and g at crank angles."""
+    """Energy e, regime (-1 brake, 0 ride, +1 push), upper's rate, V, I, g and the links' terms at
+    crank angles (1-D): :func:`_profiles` of the scene as a batch of one (the same values)."""
     th = np.atleast_1d(np.asarray(crank_angle, float))
-    fp, mw = sc.least_peak_force, sc.wheel_torque
-    phi = np.mod(th - sc.dead_centre_extended, TWO_PI)
-    base, local = travel_parts(phi, *sc.travel)
-    g_phi = base + local
-    tm = terms(sc.linkage, th, sc.masses, sc.gravity, closure=True)
-    i = sc.inertia + tm.inertia
-    up = tm.potential + 0.5 * i * sc.max_speed**2
-    dup = tm.potential_rate + 0.5 * tm.inertia_rate * sc.max_speed**2
-    x, a, b, al, de = _point_margins(sc)
-    col = phi[:, None]
-    past = np.where(x[None, :] < col, al, al + a).min(axis=1)  # t in (phi - 2 pi, phi)
-    future = np.where(x[None, :] > col, de, de - b).min(axis=1)  # t in (phi, phi + 2 pi)
-    cand = np.stack([fp * g_phi - mw * phi + past, up, -fp * g_phi - mw * phi + future])
-    regime = 1 - np.argmin(cand, axis=0)
-    return cand.min(axis=0), regime, dup, tm.potential, i, tm.grip_rate, tm
+    *values, tm = _profiles(_batch_of_one(sc), th[None, :])
+    first = Terms(
+        *(None if v is None else v[0] for v in (tm.inertia, tm.inertia_rate, tm.potential, tm.potential_rate,
+                                                tm.grip_rate, tm.grip_x)),
+        tuple(v[0] for v in tm.closure),
+    )  # fmt: skip
+    return (*(v[0] for v in values), first)
+
+
+def _batch_of_one(sc: Scene) -> Scenes:
+    """The scene as :class:`Scenes` of one design (its values as (1, 1) columns, its points as a
+    row)."""
+
+    def col(v):
+        return np.reshape(np.asarray(v, float), (1, 1))
+
+    return Scenes(
+        FourBar(*(col(v) for v in sc.linkage.parameters)),
+        col(sc.dead_centre_extended),
+        col(sc.wheel_torque),
+        col(sc.inertia),
+        Masses(col(sc.masses.coupler), col(sc.masses.handle), col(sc.masses.grip)),
+        sc.gravity,
+        col(sc.least_peak_force),
+        col(sc.max_speed**2),
+        col(sc.stroke),
+        tuple(np.reshape(np.asarray(v, float), (1, -1)) for v in sc.points),
+        [col(v) for v in sc.travel],
+    )
 
 
 def _profile_at(sc: Scene):
@@ -414,18 +429,8 @@ class Scenes:
         )
 
 
-def scenes(
-    lk: FourBar,
-    dead_centre_extended,
-    dead_centre_folded,
-    wheel_torque,
-    inertia,
-    masses: Masses,
-    mean_speed,
-    speed_fluctuation,
-    force,
-    gravity: float = GRAVITY,
-) -> Scenes:
+def scenes(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses: Masses,
+           mean_speed, speed_fluctuation, force, gravity: float = GRAVITY) -> Scenes:  # fmt: skip
     """:func:`scene` of many designs (1-D arrays over designs) solved at ``force`` [N] (finite:
     each design's least peak force), as :class:`Scenes`: one problem and one refinement of the
     points for all of them."""
@@ -486,8 +491,12 @@ def _profiles(scs: Scenes, crank_angle):
     # the three candidates' minimum and the first that takes it (NaN: the first NaN), as
     # np.min and np.argmin over them stacked give them
     e = np.minimum(np.minimum(push, up), brake)
-    regime = np.where(np.isnan(push) | (push == e), 1, np.where(np.isnan(up) | (up == e), 0, -1))
+    regime = np.where(np.isnan(push) | (push == e), _PUSH, np.where(np.isnan(up) | (up == e), _RIDE, _BRAKE))
     return e, regime, dup, tm.potential, i, tm.grip_rate, tm
+
+
+#: The regimes as bytes (an array of them is an eighth of one of int64).
+_PUSH, _RIDE, _BRAKE = np.int8(1), np.int8(0), np.int8(-1)
 
 
 def _past_extended(th, dead_centre_extended):

@@ -83,8 +83,9 @@ def travel_parts(
     p = phi if first else phi - turns * TWO_PI
     # nearest dead centre: 0 (extended), plus (folded) or 2 pi (extended, next turn)
     to_fold = p - plus
-    at_fold = np.abs(to_fold) <= np.minimum(p, TWO_PI - p)
-    s = np.where(at_fold, to_fold, np.where(p <= TWO_PI - p, p, p - TWO_PI))  # signed offset from it
+    back = TWO_PI - p
+    at_fold = np.abs(to_fold) <= np.minimum(p, back)
+    s = np.where(at_fold, to_fold, np.where(p <= back, p, p - TWO_PI))  # signed offset from it
     base = np.where(at_fold, stroke, np.where(s >= 0, 0.0, 2.0 * stroke))
     if not first or not np.isfinite(stroke).all():  # else 2 S turns is 0 and adds nothing
         base = base + 2.0 * stroke * turns
@@ -96,12 +97,17 @@ def travel_parts(
     local = np.sign(s) * np.abs(x - ref)
     near = np.abs(s) < TRAVEL_INTEGRATION_ARC
     if integrate and np.any(near):
-        geom = [np.broadcast_to(v, s.shape)[near] for v in (px, py, crank, coupler, rocker, handle, branch)]
-        dc = np.broadcast_to(np.where(at_fold, dce + plus, dce), s.shape)[near]
-        sn = s[near]
+        at = np.nonzero(near) if near.ndim else near  # the few angles near a dead centre, found once
+
+        def pick(v):
+            return np.broadcast_to(v, s.shape)[at]
+
+        geom = [pick(v) for v in (px, py, crank, coupler, rocker, handle, branch)]
+        dc = np.where(pick(at_fold), pick(dce) + pick(plus), pick(dce))
+        sn = s[at]
         t = 0.5 * sn[..., None] * (1.0 + GAUSS_LEGENDRE_NODES)  # nodes on (0, s)
         g = grip_rate(dc[..., None] + t, *(v[..., None] for v in geom))
-        local[near] = 0.5 * sn * (np.abs(g) * GAUSS_LEGENDRE_WEIGHTS).sum(axis=-1)  # not @: no BLAS threads
+        local[at] = 0.5 * sn * (np.abs(g) * GAUSS_LEGENDRE_WEIGHTS).sum(axis=-1)  # not @: no BLAS threads
     return base, local
 
 

@@ -246,12 +246,14 @@ def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weigh
 
 
 def motion_loads(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0, fatigue=True,
-                 out=None):  # fmt: skip
+                 out=None, squares=False):  # fmt: skip
     """The loads a peak search and a fatigue check read along a :class:`Motion`, without the force
     vectors of :func:`motion_forces` (the same values): :func:`six_loads`, shape (6, ...) (written
     into ``out`` where given), and, with ``fatigue``, the handle's and the crank's bending
     moments and axial forces (a tuple ``(handle_moment, handle_axial, crank_moment,
-    crank_axial)``; else None)."""
+    crank_axial)``; else None).  ``squares``: the four joints' x^2 + y^2 instead of their
+    magnitudes (np.hypot where that is NaN: inf where a component is), to rank them by
+    (:func:`pumplink.models.parts.peak_candidates`)."""
     with np.errstate(all="ignore"):  # a non-assemblable linkage gives NaN, by design
         ax_, ay_, bx_, by_, ox_, oy_, wx_, wy_, torque, crank_axial, moment, handle_axial = _joint_forces(
             lk, *(np.asarray(v, float) for v in (motion.crank_angle, motion.crank_speed,
@@ -260,7 +262,13 @@ def motion_loads(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, wh
         )  # fmt: skip
         out = np.empty((6,) + np.shape(torque)) if out is None else out
         for i, (x, y) in enumerate(((wx_, wy_), (ax_, ay_), (bx_, by_), (ox_, oy_))):  # JOINTS' order
-            np.hypot(x, y, out=out[i])
+            if squares:
+                np.multiply(x, x, out=out[i])
+                np.add(out[i], y * y, out=out[i])
+                if np.isnan(out[i]).any():  # a masked ufunc is slow: only where needed
+                    np.hypot(x, y, out=out[i], where=np.isnan(out[i]))
+            else:
+                np.hypot(x, y, out=out[i])
         np.abs(torque, out=out[4])  # |crank moment| = |-torque|
         np.abs(moment, out=out[5])
         return out, ((moment, handle_axial, -torque, crank_axial) if fatigue else None)

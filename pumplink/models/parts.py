@@ -38,10 +38,10 @@ CYCLE_SAMPLES = 1440
 #: a fatigue safety factor warns below 1.5 and fails below 1.
 PIN_PRESSURE_WARN, PIN_PRESSURE_FAIL = _strength.PIN_PRESSURE_ALTERNATING, _strength.PIN_PRESSURE_STATIC
 FATIGUE_WARN, FATIGUE_FAIL = 1.5, 1.0
-#: The part sizes the checks read, attributes of the sizes given (the spec's ``[parts]``,
-#: docs/workshop.md §2): the pins' diameter and bearing width, the handle tube's diameter, wall and
-#: notch factor, the crank bar's diameter and notch factor [m; -].
-SIZE_KEYS = (
+#: The part sizes the checks read, attributes of the sizes given (the keys of a spec's ``[parts]``
+#: table, docs/workshop.md §2): the pins' diameter and bearing width, the handle tube's diameter,
+#: wall and notch factor, the crank bar's diameter and notch factor [m; -].
+PART_KEYS = (
     "pin_diameter",
     "pin_width",
     "handle_diameter",
@@ -165,7 +165,7 @@ def quasi_static_strength(lk, dead_centre_extended, dead_centre_folded, dead_ban
                           wheel_weight, parts) -> Strength:  # fmt: skip
     """:func:`strength` of many designs under the quasi-static model at once: ``lk`` with
     parameters of shape (n,), the other values of shape (n,) and ``parts`` columns
-    (the attributes :data:`SIZE_KEYS`); the peaks by
+    (the attributes :data:`PART_KEYS`); the peaks by
     :func:`pumplink.models.joints.quasi_static_peak_loads`."""
     value, angle = _joints.quasi_static_peak_loads(
         lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull, wheel_weight
@@ -189,7 +189,7 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     """:func:`strength` of :func:`part_loads` for many designs under full dynamics at once: ``lk``
     with parameters of shape (n,), the other values of shape (n,) (``force`` each design's finite
     least peak force, ``masses`` the links' without the operator's arms) and ``parts`` columns
-    (the attributes :data:`SIZE_KEYS`).  The scenes are :func:`pumplink.models.dynamics.scenes`,
+    (the attributes :data:`PART_KEYS`).  The scenes are :func:`pumplink.models.dynamics.scenes`,
     the cycle and its peaks those of :func:`part_loads` (:func:`pumplink.models.joints.cycle_peak_loads`):
     the same operations on the same values per design (tests/models/test_part_routes.py)."""
     from pumplink.models import dynamics as _dy
@@ -204,10 +204,12 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     rope, weight = column(rope_pull), column(wheel_weight)
     th = cycle_angles(column(dead_centre_extended)[:, 0], column(dead_centre_folded)[:, 0])
 
-    def loads_at(rows, angles, fatigue=False, out=None):
+    def loads_at(rows, angles, fatigue=False, out=None, squares=False):
         sub = scs.take(rows)
         motion = _joints.dynamics_motion(sub, angles)
-        return _joints.motion_loads(sub.linkage, motion, GRAVITY, rope[rows], weight[rows], fatigue, out)
+        return _joints.motion_loads(
+            sub.linkage, motion, GRAVITY, rope[rows], weight[rows], fatigue, out, squares
+        )
 
     def six_at(rows, angles):
         return loads_at(rows, angles)[0]
@@ -220,13 +222,48 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     fatigue = _Cycle(*(np.empty((n, k + 2)) for _ in _Cycle._fields))
     for s in range(0, n, CYCLE_ROWS):
         rows = slice(s, s + CYCLE_ROWS)
-        read = loads_at(every[rows], th[rows], fatigue=True, out=six[:, rows])[1]
+        read = loads_at(every[rows], th[rows], fatigue=True, out=six[:, rows], squares=True)[1]
         for v, r in zip(fatigue, read, strict=True):
             v[rows, :k] = r
+    # the joints' magnitudes where the peak search reads them (np.hypot costs as much as the rest
+    # of the joint forces): at the angles their squares rank near the top and those angles'
+    # neighbours; the others hold -inf, below every load, as NaN does for the search
+    at = peak_candidates(six[:4])
+    exact = six_at(every, np.take_along_axis(th, at, axis=1))[:4]
+    six[:4] = -np.inf
+    np.put_along_axis(six[:4], np.broadcast_to(at, exact.shape), exact, axis=2)
     value, angle = _joints.cycle_peak_loads(six_at, th, six)
     for v, r in zip(fatigue, loads_at(every, angle[4:6].T, fatigue=True)[1], strict=True):
         v[:, k:] = r
     return _strength_of(value[:4], fatigue, parts, n)
+
+
+#: Relative margin below the largest squared magnitude of a joint over a cycle within which a crank
+#: angle may hold its largest magnitude: x^2 + y^2 is within 4e-16 of |R|^2 and np.hypot within
+#: an ulp of |R|, so an angle whose np.hypot equals the largest is within 2e-15 of the largest square.
+PEAK_MARGIN = 1e-9
+
+
+def peak_candidates(squares):
+    """Where the four joints' magnitudes may peak over a cycle, from their squares x^2 + y^2
+    (:func:`pumplink.models.joints.motion_loads` with ``squares``; shape (4, D, K)): the crank
+    angles whose square is within :data:`PEAK_MARGIN` of its joint's largest and their neighbours
+    (the bracket the peak search zooms into), all that
+    :func:`pumplink.models.joints.cycle_peak_loads` reads of a joint.  Returns the indices (D, C)
+    of the angles that any joint needs, a design's first repeated where it needs fewer than C (an
+    index into the angles of each design)."""
+    top = np.fmax.reduce(squares, axis=2)  # NaN only where a joint is NaN over the whole cycle
+    with np.errstate(invalid="ignore"):
+        near = squares >= (top * (1.0 - PEAK_MARGIN))[..., None]
+    need = near.copy()
+    need[..., 1:] |= near[..., :-1]
+    need[..., :-1] |= near[..., 1:]
+    need = need.any(axis=0)  # (D, K)
+    count = np.count_nonzero(need, axis=1)
+    row, col = np.nonzero(need)  # in order, row by row
+    at = np.zeros((need.shape[0], max(int(count.max(initial=0)), 1)), np.intp)
+    at[row, np.arange(row.size) - np.repeat(np.cumsum(count) - count, count)] = col
+    return np.where(np.arange(at.shape[1]) < count[:, None], at, at[:, :1])
 
 
 class _Cycle(NamedTuple):
@@ -304,40 +341,19 @@ def _strength_of(peak_force, cycle, parts, n) -> Strength:
     return Strength(np.take_along_axis(pressure, k[None], 0)[0], pin, handle, crank, (se_handle, se_crank))
 
 
-def scene(
-    lk,
-    dead_centre_extended,
-    dead_centre_folded,
-    wheel_torque,
-    inertia,
-    masses: Masses,
-    speed,
-    delta,
-    force,
-    model,
-):
+def scene(lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses: Masses, speed, delta,
+          force, model):  # fmt: skip
     """The energy model's scene of one design solved at ``force`` (its least peak force), for
     the motion the loads are taken along; None for the quasi-static model."""
+    design = (lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia)
     if model == DYNAMICS:
         from pumplink.models import dynamics as _dy
 
-        return _dy.scene(
-            lk,
-            dead_centre_extended,
-            dead_centre_folded,
-            wheel_torque,
-            inertia,
-            masses,
-            speed,
-            delta,
-            force=force,
-        )
+        return _dy.scene(*design, masses, speed, delta, force=force)
     if model == FLYWHEEL:
         from pumplink.models import flywheel as _fw
 
-        return _fw.scene(
-            lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, speed, delta, solved=force
-        )
+        return _fw.scene(*design, speed, delta, solved=force)
     return None
 
 
@@ -351,7 +367,7 @@ def part_checks(syn, c, sizes, index, least, masses, judged) -> dict:
         centres, arrays over designs).
     c : the design columns by name (``dead_band``, ``wheel_torque``, ``inertia``, ``speed``,
         ``speed_fluctuation``, ``rope_force``, ``wheel_mass``; arrays over designs or scalars).
-    sizes : the part sizes, the attributes :data:`SIZE_KEYS` [m; notch factors -] (scalars or
+    sizes : the part sizes, the attributes :data:`PART_KEYS` [m; notch factors -] (scalars or
         arrays over designs: the spec's ``[parts]``).
     index : the deciding model of each design, an index into :data:`pumplink.models.ORDER`;
         least : its least peak force [N];  masses : the links' (:class:`pumplink.models.Masses`;
@@ -373,7 +389,7 @@ def part_checks(syn, c, sizes, index, least, masses, judged) -> dict:
     def part_sizes(rows):
         """The part sizes of designs ``rows`` (an index: arrays; one design: numpy floats)."""
         return SimpleNamespace(
-            **{k: np.broadcast_to(np.asarray(getattr(sizes, k), float), (n,))[rows] for k in SIZE_KEYS}
+            **{k: np.broadcast_to(np.asarray(getattr(sizes, k), float), (n,))[rows] for k in PART_KEYS}
         )
 
     def columns(block, keys):
@@ -438,9 +454,10 @@ __all__ = [
     "CYCLE_SAMPLES",
     "PART_BLOCK",
     "SCENE_BLOCK",
-    "SIZE_KEYS",
+    "PART_KEYS",
     "dynamics_strength",
     "part_checks",
+    "peak_candidates",
     "FATIGUE_FAIL",
     "FATIGUE_WARN",
     "PIN_PRESSURE_FAIL",

@@ -393,3 +393,52 @@ def test_speed_range_ends_where_the_force_meets_the_limit():
     outside = ds.least_peak_force(*args[:6], np.array([a * (1 - 1e-4), b * (1 + 1e-4)]), 0.2)
     assert np.all(inside <= limit) and np.all(outside > limit)
     assert all(math.isnan(x) for x in dy.speed_range(*args, 0.9 * effort, lo, hi, best))  # none passes
+
+
+def _profile_by_definition(sc, th):
+    """The reported motion's energy and regime written as docs/models.md §3 defines them, the
+    minima over the refined points taken point by point: e = min(Fp G - Mw phi + past minimum of
+    (upper - Q), upper, -Fp G - Mw phi + future minimum of (upper - P)), with the grip travel G from
+    :func:`pumplink.models.grip_travel.travel_parts` (its own Px at dce + phi), the links' terms
+    from :func:`pumplink.models.dynamics_terms.terms` and phi from np.mod."""
+    fp, mw = sc.least_peak_force, sc.wheel_torque
+    phi = np.mod(th - sc.dead_centre_extended, 2 * np.pi)
+    base, local = gt.travel_parts(phi, *sc.travel)
+    g_phi = base + local
+    tm = dt.terms(sc.linkage, th, sc.masses, sc.gravity)
+    i = sc.inertia + tm.inertia
+    up = tm.potential + 0.5 * i * sc.max_speed**2
+    x, kb, kl, kup, _ = sc.points
+    a, b = 2.0 * fp * sc.stroke - 2 * np.pi * mw, -2.0 * fp * sc.stroke - 2 * np.pi * mw
+    al, de = kup - (fp * (kb + kl) - mw * x), kup - (-fp * (kb + kl) - mw * x)
+    col = phi[:, None]
+    past = np.where(x[None, :] < col, al, al + a).min(axis=1)
+    future = np.where(x[None, :] > col, de, de - b).min(axis=1)
+    cand = np.stack([fp * g_phi - mw * phi + past, up, -fp * g_phi - mw * phi + future])
+    return cand.min(axis=0), 1 - np.argmin(cand, axis=0), i, tm
+
+
+@pytest.mark.parametrize("spec", ["examples/well-12m-flywheel.toml", "configs/village-10m.toml"])
+def test_the_profile_is_its_definition_bit_for_bit(spec):
+    """The reported motion's profile (the vector route of many designs, run for one: the grip's Px
+    taken from the terms' loop closure where the angles agree, the points counted, np.mod's
+    remainder formed directly) equals its definition written out, bit for bit, on angles over
+    several turns, next to both dead centres (the travel integrated there) and on the refined
+    points, for scenes with and without the operator's arms."""
+    spec, _syn, lk, dce, dcf = _case(spec)
+    rng = np.random.default_rng(11)
+    for arms in (0.0, 4.0):
+        masses = dt.bar_masses(lk, 1.56, arms)
+        sc = dy.scene(lk, dce, dcf, spec.wheel_torque, spec.inertia, masses, 2 * np.pi, 0.2)
+        dce, dcf = sc.dead_centre_extended, sc.dead_centre_folded
+        th = np.concatenate([
+            rng.uniform(-15.0, 40.0, 800), np.linspace(0.0, 2 * np.pi, 1441),
+            dce + rng.uniform(-0.03, 0.03, 200), dcf + rng.uniform(-0.03, 0.03, 200), sc.points[0] + dce,
+        ])  # fmt: skip
+        e, regime, _dup, _v, i, _g, tm = dy._profile(sc, th)
+        want_e, want_regime, want_i, want_tm = _profile_by_definition(sc, th)
+        np.testing.assert_array_equal(e, want_e)
+        np.testing.assert_array_equal(regime, want_regime)
+        np.testing.assert_array_equal(i, want_i)
+        for k in ("inertia_rate", "potential", "potential_rate", "grip_rate"):
+            np.testing.assert_array_equal(getattr(tm, k), getattr(want_tm, k))
