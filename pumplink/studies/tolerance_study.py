@@ -36,6 +36,7 @@ from pumplink.studies.tolerance import (
     evaluate_builds,
     first_order_shares,
     offsets,
+    problem,
     sensitivities,
 )
 
@@ -336,5 +337,7 @@ def shortfall(designs: PumpDesigns, ev: Evaluation, robust: Robust, model=None) 
 
 def robust_check(spec: PumpSpec, robust: Robust, model: str | None = None) -> RobustCheck:
     """The first-order share and the Monte Carlo check of a search's answer (in this process)."""
-    res = study(spec, robust.tolerances, robust.builds, robust.seed, model, robust.strict, robust.target)
+    res = study(
+        problem(spec, robust.tolerances, robust.builds, robust.seed, model, robust.strict), robust.target
+    )
     return RobustCheck(robust, res.first_order_share, res.clean if robust.strict else res.passed)
