@@ -111,7 +111,7 @@ def to_html(result: ForceResult) -> str:
 
 def examples() -> dict[str, str]:
     """The shipped example specs: name -> design name (``pumplink init --example NAME``)."""
-    from pumplink.examples import example_names
+    from pumplink.inputs.examples import example_names
 
     return example_names()
 

@@ -64,6 +64,7 @@ def test_results_have_a_short_repr_a_dict_and_html():
     assert html.count("<tr>") == len(r.checks) + 1 and "grip speed" in html
     assert len(repr(pumplink.synthesize(pumplink.default()))) < 200
     assert set(pumplink.examples()) >= {"prototype", "village-10m", "women-operators-6m", "well-12m-flywheel"}
+    assert pumplink.examples() == pumplink.examples()  # a second call too (the data folder is no module)
 
 
 def test_the_init_template_is_the_default_design_with_the_file_name():

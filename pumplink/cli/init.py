@@ -39,7 +39,7 @@ def init(
 
     Example: [bold]pumplink init village.toml --example village-10m[/]
     """
-    from pumplink.examples import example_names, example_text
+    from pumplink.inputs.examples import example_names, example_text
     from pumplink.inputs.pump import spec_template
 
     if example == "list":

@@ -1,7 +1,9 @@
 """The example specs shipped with pumplink (``pumplink init --example NAME``).
 
-They are the repository's ``configs/`` and ``examples/`` files, installed as package data so
-the README's commands have their files after a plain ``pip install``.
+They are the repository's ``configs/`` and ``examples/`` files, installed as package data in
+pumplink/examples/ so the README's commands have their files after a plain ``pip install``.  That
+folder is data, not a module: were it imported as ``pumplink.examples`` it would take the place
+of :func:`pumplink.examples` on the package.
 """
 
 from __future__ import annotations
@@ -12,8 +14,12 @@ from importlib import resources
 from pumplink.errors import SpecError
 
 
+def _root():
+    return resources.files("pumplink").joinpath("examples")
+
+
 def _files() -> dict[str, str]:
-    root = resources.files(__name__)
+    root = _root()
     return {p.name.removesuffix(".toml"): p.name for p in root.iterdir() if p.name.endswith(".toml")}
 
 
@@ -21,7 +27,7 @@ def example_names() -> dict[str, str]:
     """Shipped example names and each one's design name, sorted."""
     out = {}
     for name, file in sorted(_files().items()):
-        data = tomllib.loads(resources.files(__name__).joinpath(file).read_text(encoding="utf-8"))
+        data = tomllib.loads(_root().joinpath(file).read_text(encoding="utf-8"))
         out[name] = str(data.get("name", name))
     return out
 
@@ -34,4 +40,4 @@ def example_text(name: str) -> str:
             f"--example {name!r} is not a shipped example; choose one of {', '.join(sorted(files))} "
             "(or --example list)"
         )
-    return resources.files(__name__).joinpath(files[name]).read_text(encoding="utf-8")
+    return _root().joinpath(files[name]).read_text(encoding="utf-8")
