@@ -68,7 +68,7 @@ class Service:
 
 #: The design columns :func:`service` reads (the handle's length is not among them: the
 #: kick-back, which needs the linkage, comes in worked out, :func:`pumplink.models.kickback.kick_back`).
-SERVICE_KEYS = ("head", "pipe_diameter", "wheel_radius", "speed", "ratchet_torque", "ratchet_teeth",
+SERVICE_KEYS = ("head", "wheel_radius", "speed", "ratchet_torque", "ratchet_teeth",
                 "hours_per_day", "people", "litres_per_person_day", "wear_rate", "wear_surfaces",
                 "wear_allowance", "volumetric_efficiency")  # fmt: skip
 
@@ -83,14 +83,14 @@ def pawl_windows(head, pipe_diameter, wheel_radius, ratchet_torque, ratchet_teet
         return required, np.where(holds, np.where(ratchet_teeth > 0, TWO_PI / ratchet_teeth, 0.0), np.nan)
 
 
-def service(columns: dict, n: int, kick, flow, pin_pressure, pin_diameter) -> Service:
+def service(columns: dict, n: int, required, kick, flow, pin_pressure, pin_diameter) -> Service:
     """:class:`Service` of ``n`` designs from their ``columns`` (:data:`SERVICE_KEYS`), the
+    column's torque a back-stop must hold, ``required`` [N m] (:func:`pawl_windows`), the
     ``kick`` of :func:`pumplink.models.kickback.kick_back` over them (travel, stop angle, run,
     end, grid and the travel without a back-stop; NaN where not worked out), the ``flow``
     [m^3/s] and the part checks' largest ``pin_pressure`` [MPa] on pins of ``pin_diameter`` [m]
     (None without ``[parts]``)."""
     c = columns
-    required = _release.column_torque(c["head"], c["pipe_diameter"], c["wheel_radius"])
     declared, teeth = c["ratchet_torque"], c["ratchet_teeth"]
     travel, angle, run, end, grid, free = kick
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # a speed near 0: inf, NaN

@@ -278,22 +278,23 @@ def service(r: Run) -> dict[str, Any]:
     before it (the verdict's evaluation; it runs first in :data:`STAGES`), NaN otherwise."""
     parts, c = r.designs.parts, r.c
     pins = None if parts is None else np.broadcast_to(np.asarray(parts.pin_diameter, float), (r.n,))
-    return dict(service=_service.service(
-        {k: c[k] for k in _service.SERVICE_KEYS}, r.n, _kick_back(r), r["water"].flow,
-        r.filled.get("pin_pressure"), pins,
-    ))  # fmt: skip
-
-
-def _kick_back(r: Run) -> tuple:
-    """The kick-back of each design whose head gives a water column (not ``fitted``;
-    :func:`pumplink.models.kickback.kick_back`, docs/workshop.md §3): the grip's travel back, the
-    stop angle, the run, how it ends and whether a grid decided, with the ``[ratchet]`` that
-    holds; and, for one design, the travel without it.  One call: the designs a ratchet holds are
-    asked again without it beside the others."""
-    c, n, syn, m = r.c, r.n, r["synthesis"], r["masses"]
     required, pawl = _service.pawl_windows(
         c["head"], c["pipe_diameter"], c["wheel_radius"], c["ratchet_torque"], c["ratchet_teeth"]
     )
+    return dict(service=_service.service(
+        {k: c[k] for k in _service.SERVICE_KEYS}, r.n, required, _kick_back(r, required, pawl),
+        r["water"].flow, r.filled.get("pin_pressure"), pins,
+    ))  # fmt: skip
+
+
+def _kick_back(r: Run, required, pawl) -> tuple:
+    """The kick-back of each design whose head gives a water column (not ``fitted``;
+    :func:`pumplink.models.kickback.kick_back`, docs/workshop.md §3): the grip's travel back, the
+    stop angle, the run, how it ends and whether a grid decided, with the ``[ratchet]`` that
+    holds (the column's torque ``required`` and the pawl's window,
+    :func:`pumplink.evaluate.service.pawl_windows`); and, for one design, the travel without it.
+    One call: the designs a ratchet holds are asked again without it beside the others."""
+    c, n, syn, m = r.c, r.n, r["synthesis"], r["masses"]
     travel, angle, run, end = (np.full(n, np.nan) for _ in range(4))
     grid = np.zeros(n, bool)
     ok = r.rows(np.asarray(r["feasible"], bool) & np.isfinite(required) & (not r.fitted))

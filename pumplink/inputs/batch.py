@@ -38,12 +38,12 @@ from typing import Any
 import numpy as np
 
 from pumplink.errors import SpecError, bad_character, shown
+from pumplink.inputs import load
 from pumplink.inputs.piston import PistonSpec, parse_piston
 from pumplink.inputs.pump import PumpSpec, parse_spec, spec_to_dict
 from pumplink.inputs.toml import (
     MAX_NAME_CHARS,
     is_piston_data,
-    read_spec,
     read_toml,
     spec_name,
     validate_spec,
@@ -306,7 +306,7 @@ def parse_batch(data: Any, source: str, folder: Path | None = None, stem: str | 
         if not path.is_absolute():
             path = (folder or Path(".")) / path
         try:
-            spec = load_any_spec(path)
+            spec = load(path)  # the one loader: a rope pump's or a piston pump's spec
         except SpecError as exc:
             raise SpecError(f"{source}: base = {shown(raw_base)}: {exc}") from None
     elif isinstance(raw_base, dict):
@@ -361,11 +361,6 @@ def parse_batch(data: Any, source: str, folder: Path | None = None, stem: str | 
             f"use fewer values per axis"
         )
     return b
-
-
-def load_any_spec(path: str | Path) -> PumpSpec | PistonSpec:
-    """A rope-pump or piston-pump spec file (decided by its ``mechanism`` key)."""
-    return read_spec(path, PumpSpec, PistonSpec)
 
 
 def spec_batch(spec: PumpSpec | PistonSpec, source: str) -> Batch:
