@@ -98,6 +98,16 @@ def target(label, value, unit, goal, met, note="") -> None:
     record(label, value, unit.strip() or "x", goal, met, note)
 
 
+def in_time_and_faster(med, key, label, limit, ratio_label, other) -> None:
+    """The two judged lines of a command run side by side: its ``key`` time ("cpu" or "wall") at
+    most ``limit`` seconds, and at least 5x faster than the pinned install (``other``: the other
+    time, given beside it)."""
+    value, ratio = med[THIS][key], med[BASE_COMMIT][key] / med[THIS][key]
+    target(label, value, " s", f"<= {limit:g} s", value <= limit, f"{beside(med, key)}; {beside(med, other)}")
+    target(f"{ratio_label}: {BASE_COMMIT}'s {key.upper() if key == 'cpu' else key} / this checkout's", ratio,
+           "x", ">= 5x", ratio >= 5.0)  # fmt: skip
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=3)
@@ -127,23 +137,8 @@ def main() -> None:
         med = side_by_side(exes, tol, n, n)
         report("tolerance", med)
         if BASE_COMMIT in med:
-            cpu, ratio = med[THIS]["cpu"], med[BASE_COMMIT]["cpu"] / med[THIS]["cpu"]
-            note = f"{beside(med, 'cpu')}; {beside(med, 'wall')}"
-            target(
-                f"tolerance {VILLAGE}, {samples} builds, one process: CPU",
-                cpu,
-                " s",
-                "<= 10 s",
-                cpu <= 10.0,
-                note,
-            )
-            target(
-                f"tolerance, {samples} builds: {BASE_COMMIT}'s CPU / this checkout's",
-                ratio,
-                "x",
-                ">= 5x",
-                ratio >= 5.0,
-            )
+            in_time_and_faster(med, "cpu", f"tolerance {VILLAGE}, {samples} builds, one process: CPU", 10.0,
+                               f"tolerance, {samples} builds", "wall")  # fmt: skip
         else:
             record(f"tolerance {VILLAGE}, {samples} builds, one process: CPU", med[THIS]["cpu"], "s")
 
@@ -154,23 +149,8 @@ def main() -> None:
         med = side_by_side(exes, grid, n, slow)
         report("grid", med)
         if BASE_COMMIT in med:
-            wall, ratio = med[THIS]["wall"], med[BASE_COMMIT]["wall"] / med[THIS]["wall"]
-            note = f"{beside(med, 'wall')}; {beside(med, 'cpu')}"
-            target(
-                "design-space grid with [parts], --workers 2: wall",
-                wall,
-                " s",
-                "<= 30 s",
-                wall <= 30.0,
-                note,
-            )
-            target(
-                f"design-space grid with [parts]: {BASE_COMMIT}'s wall / this checkout's",
-                ratio,
-                "x",
-                ">= 5x",
-                ratio >= 5.0,
-            )
+            in_time_and_faster(med, "wall", "design-space grid with [parts], --workers 2: wall", 30.0,
+                               "design-space grid with [parts]", "cpu")  # fmt: skip
         else:
             record(
                 "design-space grid with [parts] (smoke: 27 variants, one worker): wall",
