@@ -373,6 +373,11 @@ def map_ordered(
     and the items must pickle; ``initializer(*initargs)`` runs once in each worker (after the
     signals are set), to hand it what every item shares.  Else, one after the other here
     (``initializer`` first).
+
+    A worker hands its result back in a file of a private temporary folder (removed at the
+    end) and sends the pool only the file's name: a message that short is written into the
+    pool's pipe in one piece, so a worker killed while sending cannot leave half a message
+    there, which the pool's reader would wait for forever.
     """
     workers = min(workers, len(items))  # never more processes than items
     if workers <= 1:
@@ -382,23 +387,26 @@ def map_ordered(
         for item in items:
             yield fn(*item)
         return
+    import shutil
+    import tempfile
     from collections import deque
 
     from loky import ProcessPoolExecutor
 
+    folder = tempfile.mkdtemp(prefix="pumplink-")
     pool = ProcessPoolExecutor(max_workers=workers, initializer=_init_pool, initargs=(initializer, initargs))
     pending: deque = deque()
     try:
         it = iter(items)
         for item in it:
-            pending.append(pool.submit(fn, *item))
+            pending.append(pool.submit(_result_to_file, folder, fn, *item))
             if len(pending) >= 2 * workers:
                 break
         while pending:
-            result = pending.popleft().result()
+            result = _result_from_file(pending.popleft().result())
             nxt = next(it, None)
             if nxt is not None:
-                pending.append(pool.submit(fn, *nxt))
+                pending.append(pool.submit(_result_to_file, folder, fn, *nxt))
             yield result
     finally:
         # Ctrl-C, SIGTERM, a dead worker or an error: drop the queued items and let the running
@@ -406,6 +414,31 @@ def map_ordered(
         for f in pending:
             f.cancel()
         pool.shutdown(wait=True)
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def _result_to_file(folder: str, fn: Callable[..., Any], *item) -> str:
+    """``fn(*item)`` pickled into a new file of ``folder`` (in a worker); the file's name."""
+    import os
+    import pickle
+    import tempfile
+
+    result = fn(*item)
+    handle, path = tempfile.mkstemp(dir=folder, suffix=".pickle")
+    with os.fdopen(handle, "wb") as f:
+        pickle.dump(result, f, protocol=pickle.HIGHEST_PROTOCOL)
+    return path
+
+
+def _result_from_file(path: str) -> Any:
+    """The result :func:`_result_to_file` left in ``path``; the file is removed."""
+    import os
+    import pickle
+
+    with open(path, "rb") as f:
+        result = pickle.load(f)
+    os.unlink(path)
+    return result
 
 
 def _init_pool(initializer, initargs) -> None:

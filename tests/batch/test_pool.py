@@ -111,3 +111,46 @@ def test_the_estimate_is_days_for_a_billion_variants(tmp_path):
     assert time.perf_counter() - t0 < 5  # a probe, not a run
     # 1e9 variants: a hand timing on this kind of machine gives some 10 us to 1 ms per variant
     assert 1e4 < one < 1e6 * 1e3, one
+
+
+#: A worker that dies half-way through sending its result back: the killer thread fires while
+#: the worker's main thread is blocked writing a 64 MB message into the pool's pipe (the
+#: kernel's wait channel says so), else after 2 s.  The pool's manager thread used to wait for
+#: the rest of that message forever (a hang the kill test above met about 1 run in 16).
+DIES_WHILE_SENDING = """
+import os, signal, sys, threading, time
+from concurrent.futures.process import BrokenProcessPool
+from pumplink.batch.runner import map_ordered
+
+def die_while_sending(i):
+    if i != 1:
+        time.sleep(5)  # the others outlast the killer's 2 s
+        return i
+    tid = threading.get_native_id()
+    def killer():
+        stop = time.monotonic() + 2
+        while time.monotonic() < stop:
+            with open(f"/proc/self/task/{tid}/wchan") as f:
+                if "pipe_write" in f.read():
+                    break
+            time.sleep(0.0005)
+        os.kill(os.getpid(), signal.SIGKILL)
+    threading.Thread(target=killer, daemon=True).start()
+    return b"x" * (64 << 20)
+
+try:
+    list(map_ordered(die_while_sending, [(i,) for i in range(6)], workers=2))
+except BrokenProcessPool:
+    print("broken")
+"""
+
+
+def test_a_worker_killed_while_sending_its_result_ends_the_run():
+    p = subprocess.Popen([sys.executable, "-c", DIES_WHILE_SENDING], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True, cwd=ROOT, start_new_session=True)  # fmt: skip
+    try:
+        out, err = p.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)  # the run and its workers
+        raise
+    assert out.strip() == "broken", err
