@@ -55,6 +55,21 @@ def test_the_passing_speeds_are_where_the_verdict_changes(village):
     assert 1 - 1 / hi < share <= 1.0  # within the next deg/s of the limit
 
 
+def test_the_passing_speeds_take_three_evaluations(village, monkeypatch):
+    """The grid, then two steps narrowing every change at once (20 deg/s to 4, then to 1); the
+    whole speeds at the ends found were evaluated on the way, so the second search evaluates
+    nothing.  (The ends found are checked against force_analysis by the test above.)"""
+    from pumplink.studies import speed
+
+    spec, _ = village
+    calls = []
+    real = speed._at_speeds
+    monkeypatch.setattr(speed, "_at_speeds", lambda *a: calls.append(len(a[1])) or real(*a))
+    passing, clean, force = speed.passing_speeds(spec)
+    assert len(calls) == 3, calls
+    assert len(passing) == len(clean) == len(force) == 1  # one change at each end of each
+
+
 def test_the_best_cadence_needs_the_least_effort(village):
     """The best cadence is the speed of least effort among those that pass without a warning: the
     village well's effort still falls above its top (316 deg/s, where the power reaches the 75 W
