@@ -69,6 +69,15 @@ def _tests(ev) -> np.ndarray:
                      np.asarray(v["peak_force"].passed, bool)])  # fmt: skip
 
 
+def _results(spec: PumpSpec, model, speeds: list, known: dict) -> np.ndarray:
+    """:func:`_tests` at the whole ``speeds`` [deg/s], (3, len(speeds)): those not in ``known``
+    (speed -> column) evaluated together, in one evaluation, and added to it."""
+    new = sorted(set(speeds) - known.keys())
+    if new:
+        known.update(zip(new, _tests(_at_speeds(spec, new, model)).T, strict=True))
+    return np.array([known[v] for v in speeds]).T
+
+
 #: Whole speeds looked at inside each bracket per step of :func:`_edges`: a bracket of the grid's
 #: 20 deg/s is narrowed to 4, then to 1, in two evaluations (bisection took five, and a sixth for
 #: the whole speeds of its last bracket).
@@ -88,10 +97,7 @@ def _edges(spec: PumpSpec, model, grid: np.ndarray, ok: np.ndarray, known: dict)
     while np.any(wide := hi - lo > 1):
         cuts = {j: np.unique(np.linspace(lo[j], hi[j], SPLIT + 2)[1:-1].round().clip(lo[j] + 1, hi[j] - 1)
                              .astype(int)) for j in np.nonzero(wide)[0].tolist()}  # fmt: skip
-        new = sorted(set(np.concatenate(list(cuts.values())).tolist()) - known.keys())
-        if new:
-            for v, column in zip(new, _tests(_at_speeds(spec, new, model)).T, strict=True):
-                known[v] = column
+        _results(spec, model, np.concatenate(list(cuts.values())).tolist(), known)
         for j, c in cuts.items():
             changed = [known[v][which[j]] != before[j] for v in c.tolist()]
             k = changed.index(True) if True in changed else c.size
@@ -133,12 +139,7 @@ def passing_speeds(spec: PumpSpec, model: str | None = None, searched_deg_s=CADE
     extra = np.setdiff1d(np.clip([e + d for es in edges for e in es for d in (-1, 0)], lo, hi), grid)
     if extra.size:
         grid, order = np.unique(np.concatenate([grid, extra]), return_index=True)
-        todo = [v for v in extra.tolist() if v not in known]
-        if todo:
-            for v, column in zip(todo, _tests(_at_speeds(spec, todo, model)).T, strict=True):
-                known[v] = column
-        found = np.array([known[v] for v in extra.tolist()]).T
-        ok = np.concatenate([ok, found], axis=1)[:, order]
+        ok = np.concatenate([ok, _results(spec, model, extra.tolist(), known)], axis=1)[:, order]
         edges = _edges(spec, model, grid, ok, known)
     return tuple(_bands(grid, ok[t], edges[t]) for t in range(len(ok)))
 

@@ -116,7 +116,7 @@ def test_the_estimate_is_days_for_a_billion_variants(tmp_path):
 #: A worker that dies half-way through sending its result back: the killer thread fires while
 #: the worker's main thread is blocked writing a 64 MB message into the pool's pipe (the
 #: kernel's wait channel says so), else after 2 s.  The pool's manager thread used to wait for
-#: the rest of that message forever (a hang the kill test above met about 1 run in 16).
+#: the rest of that message forever (a hang the kill test above met in 2 runs of 33).
 DIES_WHILE_SENDING = """
 import os, signal, sys, threading, time
 from concurrent.futures.process import BrokenProcessPool
