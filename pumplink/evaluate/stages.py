@@ -444,7 +444,7 @@ def evaluate(
     if isinstance(designs, PistonDesigns):
         return evaluate_piston(designs, judge="verdict" in want)
     r = Run(designs, model=model, samples=samples, progress=progress, screen_parts=screen_parts,
-                   fitted=fitted)  # fmt: skip
+            fitted=fitted)  # fmt: skip
     return Evaluation(designs=designs, **run(r, want))
 
 
