@@ -53,10 +53,11 @@ TASK_SAMPLES = 3_000_000
 SUB_DESIGNS = 128
 
 
-#: Most designs per chunk, and per call of the flywheel kernel, for variants that give inertia:
-#: the least peak force costs ~0.5 ms per design (a chunk ~0.5 s) and its temporaries are
-#: (designs x ~430 nodes) arrays.
-FLYWHEEL_DESIGNS = 1024
+#: Most designs per chunk for variants that give inertia: full dynamics costs ~50 us a design (a
+#: chunk a fifth of a second) and solves a chunk in blocks of its own (its CHUNK, cache-sized), so
+#: the rows are the same bytes whatever this is; four blocks a chunk pay each stage's cost per call
+#: (~15 ms: the kick-back's, the rocker rate's and the duty's searches) a quarter as often.
+FLYWHEEL_DESIGNS = 4096
 
 
 class _Judged:

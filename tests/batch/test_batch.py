@@ -838,6 +838,8 @@ def test_chunks_partition_the_run(qs_grid):
         got = [(i, s, e) for k in range(1, n + 1) for (i, s, e) in B.plan(batches, (k, n), designs=5000)]
         seen = [(i, j) for i, s, e in got for j in range(s, e)]
         assert seen == [(i, j) for i, b in enumerate(batches) for j in range(b.size)] and len(seen) == total
+        if n > 3:  # slices smaller than a task of the inertia batch: nothing to compare
+            continue
         # tasks of a batch that gives inertia (the real grid) are cut smaller: the flywheel costs more
         size = {
             b.flywheel: max(e - s for i, s, e in got if batches[i].flywheel == b.flywheel)
