@@ -359,15 +359,16 @@ def _profile_at(sc: Scene):
         at_fold = abs(to_fold) <= min(phi, TWO_PI - phi)
         sd = to_fold if at_fold else (phi if phi <= TWO_PI - phi else phi - TWO_PI)
         base = (stroke if at_fold else (0.0 if sd >= 0 else 2.0 * stroke)) + 0.0
+        tm = terms_at(th, fly_x=True)
         if abs(sd) < arc:  # integrated from the rate on the 12 Gauss-Legendre nodes, as there
             nodes = 0.5 * sd * (1.0 + GAUSS_LEGENDRE_NODES)
             rate = grip_rate((geom_dce + plus if at_fold else geom_dce) + nodes, *geom)
             local = float(0.5 * sd * (np.abs(rate) * GAUSS_LEGENDRE_WEIGHTS).sum(axis=-1))
         else:
-            px_grip = grip_at(geom_dce + phi, rates=False, values=False, fly_x=True)[6]
+            at_grip = geom_dce + phi  # where it rounds to th, the terms' loop closure gave Px (_grip_x)
+            px_grip = tm[6] if at_grip == th else grip_at(at_grip, rates=False, values=False, fly_x=True)[6]
             local = (1.0 if sd > 0 else -1.0) * abs(px_grip - (xf if at_fold else xe))
         g_phi = base + local
-        tm = terms_at(th)
         i = j0 + tm[0]
         up = tm[2] + 0.5 * i * w2
         dup = tm[3] + 0.5 * tm[1] * w2
