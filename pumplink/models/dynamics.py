@@ -607,9 +607,13 @@ def motion_state(sc: Scene | Scenes, crank_angle):
     return _force(sc, *prof[1:]), speed, tm
 
 
-def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> _fw.TimeIntegration:
+def integrate_motion(
+    sc: Scene, cycles: int = 4, rtol: float = 1e-11, by_pieces: bool = True
+) -> _fw.TimeIntegration:
     """Integrate I t'' + I'/2 t'^2 + V' = F g - Mw (Eq. (7) in time, scipy ``solve_ivp``) under the
-    reported force profile F(t) (open loop), from the reported speed at the extended dead centre."""
+    reported force profile F(t) (open loop), from the reported speed at the extended dead centre.
+    ``by_pieces``: piece by piece of the profile (:func:`profile_pieces`; the same motion in about a
+    third of the steps), else the whole profile at each step."""
     t0 = sc.dead_centre_extended
     mw = sc.wheel_torque
 
@@ -621,7 +625,62 @@ def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> _fw.Tim
         f = _force_at(sc, *prof[1:])
         return [y[1], (f * g - mw - tm[3] - 0.5 * tm[1] * y[1] ** 2) / i]
 
-    return _fw.revolutions(rhs, t0, wheel_speed(sc, t0), sc.min_speed, sc.max_speed, cycles, rtol)
+    pieces = profile_pieces(sc, profile_at) if by_pieces else None
+    return _fw.revolutions(rhs, t0, wheel_speed(sc, t0), sc.min_speed, sc.max_speed, cycles, rtol, pieces)
+
+
+#: Crank angles a turn on which :func:`profile_pieces` looks for the ends of the pieces.
+PIECE_GRID = 8192
+#: Shortest piece kept [rad]: a shorter one joins its neighbour (a piece must be crossed by a step).
+PIECE_MIN = 1e-9
+
+
+def profile_pieces(sc: Scene, profile_at=None):
+    """The reported force profile in pieces over the turn from the extended dead centre, for
+    :func:`pumplink.models.flywheel.revolutions`: (ends, right-hand sides).  A piece ends where the
+    regime or the sign of g changes: F g jumps there (between +-Fp |g| and the ride's dV/dt + Mw) or
+    has a kink (|g| at a dead centre).  The changes are looked for on :data:`PIECE_GRID` angles and
+    each end bisected to adjacent floats on the profile itself (a piece shorter than a grid cell
+    can only lie between two crossings of nearly touching candidates, where the two regimes' forces
+    nearly agree).  A piece's right-hand side is Eq. (7) with the regime of its middle: I a =
+    F g - Mw - V' - I' w^2 / 2, F g = +-Fp |g| pushing or braking and dV/dt + I' w_hi^2 / 2 + Mw
+    riding the band's top, smooth past its ends."""
+    at = _profile_at(sc) if profile_at is None else profile_at
+    dce, fp, mw = sc.dead_centre_extended, sc.least_peak_force, sc.wheel_torque
+    j0, w2 = sc.inertia, sc.max_speed**2
+    th = dce + np.arange(PIECE_GRID) * (TWO_PI / PIECE_GRID)
+    _e, reg, _d, _v, _i, g, _tm = _profile(sc, th)
+    key = 2 * reg.astype(int) + (g > 0)
+
+    def key_at(t):
+        p = at(t)
+        return 2 * int(p[1]) + (p[5] > 0)
+
+    ends: list[float] = []
+    for k in np.nonzero(key != np.roll(key, -1))[0].tolist():
+        a, b = float(th[k]), (float(th[k + 1]) if k + 1 < PIECE_GRID else dce + TWO_PI)
+        ka, m = key_at(a), 0.5 * (a + b)
+        while a < m < b:  # bisection to adjacent floats
+            a, b = (m, b) if key_at(m) == ka else (a, m)
+            m = 0.5 * (a + b)
+        if b - (ends[-1] if ends else dce) > PIECE_MIN and dce + TWO_PI - b > PIECE_MIN:
+            ends.append(b)
+    ends.append(dce + TWO_PI)
+    terms_at = point_terms(sc.linkage, sc.masses, sc.gravity)
+
+    def piece(start, end):
+        p = at(0.5 * (start + end))
+        push = p[1] * fp * (1.0 if p[5] > 0 else -1.0)  # F g = +-Fp |g|: pushing or braking
+
+        def rhs(_t, y):
+            i_j, rate, _v, v_rate, g = terms_at(y[0])[:5]
+            if p[1] == 0:  # riding the band's top: F g - Mw = V' + I' w_hi^2 / 2
+                return [y[1], 0.5 * rate * (w2 - y[1] * y[1]) / (j0 + i_j)]
+            return [y[1], (push * g - mw - v_rate - 0.5 * rate * y[1] ** 2) / (j0 + i_j)]
+
+        return rhs
+
+    return ends, [piece(a, b) for a, b in zip([dce, *ends[:-1]], ends, strict=True)]
 
 
 def agrees(sc: Scene, sim: _fw.TimeIntegration, rtol: float = 1e-6) -> bool:

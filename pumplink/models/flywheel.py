@@ -42,6 +42,7 @@ import numpy as np
 
 from pumplink.constants import DEFAULT_SPEED_FLUCTUATION, LINK_ENERGY_LIMIT, LINK_MASS_PER_METRE  # noqa: F401  (re-exported)
 from pumplink.mechanisms.angles import TWO_PI
+from pumplink.mechanisms.bracket import find_minimum
 from pumplink.mechanisms.fourbar import FourBar, kinematic_state
 from pumplink.mechanisms.fourbar_kernel import loop_closure
 from pumplink.models import quasi_static as _qs
@@ -319,42 +320,40 @@ def integrate_motion(sc: Scene, cycles: int = 4, rtol: float = 1e-11) -> TimeInt
     return revolutions(rhs, sc.top_angle, sc.max_speed, sc.min_speed, sc.max_speed, cycles, rtol)
 
 
-def revolutions(rhs, start_angle, start_speed, min_speed, max_speed, cycles, rtol) -> TimeIntegration:
+def revolutions(
+    rhs, start_angle, start_speed, min_speed, max_speed, cycles, rtol, pieces=None
+) -> TimeIntegration:
     """Integrate the crank's motion ``y' = rhs(t, y)``, y = (angle [rad], speed [rad/s]), with
     scipy's ``solve_ivp`` for ``cycles`` revolutions from ``start_angle`` at ``start_speed``, and
     measure each revolution's start speed, the last revolution's speed range and mean; shared by
     the flywheel and full dynamics' ``--verify``.  A motion that stops or turns back (no revolution
     completed) gives NaN speeds and an infinite drift.
+
+    ``pieces``: (ends, rhs_of) where the right-hand side jumps at known crank angles (the force
+    profile changes regime): ``ends`` the angles (increasing, the last ``start_angle + 2 pi``) that
+    end the pieces of one revolution from ``start_angle``, ``rhs_of[k]`` piece k's right-hand side,
+    smooth across its ends.  Each piece is integrated up to its end (a terminal event) and the next
+    one started there, so no step straddles a jump: the steps a jump costs (an error estimate that
+    rejects step after step around it) are spared.  Where a piece does not reach its end (the wheel
+    stops or turns back) the motion is integrated again with ``rhs`` as a whole.
     """
-    from scipy.integrate import solve_ivp
-
-    def turn(_t, y):
-        return np.sin(0.5 * (y[0] - start_angle))  # zero each time the crank is back at the start
-
-    turn.terminal = cycles + 1  # the start itself may count as a crossing
+    options = dict(method="DOP853", rtol=rtol, atol=1e-12 * max_speed, dense_output=True,
+                   # On the top-speed arcs dw/dt is exactly 0, so the error estimate vanishes and,
+                   # unbounded, one step could jump over whole revolutions: at most 1/64 revolution
+                   max_step=TWO_PI / 64 / max_speed)  # fmt: skip
     horizon = 4.0 * cycles * TWO_PI / min_speed
-    # On the top-speed arcs dw/dt is exactly 0, so the error estimate vanishes and, unbounded, one
-    # step could jump over whole revolutions: at most 1/64 revolution per step.
-    sol = solve_ivp(
-        rhs,
-        (0.0, horizon),
-        [start_angle, start_speed],
-        method="DOP853",
-        rtol=rtol,
-        atol=1e-12 * max_speed,
-        events=turn,
-        dense_output=True,
-        max_step=TWO_PI / 64 / max_speed,
-    )
-    times = sol.t_events[0]
-    times = times[times > 1e-9 * horizon][:cycles]
+    found = None if pieces is None else _by_pieces(pieces, start_angle, start_speed, horizon, cycles, options)
+    if found is None:
+        found = _whole(rhs, start_angle, start_speed, horizon, cycles, options)
+    times, speeds, speed_at = found
     if times.size == 0:  # the wheel stopped or turned back: no revolution completed
         nan = float("nan")
         return TimeIntegration(0, np.array([start_speed]), np.inf, nan, nan, nan, nan, np.inf)
-    speeds = np.array([start_speed] + [float(sol.sol(t)[1]) for t in times])
+    speeds = np.concatenate([[start_speed], speeds])
     last0, last1 = (times[-2] if times.size > 1 else 0.0), times[-1]
-    w = sol.sol(np.linspace(last0, last1, 40001))[1]
-    wmax, wmin = float(w.max()), float(w.min())
+    tt = np.linspace(last0, last1, 40001)
+    w = speed_at(tt)
+    wmax, wmin = _extreme(speed_at, tt, w, 1.0), _extreme(speed_at, tt, w, -1.0)
     mean = 0.5 * (wmax + wmin)
     return TimeIntegration(
         int(times.size),
@@ -366,6 +365,71 @@ def revolutions(rhs, start_angle, start_speed, min_speed, max_speed, cycles, rto
         TWO_PI / (last1 - last0),
         (wmax - wmin) / mean,
     )
+
+
+def _extreme(speed_at, tt, w, sign: float) -> float:
+    """The fastest (``sign`` 1) or slowest (-1) speed of the samples ``w`` at times ``tt``, refined
+    between the extreme sample's neighbours (Chandrupatla's bracket on the dense output): a dip
+    narrower than the samples' spacing (a wheel that only the links turn, sped up and slowed down
+    in a blink at each dead centre) is found."""
+    k = int(np.argmax(sign * w))
+    best = float(w[k])
+    if 0 < k < tt.size - 1:
+        found = find_minimum(lambda t: -sign * speed_at(np.atleast_1d(t)), (tt[k - 1], tt[k], tt[k + 1]))
+        value = -sign * float(found.f_x)
+        if bool(found.success) and sign * value > sign * best:
+            best = value
+    return best
+
+
+def _whole(rhs, start_angle, start_speed, horizon, cycles, options):
+    """:func:`revolutions`' integration in one call: the times the crank is back at the start (up
+    to ``cycles``), its speed then, and the speed at any time of the run (dense output)."""
+    from scipy.integrate import solve_ivp
+
+    def turn(_t, y):
+        return np.sin(0.5 * (y[0] - start_angle))  # zero each time the crank is back at the start
+
+    turn.terminal = cycles + 1  # the start itself may count as a crossing
+    sol = solve_ivp(rhs, (0.0, horizon), [start_angle, start_speed], events=turn, **options)
+    times = sol.t_events[0]
+    times = times[times > 1e-9 * horizon][:cycles]
+    return times, np.array([float(sol.sol(t)[1]) for t in times]), lambda t: sol.sol(t)[1]
+
+
+def _by_pieces(pieces, start_angle, start_speed, horizon, cycles, options):
+    """:func:`_whole` piece by piece (:func:`revolutions`' ``pieces``); None where a piece does not
+    reach its end."""
+    from scipy.integrate import solve_ivp
+
+    ends, rhs_of = pieces
+    t, y = 0.0, np.array([start_angle, start_speed], float)
+    spans, times, speeds = [], [], []  # (start, end, dense output) of each piece
+    for turn in range(cycles):
+        for end, rhs in zip(ends, rhs_of, strict=True):
+            target = end + turn * TWO_PI
+
+            def reach(_t, yy, target=target):
+                return yy[0] - target
+
+            reach.terminal, reach.direction = True, 1.0
+            sol = solve_ivp(rhs, (t, horizon), y, events=reach, **options)
+            if sol.status != 1:  # not at its end before the horizon: stopped or turned back
+                return None
+            spans.append((t, sol.t_events[0][0], sol.sol))
+            t, y = sol.t_events[0][0], sol.y_events[0][0]
+        times.append(t)
+        speeds.append(float(y[1]))
+
+    def speed_at(tt):
+        out = np.empty(tt.shape)
+        for a, b, dense in spans:
+            inside = (tt >= a) & (tt <= b)
+            if inside.any():
+                out[inside] = dense(tt[inside])[1]
+        return out
+
+    return np.array(times), np.array(speeds), speed_at
 
 
 # ----------------------------------------------------------------------------- neglected effects
