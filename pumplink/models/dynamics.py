@@ -612,8 +612,8 @@ def integrate_motion(
 ) -> _fw.TimeIntegration:
     """Integrate I t'' + I'/2 t'^2 + V' = F g - Mw (Eq. (7) in time, scipy ``solve_ivp``) under the
     reported force profile F(t) (open loop), from the reported speed at the extended dead centre.
-    ``by_pieces``: piece by piece of the profile (:func:`profile_pieces`; the same motion in about a
-    third of the steps), else the whole profile at each step."""
+    ``by_pieces``: piece by piece of the profile (:func:`profile_pieces`; the same motion in under a
+    third of the right-hand side's evaluations), else the whole profile at each step."""
     t0 = sc.dead_centre_extended
     mw = sc.wheel_torque
 

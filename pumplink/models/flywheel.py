@@ -422,7 +422,7 @@ def _by_pieces(pieces, start_angle, start_speed, horizon, cycles, options):
         speeds.append(float(y[1]))
 
     def speed_at(tt):
-        out = np.empty(tt.shape)
+        out = np.full(tt.shape, np.nan)  # a time outside the run has no speed
         for a, b, dense in spans:
             inside = (tt >= a) & (tt <= b)
             if inside.any():
