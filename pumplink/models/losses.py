@@ -140,13 +140,20 @@ def duty_rope_speed(power, head, pipe_diameter, efficiency, steps=DUTY_STEPS, st
     P = ρ g H A v / η_f(v), solved by ``steps`` fixed-point steps v ← P η_f(v) / (ρ g H A) from
     ``start`` times P / (ρ g H A) (the lossless speed).
 
-    ``efficiency(v)`` gives η_f at rope speed v (arrays over designs); a constant η_f solves in
-    one step.  NaN where the head or the bore is not positive."""
+    ``efficiency(v)`` gives η_f at rope speed v (arrays over designs, each design's from its own
+    speed); a constant η_f solves in one step.  The steps stop once the speeds repeat to the bit
+    (every two steps at most: a speed may settle between two adjacent floats), with the speeds the
+    last step would give.  NaN where the head or the bore is not positive."""
     lift = _RHO_G * _positive(head) * math.pi * _positive(pipe_diameter) ** 2 / 4.0  # [N]
     p = np.asarray(power, float)
-    v = start * p / lift
-    for _ in range(steps):
-        v = p * efficiency(v) / lift
+    v, before = start * p / lift, None
+    for i in range(steps):
+        new = p * efficiency(v) / lift  # the speeds after step i + 1
+        if before is not None and np.array_equal(new, before, equal_nan=True):
+            # from step i - 1 on they repeat every two steps (or stay): the last step's are these
+            # or the ones before, by its parity; the same bits as stepping on
+            return new if (steps - i - 1) % 2 == 0 else v
+        before, v = v, new
     return v
 
 
