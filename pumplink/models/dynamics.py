@@ -21,6 +21,7 @@ import numpy as np
 from pumplink.constants import CADENCE_RTOL, GRAVITY, PASSING_SPEED_RTOL
 from pumplink.mechanisms.angles import TWO_PI
 from pumplink.mechanisms.fourbar import FourBar, per_design
+from pumplink.mechanisms.fourbar_kernel import alike_designs
 from pumplink.models import flywheel as _fw
 from pumplink.models import quasi_static as _qs
 from pumplink.models.conditions import Masses
@@ -39,9 +40,8 @@ from pumplink.models.grip_travel import (
 #: Crank angles per revolution on which the links' largest kinetic energy and the range of their
 #: potential energy are taken for the model choice (1 deg steps).
 EFFECT_GRID = 360
-#: Designs whose sizes are found together: their (designs, EFFECT_GRID) arrays stay in the cache
-#: (all of a batch's chunk at once held ~100 MB of temporaries, handed back to the system and
-#: faulted in again every chunk).
+#: Designs (of distinct kinds) whose sizes are found together: their (designs, EFFECT_GRID) arrays
+#: stay in the cache (a batch's chunk at once held ~100 MB of temporaries, faulted in each chunk).
 EFFECT_BLOCK = 128
 
 
@@ -70,15 +70,21 @@ def effect_sizes(lk: FourBar, masses: Masses, mean_speed, gravity=GRAVITY, rocke
                                 rocker_rate if known else np.nan)  # fmt: skip
     geom, (mc, mh, ma, w, rate) = arrays[:7], arrays[7:]
     th = np.arange(EFFECT_GRID) * (TWO_PI / EFFECT_GRID)
-    link, weight = np.empty(w.shape), np.empty(w.shape)
+    # designs alike in linkage and link masses (a grid's variants in load or speed): once per kind
+    first, kind = alike_designs(*geom, mc, mh)
+    own = [v if first is None else v[first] for v in (*geom, mc, mh)]
+    top, weight = np.empty(own[0].shape), np.empty(own[0].shape)
     with np.errstate(all="ignore"):
-        for s in range(0, w.size, EFFECT_BLOCK):  # blocks whose (designs, angles) arrays stay in the cache
+        for s in range(0, top.size, EFFECT_BLOCK):  # blocks whose (designs, angles) arrays stay in the cache
             b = slice(s, s + EFFECT_BLOCK)
-            col = FourBar(*(v[b, None] for v in geom))
-            co = coefficients(col, Masses(mc[b, None], mh[b, None], 0.0))
+            col = FourBar(*(v[b, None] for v in own[:7]))
+            co = coefficients(col, Masses(own[7][b, None], own[8][b, None], 0.0))
             tm = terms_from(co, th, gravity, rates=False, grip=False)
-            link[b] = 0.5 * tm[0].max(axis=1) * w[b] * w[b]
+            top[b] = tm[0].max(axis=1)
             weight[b] = np.ptp(tm[2], axis=1)
+        if first is not None:
+            top, weight = top[kind], weight[kind]
+        link = 0.5 * top * w * w
         # the peak rate only where arms are carried: a search that leaves them out of the verdict
         # passes no arm mass and skips the refinement (about half its cost per small batch)
         arm = np.zeros(np.shape(ma))

@@ -67,6 +67,8 @@ WARM_ITER = 3
 REFINE_STEP = 1e-6
 
 
+#: Designs from which a running minimum loops over the columns (:func:`_running_min`).
+RUN_DESIGNS = 256
 #: Evaluations of the terms on at most this many points take per-point copies of the per-design
 #: constants: a ufunc that broadcasts costs twice or three times one on equal shapes when the
 #: arrays are small (optimize's batches of 1-25 designs); larger ones broadcast (less memory).
@@ -224,7 +226,7 @@ def _pairs_held(held, lam):
     # (C1): lower(s) - Q(s) - min over t <= s of (upper(t) - Q(t)) <= 0;
     # (C2): max over s <= t of (lower(s) - P(s)) - (upper(t) - P(t)) <= 0, swept negated
     f = au_nal - lg  # upper - Q, -(lower - P)
-    run = np.minimum.accumulate(f, axis=2)
+    run = _running_min(f)
     back = (run[:, :, -1] + lam * two_s) + turns  # the minimum one revolution back (2 lam S: exact)
     best = np.minimum(run, back[:, :, None])
     v = np.empty_like(f)
@@ -239,7 +241,9 @@ def _pairs_held(held, lam):
     h = v.take(fj)
     run_j = run.take(fj)
     wrap = best.take(fj) < run_j
-    i = np.where(wrap, f.argmin(axis=2), (f == run_j[:, :, None]).argmax(axis=2))
+    # i: the first point where f meets the minimum the pair takes (a row's own where it wraps: its
+    # argmin, every value finite on a row still iterating)
+    i = (f == np.where(wrap, run[:, :, -1], run_j)[:, :, None]).argmax(axis=2)
     # N: (C1) al_j - au_i (+ 2 pi Mw), (C2) minus (au_j - al_i (+ 2 pi Mw))
     num = (al_au.take(fj) - al_au.take(off[::-1] + i)) + np.where(wrap, turn, 0.0)
     rj, ri = off[0] + j, off[0] + i
@@ -247,6 +251,19 @@ def _pairs_held(held, lam):
     r = num / (kk + np.where(wrap, two_s, 0.0))
     np.negative(r[1], out=r[1])
     return h, r
+
+
+def _running_min(f):
+    """``np.minimum.accumulate(f, axis=2)`` of a (2, D, K) array: over many designs a loop over the K
+    columns, a vector minimum over the designs each (numpy's accumulate runs row by row: about twice
+    as slow on a chunk), the same values."""
+    if f.shape[1] < RUN_DESIGNS:
+        return np.minimum.accumulate(f, axis=2)
+    run = np.empty_like(f)
+    run[:, :, 0] = f[:, :, 0]
+    for j in range(1, f.shape[2]):
+        np.minimum(run[:, :, j - 1], f[:, :, j], out=run[:, :, j])
+    return run
 
 
 def _dinkelbach(pts, mw, stroke, lam, cap, rtol=RTOL):
@@ -665,31 +682,12 @@ def least_peak_force(
     return float(out[0]) if scalar else out
 
 
-def band_margin(
-    lk: FourBar,
-    dead_centre_extended,
-    dead_centre_folded,
-    wheel_torque,
-    inertia,
-    masses: Masses,
-    mean_speed,
-    speed_fluctuation,
-    force,
-    gravity=GRAVITY,
-):
+def band_margin(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses: Masses,
+                mean_speed, speed_fluctuation, force, gravity=GRAVITY):  # fmt: skip
     """max over the pairs of (C1)-(C2) of N - Fp K at Fp = ``force`` [J]: for Fp >= F_mean a periodic
     motion inside the band exists iff this is <= 0 (docs/models.md §3a)."""
-    pb, scalar = problem(
-        lk,
-        dead_centre_extended,
-        dead_centre_folded,
-        wheel_torque,
-        inertia,
-        masses,
-        mean_speed,
-        speed_fluctuation,
-        gravity,
-    )
+    pb, scalar = problem(lk, dead_centre_extended, dead_centre_folded, wheel_torque, inertia, masses,
+                         mean_speed, speed_fluctuation, gravity)  # fmt: skip
     lam = np.broadcast_to(np.asarray(force, float), pb.mw.shape).astype(float)
     rows = np.arange(lam.size)
     (x, base, local, up, lo), _ = refined_points(pb, lam, rows)

@@ -274,6 +274,88 @@ def test_terms_of_designs_alike_at_shared_angles_are_the_same_bits(monkeypatch):
     assert all(a.tobytes() == b.tobytes() and a.shape == (which.size, 360) for a, b in zip(shared, alone))
 
 
+def _pairs_by_enumeration(g, au, al, mw, stroke, lam):
+    """(h, ratio, wrapped) of each row and family of (C1)-(C2), every pair listed (docs/models.md §3a):
+    (C1) N = al_j - au_i (+ 2 pi Mw), (C2) N = al_i - au_j (- 2 pi Mw), K = G_j - G_i (+ 2 S), for
+    i <= j and (in brackets) for every i one revolution back; h = max N - lam K, ratio its N / K."""
+    d, k = g.shape
+    h, r, wrapped = np.full((d, 2), -np.inf), np.full((d, 2), np.nan), np.zeros((d, 2), bool)
+    for j in range(k):
+        for i in range(k):
+            for wrap in (False, True):
+                if i > j and not wrap:
+                    continue
+                kk = g[:, j] - g[:, i] + (2.0 * stroke if wrap else 0.0)
+                turn = 2.0 * math.pi * mw if wrap else 0.0
+                for fam, n in ((0, al[:, j] - au[:, i] + turn), (1, al[:, i] - au[:, j] - turn)):
+                    val = n - lam * kk
+                    better = val > h[:, fam]
+                    h[better, fam] = val[better]
+                    with np.errstate(all="ignore"):
+                        r[better, fam] = (n / kk)[better]
+                    wrapped[better, fam] = wrap
+    return h, r, wrapped
+
+
+@pytest.mark.parametrize("designs", [3, 300])  # numpy's running minimum, and the loop over columns
+def test_the_pair_sweep_finds_the_worst_pair_of_every_row(designs):
+    """The sweep of (C1)-(C2) over the points of each row (running minima, the revolution before
+    folded in as a drift) against every pair listed: the largest excess h and the ratio N / K of the
+    pair that gives it, on random rows (8 points) where the worst pair lies within the revolution
+    on some rows and one revolution back on others."""
+    rng = np.random.default_rng(17)
+    k = 8
+    stroke = rng.uniform(0.3, 0.6, designs)
+    g = np.sort(rng.uniform(0.0, 2.0, (designs, k)), axis=1) * stroke[:, None]
+    au = rng.uniform(-5.0, 5.0, (designs, k))
+    al = au - rng.uniform(0.0, 4.0, (designs, k))
+    mw = rng.uniform(0.5, 3.0, designs)
+    lam = rng.uniform(0.0, 20.0, designs)
+    with np.errstate(all="ignore"):  # as the solver calls it: a row whose worst pair has K = 0
+        h, r = ds._pairs(g, au, al, g, np.zeros_like(g), mw, stroke, lam)
+    ref_h, ref_r, wrapped = _pairs_by_enumeration(g, au, al, mw, stroke, lam)
+    np.testing.assert_allclose(h, ref_h, rtol=0, atol=1e-12)
+    live = ref_h > 0  # the pairs Dinkelbach's iteration takes its next force from
+    np.testing.assert_allclose(r[live], ref_r[live], rtol=1e-12)
+    assert (live & wrapped).any() and (live & ~wrapped).any()
+
+
+def test_the_running_minimum_is_numpys_to_the_bit():
+    """The sweep's running minimum along the points (a loop over the columns on many designs) is
+    numpy's minimum.accumulate bit for bit, NaN and infinities included, on both routes."""
+    rng = np.random.default_rng(23)
+    for designs in (5, ds.RUN_DESIGNS, 2 * ds.RUN_DESIGNS + 3):
+        f = rng.normal(size=(2, designs, 37))
+        f[rng.random(f.shape) < 0.01] = np.nan
+        f[rng.random(f.shape) < 0.01] = np.inf
+        f[rng.random(f.shape) < 0.01] = -np.inf
+        assert ds._running_min(f).tobytes() == np.minimum.accumulate(f, axis=2).tobytes()
+
+
+def test_effect_sizes_of_designs_alike_are_the_same_bits(monkeypatch):
+    """The model choice's sizes are found once for designs alike in linkage and link masses (a
+    grid's variants that differ in the load or the speed); every size must be the one computed
+    design by design: 4 linkages (2 and the same with a swing 1e-5 deg larger) of two tubes' masses,
+    10 rows each at their own speeds and arm masses, shuffled, against the call without sharing."""
+    from pumplink.mechanisms.fourbar import synthesize
+
+    rng = np.random.default_rng(29)
+    frame = [np.tile(rng.uniform(a, b, 2), 2) for a, b in ((0.3, 0.6), (0.0, 0.3), (0.0, 0.15), (0.12, 0.25))]
+    syn = synthesize(*frame, np.radians(np.tile(rng.uniform(40, 70, 2), 2) + np.repeat([0.0, 1e-5], 2)), 0.9)
+    which = rng.permutation(np.repeat(np.arange(4), 10))
+    lk = syn.linkage.take(which)
+    heavy = np.arange(which.size) % 2 == 0
+    ms = dt.bar_masses(lk, np.where(heavy, 2.0, 1.56), rng.uniform(0.0, 5.0, which.size))
+    speed = np.radians(rng.uniform(200.0, 500.0, which.size))
+    first, _ = dy.alike_designs(*lk.parameters, ms.coupler, ms.handle)
+    assert first is not None and first.size == 8
+    shared = dy.effect_sizes(lk, ms, speed)
+    monkeypatch.setattr(dy, "alike_designs", lambda *columns: (None, None))
+    alone = dy.effect_sizes(lk, ms, speed)
+    assert all(a.tobytes() == b.tobytes() and np.isfinite(a).all() for a, b in zip(shared, alone))
+    assert len(set(shared[0].tolist())) == which.size  # each its own speed: no size copied across
+
+
 # ----------------------------------------------------------------------------- time domain
 def test_solve_ivp_confirms_the_profile_and_rejects_a_weaker_operator():
     """At Fp* the reported profile, integrated open loop, is periodic inside the band at the mean
