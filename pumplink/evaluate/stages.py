@@ -56,8 +56,9 @@ from pumplink.models.choice import energy_model
 from pumplink.verdict import FAIL, PART_CHECKS, assess
 
 #: Designs swept together for the sampled peak: the kernel's temporaries (designs x samples)
-#: stay in the processor's cache.
-SUB_DESIGNS = 128
+#: stay in the processor's cache (512: a 4,096-design chunk of the village's grid in 10.7 ms
+#: against 16.9 ms in blocks of 128, the same values).
+SUB_DESIGNS = 512
 
 
 @dataclass
