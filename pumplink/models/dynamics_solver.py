@@ -257,7 +257,7 @@ def _running_min(f):
     """``np.minimum.accumulate(f, axis=2)`` of a (2, D, K) array: over many designs a loop over the K
     columns, a vector minimum over the designs each (numpy's accumulate runs row by row: about twice
     as slow on a chunk), the same values."""
-    if f.shape[1] < RUN_DESIGNS:
+    if f.shape[1] < RUN_DESIGNS or f.shape[2] == 0:
         return np.minimum.accumulate(f, axis=2)
     run = np.empty_like(f)
     run[:, :, 0] = f[:, :, 0]

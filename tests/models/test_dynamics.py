@@ -330,6 +330,9 @@ def test_the_running_minimum_is_numpys_to_the_bit():
         f[rng.random(f.shape) < 0.01] = np.inf
         f[rng.random(f.shape) < 0.01] = -np.inf
         assert ds._running_min(f).tobytes() == np.minimum.accumulate(f, axis=2).tobytes()
+    for shape in ((2, ds.RUN_DESIGNS, 1), (2, ds.RUN_DESIGNS, 0)):  # one point a row, and none
+        f = rng.normal(size=shape)
+        assert ds._running_min(f).tobytes() == f.tobytes()
 
 
 def test_effect_sizes_of_designs_alike_are_the_same_bits(monkeypatch):

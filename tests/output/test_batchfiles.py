@@ -29,7 +29,8 @@ def test_random_bit_patterns_read_as_repr():
 def test_the_edges_of_each_notation_read_as_repr():
     """Each side of 1e-4 (repr's switch to an exponent below it), of 1e16 (its switch above), the
     smallest and largest floats, zeros of both signs, whole numbers, and the non-finite values."""
-    edges = [SMALL_TEXT, 1e16, 1e-5, 1e-7, 1e15, 1e17, 5e-324, 2.2250738585072014e-308, 1.7976931348623157e308]
+    tiny, huge = 2.2250738585072014e-308, 1.7976931348623157e308  # the smallest normal, the largest
+    edges = [SMALL_TEXT, 1e16, 1e-5, 1e-7, 1e15, 1e17, 5e-324, tiny, huge]
     values = [0.0, -0.0, 1.0, 44.0, 0.1, 2.0**53, float("nan"), float("inf"), float("-inf")]
     for e in edges:
         for v in (e, math.nextafter(e, 0.0), math.nextafter(e, math.inf)):
