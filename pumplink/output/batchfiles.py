@@ -214,10 +214,9 @@ def float_texts(values: list[float]) -> list[str]:
 
     orjson writes the shortest round-trip digits of a float about seven times faster than repr
     (0.55 ms against 4.2 ms for 10,000); its text is repr's except below 1e-4 in magnitude, where
-    repr switches to an exponent (1e-05, orjson 0.00001) and where orjson writes one without its
-    sign's padding (1.5e-7 against 1.5e-07).  Those, and the non-finite values (orjson: null),
-    are written by repr here, so the text is repr's for every float
-    (``tests/output/test_batchfiles.py`` compares the two on random bit patterns).
+    repr writes an exponent of two digits (1e-05, 1.5e-07) and orjson 0.00001 or 1.5e-7.  Those,
+    and the non-finite values (orjson: null), are written by repr here, so the text is repr's for
+    every float (``tests/output/test_batchfiles.py`` compares the two on random bit patterns).
     """
     if not values:
         return []
