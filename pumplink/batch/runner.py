@@ -48,11 +48,6 @@ CHUNK_DESIGNS = 8192
 TASK_SAMPLES = 3_000_000
 
 
-#: Designs swept together inside a chunk for the sampled peak: small enough that the kernel's
-#: temporaries (designs x 360 samples) stay in the CPU cache.
-SUB_DESIGNS = 128
-
-
 #: Most designs per chunk for variants that give inertia: full dynamics costs ~50 us a design (a
 #: chunk a fifth of a second) and solves a chunk in blocks of its own (its CHUNK, cache-sized), so
 #: the rows are the same bytes whatever this is; four blocks a chunk pay each stage's cost per call
