@@ -472,18 +472,17 @@ def scenes(lk: FourBar, dead_centre_extended, dead_centre_folded, wheel_torque, 
 _COUNT_BY_COLUMN = 12
 
 
-def _profiles(scs: Scenes, crank_angle):
+def _profiles(scs: Scenes, crank_angle, trig=None):
     """:func:`_profile` of many designs: crank angles (D, K), the same operations on the same
     values per design.  The past and future minima over the points come from running minima
     along the sorted points and the count of points before each angle (a minimum is exact in
-    any order; NaN sorts last, as a comparison leaves it out)."""
+    any order; NaN sorts last, as a comparison leaves it out).  ``trig``: as :func:`motion_state`."""
     th = np.asarray(crank_angle, float)
     fp, mw = scs.least_peak_force, scs.wheel_torque
     phi = _past_extended(th, scs.dead_centre_extended)
     with np.errstate(all="ignore"):  # as terms(closure=True), and the grip's Px at the same angles
-        out = terms_from(
-            coefficients(scs.linkage, scs.masses), th, scs.gravity, grip=False, fly_x=True, closure=True
-        )
+        co = coefficients(scs.linkage, scs.masses)
+        out = terms_from(co, th, scs.gravity, grip=False, fly_x=True, closure=True, trig=trig)
     tm = Terms(*out[:6], out[7])
     base, local = travel_parts(phi, *scs.travel, grip_x=_grip_x(scs, th, phi, out[6]))
     g_phi = base + local
@@ -602,11 +601,12 @@ def wheel_speed(sc: Scene, crank_angle):
     return out if np.ndim(crank_angle) else float(out[0])
 
 
-def motion_state(sc: Scene | Scenes, crank_angle):
+def motion_state(sc: Scene | Scenes, crank_angle, trig=None):
     """:func:`operator_force`, :func:`wheel_speed` and the links' :func:`terms` at crank angles
     (1-D; of :class:`Scenes`, (D, K): K angles per design), from one evaluation of the profile:
-    (force [N], speed [rad/s], terms)."""
-    prof = (_profiles if isinstance(sc, Scenes) else _profile)(sc, crank_angle)
+    (force [N], speed [rad/s], terms).  ``trig``: (cos, sin) of the crank angles of
+    :class:`Scenes` where known already (the cycle's: the same angles for every design)."""
+    prof = _profiles(sc, crank_angle, trig) if isinstance(sc, Scenes) else _profile(sc, crank_angle)
     e, v, i, tm = prof[0], prof[3], prof[4], prof[6]
     with np.errstate(invalid="ignore"):
         speed = np.sqrt(2.0 * (e - v) / i)

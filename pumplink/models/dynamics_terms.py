@@ -124,6 +124,7 @@ def terms_from(
     grip: bool = True,
     lib=np,
     closure: bool = False,
+    trig=None,
 ):
     """:func:`terms` on the constants ``co`` of :func:`coefficients` (no floating-point context).
 
@@ -134,9 +135,11 @@ def terms_from(
     computes it (its rounding), from the same loop closure.  ``lib``: the module whose cos, sin and
     sqrt are used; ``math`` on floats (``co`` and ``th`` floats) is the one-point route of
     :func:`point_terms`, the same operations in the same order, without numpy's per-call cost.
-    ``closure``: an eighth value, the loop closure (:attr:`Terms.closure`).
+    ``closure``: an eighth value, the loop closure (:attr:`Terms.closure`);  ``trig``: (cos th,
+    sin th) where known already (the same values: a cycle's angles are every design's).
     """
-    if lib is np and not closure and np.ndim(th) == 1 and all(np.ndim(v) in (0, 2) for v in co):
+    plain = lib is np and not closure and trig is None
+    if plain and np.ndim(th) == 1 and all(np.ndim(v) in (0, 2) for v in co):
         # designs (rows of column constants) at the same angles: those alike bit for bit (a grid's
         # variants that differ in the load or the speed) are computed once, the same values
         columns = [v[:, 0] for v in co if np.ndim(v) == 2 and np.shape(v)[1] == 1]
@@ -146,13 +149,14 @@ def terms_from(
                 [v[first] if np.ndim(v) else v for v in co], th, gravity, rates, values, fly_x, grip
             )
             return tuple(None if v is None else v.take(kind, axis=0) for v in out)
-    return _terms_from(co, th, gravity, rates, values, fly_x, grip, lib, closure)
+    return _terms_from(co, th, gravity, rates, values, fly_x, grip, lib, closure, trig)
 
 
-def _terms_from(co, th, gravity, rates=True, values=True, fly_x=False, grip=True, lib=np, closure=False):
+def _terms_from(co, th, gravity, rates=True, values=True, fly_x=False, grip=True, lib=np, closure=False,
+                trig=None):  # fmt: skip
     """The body of :func:`terms_from` (its arguments as there)."""
     px, py, c, o2, c2, hkr, kk, k, rr, branch, mc, ic, i4, lever, mpy, hr, nhr = co
-    cs, sn = lib.cos(th), lib.sin(th)
+    cs, sn = (lib.cos(th), lib.sin(th)) if trig is None else trig
     # the loop closure of pumplink.mechanisms.fourbar_kernel.loop_closure (t, q), written out
     p1 = cs * px + sn * py
     e2 = o2 - c2 * p1

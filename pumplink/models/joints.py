@@ -246,14 +246,16 @@ def _joint_forces(lk, th, w, acc, force, masses, gravity, rope_pull, wheel_weigh
 
 
 def motion_loads(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, wheel_weight=0.0, fatigue=True,
-                 out=None, squares=False):  # fmt: skip
+                 out=None, squares=False, read=None):  # fmt: skip
     """The loads a peak search and a fatigue check read along a :class:`Motion`, without the force
     vectors of :func:`motion_forces` (the same values): :func:`six_loads`, shape (6, ...) (written
     into ``out`` where given), and, with ``fatigue``, the handle's and the crank's bending
     moments and axial forces (a tuple ``(handle_moment, handle_axial, crank_moment,
     crank_axial)``; else None).  ``squares``: the four joints' x^2 + y^2 instead of their
     magnitudes (np.hypot where that is NaN: inf where a component is), to rank them by
-    (:func:`pumplink.models.parts.peak_candidates`)."""
+    (:func:`pumplink.models.parts.peak_candidates`).  ``read``: the joints' magnitudes only on
+    the rows (the first axis of the crank angles) where ``read`` (6, rows) holds (np.hypot costs as
+    much as the rest of the joint forces), NaN on the others; None: everywhere."""
     with np.errstate(all="ignore"):  # a non-assemblable linkage gives NaN, by design
         ax_, ay_, bx_, by_, ox_, oy_, wx_, wy_, torque, crank_axial, moment, handle_axial = _joint_forces(
             lk, *(np.asarray(v, float) for v in (motion.crank_angle, motion.crank_speed,
@@ -267,8 +269,12 @@ def motion_loads(lk: FourBar, motion: Motion, gravity=GRAVITY, rope_pull=0.0, wh
                 np.add(out[i], y * y, out=out[i])
                 if np.isnan(out[i]).any():  # a masked ufunc is slow: only where needed
                     np.hypot(x, y, out=out[i], where=np.isnan(out[i]))
-            else:
+            elif read is None or read[i].all():
                 np.hypot(x, y, out=out[i])
+            else:
+                out[i] = np.nan
+                rows = np.nonzero(read[i])[0]
+                out[i, rows] = np.hypot(x[rows], y[rows])
         np.abs(torque, out=out[4])  # |crank moment| = |-torque|
         np.abs(moment, out=out[5])
         return out, ((moment, handle_axial, -torque, crank_axial) if fatigue else None)
@@ -303,7 +309,7 @@ def flywheel_motion(scene, crank_angle) -> Motion:
     return Motion(th, speed, acc, force)
 
 
-def dynamics_motion(scene, crank_angle) -> Motion:
+def dynamics_motion(scene, crank_angle, trig=None) -> Motion:
     """The full-dynamics scene's motion (docs/models.md §3a): its masses, force profile F(t) and
     wheel speed w(t), and a from its equation of motion I a + I' w^2 / 2 + V' = F g - Mw.
 
@@ -311,12 +317,13 @@ def dynamics_motion(scene, crank_angle) -> Motion:
     ----------
     scene : :class:`pumplink.models.dynamics.Scene` with a finite least peak force.
     crank_angle : t [rad].
+    trig : (cos t, sin t) where known already (the same values; Scenes' crank angles only).
     """
     from pumplink.models import dynamics as dy
     from pumplink.models import dynamics_terms as dt
 
     th = np.asarray(crank_angle, float)
-    force, speed, tm = dy.motion_state(scene, np.atleast_1d(th))
+    force, speed, tm = dy.motion_state(scene, np.atleast_1d(th), trig)
     force, speed = force.reshape(th.shape), speed.reshape(th.shape)
     closure = tuple(np.reshape(v, th.shape) for v in tm.closure)
     tm = dt.Terms(
@@ -590,8 +597,9 @@ def cycle_peak_loads(loads_at: Callable, grid, loads):
 
     Parameters
     ----------
-    loads_at : callable of designs (R,) (indices of the D, repeats allowed) and crank angles
-        (R, k), returning their :func:`six_loads`, shape (6, R, k).
+    loads_at : callable of designs (R,) (indices of the D, repeats allowed), crank angles (R, k)
+        and the loads read of each ((6, R) bool), returning their :func:`six_loads`, shape
+        (6, R, k) (a load not read may hold any value).
     grid : (D, K) crank angles [rad] in [0, 2 pi): at least :data:`PEAK_GRID_PER_RAD` a radian,
         with the nodes :data:`JUMP_OFFSET` either side of each point where the loads may jump.
     loads : (6, D, K), :func:`six_loads` of the joint forces at ``grid`` (where the grid is sorted,
@@ -630,6 +638,8 @@ def cycle_peak_loads(loads_at: Callable, grid, loads):
         own = first == load
         slot[load[own], dd[own]] = np.arange(np.count_nonzero(own))
         pick = slot[first, dd]  # the zoom's points of each live load
+        read = np.zeros((6, np.count_nonzero(own)), bool)
+        read[load, pick] = True
         lo, hi = a[load[own], dd[own]], b[load[own], dd[own]]
         x = lo[:, None] + (hi - lo)[:, None] * steps  # (U, ZOOM_POINTS)
         # load i at its own points: the first point is the bracket's lower end (lo + 0), the last
@@ -637,13 +647,13 @@ def cycle_peak_loads(loads_at: Callable, grid, loads):
         # values are known, the points between are computed
         v = np.empty((load.size, ZOOM_POINTS))
         v[:, 0], v[:, -1] = at_a[load, dd], at_b[load, dd]
-        v[:, 1:-1] = _finite_or_floor(loads_at(dd[own], x[:, 1:-1])[load, pick])
+        v[:, 1:-1] = _finite_or_floor(loads_at(dd[own], x[:, 1:-1], read)[load, pick])
         anew = np.nonzero(x[:, -1] != hi)[0]
         if anew.size:
             row = np.full(hi.size, -1)
             row[anew] = np.arange(anew.size)
             these = row[pick] >= 0
-            last = _finite_or_floor(loads_at(dd[own][anew], x[anew, -1:])[:, :, 0])
+            last = _finite_or_floor(loads_at(dd[own][anew], x[anew, -1:], read[:, anew])[:, :, 0])
             v[these, -1] = last[load[these], row[pick[these]]]
         k = np.argmax(v, axis=1)
         top = v[np.arange(load.size), k]

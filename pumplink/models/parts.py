@@ -103,25 +103,34 @@ def part_loads(
     return PartLoads(peaks, cycle, model)
 
 
-def cycle_angles(dead_centre_extended, dead_centre_folded):
+def cycle_angles(dead_centre_extended, dead_centre_folded, trig: bool = False):
     """The crank angles [rad] of the energy models' cycle of designs (arrays (n,)): CYCLE_SAMPLES
     a turn and the nodes :data:`pumplink.models.joints.JUMP_OFFSET` either side of both dead
     centres (where the push reverses), in [0, 2 pi) and sorted, shape (n, CYCLE_SAMPLES + 4).
     The turn's angles are in order already: the four nodes are merged into them (the values a
-    sort of all of them gives)."""
+    sort of all of them gives).  ``trig``: (angles, their cosines, their sines), the turn's
+    computed once for all designs (the same angles, so the same values)."""
     turn = np.arange(CYCLE_SAMPLES) * (TWO_PI / CYCLE_SAMPLES)
     ends = np.stack([dead_centre_extended, dead_centre_folded], axis=1)
     nodes = np.sort(np.mod((ends[:, :, None] + [-_joints.JUMP_OFFSET, _joints.JUMP_OFFSET]).reshape(-1, 4),
                            TWO_PI), axis=1)  # fmt: skip
-    n = nodes.shape[0]
     # node j goes after the turn's angles up to it and the nodes before it
     at = np.searchsorted(turn, nodes, side="right") + np.arange(4)
+    n = nodes.shape[0]
     is_node = np.zeros((n, CYCLE_SAMPLES + 4), bool)
     np.put_along_axis(is_node, at, True, axis=1)
-    out = np.empty((n, CYCLE_SAMPLES + 4))
-    out[is_node] = nodes.ravel()
-    out[~is_node] = np.broadcast_to(turn, (n, CYCLE_SAMPLES)).ravel()
-    return out
+    on_turn = ~is_node
+
+    def merged(of_turn, of_nodes):
+        out = np.empty((n, CYCLE_SAMPLES + 4))
+        out[is_node] = of_nodes.ravel()
+        out[on_turn] = np.broadcast_to(of_turn, (n, CYCLE_SAMPLES)).ravel()
+        return out
+
+    angles = merged(turn, nodes)
+    if not trig:
+        return angles
+    return angles, merged(np.cos(turn), np.cos(nodes)), merged(np.sin(turn), np.sin(nodes))
 
 
 def quasi_static_cycle(lk, dead_centre_extended, dead_centre_folded, dead_band, wheel_torque, rope_pull=0.0,
@@ -202,17 +211,18 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
         return np.broadcast_to(np.asarray(v, float), (n,))[:, None]
 
     rope, weight = column(rope_pull), column(wheel_weight)
-    th = cycle_angles(column(dead_centre_extended)[:, 0], column(dead_centre_folded)[:, 0])
+    ends = column(dead_centre_extended)[:, 0], column(dead_centre_folded)[:, 0]
+    th, cos_th, sin_th = cycle_angles(*ends, trig=True)
 
-    def loads_at(rows, angles, fatigue=False, out=None, squares=False):
+    def loads_at(rows, angles, fatigue=False, out=None, squares=False, trig=None, read=None):
         sub = scs.take(rows)
-        motion = _joints.dynamics_motion(sub, angles)
+        motion = _joints.dynamics_motion(sub, angles, trig)
         return _joints.motion_loads(
-            sub.linkage, motion, GRAVITY, rope[rows], weight[rows], fatigue, out, squares
+            sub.linkage, motion, GRAVITY, rope[rows], weight[rows], fatigue, out, squares, read
         )
 
-    def six_at(rows, angles):
-        return loads_at(rows, angles)[0]
+    def six_at(rows, angles, read=None):
+        return loads_at(rows, angles, read=read)[0]
 
     # the loads over the cycle, CYCLE_ROWS designs at a time (their arrays stay in the cache): the
     # six the peaks are searched on, and the moments and axial forces the fatigue reads, which
@@ -222,7 +232,8 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     fatigue = _Cycle(*(np.empty((n, k + 2)) for _ in _Cycle._fields))
     for s in range(0, n, CYCLE_ROWS):
         rows = slice(s, s + CYCLE_ROWS)
-        read = loads_at(every[rows], th[rows], fatigue=True, out=six[:, rows], squares=True)[1]
+        trig = (cos_th[rows], sin_th[rows])
+        read = loads_at(every[rows], th[rows], fatigue=True, out=six[:, rows], squares=True, trig=trig)[1]
         for v, r in zip(fatigue, read, strict=True):
             v[rows, :k] = r
     # the joints' magnitudes where the peak search reads them (np.hypot costs as much as the rest

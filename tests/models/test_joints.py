@@ -382,7 +382,9 @@ def _bumps(centres, widths, heights, step):
     x = a + (b - a) * steps  # the first zoom's points; the bump on the middle one of the next
     hidden = (x[-2] + (x[-1] - x[-2]) * steps)[J.ZOOM_POINTS // 2]
 
-    def six(rows, th):
+    def six(rows, th, read=None):
+        """The loads at ``th``; with ``read`` (6, R), NaN where a row's load is not read (a search
+        that reads one it did not ask for then finds another peak)."""
         th = np.asarray(th, float)
         c, w, h = (np.asarray(v, float)[rows][:, :, None] for v in (centres, widths, heights))
         out = h * np.exp(-(((th[:, None, :] - c) / w) ** 2))  # (R, 6, K)
@@ -391,6 +393,8 @@ def _bumps(centres, widths, heights, step):
         last = np.asarray(rows) == len(centres) - 1
         steps = np.where(th == j, 3.0, np.where(th == b, 2.5, 4.0 * np.exp(-(((th - hidden) / 1e-9) ** 2))))
         out[last, 3] = steps[last]
+        if read is not None:
+            out[~read.T] = np.nan
         return out.transpose(1, 0, 2)
 
     return six

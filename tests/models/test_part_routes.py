@@ -114,7 +114,7 @@ def test_a_designs_peaks_do_not_depend_on_its_block(village_variants):
         scenes = [one[i][0] for i in rows]
         th = np.stack([_cycle(sc) for sc in scenes])
 
-        def loads_at(r, angles, rows=rows, scenes=scenes):
+        def loads_at(r, angles, _read=None, rows=rows, scenes=scenes):
             """The six loads of designs ``r`` of ``rows`` at ``angles``, one design at a time."""
             return np.stack([J.six_loads(_forces(scenes[k], angles[j], designs, rows[k], len(ev)))
                              for j, k in enumerate(r)], axis=1)  # fmt: skip
@@ -188,3 +188,21 @@ def test_peak_candidates_hold_every_angle_the_peak_search_reads():
             j = best[joint, design]
             for i in (max(j - 1, 0), j, min(j + 1, k - 1)):
                 assert i in at[design]
+
+
+def test_the_cycles_cosines_are_numpys_of_its_angles():
+    """:func:`pumplink.models.parts.cycle_angles` with ``trig``: the cosines and sines of the
+    turn's angles computed once and merged with the nodes' in the angles' places must be
+    np.cos and np.sin of the merged angles, bit for bit (dead centres anywhere, next to 0 and
+    2 pi, and nodes falling between the same two angles of the turn)."""
+    rng = np.random.default_rng(7)
+    turn = 2 * np.pi / P.CYCLE_SAMPLES
+    extended = np.concatenate([rng.uniform(0.0, 2 * np.pi, 40), [0.0, 1e-10, 2 * np.pi - 1e-10, 3.0, 3.0]])
+    folded = np.concatenate([rng.uniform(0.0, 2 * np.pi, 40), [np.pi, 2.0, 5.0, 3.0 + 0.3 * turn, 5 * turn]])
+    plain = P.cycle_angles(extended, folded)
+    angles, cos, sin = P.cycle_angles(extended, folded, trig=True)
+    assert angles.shape == (45, P.CYCLE_SAMPLES + 4)
+    assert (np.diff(angles, axis=1) >= 0).all() and (angles >= 0).all() and (angles < 2 * np.pi).all()
+    np.testing.assert_array_equal(angles, plain)
+    np.testing.assert_array_equal(cos, np.cos(angles))
+    np.testing.assert_array_equal(sin, np.sin(angles))
