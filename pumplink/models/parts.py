@@ -14,6 +14,7 @@ Pure functions on floats / arrays over designs; SI units, radians.
 
 from __future__ import annotations
 
+from contextlib import contextmanager
 from dataclasses import dataclass
 from types import SimpleNamespace
 from typing import NamedTuple
@@ -428,11 +429,13 @@ def part_checks(syn, c, sizes, index, least, masses, judged) -> dict:
         lk, part, col = columns(
             block, ("wheel_torque", "inertia", "speed", "speed_fluctuation", "rope_force")
         )
-        store(block, dynamics_strength(
-            lk, syn.dead_centre_extended[block], syn.dead_centre_folded[block], col["wheel_torque"],
-            col["inertia"], Masses(coupler[block], handle[block], 0.0), col["speed"],
-            col["speed_fluctuation"], least[block], col["rope_force"], weight[block], part,
-        ))  # fmt: skip
+        with row_buffers():
+            st = dynamics_strength(
+                lk, syn.dead_centre_extended[block], syn.dead_centre_folded[block], col["wheel_torque"],
+                col["inertia"], Masses(coupler[block], handle[block], 0.0), col["speed"],
+                col["speed_fluctuation"], least[block], col["rope_force"], weight[block], part,
+            )  # fmt: skip
+        store(block, st)
     for i in np.nonzero(judged & (model != 0) & (model != ORDER.index(DYNAMICS)))[0].tolist():
         lk = FourBar(*(float(np.asarray(v)[i]) for v in syn.linkage.parameters))
         dce, dcf = float(syn.dead_centre_extended[i]), float(syn.dead_centre_folded[i])
@@ -447,6 +450,25 @@ def part_checks(syn, c, sizes, index, least, masses, judged) -> dict:
         )
         store(i, strength(loads, part_sizes(i)))
     return out
+
+
+#: numpy's ufunc buffer [elements] while full dynamics' part checks run.  From numpy 2.3 a ufunc
+#: on a (designs, angles) array and a (designs, 1) column copies the column, repeated, into a
+#: buffer of this many elements (8,192 by default) to run longer inner loops; a cycle's row of
+#: 1,444 angles fills more than half of 2,048, so its rows run as they lie, without the copy:
+#: about 5 % of a tolerance study's time.  The same operations on each element, so the same values.
+ROW_BUFFER = 2048
+
+
+@contextmanager
+def row_buffers(size: int = ROW_BUFFER):
+    """numpy's ufunc buffer set to ``size`` elements within the block (np.setbufsize; this
+    thread's, restored after)."""
+    old = np.setbufsize(size)
+    try:
+        yield
+    finally:
+        np.setbufsize(old)
 
 
 #: Designs a block of the quasi-static part checks holds (its peak search holds ~1,500 crank angles
@@ -465,6 +487,8 @@ __all__ = [
     "CYCLE_SAMPLES",
     "PART_BLOCK",
     "SCENE_BLOCK",
+    "ROW_BUFFER",
+    "row_buffers",
     "PART_KEYS",
     "dynamics_strength",
     "part_checks",

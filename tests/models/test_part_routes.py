@@ -206,3 +206,16 @@ def test_the_cycles_cosines_are_numpys_of_its_angles():
     np.testing.assert_array_equal(angles, plain)
     np.testing.assert_array_equal(cos, np.cos(angles))
     np.testing.assert_array_equal(sin, np.sin(angles))
+
+
+def test_the_row_buffer_is_set_within_the_part_checks_only():
+    """:func:`pumplink.models.parts.row_buffers` sets numpy's ufunc buffer for its block and gives
+    the caller's back, also when the block raises."""
+    before = np.getbufsize()
+    with P.row_buffers():
+        assert np.getbufsize() == P.ROW_BUFFER != before
+    assert np.getbufsize() == before
+    with pytest.raises(RuntimeError), P.row_buffers(512):
+        assert np.getbufsize() == 512
+        raise RuntimeError
+    assert np.getbufsize() == before
