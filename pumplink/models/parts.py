@@ -115,9 +115,9 @@ def cycle_angles(dead_centre_extended, dead_centre_folded, trig: bool = False):
     ends = np.stack([dead_centre_extended, dead_centre_folded], axis=1)
     nodes = np.sort(np.mod((ends[:, :, None] + [-_joints.JUMP_OFFSET, _joints.JUMP_OFFSET]).reshape(-1, 4),
                            TWO_PI), axis=1)  # fmt: skip
+    n = nodes.shape[0]
     # node j goes after the turn's angles up to it and the nodes before it
     at = np.searchsorted(turn, nodes, side="right") + np.arange(4)
-    n = nodes.shape[0]
     is_node = np.zeros((n, CYCLE_SAMPLES + 4), bool)
     np.put_along_axis(is_node, at, True, axis=1)
     on_turn = ~is_node
@@ -234,8 +234,8 @@ def dynamics_strength(lk, dead_centre_extended, dead_centre_folded, wheel_torque
     for s in range(0, n, CYCLE_ROWS):
         rows = slice(s, s + CYCLE_ROWS)
         trig = (cos_th[rows], sin_th[rows])
-        read = loads_at(every[rows], th[rows], fatigue=True, out=six[:, rows], squares=True, trig=trig)[1]
-        for v, r in zip(fatigue, read, strict=True):
+        carried = loads_at(every[rows], th[rows], fatigue=True, out=six[:, rows], squares=True, trig=trig)[1]
+        for v, r in zip(fatigue, carried, strict=True):
             v[rows, :k] = r
     # the joints' magnitudes where the peak search reads them (np.hypot costs as much as the rest
     # of the joint forces): at the angles their squares rank near the top and those angles'
