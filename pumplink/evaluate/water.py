@@ -13,6 +13,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from pumplink.constants import DEFAULT_EFFICIENCY, DEFAULT_VOLUMETRIC_EFFICIENCY, LOSS_SHARE
+from pumplink.mechanisms.fourbar_kernel import alike_designs
 from pumplink.models import losses as _losses
 from pumplink.models import water as _kernels
 
@@ -141,10 +142,22 @@ def _duty(power, flow, c: dict, operator_power):
     decides = ~(_losses.off_by(DEFAULT_EFFICIENCY * DEFAULT_VOLUMETRIC_EFFICIENCY, model) <= LOSS_SHARE)
     eta_v = np.full(np.shape(v), DEFAULT_VOLUMETRIC_EFFICIENCY)
     if np.any(decides):
-        solved = _losses.duty_rope_speed(power, head, d, lambda v: _losses.force_efficiency(d, v))
+        solved = _duty_rope_speed(power, head, d)
         v = np.where(decides, solved, v)
         eta_v = np.where(decides, _losses.volumetric_efficiency(d, v, head, clearance, spacing), eta_v)
     own = np.asarray(c["losses"]) == 2  # the spec's efficiencies: constants, the torque is
     out_flow = np.where(own, out_flow, eta_v * area * v)
     speed = np.where(own, speed, v / r_w)
     return out_flow, speed / (2.0 * np.pi) * 60.0
+
+
+def _duty_rope_speed(power, head, pipe_diameter):
+    """:func:`pumplink.models.losses.duty_rope_speed` with the loss model's force efficiency, solved
+    once per distinct (power, head, bore): a grid's variants that differ in the linkage or the wheel
+    share it (each speed from the same steps on its own inputs, so the same values)."""
+    p, h, d = np.broadcast_arrays(*(np.asarray(v, float) for v in (power, head, pipe_diameter)))
+    first, kind = alike_designs(p, h, d) if p.ndim == 1 else (None, None)
+    if first is not None:
+        p, h, d = p[first], h[first], d[first]
+    solved = _losses.duty_rope_speed(p, h, d, lambda v: _losses.force_efficiency(d, v))
+    return solved if first is None else solved[kind]
