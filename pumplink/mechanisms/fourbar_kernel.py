@@ -92,17 +92,16 @@ def alike_designs(*columns):
     load or the wheel are alike in their linkage: a kernel of the linkage alone runs once per kind
     (the same operations per design, so the same values).  Kinds are found by a hash of the values'
     bits and checked row by row (a collision: (None, None))."""
-    rows = np.ascontiguousarray(
-        np.stack(np.broadcast_arrays(*(np.asarray(v, float) for v in columns)), axis=1)
-    )
-    if rows.ndim != 2 or rows.shape[0] < 2:
+    # one row per column (designs along the rows: the hash and the check run along them)
+    rows = np.stack(np.broadcast_arrays(*(np.asarray(v, float) for v in columns)))
+    if rows.ndim != 2 or rows.shape[1] < 2:
         return None, None
     bits = rows.view(np.uint64)
     with np.errstate(over="ignore"):
-        key = (bits * _HASH[: bits.shape[1]]).sum(axis=1, dtype=np.uint64)
+        key = (bits * _HASH[: bits.shape[0], None]).sum(axis=0, dtype=np.uint64)
     _, first, kind = np.unique(key, return_index=True, return_inverse=True)
     kind = kind.ravel()
-    if first.size > 0.75 * bits.shape[0] or not np.array_equal(bits[first][kind], bits):
+    if first.size > 0.75 * bits.shape[1] or not np.array_equal(bits.take(first, 1).take(kind, 1), bits):
         return None, None
     return first, kind
 
