@@ -91,7 +91,7 @@ def alike_designs(*columns):
     of their own (computing per kind would not pay).  A grid's variants that differ only in the
     load or the wheel are alike in their linkage: a kernel of the linkage alone runs once per kind
     (the same operations per design, so the same values).  Kinds are found by a hash of the values'
-    bits and checked row by row (a collision: (None, None))."""
+    bits and checked design by design (a collision: (None, None))."""
     # one row per column (designs along the rows: the hash and the check run along them)
     rows = np.stack(np.broadcast_arrays(*(np.asarray(v, float) for v in columns)))
     if rows.ndim != 2 or rows.shape[1] < 2:
