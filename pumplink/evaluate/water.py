@@ -156,7 +156,7 @@ def _duty_rope_speed(power, head, pipe_diameter):
     once per distinct (power, head, bore): a grid's variants that differ in the linkage or the wheel
     share it (each speed from the same steps on its own inputs, so the same values)."""
     p, h, d = np.broadcast_arrays(*(np.asarray(v, float) for v in (power, head, pipe_diameter)))
-    first, kind = alike_designs(p, h, d) if p.ndim == 1 else (None, None)
+    first, kind = alike_designs(p, h, d)  # (None, None) for one design or scalars
     if first is not None:
         p, h, d = p[first], h[first], d[first]
     solved = _losses.duty_rope_speed(p, h, d, lambda v: _losses.force_efficiency(d, v))
